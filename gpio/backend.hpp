@@ -1,0 +1,83 @@
+#pragma once
+// The one interface between stepmod and its GPIO lines. Two backends implement it:
+//   SimBackend   - the built-in simulated machine (INTERFACE.md section 2 [axis.sim], section 4)
+//   GpiodBackend - a real chip through libgpiod 1.6, input events through io_uring
+// Outputs are written by the pulse thread; inputs are consumed by the control thread.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+#include "rt/clock.hpp"
+#include "rt/edge.hpp"
+
+namespace stepmod::gpio {
+
+using rt::OutputLine;
+using rt::kOutputLinesPerAxis;
+
+// Input lines of one axis. The first six are in the order of the simulator panel's force bits
+// (INTERFACE.md section 4): 0 capture, 1 external, 2 home, 3 E-stop, 4 CW limit, 5 CCW limit.
+enum class InputLine : std::uint8_t {
+  kCapture = 0,
+  kExternal = 1,
+  kHome = 2,
+  kEStop = 3,
+  kCwLimit = 4,
+  kCcwLimit = 5,
+  kEncA = 6,
+  kEncB = 7,
+  kEncZ = 8,
+};
+inline constexpr unsigned kInputLinesPerAxis = 9;
+inline constexpr unsigned kPanelInputs = 6;  // inputs the simulator panel can force
+
+// Config-file key of each line (INTERFACE.md section 2), also the VCD wire suffix.
+std::string_view input_key(InputLine l) noexcept;
+std::string_view output_key(OutputLine l) noexcept;
+
+// An input edge as the hardware saw it: electrical level after the change, stamped with the
+// CLOCK_MONOTONIC time of the edge itself (kernel timestamp for gpiod, step time for sim).
+struct InputEvent {
+  Nanos t = 0;
+  std::uint8_t axis = 0;
+  InputLine line = InputLine::kCapture;
+  bool level = false;
+};
+
+// How a drive interprets the two pulse outputs; the simulated drive follows the module's
+// configuration (3601 config MSW bit 10) the way a real drive is set up to match it.
+enum class PulseFormat : std::uint8_t { kStepDir, kCwCcw };
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+
+  virtual unsigned axes() const noexcept = 0;
+
+  // Pulse thread. Drives one output line; `t` is the CLOCK_MONOTONIC time of the write (the sim
+  // stamps the input edges it causes with it). Real-time safe: no allocation, no lock, no
+  // logging, at most the one system call that writes the line.
+  virtual void write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept = 0;
+
+  // Control thread. Whether a line is configured (wired) at all.
+  virtual bool has_input(unsigned axis, InputLine line) const noexcept = 0;
+  virtual bool has_output(unsigned axis, OutputLine line) const noexcept = 0;
+
+  // Control thread. Present electrical level of an input; false for an unwired line.
+  virtual bool read(unsigned axis, InputLine line) = 0;
+
+  // Control thread. Blocks until at least one input event is available or `deadline` passes;
+  // returns the number of events stored in `out` (0 on timeout). Events of one line arrive in
+  // time order and none is lost; a lost event is reported by `lost_events()`.
+  virtual std::size_t wait_events(std::span<InputEvent> out, Nanos deadline) = 0;
+  virtual std::uint64_t lost_events() const noexcept = 0;
+
+  // Any thread, while the pulse thread is stopped: drive every output to its idle level (low).
+  virtual void idle_outputs() noexcept = 0;
+
+  // Control thread: the module's configured pulse format (only the sim drive uses it).
+  virtual void set_pulse_format(unsigned /*axis*/, PulseFormat /*format*/) noexcept {}
+};
+
+}  // namespace stepmod::gpio

@@ -1,0 +1,122 @@
+#pragma once
+// The module layer's handle on one axis' motion. Lives in the control thread. Starting, changing
+// and stopping motions go to the planner as Commands; an immediate stop also goes straight to the
+// pulse thread (AxisControl::abort_epoch) so that it never waits for the planner.
+#include <cstdint>
+
+#include "planner/motion_request.hpp"
+#include "rt/axis_feedback.hpp"
+
+namespace stepmod::planner {
+
+class CommandSink {
+ public:
+  virtual ~CommandSink() = default;
+  // Queues a command for the planner; false if the queue is full (the caller reports an error).
+  virtual bool submit(const Command& c) noexcept = 0;
+};
+
+class MotionPort {
+ public:
+  MotionPort(unsigned axis, CommandSink& sink, rt::AxisFeedback& feedback,
+             rt::AxisControl& control, const rt::StepHistory& history) noexcept
+      : axis_(static_cast<std::uint8_t>(axis)),
+        sink_(sink),
+        fb_(feedback),
+        ctl_(control),
+        history_(history) {}
+
+  // Each start returns the new motion's epoch (0 if the planner queue was full).
+  std::uint32_t start_move(const MoveSpec& m) noexcept {
+    Command c;
+    c.kind = CommandKind::kMove;
+    c.move = m;
+    return start(c);
+  }
+  std::uint32_t start_run(const RunSpec& r) noexcept {
+    Command c;
+    c.kind = CommandKind::kRun;
+    c.run = r;
+    return start(c);
+  }
+  std::uint32_t start_blend(const BlendSpec& b) noexcept {
+    Command c;
+    c.kind = CommandKind::kBlend;
+    c.blend = b;
+    return start(c);
+  }
+  bool change_speed(double vp, Ramp accel, Ramp decel) noexcept {
+    Command c;
+    c.kind = CommandKind::kChangeSpeed;
+    c.run.vp = vp;
+    c.run.accel = accel;
+    c.run.decel = decel;
+    return send(c);
+  }
+  bool stop(Ramp decel) noexcept {
+    Command c;
+    c.kind = CommandKind::kStop;
+    c.ramp = decel;
+    return send(c);
+  }
+  bool stop_after(Nanos t, std::int64_t steps) noexcept {
+    Command c;
+    c.kind = CommandKind::kStopAfter;
+    c.t = t;
+    c.steps = steps;
+    return send(c);
+  }
+  // Immediate stop: takes effect in the pulse thread at its next loop, planner or not.
+  void immediate_stop() noexcept {
+    ctl_.abort_epoch.store(epoch_, std::memory_order_release);
+    Command c;
+    c.kind = CommandKind::kAbort;
+    send(c);
+  }
+  bool set_gpo(bool level) noexcept {
+    Command c;
+    c.kind = CommandKind::kSetGpo;
+    c.level = level;
+    return send(c);
+  }
+
+  // Feedback, as last published by the pulse thread.
+  std::uint32_t epoch() const noexcept { return epoch_; }
+  bool busy() const noexcept {
+    return fb_.finished_epoch.load(std::memory_order_acquire) < epoch_;
+  }
+  std::int64_t steps() const noexcept { return fb_.steps.load(std::memory_order_acquire); }
+  // Step count at a past time t (capture, registration): exact while t is within the history.
+  bool steps_at(Nanos t, std::int64_t& out) const noexcept {
+    return history_.steps_at(t, steps(), out);
+  }
+  // Flags of the last executed edge of the current motion (phase, direction); 0 when idle.
+  std::uint8_t motion_flags() const noexcept {
+    if (!busy() || fb_.epoch.load(std::memory_order_acquire) != epoch_) return 0;
+    return fb_.flags.load(std::memory_order_acquire);
+  }
+  unsigned axis() const noexcept { return axis_; }
+
+ private:
+  std::uint32_t start(Command& c) noexcept {
+    c.axis = axis_;
+    c.epoch = epoch_ + 1;
+    if (!sink_.submit(c)) return 0;
+    epoch_ = c.epoch;
+    return epoch_;
+  }
+  bool send(Command& c) noexcept {
+    c.axis = axis_;
+    c.epoch = epoch_;
+    return sink_.submit(c);
+  }
+
+  std::uint8_t axis_;
+  CommandSink& sink_;
+  rt::AxisFeedback& fb_;
+  rt::AxisControl& ctl_;
+  const rt::StepHistory& history_;
+  std::uint32_t epoch_ = 0;
+};
+
+}  // namespace stepmod::planner

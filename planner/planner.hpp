@@ -1,0 +1,60 @@
+#pragma once
+// The planner: turns Commands into edge schedules, a few milliseconds ahead of the pulse thread.
+// It owns the producer side of every axis' edge ring. `service()` is the whole job; the planner
+// thread (planner_thread.hpp) only calls it and sleeps, so tests can run it in virtual time.
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "planner/motion_port.hpp"
+#include "planner/motion_request.hpp"
+#include "rt/axis_feedback.hpp"
+#include "rt/edge.hpp"
+#include "rt/spsc_ring.hpp"
+
+namespace stepmod::planner {
+
+struct AxisTiming {
+  Nanos step_pulse_ns = 2'000;  // width of a step pulse (shortened to half the period if needed)
+  Nanos dir_setup_ns = 5'000;   // direction change -> next step edge
+};
+
+struct PlannerAxis {
+  rt::SpscRing<rt::Edge>* edges = nullptr;       // producer side
+  const rt::AxisControl* control = nullptr;      // abort_epoch: skip aborted motions
+  AxisTiming timing;
+};
+
+struct PlannerOptions {
+  Nanos lookahead_ns = 4 * kNsPerMs;   // keep each ring filled this far ahead of `now`
+  Nanos start_delay_ns = 150 * kNsPerUs;  // a new motion's time 0 is at least this after `now`
+  std::size_t command_queue = 64;
+};
+
+class AxisPlanner;  // planner/axis_planner.hpp
+
+class Planner final : public CommandSink {
+ public:
+  Planner(std::span<const PlannerAxis> axes, PlannerOptions options = {});
+  ~Planner() override;
+
+  // Control thread (single producer).
+  bool submit(const Command& c) noexcept override;
+
+  // Planner thread: applies the queued commands and fills every ring up to now + lookahead.
+  // Returns the time at which it should run again at the latest.
+  Nanos service(Nanos now);
+
+  // For the planner thread's sleep: a counter bumped by submit(), so a sleeper can be woken.
+  std::atomic<std::uint32_t>& wake_counter() noexcept { return wake_; }
+  const PlannerOptions& options() const noexcept { return options_; }
+
+ private:
+  PlannerOptions options_;
+  std::vector<std::unique_ptr<AxisPlanner>> axes_;
+  rt::SpscRing<Command> queue_;
+  std::atomic<std::uint32_t> wake_{0};
+};
+
+}  // namespace stepmod::planner

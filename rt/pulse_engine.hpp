@@ -1,0 +1,60 @@
+#pragma once
+// The pulse thread's work, separated from the thread itself so that tests can run it in virtual
+// time: take the earliest due edge over all axes, write it, account for it. Nothing here
+// allocates, locks, logs or makes a system call other than the backend's line write.
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "gpio/backend.hpp"
+#include "rt/axis_feedback.hpp"
+#include "rt/edge.hpp"
+#include "rt/lateness_stats.hpp"
+#include "rt/spsc_ring.hpp"
+#include "rt/trace_record.hpp"
+
+namespace stepmod::rt {
+
+inline constexpr Nanos kNever = std::numeric_limits<Nanos>::max();
+
+// Everything the pulse thread touches for one axis.
+struct AxisLink {
+  SpscRing<Edge>* edges = nullptr;   // consumer side: planner -> pulse thread
+  AxisFeedback* feedback = nullptr;  // written here
+  AxisControl* control = nullptr;    // read here (immediate stop)
+  StepHistory* history = nullptr;    // written here
+};
+
+class PulseEngine {
+ public:
+  // `trace` may be null (no --trace). All links must outlive the engine.
+  PulseEngine(gpio::Backend& backend, std::span<const AxisLink> axes,
+              SpscRing<TraceRecord>* trace);
+
+  // Applies pending immediate stops (drops the aborted motions' edges, brings a high step line
+  // low, publishes the stop) and returns the time of the earliest pending edge, or kNever.
+  Nanos next_due() noexcept;
+
+  // Executes the earliest pending edge (next_due() must have returned a time), stamping the
+  // write, the feedback and the trace with `write_time`; lateness = write_time - edge time.
+  void execute_one(Nanos write_time) noexcept;
+
+  LatenessStats& stats() noexcept { return stats_; }
+  const LatenessStats& stats() const noexcept { return stats_; }
+  std::uint64_t trace_dropped() const noexcept { return trace_dropped_; }
+
+ private:
+  void apply_abort(unsigned axis) noexcept;
+  void write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept;
+
+  gpio::Backend& backend_;
+  std::vector<AxisLink> axes_;           // sized once in the constructor
+  std::vector<std::uint32_t> abort_seen_;
+  SpscRing<TraceRecord>* trace_;
+  LatenessStats stats_;
+  int next_axis_ = -1;                   // axis of the edge next_due() found
+  std::uint64_t trace_dropped_ = 0;
+};
+
+}  // namespace stepmod::rt

@@ -1,0 +1,18 @@
+#pragma once
+// One line change for the VCD trace (INTERFACE.md section 5): an output written by the pulse
+// thread (at the time it was written) or an input edge (at the time it was stamped).
+#include <cstdint>
+
+#include "rt/clock.hpp"
+
+namespace stepmod::rt {
+
+struct TraceRecord {
+  Nanos t = 0;
+  std::uint8_t axis = 0;
+  std::uint8_t line = 0;      // OutputLine or gpio::InputLine value, per `is_input`
+  std::uint8_t level = 0;
+  std::uint8_t is_input = 0;
+};
+
+}  // namespace stepmod::rt
