@@ -10,7 +10,7 @@ inline constexpr unsigned kWords = 8;
 inline constexpr std::uint16_t bit(unsigned n) { return static_cast<std::uint16_t>(1u << n); }
 
 // Output words (PLC -> module), both modes.
-namespace out {
+namespace out_word {
 inline constexpr unsigned kMsw = 0;         // config bits MSW / command word MSW
 inline constexpr unsigned kLsw = 1;         // config bits LSW / command word LSW
 inline constexpr unsigned kTargetMsw = 2;   // config: starting speed MSW
@@ -19,10 +19,10 @@ inline constexpr unsigned kSpeedMsw = 4;
 inline constexpr unsigned kSpeedLsw = 5;
 inline constexpr unsigned kAccel = 6;
 inline constexpr unsigned kDecel = 7;
-}  // namespace out
+}  // namespace out_word
 
 // Input words (module -> PLC), command mode (digest 3.9).
-namespace in {
+namespace in_word {
 inline constexpr unsigned kStatusMsw = 0;
 inline constexpr unsigned kStatusLsw = 1;
 inline constexpr unsigned kPositionMsw = 2;
@@ -34,7 +34,7 @@ inline constexpr unsigned kCaptureLsw = 7;
 // Configuration mode (digest 3.4): words 0..3 mirror the accepted configuration.
 inline constexpr unsigned kFirmwareMajor = 6;
 inline constexpr unsigned kFirmwareMinor = 7;
-}  // namespace in
+}  // namespace in_word
 
 // Configuration bits MSW (output word 0 in configuration mode, digest 3.2).
 namespace cfg_msw {
