@@ -3,6 +3,7 @@
 // AxisFeedback is written only by the pulse thread; AxisControl only by the module (control)
 // thread. Every field is a lone atomic: no locks on the real-time path.
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 
 #include "rt/clock.hpp"
@@ -11,10 +12,11 @@
 namespace stepmod::rt {
 
 struct AxisFeedback {
-  std::atomic<std::int64_t> steps{0};          // net steps output since start, + = CW
-  std::atomic<std::uint32_t> epoch{0};         // epoch of the last executed motion edge
-  std::atomic<std::uint32_t> finished_epoch{0};// newest epoch that ended (kLast executed or aborted)
-  std::atomic<std::uint8_t> flags{0};          // edge_flag bits of the last executed motion edge
+  std::atomic<std::int64_t> steps{0};   // net steps output since start, + = CW
+  std::atomic<std::uint32_t> epoch{0};  // epoch of the last executed motion edge
+  std::atomic<std::uint32_t> finished_epoch{
+      0};                              // newest epoch that ended (kLast executed or aborted)
+  std::atomic<std::uint8_t> flags{0};  // edge_flag bits of the last executed motion edge
   std::atomic<std::uint8_t> output_levels{0};  // bit per OutputLine: what the lines are driven to
   std::atomic<Nanos> last_step_t{0};           // time of the last step's leading edge
 };
@@ -31,36 +33,52 @@ class StepHistory {
  public:
   static constexpr std::size_t kSize = 4096;  // at 1 MHz: 4 ms of history
 
+  // Pulse thread only, after each step's leading edge, with the count after that step. Every
+  // step must be recorded, and the count starts at 0 (AxisFeedback::steps), so that the count
+  // before the first recorded step is known to be 0.
   void record(Nanos t, std::int64_t steps) noexcept {
     const std::uint64_t i = count_.load(std::memory_order_relaxed);
+    // Seqlock: announce the slot being overwritten before touching it. The entry's stores are
+    // releases (free on x86), so a reader whose acquire load saw any part of the new entry also
+    // sees `writing_` >= i + 1. (No fences: GCC's ThreadSanitizer does not support them.)
+    writing_.store(i + 1, std::memory_order_relaxed);
     Entry& e = entries_[i % kSize];
-    e.t.store(t, std::memory_order_relaxed);
-    e.steps.store(steps, std::memory_order_relaxed);
+    e.t.store(t, std::memory_order_release);
+    e.steps.store(steps, std::memory_order_release);
     count_.store(i + 1, std::memory_order_release);
   }
 
-  // Step count at time t: the count after the last step at or before t. `now_steps` is returned
-  // when no recorded step is newer than t. Returns false if t is older than the history.
+  // Step count at time t: the count after the last step at or before t (0 if t is before the
+  // first step ever). `now_steps` is returned when no step has been recorded yet. Returns false
+  // if t is older than the history still held, or if the writer kept overwriting the entries
+  // being read (only if the reader is preempted for most of kSize steps).
   bool steps_at(Nanos t, std::int64_t now_steps, std::int64_t& out) const noexcept {
     for (int attempt = 0; attempt < 4; ++attempt) {
       const std::uint64_t n = count_.load(std::memory_order_acquire);
-      std::int64_t result = now_steps;
-      bool found = n == 0;
-      const std::uint64_t oldest = n > kSize ? n - kSize + 64 : 0;  // margin against the writer
-      for (std::uint64_t i = n; i > oldest; --i) {
-        const Entry& e = entries_[(i - 1) % kSize];
-        const Nanos et = e.t.load(std::memory_order_relaxed);
-        if (et <= t) {
-          result = e.steps.load(std::memory_order_relaxed);
+      if (n == 0) {
+        out = now_steps;
+        return true;
+      }
+      // Entries [n - kSize, n) are intact now; leave the writer kMargin entries of room to
+      // write while we read before the oldest one we look at is overwritten.
+      const std::uint64_t lowest = n > kSize - kMargin ? n - (kSize - kMargin) : 0;
+      std::uint64_t i = n;
+      std::int64_t result = 0;
+      bool found = false;
+      while (i > lowest) {
+        --i;
+        const Entry& e = entries_[i % kSize];
+        if (e.t.load(std::memory_order_acquire) <= t) {
+          result = e.steps.load(std::memory_order_acquire);
           found = true;
           break;
         }
-        // A step after t: before it the count was one step back toward this step's predecessor.
-        result = (i >= 2) ? entries_[(i - 2) % kSize].steps.load(std::memory_order_relaxed) : 0;
-        found = (i - 1 == 0);
       }
-      std::atomic_thread_fence(std::memory_order_acquire);
-      if (count_.load(std::memory_order_relaxed) - n < kSize - 64) {
+      // Walked past the very first step without finding one at or before t: t precedes it.
+      if (!found && i == 0) found = true;  // result stays 0
+      // Writes of indices < w overwrote indices < w - kSize; all we read is index >= i.
+      const std::uint64_t w = writing_.load(std::memory_order_relaxed);
+      if (w <= i + kSize) {
         if (found) out = result;
         return found;
       }
@@ -69,12 +87,14 @@ class StepHistory {
   }
 
  private:
+  static constexpr std::size_t kMargin = 64;
   struct Entry {
     std::atomic<Nanos> t{0};
     std::atomic<std::int64_t> steps{0};
   };
   Entry entries_[kSize];
-  std::atomic<std::uint64_t> count_{0};
+  std::atomic<std::uint64_t> count_{0};    // entries completely written
+  std::atomic<std::uint64_t> writing_{0};  // entries whose writing has begun
 };
 
 }  // namespace stepmod::rt

@@ -26,9 +26,9 @@ struct Edge {
   Nanos t = 0;              // CLOCK_MONOTONIC time at which the line must change
   std::uint32_t epoch = 0;  // motion id; edges of an aborted motion are dropped unexecuted
   OutputLine line = OutputLine::kStep;
-  std::uint8_t level = 0;   // electrical level to write
-  std::int8_t dpos = 0;     // +1/-1 on a step's leading edge: the axis step count changes by this
-  std::uint8_t flags = 0;   // edge_flag bits
+  std::uint8_t level = 0;  // electrical level to write
+  std::int8_t dpos = 0;    // +1/-1 on a step's leading edge: the axis step count changes by this
+  std::uint8_t flags = 0;  // edge_flag bits
 
   Phase phase() const noexcept { return static_cast<Phase>(flags & edge_flag::kPhaseMask); }
 };

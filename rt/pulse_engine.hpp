@@ -2,6 +2,7 @@
 // The pulse thread's work, separated from the thread itself so that tests can run it in virtual
 // time: take the earliest due edge over all axes, write it, account for it. Nothing here
 // allocates, locks, logs or makes a system call other than the backend's line write.
+#include <atomic>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -29,8 +30,7 @@ struct AxisLink {
 class PulseEngine {
  public:
   // `trace` may be null (no --trace). All links must outlive the engine.
-  PulseEngine(gpio::Backend& backend, std::span<const AxisLink> axes,
-              SpscRing<TraceRecord>* trace);
+  PulseEngine(gpio::Backend& backend, std::span<const AxisLink> axes, SpscRing<TraceRecord>* trace);
 
   // Applies pending immediate stops (drops the aborted motions' edges, brings a high step line
   // low, publishes the stop) and returns the time of the earliest pending edge, or kNever.
@@ -42,19 +42,33 @@ class PulseEngine {
 
   LatenessStats& stats() noexcept { return stats_; }
   const LatenessStats& stats() const noexcept { return stats_; }
-  std::uint64_t trace_dropped() const noexcept { return trace_dropped_; }
+  // Any thread: trace records lost because the trace ring was full.
+  std::uint64_t trace_dropped() const noexcept {
+    return trace_dropped_.load(std::memory_order_relaxed);
+  }
+
+  // The clock an immediate stop stamps its line write with (next_due() has no time argument).
+  // Default monotonic_now; tests running in virtual time substitute theirs. Set before use.
+  using ClockFn = Nanos (*)() noexcept;
+  void set_clock(ClockFn clock) noexcept { clock_ = clock; }
 
  private:
   void apply_abort(unsigned axis) noexcept;
   void write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept;
+  void drop_stale(unsigned axis) noexcept;
 
   gpio::Backend& backend_;
-  std::vector<AxisLink> axes_;           // sized once in the constructor
+  std::vector<AxisLink> axes_;  // sized once in the constructor
   std::vector<std::uint32_t> abort_seen_;
   SpscRing<TraceRecord>* trace_;
   LatenessStats stats_;
-  int next_axis_ = -1;                   // axis of the edge next_due() found
-  std::uint64_t trace_dropped_ = 0;
+  int next_axis_ = -1;  // axis of the edge next_due() found
+  std::atomic<std::uint64_t> trace_dropped_{0};
+  // Per axis: the line of a step pulse whose leading edge was written and whose trailing edge
+  // was not yet (kNoPulse if none): the line an immediate stop must bring low.
+  static constexpr std::uint8_t kNoPulse = 0xff;
+  std::vector<std::uint8_t> pulse_high_;
+  ClockFn clock_ = &monotonic_now;
 };
 
 }  // namespace stepmod::rt

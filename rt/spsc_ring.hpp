@@ -31,8 +31,8 @@ class SpscRing {
 
   // Producer side.
   std::size_t free_slots() const noexcept {
-    return capacity_ - (head_.load(std::memory_order_relaxed) -
-                        tail_.load(std::memory_order_acquire));
+    return capacity_ -
+           (head_.load(std::memory_order_relaxed) - tail_.load(std::memory_order_acquire));
   }
   bool try_push(const T& v) noexcept {
     const std::size_t h = head_.load(std::memory_order_relaxed);
@@ -54,7 +54,9 @@ class SpscRing {
     }
     return &slots_[t & mask_];
   }
-  void pop() noexcept { tail_.store(tail_.load(std::memory_order_relaxed) + 1, std::memory_order_release); }
+  void pop() noexcept {
+    tail_.store(tail_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
+  }
   bool try_pop(T& out) noexcept {
     const T* p = peek();
     if (p == nullptr) return false;

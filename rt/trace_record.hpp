@@ -10,7 +10,7 @@ namespace stepmod::rt {
 struct TraceRecord {
   Nanos t = 0;
   std::uint8_t axis = 0;
-  std::uint8_t line = 0;      // OutputLine or gpio::InputLine value, per `is_input`
+  std::uint8_t line = 0;  // OutputLine or gpio::InputLine value, per `is_input`
   std::uint8_t level = 0;
   std::uint8_t is_input = 0;
 };

@@ -1,0 +1,136 @@
+#include "rt/pulse_engine.hpp"
+
+#include <algorithm>
+
+namespace stepmod::rt {
+
+namespace {
+
+// The pulse thread is the only writer of every AxisFeedback field, so read-modify-write needs no
+// atomic RMW: a relaxed load of our own last store, then a store with the ordering readers need.
+template <typename T>
+void store_max(std::atomic<T>& a, T v) noexcept {
+  if (v > a.load(std::memory_order_relaxed)) a.store(v, std::memory_order_release);
+}
+
+}  // namespace
+
+PulseEngine::PulseEngine(gpio::Backend& backend, std::span<const AxisLink> axes,
+                         SpscRing<TraceRecord>* trace)
+    : backend_(backend),
+      axes_(axes.begin(), axes.end()),
+      abort_seen_(axes.size(), 0),
+      trace_(trace),
+      pulse_high_(axes.size(), kNoPulse) {}
+
+Nanos PulseEngine::next_due() noexcept {
+  Nanos best = kNever;
+  int best_axis = -1;
+  for (unsigned axis = 0; axis < axes_.size(); ++axis) {
+    const AxisLink& link = axes_[axis];
+    if (link.control != nullptr &&
+        link.control->abort_epoch.load(std::memory_order_acquire) > abort_seen_[axis]) {
+      apply_abort(axis);
+    }
+    // Every call, not only when an abort arrives: the planner may still push edges of a motion
+    // it has not yet learnt was aborted, and aborted edges queued behind a GPO edge reach the
+    // head only after it has been executed.
+    drop_stale(axis);
+    const Edge* e = link.edges->peek();
+    // Strictly earlier only: on a tie the lower axis goes first, a stable order for tests.
+    if (e != nullptr && e->t < best) {
+      best = e->t;
+      best_axis = static_cast<int>(axis);
+    }
+  }
+  next_axis_ = best_axis;
+  return best;
+}
+
+void PulseEngine::drop_stale(unsigned axis) noexcept {
+  const std::uint32_t seen = abort_seen_[axis];
+  if (seen == 0) return;  // no abort yet; epoch 0 is not a motion that can have been aborted
+  SpscRing<Edge>& ring = *axes_[axis].edges;
+  for (const Edge* e = ring.peek(); e != nullptr; e = ring.peek()) {
+    if ((e->flags & edge_flag::kMotion) == 0 || e->epoch > seen) break;
+    ring.pop();
+  }
+}
+
+void PulseEngine::apply_abort(unsigned axis) noexcept {
+  const AxisLink& link = axes_[axis];
+  const std::uint32_t a = link.control->abort_epoch.load(std::memory_order_acquire);
+  abort_seen_[axis] = a;
+  drop_stale(axis);
+  // A step pulse of the aborted motion left high would be half a pulse: the drive may or may not
+  // count it. End it now so the line rests at its idle level. A pulse of a newer motion (epoch >
+  // a) is not ours to touch.
+  const std::uint8_t line = pulse_high_[axis];
+  if (line != kNoPulse &&
+      (link.feedback == nullptr || link.feedback->epoch.load(std::memory_order_relaxed) <= a)) {
+    write(axis, static_cast<OutputLine>(line), false, clock_());
+  }
+  // Acknowledge even if nothing of the epoch was queued yet (the planner had not started it):
+  // the module waits for finished_epoch, and any edge of it still to come will be dropped.
+  if (link.feedback != nullptr) store_max(link.feedback->finished_epoch, a);
+}
+
+void PulseEngine::write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept {
+  backend_.write(axis, line, level, t);
+  const auto bit = static_cast<std::uint8_t>(1u << static_cast<unsigned>(line));
+  if (AxisFeedback* fb = axes_[axis].feedback) {
+    const std::uint8_t old = fb->output_levels.load(std::memory_order_relaxed);
+    const auto now = static_cast<std::uint8_t>(level ? (old | bit) : (old & ~bit));
+    if (now != old) fb->output_levels.store(now, std::memory_order_release);
+  }
+  if (!level && pulse_high_[axis] == static_cast<std::uint8_t>(line)) pulse_high_[axis] = kNoPulse;
+  if (trace_ != nullptr) {
+    TraceRecord r;
+    r.t = t;
+    r.axis = static_cast<std::uint8_t>(axis);
+    r.line = static_cast<std::uint8_t>(line);
+    r.level = level ? 1 : 0;
+    r.is_input = 0;
+    // Never wait for the trace writer: a lost trace record costs nothing, a late edge does.
+    if (!trace_->try_push(r)) {
+      trace_dropped_.store(trace_dropped_.load(std::memory_order_relaxed) + 1,
+                           std::memory_order_relaxed);
+    }
+  }
+}
+
+void PulseEngine::execute_one(Nanos write_time) noexcept {
+  if (next_axis_ < 0) return;
+  const auto axis = static_cast<unsigned>(next_axis_);
+  next_axis_ = -1;  // a second call without next_due() must not run a possibly later edge
+  const AxisLink& link = axes_[axis];
+  const Edge* p = link.edges->peek();
+  if (p == nullptr) return;  // cannot happen: we are the only consumer and next_due() saw it
+  const Edge e = *p;
+  link.edges->pop();
+
+  write(axis, e.line, e.level != 0, write_time);
+
+  AxisFeedback* fb = link.feedback;
+  if (e.dpos != 0) {
+    // A step's leading edge.
+    if (e.level != 0) pulse_high_[axis] = static_cast<std::uint8_t>(e.line);
+    if (fb != nullptr) {
+      const std::int64_t steps = fb->steps.load(std::memory_order_relaxed) + e.dpos;
+      // History first: a reader that sees the new count in `steps` and then asks the history
+      // for a time after this step finds it there.
+      if (link.history != nullptr) link.history->record(write_time, steps);
+      fb->last_step_t.store(write_time, std::memory_order_relaxed);
+      fb->steps.store(steps, std::memory_order_release);
+    }
+  }
+  if (fb != nullptr && (e.flags & edge_flag::kMotion) != 0) {
+    fb->epoch.store(e.epoch, std::memory_order_release);
+    fb->flags.store(e.flags, std::memory_order_release);
+    // Last: a reader that sees the motion finished also sees its final count and flags.
+    if ((e.flags & edge_flag::kLast) != 0) store_max(fb->finished_epoch, e.epoch);
+  }
+  stats_.record(write_time - e.t);
+}
+
+}  // namespace stepmod::rt
