@@ -1,0 +1,197 @@
+#include "tools/daemon.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <array>
+#include <cstring>
+#include <thread>
+#include <vector>
+
+#include "gpio/sim_backend.hpp"
+#include "gpio/vcd_trace.hpp"
+#include "ipc/shm_image.hpp"
+#include "ipc/sim_panel.hpp"
+#include "planner/planner_thread.hpp"
+#include "rt/pulse_thread.hpp"
+#include "systemd/notify.hpp"
+#include "tools/backend_factory.hpp"
+#include "tools/stack.hpp"
+
+namespace stepmod::tools {
+
+namespace {
+constexpr std::size_t kTraceRing = 1u << 18;  // records: ~130 ms of two axes at 1 MHz
+// How long the shutdown waits for the pulse thread to acknowledge the immediate stops.
+constexpr Nanos kStopAckTimeout = 200 * kNsPerMs;
+}  // namespace
+
+struct Daemon::Impl {
+  Config config;
+  Nanos start = monotonic_now();
+  std::unique_ptr<gpio::Backend> backend;
+  gpio::SimBackend* sim = nullptr;  // the same object when backend = "sim"
+  std::unique_ptr<rt::SpscRing<rt::TraceRecord>> output_trace;
+  std::unique_ptr<rt::SpscRing<rt::TraceRecord>> input_trace;
+  std::unique_ptr<gpio::TraceWriter> trace;
+  std::unique_ptr<Stack> stack;
+  std::unique_ptr<ipc::ShmImage> image;
+  std::unique_ptr<ipc::SimPanelServer> panel;
+  std::uint64_t input_trace_dropped = 0;
+
+  void control_loop(const std::atomic<bool>& stop);
+  void sync_panel();
+  void shutdown_motion();
+};
+
+Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_path)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& d = *impl_;
+  d.config = config;
+  d.backend = make_backend(config);
+  d.sim = dynamic_cast<gpio::SimBackend*>(d.backend.get());
+  // Outputs start idle, as they will end.
+  d.backend->idle_outputs();
+
+  StackOptions so;
+  so.type = config.type;
+  for (const AxisConfig& a : config.axes) so.timing.push_back({a.step_pulse_ns, a.dir_setup_ns});
+  if (trace_path) {
+    d.output_trace = std::make_unique<rt::SpscRing<rt::TraceRecord>>(kTraceRing);
+    d.input_trace = std::make_unique<rt::SpscRing<rt::TraceRecord>>(kTraceRing);
+  }
+  d.stack = std::make_unique<Stack>(so, *d.backend, d.output_trace.get());
+  d.image = std::make_unique<ipc::ShmImage>(config.name, d.stack->shape());
+  if (d.sim != nullptr) {
+    d.panel = std::make_unique<ipc::SimPanelServer>(config.name, d.stack->shape().axes);
+  }
+  if (trace_path) {
+    const auto wires = gpio::trace_wires(*d.backend);
+    d.trace = std::make_unique<gpio::TraceWriter>(*trace_path, wires, d.start, *d.output_trace,
+                                                  *d.input_trace);
+  }
+}
+
+Daemon::~Daemon() = default;
+
+void Daemon::run(const std::atomic<bool>& stop) {
+  Impl& d = *impl_;
+  rt::PulseThread::Options po;
+  po.priority = d.config.rt_priority;
+  po.cpu = d.config.rt_cpu;
+  rt::PulseThread pulse(d.stack->engine(), po);
+  if (d.trace) d.trace->start();
+  if (!pulse.start()) throw std::runtime_error("cannot start the pulse thread");
+  const auto& st = pulse.status();
+  if (!st.fifo) {
+    spdlog::warn("pulse thread: SCHED_FIFO priority {} refused ({}); running without real-time "
+                 "priority: pulse timing will suffer under load",
+                 po.priority, std::strerror(st.sched_errno));
+  }
+  if (!st.memory_locked) {
+    spdlog::warn("mlockall refused ({}); memory is not locked", std::strerror(st.mlock_errno));
+  }
+  if (po.cpu >= 0 && !st.pinned) {
+    spdlog::warn("cannot pin the pulse thread to CPU {} ({})", po.cpu,
+                 std::strerror(st.affinity_errno));
+  }
+  planner::PlannerThread planner(d.stack->planner());
+  planner.start();
+
+  spdlog::info("module {} '{}' running: /dev/shm/stepmod.{}, {} backend, scan {} us",
+               static_cast<unsigned>(d.config.type), d.config.name, d.config.name,
+               d.sim != nullptr ? "sim" : "gpiod", d.config.scan_ns / kNsPerUs);
+  systemd::notify_ready("running");
+
+  d.control_loop(stop);
+
+  systemd::notify_stopping();
+  d.shutdown_motion();
+  planner.stop();
+  pulse.stop();
+  pulse.join();
+  d.backend->idle_outputs();
+  const auto stats = d.stack->engine().stats().snapshot();
+  spdlog::info("pulse thread: {} edges written, lateness p50 {} ns, p99.9 {} ns, max {} ns",
+               stats.count, stats.percentile(0.5), stats.percentile(0.999), stats.max);
+  if (d.trace) {
+    d.trace->stop(d.stack->engine().trace_dropped(), d.input_trace_dropped);
+    if (d.stack->engine().trace_dropped() + d.input_trace_dropped > 0) {
+      spdlog::warn("trace: {} output and {} input records dropped (ring full)",
+                   d.stack->engine().trace_dropped(), d.input_trace_dropped);
+    }
+  }
+  if (d.backend->lost_events() > 0) {
+    spdlog::warn("{} input events were lost", d.backend->lost_events());
+  }
+}
+
+// The control thread: input events as they come, the PLC image once per scan.
+void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
+  module::Personality& personality = stack->personality();
+  std::array<gpio::InputEvent, 64> events{};
+  module::ImageWords out{};
+  module::ImageWords in{};
+  Nanos next_scan = monotonic_now();
+  std::uint64_t last_heartbeat = image->heartbeat();
+  Nanos heartbeat_changed = next_scan;
+  bool plc_stopped = false;
+
+  while (!stop.load(std::memory_order_acquire)) {
+    const std::size_t n = backend->wait_events(events, next_scan);
+    for (std::size_t i = 0; i < n; ++i) {
+      const gpio::InputEvent& e = events[i];
+      if (input_trace) {
+        const rt::TraceRecord r{e.t, e.axis, static_cast<std::uint8_t>(e.line),
+                                static_cast<std::uint8_t>(e.level), 1};
+        if (!input_trace->try_push(r)) ++input_trace_dropped;
+      }
+      personality.on_input(e);
+    }
+    if (panel) sync_panel();
+    const Nanos now = monotonic_now();
+    if (now < next_scan) continue;
+
+    // One consistent snapshot per scan; a PLC caught mid-write keeps the previous snapshot.
+    image->read_outputs(out);
+    if (config.plc_timeout_ns > 0) {
+      const std::uint64_t hb = image->heartbeat();
+      if (hb != last_heartbeat) {
+        last_heartbeat = hb;
+        heartbeat_changed = now;
+        plc_stopped = false;
+      } else if (!plc_stopped && now - heartbeat_changed >= config.plc_timeout_ns) {
+        spdlog::warn("PLC heartbeat unchanged for {} ms: treating the PLC as out of Run mode",
+                     config.plc_timeout_ns / kNsPerMs);
+        personality.plc_stopped(now);
+        plc_stopped = true;
+      }
+    }
+    personality.scan(out, in, now);
+    image->publish_inputs(in);
+    next_scan += config.scan_ns;
+    if (next_scan <= now) next_scan = now + config.scan_ns;  // overrun: skip, never burst
+  }
+}
+
+void Daemon::Impl::sync_panel() {
+  for (unsigned a = 0; a < stack->shape().axes; ++a) {
+    sim->force(a, panel->force_mask(a), panel->force_levels(a));
+    panel->publish_position(a, sim->position(a));
+    panel->publish_encoder(a, sim->encoder(a));
+    panel->publish_outputs(a, sim->output_levels(a));
+  }
+}
+
+// Immediate stop of every axis, and wait (bounded) until the pulse thread has acknowledged it.
+void Daemon::Impl::shutdown_motion() {
+  stack->personality().shutdown();
+  const Nanos deadline = monotonic_now() + kStopAckTimeout;
+  for (unsigned a = 0; a < stack->shape().axes; ++a) {
+    while (stack->motion(a).busy() && monotonic_now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+  }
+  if (panel) sync_panel();
+}
+
+}  // namespace stepmod::tools

@@ -1,0 +1,33 @@
+#include "tools/stack.hpp"
+
+#include <stdexcept>
+
+namespace stepmod::tools {
+
+Stack::Stack(const StackOptions& options, gpio::Backend& backend,
+             rt::SpscRing<rt::TraceRecord>* trace)
+    : backend_(backend), shape_(module::shape_of(options.type)) {
+  if (options.timing.size() != shape_.axes || backend.axes() != shape_.axes) {
+    throw std::invalid_argument("the module, its timing and its backend disagree on the axes");
+  }
+  std::vector<planner::PlannerAxis> planner_axes;
+  std::vector<rt::AxisLink> links;
+  for (unsigned i = 0; i < shape_.axes; ++i) {
+    auto& a = axes_.emplace_back(std::make_unique<Axis>(options.edge_ring));
+    planner_axes.push_back({&a->edges, &a->control, options.timing[i]});
+    links.push_back({&a->edges, &a->feedback, &a->control, &a->history});
+  }
+  planner_ = std::make_unique<planner::Planner>(planner_axes, options.planner);
+  engine_ = std::make_unique<rt::PulseEngine>(backend_, links, trace);
+  std::vector<planner::MotionPort*> ports;
+  for (unsigned i = 0; i < shape_.axes; ++i) {
+    Axis& a = *axes_[i];
+    a.port = std::make_unique<planner::MotionPort>(i, *planner_, a.feedback, a.control, a.history);
+    ports.push_back(a.port.get());
+  }
+  personality_ = module::make_personality(options.type, backend_, ports);
+}
+
+Stack::~Stack() = default;
+
+}  // namespace stepmod::tools

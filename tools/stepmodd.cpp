@@ -1,0 +1,84 @@
+// stepmodd: one emulated stepper-controller module per process (INTERFACE.md section 1).
+//   stepmodd --config FILE [--trace FILE.vcd] [--log-level LEVEL]
+// Exit status: 0 after SIGINT/SIGTERM, 2 for a bad command line or config file, 1 when the
+// module cannot be started (GPIO lines, shared memory, trace file).
+#include <spdlog/sinks/stderr_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <csignal>
+#include <optional>
+#include <pthread.h>
+#include <thread>
+
+#include "tools/config.hpp"
+#include "tools/daemon.hpp"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"stepmodd: software replacement for an AMCI 3601/3602/3202 stepper module"};
+  std::string config_path;
+  std::optional<std::string> trace_path;
+  std::string log_level = "info";
+  app.add_option("--config", config_path, "module configuration (TOML, see README)")
+      ->required();
+  app.add_option("--trace", trace_path, "write every GPIO line change to this VCD file");
+  app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical or off")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : 2;
+  }
+
+  auto logger = spdlog::stderr_color_mt("stepmodd");
+  spdlog::set_default_logger(logger);
+  spdlog::set_level(spdlog::level::from_str(log_level));
+
+  stepmod::tools::Config config;
+  try {
+    config = stepmod::tools::load_config(config_path);
+  } catch (const stepmod::tools::ConfigError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+
+  // SIGINT/SIGTERM are taken by a dedicated thread with sigwait; every other thread (created
+  // after this) inherits the blocked mask, so no handler ever runs on the pulse thread.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  try {
+    stepmod::tools::Daemon daemon(config, trace_path);
+    std::thread waiter([&signals] {
+      int sig = 0;
+      sigwait(&signals, &sig);
+      spdlog::info("signal {}: stopping", sig);
+      g_stop.store(true, std::memory_order_release);
+    });
+    try {
+      daemon.run(g_stop);
+    } catch (...) {
+      // Wake the signal thread so that it can be joined, then report.
+      pthread_kill(waiter.native_handle(), SIGTERM);
+      waiter.join();
+      throw;
+    }
+    waiter.join();
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+  spdlog::info("stopped");
+  return 0;
+}
