@@ -1,0 +1,147 @@
+#include "ipc/client.hpp"
+
+#include <cstring>
+#include <thread>
+
+namespace stepmod::ipc {
+namespace {
+// How long a writer waits for another writer's odd sequence before assuming it died.
+constexpr std::int64_t kStaleWriterNs = STEPMOD_SEQ_STALE_NS;
+
+unsigned axes_of(module::ModuleType t) {
+  return t == module::ModuleType::k3601 ? 1 : 2;
+}
+}  // namespace
+
+Client::Client(const std::string& name) : name_(name) {
+  check_name(name);
+  map_ = ShmMapping::open(image_object(name), STEPMOD_IMAGE_SIZE);
+  img_ = static_cast<stepmod_image_t*>(map_.data());
+  const std::string path = "/dev/shm" + image_object(name);
+  __atomic_thread_fence(__ATOMIC_ACQUIRE);
+  if (std::memcmp(img_->magic, STEPMOD_IMAGE_MAGIC, sizeof img_->magic) != 0) {
+    throw IpcError(path + " is not a stepmod image (bad magic; daemon still starting?)");
+  }
+  if (img_->version != STEPMOD_LAYOUT_VERSION) {
+    throw IpcError(path + " has layout version " + std::to_string(img_->version) +
+                   ", this program understands version " + std::to_string(STEPMOD_LAYOUT_VERSION));
+  }
+  const std::uint32_t t = img_->module_type;
+  if (t != 3601 && t != 3602 && t != 3202) {
+    throw IpcError(path + " names unknown module type " + std::to_string(t));
+  }
+  shape_.type = static_cast<module::ModuleType>(t);
+  shape_.axes = axes_of(shape_.type);
+  shape_.word_bytes = img_->word_bytes;
+  shape_.output_words = img_->output_words;
+  shape_.input_words = img_->input_words;
+  if ((shape_.word_bytes != 2 && shape_.word_bytes != 4) ||
+      shape_.output_words > STEPMOD_MAX_WORDS || shape_.input_words > STEPMOD_MAX_WORDS) {
+    throw IpcError(path + " has an impossible shape (word size or word counts)");
+  }
+}
+
+bool Client::read_inputs(module::ImageWords& in) const noexcept {
+  module::ImageWords tmp;
+  if (!stepmod_seq_read(&img_->input_seq, &img_->input_image, shape_.word_bytes, shape_.input_words,
+                        tmp.w.data(), kReadTries)) {
+    return false;
+  }
+  in = tmp;
+  return true;
+}
+
+bool Client::read_outputs(module::ImageWords& out) const noexcept {
+  module::ImageWords tmp;
+  if (!stepmod_seq_read(&img_->output_seq, &img_->output_image, shape_.word_bytes,
+                        shape_.output_words, tmp.w.data(), kReadTries)) {
+    return false;
+  }
+  out = tmp;
+  return true;
+}
+
+void Client::require_writable() const {
+  if (!map_.writable()) {
+    throw IpcError("/dev/shm" + image_object(name_) +
+                   " is read-only for this user (needs the group of the daemon)");
+  }
+}
+
+void Client::write_outputs(const module::ImageWords& out) {
+  require_writable();
+  const std::uint32_t odd = stepmod_seq_write_begin(&img_->output_seq, kStaleWriterNs);
+  for (unsigned i = 0; i < shape_.output_words; ++i) {
+    stepmod_word_store(&img_->output_image, shape_.word_bytes, i, out.w[i]);
+  }
+  stepmod_seq_write_end(&img_->output_seq, odd);
+}
+
+void Client::update_outputs(const std::function<void(module::ImageWords&)>& edit) {
+  require_writable();
+  const std::uint32_t odd = stepmod_seq_write_begin(&img_->output_seq, kStaleWriterNs);
+  // Holding the sequence odd makes us the only writer, so a plain read of the words is current.
+  module::ImageWords w;
+  for (unsigned i = 0; i < shape_.output_words; ++i) {
+    w.w[i] = stepmod_word_load(&img_->output_image, shape_.word_bytes, i);
+  }
+  edit(w);
+  for (unsigned i = 0; i < shape_.output_words; ++i) {
+    stepmod_word_store(&img_->output_image, shape_.word_bytes, i, w.w[i]);
+  }
+  stepmod_seq_write_end(&img_->output_seq, odd);
+}
+
+void Client::write_word(unsigned index, std::int32_t value) {
+  if (index >= shape_.output_words) {
+    throw IpcError("output word " + std::to_string(index) + " out of range 0.." +
+                   std::to_string(shape_.output_words - 1));
+  }
+  update_outputs([&](module::ImageWords& w) { w.w[index] = value; });
+}
+
+std::uint64_t Client::scan_counter() const noexcept {
+  return __atomic_load_n(&img_->scan_counter, __ATOMIC_ACQUIRE);
+}
+
+bool Client::wait_scan_counter(std::uint64_t target, std::chrono::milliseconds timeout) const {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  // Polling at 100 us: scans are >= 250 us apart, and a client has no futex to wait on.
+  while (scan_counter() < target) {
+    if (std::chrono::steady_clock::now() >= deadline) return false;
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
+  }
+  return true;
+}
+
+bool Client::wait_scans(std::uint64_t n, std::chrono::milliseconds timeout) const {
+  return wait_scan_counter(scan_counter() + n, timeout);
+}
+
+void Client::heartbeat() {
+  require_writable();
+  __atomic_fetch_add(&img_->plc_heartbeat, 1u, __ATOMIC_RELEASE);
+}
+
+std::uint64_t Client::heartbeat_value() const noexcept {
+  return __atomic_load_n(&img_->plc_heartbeat, __ATOMIC_ACQUIRE);
+}
+
+std::optional<std::int32_t> Client::send_message(std::span<const std::int32_t> data,
+                                                 std::chrono::milliseconds timeout) {
+  require_writable();
+  for (unsigned i = 0; i < STEPMOD_MSG_DINTS; ++i) {
+    const std::int32_t v = i < data.size() ? data[i] : 0;
+    __atomic_store_n(&img_->msg_data[i], v, __ATOMIC_RELAXED);
+  }
+  // Release: the module that sees the new request sequence sees the data written above.
+  const std::uint32_t seq = __atomic_add_fetch(&img_->msg_request_seq, 1u, __ATOMIC_RELEASE);
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (__atomic_load_n(&img_->msg_done_seq, __ATOMIC_ACQUIRE) != seq) {
+    if (std::chrono::steady_clock::now() >= deadline) return std::nullopt;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  return __atomic_load_n(&img_->msg_result, __ATOMIC_RELAXED);
+}
+
+}  // namespace stepmod::ipc

@@ -1,0 +1,66 @@
+#pragma once
+// POSIX shared-memory objects of stepmod: names, creation with stale-object recovery, opening.
+// Internal to ipc/ (ShmImage, Client and the panel classes build on it), but usable by tests.
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace stepmod::ipc {
+
+// Every failure of the ipc layer (missing image, bad magic, permissions, name in use...).
+class IpcError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Module names (INTERFACE.md 2 `module.name`): 1..64 characters of a-z, 0-9, '-', '_'. Keeps the
+// object inside /dev/shm (no '/') and the name usable in unit names and file names.
+inline constexpr std::size_t kMaxNameLength = 64;
+bool valid_name(std::string_view name) noexcept;
+// Throws IpcError naming the rule when `name` is not valid.
+void check_name(std::string_view name);
+
+// shm_open() names: "/stepmod.<name>" and "/stepmod.<name>.sim".
+std::string image_object(std::string_view name);
+std::string panel_object(std::string_view name);
+
+// A mapped shared-memory object. Move-only; unmaps on destruction, and unlinks the object too if
+// this process created it.
+class ShmMapping {
+ public:
+  ShmMapping() = default;
+  ShmMapping(ShmMapping&& o) noexcept { *this = std::move(o); }
+  ShmMapping& operator=(ShmMapping&& o) noexcept;
+  ShmMapping(const ShmMapping&) = delete;
+  ShmMapping& operator=(const ShmMapping&) = delete;
+  ~ShmMapping() { reset(); }
+
+  // Creates `object` (O_CREAT|O_EXCL, mode 0660 regardless of umask) of `size` zeroed bytes.
+  // If it exists already and holds `magic` with a non-zero owner pid (u64 at `pid_offset`) of a
+  // process that no longer exists, it is a leftover of a crashed daemon: it is unlinked and
+  // created anew. In every other case (owner alive, unknown content) it throws IpcError telling
+  // the user which file to remove; a live daemon's image is never taken over.
+  static ShmMapping create(const std::string& object, std::size_t size, std::string_view magic,
+                           std::size_t pid_offset);
+  // Opens an existing object of at least `min_size` bytes, read-write if possible, else read-only
+  // (`writable()` tells). Throws IpcError if it is absent or too small.
+  static ShmMapping open(const std::string& object, std::size_t min_size);
+
+  void* data() const noexcept { return addr_; }
+  std::size_t size() const noexcept { return size_; }
+  bool writable() const noexcept { return writable_; }
+  const std::string& object() const noexcept { return object_; }
+  // Unmaps (and unlinks, if created here) now.
+  void reset() noexcept;
+
+ private:
+  void* addr_ = nullptr;
+  std::size_t size_ = 0;
+  std::string object_;
+  bool owner_ = false;
+  bool writable_ = false;
+};
+
+}  // namespace stepmod::ipc
