@@ -1,0 +1,19 @@
+#pragma once
+// Which chip lines one axis uses: the `[[axis]]` line keys of INTERFACE.md section 2, without
+// the rest of the configuration, so that gpio/ does not depend on tools/. The daemon copies
+// tools::AxisConfig::out/in into this. An absent offset means "not wired".
+#include <optional>
+
+#include "gpio/backend.hpp"
+
+namespace stepmod::gpio {
+
+struct AxisLines {
+  std::optional<unsigned> out[kOutputLinesPerAxis];  // indexed by rt::OutputLine
+  std::optional<unsigned> in[kInputLinesPerAxis];    // indexed by gpio::InputLine
+
+  bool has_output(OutputLine l) const noexcept { return out[static_cast<unsigned>(l)].has_value(); }
+  bool has_input(InputLine l) const noexcept { return in[static_cast<unsigned>(l)].has_value(); }
+};
+
+}  // namespace stepmod::gpio

@@ -1,0 +1,53 @@
+#pragma once
+// Backend for `backend = "sim"`: one SimMachine per axis (INTERFACE.md section 2 [axis.sim]),
+// plus the accessors the simulator panel (section 4) needs.
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "gpio/axis_lines.hpp"
+#include "gpio/backend.hpp"
+#include "gpio/sim_machine.hpp"
+
+namespace stepmod::gpio {
+
+struct SimAxisSetup {
+  AxisLines lines;  // which lines are configured (offsets are not used by the sim)
+  SimAxisParams sim;
+};
+
+class SimBackend final : public Backend {
+ public:
+  // `event_capacity`: per-axis input event ring (power of two).
+  explicit SimBackend(std::span<const SimAxisSetup> axes, std::size_t event_capacity = 4096);
+
+  unsigned axes() const noexcept override { return static_cast<unsigned>(machines_.size()); }
+  void write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept override;
+  bool has_input(unsigned axis, InputLine line) const noexcept override;
+  bool has_output(unsigned axis, OutputLine line) const noexcept override;
+  bool read(unsigned axis, InputLine line) override;
+  // Drains the machines' events; when there are none, sleeps in kPollChunk steps (the sim has no
+  // file descriptor to block on) until some arrive or `deadline` passes.
+  std::size_t wait_events(std::span<InputEvent> out, Nanos deadline) override;
+  std::uint64_t lost_events() const noexcept override;
+  void idle_outputs() noexcept override;
+  void set_pulse_format(unsigned axis, PulseFormat format) noexcept override;
+
+  // Simulator panel. force() on the control thread (the thread calling wait_events).
+  void force(unsigned axis, std::uint32_t mask, std::uint32_t levels) noexcept;
+  std::int64_t position(unsigned axis) const noexcept { return machines_[axis]->position(); }
+  std::int64_t encoder(unsigned axis) const noexcept { return machines_[axis]->encoder(); }
+  std::uint32_t output_levels(unsigned axis) const noexcept {
+    return machines_[axis]->output_levels();
+  }
+  SimMachine& machine(unsigned axis) noexcept { return *machines_[axis]; }
+
+  static constexpr Nanos kPollChunk = 50 * kNsPerUs;
+
+ private:
+  std::vector<std::unique_ptr<SimMachine>> machines_;
+  std::vector<AxisLines> lines_;
+  unsigned next_axis_ = 0;  // round-robin start of wait_events, so no axis starves another
+};
+
+}  // namespace stepmod::gpio

@@ -1,0 +1,210 @@
+#include "gpio/vcd_trace.hpp"
+
+#include <cerrno>
+#include <cinttypes>
+#include <cstring>
+#include <ctime>
+#include <stdexcept>
+
+namespace stepmod::gpio {
+namespace {
+
+constexpr int kLineSlots = 16;
+
+// VCD identifier codes: printable ASCII '!'..'~', base 94.
+std::string vcd_id(std::size_t n) {
+  std::string s;
+  do {
+    s.push_back(static_cast<char>('!' + n % 94));
+    n /= 94;
+  } while (n > 0);
+  return s;
+}
+
+}  // namespace
+
+std::string wire_name(const TraceWire& w) {
+  const std::string_view key = w.is_input ? input_key(static_cast<InputLine>(w.line))
+                                          : output_key(static_cast<OutputLine>(w.line));
+  return "axis" + std::to_string(unsigned{w.axis} + 1) + "." + std::string(key);
+}
+
+std::vector<TraceWire> trace_wires(Backend& backend) {
+  std::vector<TraceWire> wires;
+  for (unsigned a = 0; a < backend.axes(); ++a) {
+    for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
+      if (backend.has_output(a, static_cast<OutputLine>(l))) {
+        wires.push_back({static_cast<std::uint8_t>(a), false, static_cast<std::uint8_t>(l), false});
+      }
+    }
+    for (unsigned l = 0; l < kInputLinesPerAxis; ++l) {
+      const auto line = static_cast<InputLine>(l);
+      if (backend.has_input(a, line)) {
+        wires.push_back({static_cast<std::uint8_t>(a), true, static_cast<std::uint8_t>(l),
+                         backend.read(a, line)});
+      }
+    }
+  }
+  return wires;
+}
+
+// ---- VcdTrace -----------------------------------------------------------------------------------
+
+VcdTrace::VcdTrace(const std::string& path, std::span<const TraceWire> wires, Nanos start)
+    : path_(path), start_(start), wires_(wires.begin(), wires.end()) {
+  f_ = std::fopen(path.c_str(), "w");
+  if (f_ == nullptr) {
+    throw std::runtime_error("trace file '" + path +
+                             "': cannot open for writing: " + std::strerror(errno));
+  }
+  unsigned max_axis = 0;
+  for (const TraceWire& w : wires_) max_axis = std::max<unsigned>(max_axis, w.axis);
+  index_.assign((max_axis + 1) * 2 * kLineSlots, -1);
+  for (std::size_t i = 0; i < wires_.size(); ++i) {
+    const TraceWire& w = wires_[i];
+    index_[(w.axis * 2u + (w.is_input ? 1u : 0u)) * kLineSlots + w.line] = static_cast<int>(i);
+    ids_.push_back(vcd_id(i));
+    levels_.push_back(w.initial ? 1 : 0);
+  }
+
+  char date[64] = "";
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  if (localtime_r(&now, &tm) != nullptr) std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S", &tm);
+  std::fprintf(f_, "$date %s $end\n$version stepmod $end\n$timescale 1 ns $end\n", date);
+  // The wires keep the names of INTERFACE.md section 5 verbatim (axis1.step, ...), inside one
+  // top-level scope, which some readers require.
+  std::fprintf(f_, "$scope module stepmod $end\n");
+  for (std::size_t i = 0; i < wires_.size(); ++i) {
+    std::fprintf(f_, "$var wire 1 %s %s $end\n", ids_[i].c_str(), wire_name(wires_[i]).c_str());
+  }
+  std::fprintf(f_, "$upscope $end\n$enddefinitions $end\n#0\n$dumpvars\n");
+  for (std::size_t i = 0; i < wires_.size(); ++i) {
+    std::fprintf(f_, "%c%s\n", levels_[i] ? '1' : '0', ids_[i].c_str());
+  }
+  std::fprintf(f_, "$end\n");
+}
+
+VcdTrace::~VcdTrace() {
+  if (f_ != nullptr) std::fclose(f_);
+}
+
+int VcdTrace::wire_index(const rt::TraceRecord& r) const noexcept {
+  if (r.line >= kLineSlots) return -1;
+  const std::size_t k = (r.axis * 2u + (r.is_input ? 1u : 0u)) * kLineSlots + r.line;
+  return k < index_.size() ? index_[k] : -1;
+}
+
+void VcdTrace::record(const rt::TraceRecord& r) {
+  if (f_ == nullptr) return;
+  const int i = wire_index(r);
+  if (i < 0) {
+    ++unknown_;
+    return;
+  }
+  const std::uint8_t level = r.level ? 1 : 0;
+  if (levels_[static_cast<std::size_t>(i)] == level) return;
+  levels_[static_cast<std::size_t>(i)] = level;
+  Nanos t = r.t - start_;
+  if (t < 0) t = 0;  // stamped before the start (initial read races): shown at #0
+  if (t < last_) {
+    ++late_;
+    t = last_;
+  }
+  if (t != last_) {
+    std::fprintf(f_, "#%" PRId64 "\n", static_cast<std::int64_t>(t));
+    last_ = t;
+  }
+  std::fprintf(f_, "%c%s\n", level ? '1' : '0', ids_[static_cast<std::size_t>(i)].c_str());
+  ++changes_;
+}
+
+void VcdTrace::comment(std::string_view text) {
+  if (f_ == nullptr) return;
+  std::fprintf(f_, "$comment %.*s $end\n", static_cast<int>(text.size()), text.data());
+}
+
+void VcdTrace::flush() {
+  if (f_ != nullptr) std::fflush(f_);
+}
+
+void VcdTrace::close(Nanos end) {
+  if (f_ == nullptr) return;
+  const Nanos t = end - start_;
+  if (t > last_) {
+    std::fprintf(f_, "#%" PRId64 "\n", static_cast<std::int64_t>(t));
+    last_ = t;
+  }
+  const bool bad = std::ferror(f_) != 0;
+  const int rc = std::fclose(f_);
+  f_ = nullptr;
+  if (bad || rc != 0) {
+    throw std::runtime_error("trace file '" + path_ + "': write failed: " + std::strerror(errno));
+  }
+}
+
+// ---- TraceWriter --------------------------------------------------------------------------------
+
+TraceWriter::TraceWriter(const std::string& path, std::span<const TraceWire> wires, Nanos start,
+                         rt::SpscRing<rt::TraceRecord>& outputs,
+                         rt::SpscRing<rt::TraceRecord>& inputs, Nanos window, Nanos period)
+    : vcd_(path, wires, start),
+      outputs_(outputs),
+      inputs_(inputs),
+      window_(window),
+      period_(period) {}
+
+TraceWriter::~TraceWriter() {
+  try {
+    stop();
+  } catch (...) {
+    // A destructor cannot report; stop() was the place to see the error.
+  }
+}
+
+void TraceWriter::start() {
+  if (running_.exchange(true)) return;
+  thread_ = std::thread([this] { run(); });
+}
+
+void TraceWriter::drain() {
+  rt::TraceRecord r;
+  while (outputs_.try_pop(r)) merger_.add(r);
+  while (inputs_.try_pop(r)) merger_.add(r);
+}
+
+void TraceWriter::step(Nanos now) {
+  drain();
+  merger_.release(now - window_, [this](const rt::TraceRecord& r) { vcd_.record(r); });
+  // Flush about once a second: a crashed daemon leaves at most that much unwritten, and the
+  // pulse thread never waits for the disk anyway.
+  if (now - last_flush_ >= kNsPerSec) {
+    vcd_.flush();
+    last_flush_ = now;
+  }
+}
+
+void TraceWriter::run() {
+  while (running_.load(std::memory_order_acquire)) {
+    const Nanos now = monotonic_now();
+    step(now);
+    sleep_until(now + period_);
+  }
+}
+
+void TraceWriter::stop(std::uint64_t dropped_outputs, std::uint64_t dropped_inputs) {
+  if (closed_) return;
+  running_.store(false, std::memory_order_release);
+  if (thread_.joinable()) thread_.join();
+  closed_ = true;
+  drain();
+  merger_.release_all([this](const rt::TraceRecord& r) { vcd_.record(r); });
+  if (dropped_outputs != 0 || dropped_inputs != 0 || vcd_.late() != 0 || vcd_.unknown() != 0) {
+    vcd_.comment("stepmod: dropped records: outputs " + std::to_string(dropped_outputs) +
+                 ", inputs " + std::to_string(dropped_inputs) + "; late records " +
+                 std::to_string(vcd_.late()) + "; unknown lines " + std::to_string(vcd_.unknown()));
+  }
+  vcd_.close(monotonic_now());
+}
+
+}  // namespace stepmod::gpio
