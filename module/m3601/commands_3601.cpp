@@ -1,0 +1,367 @@
+// 3601 command mode: decoding of the command words and the commands of the 3601 manual Ch.4.
+// Every rejection names the checklist item of digest 6.1 it implements.
+#include <bit>
+
+#include "ipc/codec.hpp"
+#include "module/m3601/personality_3601.hpp"
+#include "module/m3601/words_3601.hpp"
+
+namespace stepmod::module::m3601 {
+
+namespace {
+
+constexpr std::int32_t kMinTarget = -8'388'608;
+constexpr std::int32_t kMaxTarget = 8'388'607;
+constexpr std::int32_t kMaxSpeed = 1'000'000;
+constexpr std::int32_t kMinRate = 1;     // steps/ms/s
+constexpr std::int32_t kMaxRate = 2000;  // steps/ms/s
+
+// Accel/decel words are steps/ms/s; the planner works in steps/s^2 (digest 7.1).
+double rate_from_word(std::int32_t steps_per_ms_per_s) { return steps_per_ms_per_s * 1000.0; }
+
+planner::AccelShape shape_from_lsw(std::uint16_t lsw) {
+  if (!(lsw & cmd_lsw::kSCurve)) return planner::AccelShape::kConstant;
+  return (lsw & cmd_lsw::kTrapezoidalS) ? planner::AccelShape::kTrapezoidalS
+                                        : planner::AccelShape::kTriangularS;
+}
+
+bool rate_in_range(std::int32_t v) { return v >= kMinRate && v <= kMaxRate; }
+
+// Words 2-3: target position / preset value / registration count (decimal split).
+std::optional<std::int32_t> target_words(const ImageWords& out) {
+  return ipc::codec::decode_3601(out.w[out_word::kTargetMsw], out.w[out_word::kTargetLsw]);
+}
+
+}  // namespace
+
+// Level-sensitive command bits: the manual move runs while its bit is held.
+void Personality3601::handle_levels(const ImageWords& out) {
+  const auto msw = static_cast<std::uint16_t>(out.w[out_word::kMsw]);
+  if (activity_ != Activity::kManual || stop_cause_ != StopCause::kNone) return;
+  const std::uint16_t bit =
+      dir_ == planner::Direction::kCw ? cmd_msw::kManualCw : cmd_msw::kManualCcw;
+  if (!(msw & bit)) {
+    // 3601-STP-01: releasing the bit is a controlled stop to the starting speed. Acted on even
+    // while CE is set: a stop request is never ignored. A11: only the command word needs to be
+    // cleared; on current firmware zeroing all eight words is not an error.
+    stop_cause_ = StopCause::kRelease;
+    motion_.stop(move_decel_);
+  }
+}
+
+void Personality3601::handle_command_edge(const ImageWords& out, std::uint16_t rising) {
+  const auto msw = static_cast<std::uint16_t>(out.w[out_word::kMsw]);
+  // 3601-CE-L1: while CE is set, only Reset Errors is looked at.
+  if (status_.command_error && !(rising & cmd_msw::kResetErrors)) return;
+  // 3601-CE-02 / CE-12: more than one command bit at a time. A33: the reserved bit 14 counts as
+  // a command bit.
+  if (std::popcount(static_cast<unsigned>(msw & (cmd_msw::kCommandMask | cmd_msw::kReserved14))) >
+      1) {
+    reject();
+    return;
+  }
+  if (rising & cmd_msw::kReserved14) {
+    reject();  // A33
+    return;
+  }
+  // The manual: "The 3601 module has to be configured before starting any operations."
+  if (!configured_) {
+    reject();
+    return;
+  }
+  switch (rising & cmd_msw::kCommandMask) {
+    case cmd_msw::kAbsoluteMove: command_move(out, true); break;
+    case cmd_msw::kRelativeMove: command_move(out, false); break;
+    case cmd_msw::kHold: command_hold(); break;
+    case cmd_msw::kResume: command_resume(out); break;
+    case cmd_msw::kImmediateStop: command_immediate_stop(); break;
+    case cmd_msw::kManualCw: command_manual(out, planner::Direction::kCw); break;
+    case cmd_msw::kManualCcw: command_manual(out, planner::Direction::kCcw); break;
+    case cmd_msw::kPresetPosition: command_preset_position(out); break;
+    case cmd_msw::kResetErrors: command_reset_errors(out); break;
+    default:
+      // Find Home, Preset Encoder and the blend commands are not emulated yet: refuse them
+      // visibly rather than ignore them.
+      reject();
+      break;
+  }
+}
+
+std::optional<Personality3601::Profile> Personality3601::read_profile(const ImageWords& out,
+                                                                       bool ramped) {
+  const auto speed =
+      ipc::codec::decode_3601_unsigned(out.w[out_word::kSpeedMsw], out.w[out_word::kSpeedLsw]);
+  const std::int32_t accel = static_cast<std::int16_t>(out.w[out_word::kAccel]);
+  const std::int32_t decel = static_cast<std::int16_t>(out.w[out_word::kDecel]);
+  // 3601-CE-04 / IP-02: speed, accel or decel outside its range.
+  if (!speed || *speed > kMaxSpeed || !rate_in_range(accel) || !rate_in_range(decel)) {
+    reject_profile();
+    return std::nullopt;
+  }
+  // 3601-CE-05 / IP-01: Vp < Vs where the move ramps from the starting speed.
+  if (ramped && *speed < cfg_.starting_speed) {
+    reject_profile();
+    return std::nullopt;
+  }
+  const planner::AccelShape shape = shape_from_lsw(lsw_);
+  return Profile{static_cast<double>(*speed), {rate_from_word(accel), shape},
+                 {rate_from_word(decel), shape}};
+}
+
+bool Personality3601::start_move_steps(std::int64_t steps, const Profile& p) {
+  planner::MoveSpec spec;
+  spec.steps = steps < 0 ? -steps : steps;
+  spec.dir = steps < 0 ? planner::Direction::kCcw : planner::Direction::kCw;
+  spec.vs = cfg_.starting_speed;
+  spec.vp = p.vp;
+  spec.accel = p.accel;
+  spec.decel = p.decel;
+  if (motion_.start_move(spec) == 0) {
+    reject();  // the planner queue is full: refuse rather than lose the command
+    return false;
+  }
+  activity_ = Activity::kMove;
+  dir_ = spec.dir;
+  move_decel_ = p.decel;
+  stop_cause_ = StopCause::kNone;
+  return true;
+}
+
+// Absolute (MSW bit 0) and Relative (bit 1) moves: 3601 manual Ch.4 "Absolute & Relative Moves".
+void Personality3601::command_move(const ImageWords& out, bool absolute) {
+  // 3601-CE-03: a move while another is in progress; the running move is unaffected.
+  if (moving()) {
+    reject();
+    return;
+  }
+  const auto target = target_words(out);
+  // 3601-CE-04 / IP-02: target outside -8,388,608..8,388,607, LSW outside -999..999 or the two
+  // words of opposite signs.
+  if (!target || *target < kMinTarget || *target > kMaxTarget) {
+    reject_profile();
+    return;
+  }
+  const auto profile = read_profile(out, true);
+  if (!profile) return;
+  // 3601-CE-14 / IP-11: an encoder move needs the quadrature encoder.
+  if ((lsw_ & cmd_lsw::kEncoderMove) && !cfg_.has(cfg_msw::kQuadratureEncoder)) {
+    reject_profile();
+    return;
+  }
+  if (lsw_ & cmd_lsw::kEncoderMove) {
+    reject();  // encoder moves are not emulated yet
+    return;
+  }
+  // 3601-CE-06: an absolute move needs a valid position.
+  if (absolute && status_.position_invalid) {
+    reject();
+    return;
+  }
+  const std::int64_t steps = absolute ? *target - position() : *target;
+  const planner::Direction dir = steps < 0 ? planner::Direction::kCcw : planner::Direction::kCw;
+  // A15: no move starts while the E-stop is active or toward an active end limit.
+  if (inputs_.active(gpio::InputLine::kEStop) ||
+      inputs_.active(dir == planner::Direction::kCw ? gpio::InputLine::kCwLimit
+                                                    : gpio::InputLine::kCcwLimit)) {
+    status_.input_error = true;
+    return;
+  }
+  // A new move clears the previous move's outcome (3601-MC-03, HLD-C1, IE-C1, STP-C1).
+  status_.move_complete = false;
+  status_.hold = false;
+  status_.stopped = false;
+  status_.at_home = false;
+  status_.input_error = false;
+  move_target_ = absolute ? *target : position() + *target;
+  if (steps == 0) {
+    status_.move_complete = true;  // already at the target: nothing to output
+    return;
+  }
+  // 3601-HLD-03: with the External input active the move outputs one step, then holds.
+  if (inputs_.active(gpio::InputLine::kExternal)) {
+    if (start_move_steps(dir == planner::Direction::kCw ? 1 : -1, *profile)) {
+      stop_cause_ = StopCause::kExternal;
+    }
+    return;
+  }
+  start_move_steps(steps, *profile);
+}
+
+// Hold (MSW bit 2): 3601 manual Ch.4 "Hold Move".
+void Personality3601::command_hold() {
+  if (activity_ == Activity::kMove) {
+    // A hold already under way (or the External input's) needs nothing more.
+    if (stop_cause_ == StopCause::kNone) {
+      stop_cause_ = StopCause::kHold;  // 3601-HLD-01
+      motion_.stop(move_decel_);
+    }
+    return;
+  }
+  // 3601-CE-07: Hold while no absolute/relative move is in progress. During a manual move the
+  // motion also stops, controlled (A43).
+  reject();
+  if (activity_ == Activity::kManual && stop_cause_ == StopCause::kNone) {
+    stop_cause_ = StopCause::kRelease;
+    motion_.stop(move_decel_);
+  }
+}
+
+// Resume (MSW bit 3): the remaining distance to the held move's target, with the speed, accel,
+// decel and S-curve bits given now (3601 manual Ch.4 "Resume Move").
+void Personality3601::command_resume(const ImageWords& out) {
+  // 3601-CE-08: Resume when not in the Hold state.
+  if (!status_.hold || moving()) {
+    reject();
+    return;
+  }
+  const auto profile = read_profile(out, true);
+  if (!profile) return;
+  const std::int64_t remaining = held_.target - position();
+  const planner::Direction dir =
+      remaining < 0 ? planner::Direction::kCcw : planner::Direction::kCw;
+  if (inputs_.active(gpio::InputLine::kEStop) ||
+      inputs_.active(dir == planner::Direction::kCw ? gpio::InputLine::kCwLimit
+                                                    : gpio::InputLine::kCcwLimit)) {
+    status_.input_error = true;  // A15
+    return;
+  }
+  status_.hold = false;
+  status_.input_error = false;
+  move_target_ = held_.target;
+  if (remaining == 0) {
+    status_.move_complete = true;
+    return;
+  }
+  if (inputs_.active(gpio::InputLine::kExternal)) {
+    // 7.5: if the External input is still active the move again yields one step and holds.
+    if (start_move_steps(dir == planner::Direction::kCw ? 1 : -1, *profile)) {
+      stop_cause_ = StopCause::kExternal;
+    }
+    return;
+  }
+  start_move_steps(remaining, *profile);
+}
+
+// Immediate Stop (MSW bit 4): no deceleration; position invalid. A6: at rest nothing changes.
+void Personality3601::command_immediate_stop() {
+  if (moving()) immediate_stop(StopCause::kImmediate);  // 3601-PI-02, STP-03
+}
+
+void Personality3601::immediate_stop(StopCause cause) {
+  motion_.immediate_stop();
+  stop_cause_ = cause;
+  status_.position_invalid = true;
+  status_.move_complete = false;
+}
+
+void Personality3601::fault_stop() {
+  // Digest 7.7: limit / E-stop trip during a move: immediate stop, IE, PI, Stopped.
+  immediate_stop(StopCause::kFault);
+  status_.input_error = true;
+}
+
+// Manual Move + / - (MSW bits 7/8, level held): 3601 manual Ch.4 "Manual Move".
+void Personality3601::command_manual(const ImageWords& out, planner::Direction dir) {
+  if (moving()) {
+    reject();  // 3601-CE-03
+    return;
+  }
+  const auto target = target_words(out);
+  if (!target) {
+    reject_profile();  // 3601-CE-04
+    return;
+  }
+  if (*target != 0) {
+    reject();  // registration moves are not emulated yet (A3)
+    return;
+  }
+  const auto profile = read_profile(out, false);
+  if (!profile) return;
+  // 3601-IE-03: a manual move toward an active end limit raises IE and does not move; so does
+  // one with the E-stop active (A15).
+  if (inputs_.active(gpio::InputLine::kEStop) ||
+      inputs_.active(dir == planner::Direction::kCw ? gpio::InputLine::kCwLimit
+                                                    : gpio::InputLine::kCcwLimit)) {
+    status_.input_error = true;
+    return;
+  }
+  status_.move_complete = false;
+  status_.hold = false;
+  status_.stopped = false;
+  status_.at_home = false;
+  status_.input_error = false;
+  activity_ = Activity::kManual;
+  dir_ = dir;
+  move_decel_ = profile->decel;
+  stop_cause_ = StopCause::kNone;
+  // One-shot (Vp = 0, digest 7.8; 3601-STP-N1: no Stopped on release) and a start with the
+  // External input active (digest 7.6: one step, then stop) both output a single pulse.
+  const bool external = inputs_.active(gpio::InputLine::kExternal);
+  std::uint32_t epoch = 0;
+  if (profile->vp == 0 || external) {
+    planner::MoveSpec one;
+    one.steps = 1;
+    one.dir = dir;
+    one.vs = cfg_.starting_speed;
+    one.vp = cfg_.starting_speed;
+    one.accel = profile->accel;
+    one.decel = profile->decel;
+    epoch = motion_.start_move(one);
+    if (external) stop_cause_ = StopCause::kExternal;
+  } else {
+    planner::RunSpec run;
+    run.dir = dir;
+    run.vs = cfg_.starting_speed;
+    run.vp = profile->vp;  // <= vs: constant-speed mode, no ramps (planner)
+    run.accel = profile->accel;
+    run.decel = profile->decel;
+    epoch = motion_.start_run(run);
+  }
+  if (epoch == 0) {
+    activity_ = Activity::kIdle;
+    stop_cause_ = StopCause::kNone;
+    reject();
+  }
+}
+
+// Preset Position (MSW bit 9): 3601 manual Ch.4 "Preset Position".
+void Personality3601::command_preset_position(const ImageWords& out) {
+  // The position register cannot be rewritten under a moving axis.
+  if (moving()) {
+    reject();
+    return;
+  }
+  // 3601-CE-09: speed, accel and decel words must be 0.
+  for (unsigned w = out_word::kSpeedMsw; w <= out_word::kDecel; ++w) {
+    if (out.w[w] != 0) {
+      reject();
+      return;
+    }
+  }
+  // 3601-CE-15: the command LSW must be 0.
+  if (lsw_ != 0) {
+    reject();
+    return;
+  }
+  const auto value = target_words(out);
+  if (!value || *value < kMinTarget || *value > kMaxTarget) {
+    reject();  // 3601-CE-04
+    return;
+  }
+  set_position(*value);
+  status_.position_invalid = false;  // 3601-PI-C1; 3601-MC-03: MC is left as it is
+}
+
+// Reset Errors (MSW bit 11): clears CE, IE, HI and IP, never PI or CfgE (A7).
+void Personality3601::command_reset_errors(const ImageWords& /*out*/) {
+  if (lsw_ != 0) {
+    status_.command_error = true;  // 3601-CE-15
+    return;
+  }
+  status_.command_error = false;  // 3601-CE-L2
+  status_.input_error = false;    // 3601-IE-C1
+  status_.home_invalid = false;   // 3601-HI-C1
+  status_.invalid_profile = false;
+}
+
+}  // namespace stepmod::module::m3601

@@ -1,0 +1,119 @@
+#pragma once
+// The 3601 personality: what the 3601's firmware does with its eight output words, its inputs
+// and its one axis (3601 manual; digest MODULES.md sections 3, 6.1 and 7).
+#include <cstdint>
+
+#include "gpio/backend.hpp"
+#include "module/input_bank.hpp"
+#include "module/m3601/config_3601.hpp"
+#include "module/personality.hpp"
+#include "module/quadrature_decoder.hpp"
+#include "planner/motion_port.hpp"
+
+namespace stepmod::module::m3601 {
+
+class Personality3601 final : public Personality {
+ public:
+  Personality3601(gpio::Backend& backend, planner::MotionPort& motion);
+
+  const ModuleShape& shape() const noexcept override;
+  void on_input(const gpio::InputEvent& e) override;
+  void scan(const ImageWords& out, ImageWords& in, Nanos now) override;
+  void plc_stopped(Nanos now) override;
+  void shutdown() override;
+
+ private:
+  // What the axis is doing; a motion is in progress from acceptance until the pulse thread
+  // reports its end (digest 7.16).
+  enum class Activity : std::uint8_t { kIdle, kMove, kManual };
+  // Why a motion is ending early; decides the status bits when it has ended.
+  enum class StopCause : std::uint8_t { kNone, kHold, kExternal, kRelease, kImmediate, kFault };
+
+  // Status and error latches (status word MSW bits), named as in the manual.
+  struct Status {
+    bool hold = false;
+    bool stopped = false;
+    bool at_home = false;
+    bool move_complete = false;
+    bool home_invalid = false;
+    bool invalid_profile = false;
+    bool position_invalid = false;
+    bool input_error = false;
+    bool command_error = false;
+    bool configuration_error = true;  // 3601-CFG-01: power-up state
+  };
+
+  // The parameters of an absolute/relative move, kept for Hold/Resume.
+  struct HeldMove {
+    std::int64_t target = 0;  // absolute target in reported position units
+  };
+
+  // Mode handling (configuration <-> command, digest 7.15).
+  void scan_configuration_mode(const ImageWords& out);
+  void enter_command_mode();
+  void compose_configuration_image(ImageWords& in) const;
+
+  // Command mode.
+  void poll_motion_end();
+  void handle_levels(const ImageWords& out);
+  void handle_command_edge(const ImageWords& out, std::uint16_t rising);
+  void command_move(const ImageWords& out, bool absolute);
+  void command_hold();
+  void command_resume(const ImageWords& out);
+  void command_immediate_stop();
+  void command_manual(const ImageWords& out, planner::Direction dir);
+  void command_preset_position(const ImageWords& out);
+  void command_reset_errors(const ImageWords& out);
+  void compose_command_image(ImageWords& in) const;
+
+  // Motion helpers.
+  struct Profile {
+    double vp = 0;
+    planner::Ramp accel;
+    planner::Ramp decel;
+  };
+  // Reads speed (words 4-5), accel (6), decel (7) and the S-curve bits; nullopt after raising
+  // CE + IP for an out-of-range value (CE-04/IP-02) or Vp < Vs (CE-05/IP-01) when `ramped`.
+  std::optional<Profile> read_profile(const ImageWords& out, bool ramped);
+  bool start_move_steps(std::int64_t steps, const Profile& p);
+  void immediate_stop(StopCause cause);
+  void fault_stop();  // limit/E-stop: immediate stop, IE, PI (digest 7.7)
+  bool moving() const noexcept { return activity_ != Activity::kIdle; }
+  std::int64_t position() const noexcept { return motion_.steps() - origin_; }
+  void set_position(std::int64_t p) noexcept { origin_ = motion_.steps() - p; }
+  void reject() noexcept { status_.command_error = true; }
+  void reject_profile() noexcept {
+    status_.command_error = true;
+    status_.invalid_profile = true;
+  }
+
+  gpio::Backend& backend_;
+  planner::MotionPort& motion_;
+  InputBank inputs_;
+  QuadratureDecoder quadrature_;
+
+  bool config_mode_ = false;
+  bool configured_ = false;              // a valid configuration is in force
+  bool config_after_motion_ = false;     // CE-01: mode bit seen while moving
+  std::optional<Config3601> pending_;    // last configuration accepted in configuration mode
+  ImageWords last_config_words_{};
+  bool config_words_seen_ = false;
+  Config3601 cfg_;
+  std::uint16_t mirror_[4] = {};         // configuration mirror (A26: only accepted data)
+
+  Status status_;
+  Activity activity_ = Activity::kIdle;
+  StopCause stop_cause_ = StopCause::kNone;
+  planner::Direction dir_ = planner::Direction::kCw;
+  planner::Ramp move_decel_;             // the running motion's decel (controlled stops)
+  HeldMove held_;
+  std::int64_t move_target_ = 0;         // absolute target of the running abs/rel move
+
+  std::int64_t origin_ = 0;              // pulse count at which the reported position is 0
+  std::int64_t encoder_ = 0;             // encoder register (X4 counts)
+  std::int64_t capture_ = 0;             // captured value
+  std::uint16_t prev_msw_ = 0;           // last scan's command word MSW (edge detection)
+  std::uint16_t lsw_ = 0;                // this scan's command word LSW (proximity echo)
+};
+
+}  // namespace stepmod::module::m3601

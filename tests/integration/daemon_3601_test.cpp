@@ -1,0 +1,325 @@
+// End to end: the real stepmodd on the simulated machine, driven through shared memory exactly
+// as a PLC would, checked through the status words, the simulator panel and the VCD trace.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "ipc/client.hpp"
+#include "ipc/codec.hpp"
+#include "ipc/sim_panel.hpp"
+#include "module/m3601/words_3601.hpp"
+#include "tests/support/daemon_process.hpp"
+#include "tests/support/vcd_reader.hpp"
+
+namespace stepmod::testing {
+namespace {
+
+namespace m = module::m3601;
+using namespace m::status_msw;
+namespace cmd = m::cmd_msw;
+using std::chrono::milliseconds;
+
+// Pulse timing is asserted only in the normal build: the sanitizers slow the pulse thread down
+// by an order of magnitude, while step counts and status must be exact in every build.
+#if defined(STEPMOD_SANITIZED)
+constexpr bool kTimingChecks = false;
+#else
+constexpr bool kTimingChecks = true;
+#endif
+
+constexpr const char* kConfig = R"(
+[module]
+type = "3601"
+name = "{NAME}"
+scan_us = 1000
+{EXTRA}
+[gpio]
+backend = "sim"
+
+[rt]
+priority = 80
+
+[[axis]]
+step = 1
+dir = 2
+capture = 3
+external = 4
+home = 5
+estop = 6
+cw_limit = 7
+ccw_limit = 8
+enc_a = 9
+enc_b = 10
+enc_z = 11
+
+[axis.sim]
+cw_limit_at = 1000000
+ccw_limit_at = -1000000
+home_from = 5000
+home_to = 5100
+encoder_ratio = 1.0
+marker_every = 4000
+)";
+
+std::string config(const std::string& extra = "") {
+  std::string c = kConfig;
+  c.replace(c.find("{EXTRA}"), 7, extra);
+  return c;
+}
+
+// A PLC program's side of the image, over the real shared memory.
+class ShmPlc {
+ public:
+  explicit ShmPlc(const std::string& name) : client_(name) {}
+
+  module::ImageWords in() const {
+    module::ImageWords w;
+    EXPECT_TRUE(client_.read_inputs(w));
+    return w;
+  }
+  std::uint16_t status_msw() const { return static_cast<std::uint16_t>(in().w[0]); }
+  bool status(std::uint16_t bit) const { return (status_msw() & bit) != 0; }
+  std::int64_t position() const {
+    const auto w = in();
+    return ipc::codec::decode_3601_report(w.w[m::in_word::kPositionMsw],
+                                          w.w[m::in_word::kPositionLsw]);
+  }
+  void scans(unsigned n) { ASSERT_TRUE(client_.wait_scans(n, milliseconds(2000))); }
+
+  void write(std::uint16_t msw, std::uint16_t lsw, std::int32_t w23, std::int32_t w45,
+             std::int16_t w6, std::int16_t w7) {
+    const auto a = ipc::codec::encode_3601(w23);
+    const auto b = ipc::codec::encode_3601(w45);
+    module::ImageWords o{};
+    o.w = {static_cast<std::int16_t>(msw), static_cast<std::int16_t>(lsw), a.msw, a.lsw, b.msw,
+           b.lsw, w6, w7};
+    client_.write_outputs(o);
+  }
+  // An edge-triggered command, set until the module has scanned it, then cleared.
+  void command(std::uint16_t bit, std::int32_t target = 0, std::int32_t speed = 0,
+               std::int16_t accel = 0, std::int16_t decel = 0) {
+    write(bit, 0, target, speed, accel, decel);
+    scans(3);
+    client_.write_word(0, 0);
+    scans(2);
+  }
+  void configure(std::int32_t starting_speed = 1'000) {
+    const std::uint16_t cfg = m::cfg_msw::kCaptureUsed | m::cfg_msw::kExternalUsed |
+                              m::cfg_msw::kHomeUsed | m::cfg_msw::kEStopUsed |
+                              m::cfg_msw::kCwLimitUsed | m::cfg_msw::kCcwLimitUsed |
+                              m::cfg_msw::kQuadratureEncoder | m::cfg_msw::kStepDirOutput;
+    write(cfg | m::cfg_msw::kConfigMode, 0x3F, starting_speed, 0, 0, 0);
+    scans(3);
+    ASSERT_TRUE(status(kConfigMode));
+    ASSERT_FALSE(status(kConfigurationError));
+    write(0, 0, 0, 0, 0, 0);
+    scans(3);
+    ASSERT_FALSE(status(kConfigMode));
+  }
+  bool moving() const { return status(kMovingCw) || status(kMovingCcw); }
+  bool wait(const std::function<bool()>& cond, milliseconds timeout) {
+    const auto end = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < end) {
+      if (cond()) return true;
+      std::this_thread::sleep_for(milliseconds(2));
+    }
+    return cond();
+  }
+  ipc::Client& client() { return client_; }
+
+ private:
+  ipc::Client client_;
+};
+
+class Daemon3601 : public ::testing::Test {
+ protected:
+  void start(const std::string& extra = "") {
+    daemon_ = std::make_unique<DaemonProcess>(config(extra));
+    ASSERT_TRUE(daemon_->wait_ready()) << daemon_->log();
+    plc_ = std::make_unique<ShmPlc>(daemon_->name());
+  }
+  // Stops the daemon (exit 0 expected) and reads its trace.
+  Vcd stop_and_read_trace() {
+    plc_.reset();
+    EXPECT_EQ(daemon_->terminate(), 0) << daemon_->log();
+    return read_vcd(daemon_->trace_path());
+  }
+  std::unique_ptr<DaemonProcess> daemon_;
+  std::unique_ptr<ShmPlc> plc_;
+};
+
+// Ideal time of step k (s(t) = k) on the constant-acceleration ramp from vs at rate a.
+double ramp_step_time(double vs, double a, double k) { return (-vs + std::sqrt(vs * vs + 2 * a * k)) / a; }
+
+TEST_F(Daemon3601, RelativeMoveExactPulsesAndProfileTiming) {
+  start();
+  plc_->configure(1'000);
+  plc_->command(cmd::kPresetPosition, 0);
+  // Vs 1,000, Vp 10,000, a = d = 10 steps/ms/s: the digest 7.2 worked example, N = 20,000:
+  // trapezoid, Ta = Td = 0.9 s, Da = Dd = 4,950, Dp = 10,100, Tt = 2.81 s.
+  plc_->command(cmd::kRelativeMove, 20'000, 10'000, 10, 10);
+  ASSERT_TRUE(plc_->wait([&] { return plc_->status(kMoveComplete); }, milliseconds(20'000)));
+  EXPECT_EQ(plc_->position(), 20'000);
+  EXPECT_FALSE(plc_->status(kCommandError) || plc_->status(kInvalidProfile) ||
+               plc_->status(kInputError));
+  EXPECT_FALSE(plc_->moving());
+  const Vcd vcd = stop_and_read_trace();
+
+  EXPECT_EQ(vcd.timescale, "1 ns");
+  const auto steps = vcd.rising("axis1.step");
+  ASSERT_EQ(steps.size(), 20'000u);  // exact pulse count
+  // The direction line is set (CW = high) before the first step and never changes during it.
+  const auto& dir = vcd.wires.at("axis1.dir");
+  for (const VcdChange& c : dir) {
+    if (c.t >= steps.front()) ADD_FAILURE() << "direction changed during the move at " << c.t;
+  }
+  EXPECT_EQ(vcd.final_level("axis1.dir"), 1);
+  EXPECT_EQ(vcd.final_level("axis1.step"), 0);
+  if (!kTimingChecks) return;
+
+  const double vs = 1'000, vp = 10'000, a = 10'000;
+  // First and last pulse periods at the starting speed (within 10 %: the pulse thread runs on a
+  // shared two-core VM and a single period is only 1 ms).
+  const double first = (steps[1] - steps[0]) * 1e-9;
+  const double ideal_first = ramp_step_time(vs, a, 2) - ramp_step_time(vs, a, 1);
+  EXPECT_NEAR(first, ideal_first, 0.1 * ideal_first);
+  const double last = (steps[steps.size() - 1] - steps[steps.size() - 2]) * 1e-9;
+  EXPECT_NEAR(last, ideal_first, 0.1 * ideal_first);
+  // Cruise at the programmed speed: the median period between steps 6,000 and 14,000.
+  std::vector<std::int64_t> periods;
+  for (std::size_t i = 6'000; i < 14'000; ++i) periods.push_back(steps[i + 1] - steps[i]);
+  std::nth_element(periods.begin(), periods.begin() + periods.size() / 2, periods.end());
+  EXPECT_NEAR(periods[periods.size() / 2] * 1e-9, 1 / vp, 0.01 / vp);
+  // Total move time (first to last pulse) within 1 % of the manual's equations.
+  const double tt = 2.81 - ramp_step_time(vs, a, 1);
+  EXPECT_NEAR((steps.back() - steps.front()) * 1e-9, tt, 0.01 * tt);
+}
+
+TEST_F(Daemon3601, HoldAndResumeEndAtTheExactTarget) {
+  start();
+  plc_->configure();
+  plc_->command(cmd::kPresetPosition, 0);
+  plc_->command(cmd::kAbsoluteMove, 30'000, 10'000, 10, 10);
+  std::this_thread::sleep_for(milliseconds(1200));
+  plc_->command(cmd::kHold);
+  ASSERT_TRUE(plc_->wait([&] { return plc_->status(kHoldState); }, milliseconds(5'000)));
+  const std::int64_t held = plc_->position();
+  EXPECT_GT(held, 0);
+  EXPECT_LT(held, 30'000);
+  EXPECT_FALSE(plc_->status(kPositionInvalid));
+  plc_->command(cmd::kResume, 0, 8'000, 20, 20);
+  ASSERT_TRUE(plc_->wait([&] { return plc_->status(kMoveComplete); }, milliseconds(20'000)));
+  EXPECT_EQ(plc_->position(), 30'000);
+  const Vcd vcd = stop_and_read_trace();
+  EXPECT_EQ(vcd.rising("axis1.step").size(), 30'000u);
+}
+
+TEST_F(Daemon3601, ImmediateStopLeavesPositionInvalid) {
+  start();
+  plc_->configure();
+  plc_->command(cmd::kPresetPosition, 0);
+  plc_->command(cmd::kRelativeMove, -50'000, 10'000, 10, 10);
+  std::this_thread::sleep_for(milliseconds(700));
+  plc_->command(cmd::kImmediateStop);
+  ASSERT_TRUE(plc_->wait([&] { return !plc_->moving(); }, milliseconds(1'000)));
+  EXPECT_TRUE(plc_->status(kPositionInvalid));
+  EXPECT_TRUE(plc_->status(kStopped));
+  EXPECT_FALSE(plc_->status(kMoveComplete));
+  const std::int64_t stopped_at = plc_->position();
+  EXPECT_LT(stopped_at, 0);
+  EXPECT_GT(stopped_at, -50'000);
+  std::this_thread::sleep_for(milliseconds(100));
+  EXPECT_EQ(plc_->position(), stopped_at);  // no deceleration tail
+  const Vcd vcd = stop_and_read_trace();
+  EXPECT_EQ(static_cast<std::int64_t>(vcd.rising("axis1.step").size()), -stopped_at);
+  EXPECT_EQ(vcd.final_level("axis1.step"), 0);
+}
+
+TEST_F(Daemon3601, PanelForcedEStopStopsTheMoveWithInputError) {
+  start();
+  plc_->configure();
+  plc_->command(cmd::kRelativeMove, 50'000, 10'000, 10, 10);
+  std::this_thread::sleep_for(milliseconds(500));
+  ipc::SimPanelClient panel(daemon_->name());
+  panel.force(0, 3, true);  // bit 3: E-stop, electrically high = active (active-high config)
+  ASSERT_TRUE(plc_->wait([&] { return !plc_->moving(); }, milliseconds(1'000)));
+  EXPECT_TRUE(plc_->status(kInputError));
+  EXPECT_TRUE(plc_->status(kPositionInvalid));
+  EXPECT_TRUE(plc_->status(kStopped));
+  // The panel shows the motor where the module says it is.
+  plc_->scans(3);
+  EXPECT_EQ(panel.read(0).position, plc_->position());
+  panel.release(0, 3);
+  const Vcd vcd = stop_and_read_trace();
+  const auto estop = vcd.wires.at("axis1.estop");
+  ASSERT_GE(estop.size(), 2u);  // the forced edge and its release are in the trace
+}
+
+TEST_F(Daemon3601, SigtermMidMoveStopsIdlesOutputsAndRemovesTheImage) {
+  start();
+  plc_->configure();
+  plc_->command(cmd::kRelativeMove, 100'000, 20'000, 20, 20);
+  std::this_thread::sleep_for(milliseconds(400));
+  const std::string shm = "/dev/shm/stepmod." + daemon_->name();
+  const Vcd vcd = stop_and_read_trace();
+  struct stat st {};
+  EXPECT_NE(::stat(shm.c_str(), &st), 0);
+  EXPECT_NE(::stat((shm + ".sim").c_str(), &st), 0);
+  EXPECT_EQ(vcd.final_level("axis1.step"), 0);
+  EXPECT_EQ(vcd.final_level("axis1.dir"), 0);
+  EXPECT_GT(vcd.rising("axis1.step").size(), 100u);
+}
+
+TEST_F(Daemon3601, HeartbeatTimeoutStopsMotionAndInvalidatesPosition) {
+  start("plc_timeout_ms = 300");
+  std::atomic<bool> beating{true};
+  std::thread heart([&] {
+    while (beating) {
+      plc_->client().heartbeat();
+      std::this_thread::sleep_for(milliseconds(20));
+    }
+  });
+  plc_->configure();
+  plc_->command(cmd::kPresetPosition, 0);
+  plc_->command(cmd::kRelativeMove, 50'000, 10'000, 10, 10);
+  std::this_thread::sleep_for(milliseconds(400));
+  EXPECT_TRUE(plc_->moving());
+  EXPECT_FALSE(plc_->status(kPositionInvalid));
+  beating = false;
+  heart.join();
+  ASSERT_TRUE(plc_->wait([&] { return !plc_->moving(); }, milliseconds(3'000)));
+  EXPECT_TRUE(plc_->status(kPositionInvalid));
+  stop_and_read_trace();
+}
+
+TEST(Daemon3601Config, BadConfigExitsTwoNamingTheKeyAndCreatesNothing) {
+  char dir[] = "/tmp/stepmod-badcfg-XXXXXX";
+  ASSERT_NE(mkdtemp(dir), nullptr);
+  const std::string path = std::string(dir) + "/bad.toml";
+  FILE* f = std::fopen(path.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fputs("[module]\ntype = \"3601\"\nname = \"badcfg\"\nscan_us = 10\n[[axis]]\nstep = 1\ndir = 2\n",
+             f);
+  std::fclose(f);
+  std::string err;
+  EXPECT_EQ(DaemonProcess::run_to_exit("--config " + path, &err), 2);
+  EXPECT_NE(err.find("bad.toml"), std::string::npos) << err;
+  EXPECT_NE(err.find("scan_us"), std::string::npos) << err;
+  struct stat st {};
+  EXPECT_NE(::stat("/dev/shm/stepmod.badcfg", &st), 0);
+  std::remove(path.c_str());
+  ::rmdir(dir);
+}
+
+TEST(Daemon3601Config, MissingConfigFileExitsTwo) {
+  std::string err;
+  EXPECT_EQ(DaemonProcess::run_to_exit("--config /nonexistent/stepmod.toml", &err), 2);
+  EXPECT_NE(err.find("/nonexistent/stepmod.toml"), std::string::npos) << err;
+}
+
+}  // namespace
+}  // namespace stepmod::testing

@@ -1,0 +1,149 @@
+#include "tests/support/daemon_process.hpp"
+
+#include <signal.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+extern char** environ;
+
+namespace stepmod::testing {
+
+namespace {
+
+std::string replace_all(std::string s, const std::string& from, const std::string& to) {
+  for (std::size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size())) {
+    s.replace(p, from.size(), to);
+  }
+  return s;
+}
+
+// Starts `argv` with stderr (and stdout) appended to `log`.
+pid_t spawn(const std::vector<std::string>& args, const std::string& log) {
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0) throw std::runtime_error("cannot start " + args[0]);
+  return pid;
+}
+
+int wait_exit(pid_t pid, int timeout_ms) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+  while (std::chrono::steady_clock::now() < end) {
+    int status = 0;
+    const pid_t r = waitpid(pid, &status, WNOHANG);
+    if (r == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return -1;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+std::string DaemonProcess::daemon_path() { return STEPMOD_DAEMON_PATH; }
+
+DaemonProcess::DaemonProcess(const std::string& toml, bool trace) {
+  static std::atomic<int> counter{0};
+  char tmpl[] = "/tmp/stepmod-test-XXXXXX";
+  if (mkdtemp(tmpl) == nullptr) throw std::runtime_error("mkdtemp failed");
+  dir_ = tmpl;
+  name_ = "t" + std::to_string(getpid()) + "-" + std::to_string(counter++);
+  config_ = dir_ + "/module.toml";
+  trace_ = dir_ + "/trace.vcd";
+  log_ = dir_ + "/stepmodd.log";
+  std::ofstream(config_) << replace_all(toml, "{NAME}", name_);
+  std::vector<std::string> args{daemon_path(), "--config", config_};
+  if (trace) {
+    args.push_back("--trace");
+    args.push_back(trace_);
+  }
+  pid_ = spawn(args, log_);
+}
+
+DaemonProcess::~DaemonProcess() {
+  if (pid_ > 0) {
+    kill(pid_, SIGKILL);
+    waitpid(pid_, nullptr, 0);
+    // A killed daemon cannot clean up after itself.
+    ::unlink(("/dev/shm/stepmod." + name_).c_str());
+    ::unlink(("/dev/shm/stepmod." + name_ + ".sim").c_str());
+  }
+  std::error_code ec;
+  if (std::getenv("STEPMOD_KEEP_TEST_FILES") == nullptr) std::filesystem::remove_all(dir_, ec);
+}
+
+bool DaemonProcess::wait_ready(int timeout_ms) {
+  const std::string shm = "/dev/shm/stepmod." + name_;
+  const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+  while (std::chrono::steady_clock::now() < end) {
+    struct stat st {};
+    if (::stat(shm.c_str(), &st) == 0 && st.st_size == 4096) {
+      // The image is created before the threads start: give them a moment to come up.
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      return true;
+    }
+    int status = 0;
+    if (waitpid(pid_, &status, WNOHANG) == pid_) {
+      pid_ = -1;
+      return false;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return false;
+}
+
+int DaemonProcess::terminate(int timeout_ms) {
+  if (pid_ <= 0) return -1;
+  kill(pid_, SIGTERM);
+  const int rc = wait_exit(pid_, timeout_ms);
+  if (rc >= 0) pid_ = -1;
+  return rc;
+}
+
+std::string DaemonProcess::log() const { return read_file(log_); }
+
+int DaemonProcess::run_to_exit(const std::string& args, std::string* stderr_text) {
+  char tmpl[] = "/tmp/stepmod-run-XXXXXX";
+  if (mkdtemp(tmpl) == nullptr) throw std::runtime_error("mkdtemp failed");
+  const std::string log = std::string(tmpl) + "/log";
+  std::vector<std::string> argv{daemon_path()};
+  std::istringstream ss(args);
+  for (std::string a; ss >> a;) argv.push_back(a);
+  const pid_t pid = spawn(argv, log);
+  const int rc = wait_exit(pid, 10'000);
+  if (rc < 0) {
+    kill(pid, SIGKILL);
+    waitpid(pid, nullptr, 0);
+  }
+  if (stderr_text != nullptr) *stderr_text = read_file(log);
+  std::error_code ec;
+  std::filesystem::remove_all(tmpl, ec);
+  return rc;
+}
+
+}  // namespace stepmod::testing

@@ -1,0 +1,42 @@
+#pragma once
+// Runs the real stepmodd as a child process for end-to-end tests, on a config file written to a
+// private temporary directory, with a unique module name so tests never share an image.
+#include <sys/types.h>
+
+#include <string>
+
+namespace stepmod::testing {
+
+class DaemonProcess {
+ public:
+  // `config_body`: the TOML after the [module] table's name line is inserted; use "{NAME}" where
+  // the module name goes.
+  explicit DaemonProcess(const std::string& config_toml_with_name_placeholder, bool trace = true);
+  ~DaemonProcess();  // kills the daemon if still running and removes the temporary directory
+  DaemonProcess(const DaemonProcess&) = delete;
+  DaemonProcess& operator=(const DaemonProcess&) = delete;
+
+  const std::string& name() const { return name_; }
+  const std::string& trace_path() const { return trace_; }
+  const std::string& config_path() const { return config_; }
+  // Waits until the shared-memory image exists (the daemon is up); false on timeout or exit.
+  bool wait_ready(int timeout_ms = 10'000);
+  // SIGTERM and wait; returns the exit status (or -1 if it did not exit in time).
+  int terminate(int timeout_ms = 10'000);
+  // The daemon's stderr so far (for failure messages).
+  std::string log() const;
+
+  // Runs stepmodd with `args` to completion; returns its exit status and stderr.
+  static int run_to_exit(const std::string& args, std::string* stderr_text = nullptr);
+  static std::string daemon_path();
+
+ private:
+  std::string dir_;
+  std::string name_;
+  std::string config_;
+  std::string trace_;
+  std::string log_;
+  pid_t pid_ = -1;
+};
+
+}  // namespace stepmod::testing

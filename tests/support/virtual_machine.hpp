@@ -1,0 +1,61 @@
+#pragma once
+// The daemon's stack (tools::Stack) on the simulated machine, run in virtual time in one
+// thread: the planner is serviced, edges are executed at their own times, input events reach the
+// personality right after the edge that caused them, and the PLC image is scanned every scan
+// period. Deterministic and fast: a 2-second homing pause costs nothing.
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "gpio/sim_backend.hpp"
+#include "module/personality.hpp"
+#include "tools/stack.hpp"
+
+namespace stepmod::testing {
+
+struct VirtualMachineOptions {
+  module::ModuleType type = module::ModuleType::k3601;
+  std::vector<gpio::SimAxisSetup> axes;  // one per axis of the module
+  Nanos scan_ns = kNsPerMs;
+  planner::AxisTiming timing;
+};
+
+// A typical machine for one 3601 axis: every input wired, limits at +-100,000, home 5,000..5,100.
+VirtualMachineOptions default_3601();
+
+class VirtualMachine {
+ public:
+  explicit VirtualMachine(VirtualMachineOptions options);
+
+  Nanos now() const noexcept { return now_; }
+  // Runs every event up to and including `t`.
+  void run_until(Nanos t);
+  void run_for(Nanos d) { run_until(now_ + d); }
+  void scans(unsigned n) { run_for(static_cast<Nanos>(n) * options_.scan_ns); }
+  // Runs until `done()` holds after a scan, at most `limit`; returns whether it held.
+  bool run_until_true(const std::function<bool()>& done, Nanos limit);
+
+  module::ImageWords& plc_out() noexcept { return plc_out_; }
+  const module::ImageWords& plc_in() const noexcept { return plc_in_; }
+  gpio::SimBackend& sim() noexcept { return *sim_; }
+  tools::Stack& stack() noexcept { return *stack_; }
+
+  // Step (leading) edges written so far, per axis, and their times.
+  const std::vector<Nanos>& step_times(unsigned axis) const { return step_times_[axis]; }
+
+ private:
+  void deliver_inputs();
+
+  VirtualMachineOptions options_;
+  std::unique_ptr<gpio::SimBackend> sim_;
+  std::unique_ptr<tools::Stack> stack_;
+  module::ImageWords plc_out_{};
+  module::ImageWords plc_in_{};
+  Nanos now_;
+  Nanos next_scan_;
+  Nanos next_plan_;
+  std::vector<std::vector<Nanos>> step_times_;
+  std::vector<std::int64_t> last_steps_;
+};
+
+}  // namespace stepmod::testing
