@@ -1,8 +1,6 @@
 #include "gpio/gpiod_backend.hpp"
 
 #include <gpiod.h>
-#include <liburing.h>
-#include <linux/gpio.h>
 
 #include <array>
 #include <atomic>
@@ -10,6 +8,8 @@
 #include <cstring>
 #include <stdexcept>
 #include <vector>
+
+#include "gpio/line_event_reader.hpp"
 
 namespace stepmod::gpio {
 
@@ -38,15 +38,10 @@ struct GpiodBackend::Impl {
   bool outputs_requested = false;
   std::atomic<std::uint64_t> write_errors{0};
 
-  // Inputs: one event request per line, one io_uring read in flight per line's event fd.
+  // Inputs: one event request per line; their fds are read by `events`.
   std::vector<std::array<int, kInputLinesPerAxis>> in_index;  // index into `inputs`, -1 unwired
   std::vector<Input> inputs;
-  std::vector<std::array<gpioevent_data, kReadBatch>> bufs;  // never resized after submission
-  io_uring ring{};
-  bool ring_ready = false;
-  std::vector<InputEvent> pending;  // ring buffer of converted events not yet handed out
-  std::size_t pending_head = 0, pending_size = 0;
-  std::uint64_t lost = 0;
+  std::unique_ptr<LineEventReader> events;
 
   std::string where(unsigned axis, bool input, unsigned line, unsigned offset) const {
     const std::string_view key =
@@ -82,75 +77,9 @@ struct GpiodBackend::Impl {
     return what + (e == EBUSY ? ": line busy" : "") + ": " + std::strerror(e);
   }
 
-  void submit_read(std::size_t i) noexcept {
-    io_uring_sqe* sqe = io_uring_get_sqe(&ring);
-    if (sqe == nullptr) return;  // cannot happen: the SQ has a slot per input
-    // Offset -1: "current position"; a line-event fd is a stream and ignores it anyway.
-    io_uring_prep_read(sqe, inputs[i].fd, bufs[i].data(), sizeof(bufs[i]), static_cast<__u64>(-1));
-    io_uring_sqe_set_data64(sqe, i);
-  }
-
-  bool pending_push(const InputEvent& e) noexcept {
-    if (pending_size == pending.size()) {
-      ++lost;
-      return false;
-    }
-    pending[(pending_head + pending_size) % pending.size()] = e;
-    ++pending_size;
-    return true;
-  }
-
-  std::size_t take_pending(std::span<InputEvent> out) noexcept {
-    std::size_t n = 0;
-    while (n < out.size() && pending_size > 0) {
-      out[n++] = pending[pending_head];
-      pending_head = (pending_head + 1) % pending.size();
-      --pending_size;
-    }
-    return n;
-  }
-
-  // Converts the completed reads into pending events and puts each read back in flight. A
-  // completion is only taken when a whole batch fits, so nothing read is ever dropped here:
-  // unreaped completions wait in the CQ and the kernel keeps further edges in its FIFO.
-  void reap() {
-    io_uring_cqe* cqe = nullptr;
-    unsigned resubmit = 0;
-    int error = 0;
-    std::size_t error_input = 0;
-    while (pending.size() - pending_size >= kReadBatch && io_uring_peek_cqe(&ring, &cqe) == 0) {
-      const auto i = static_cast<std::size_t>(io_uring_cqe_get_data64(cqe));
-      const int res = cqe->res;
-      io_uring_cqe_seen(&ring, cqe);
-      if (res > 0) {
-        const Input& in = inputs[i];
-        const std::size_t count = static_cast<std::size_t>(res) / sizeof(gpioevent_data);
-        for (std::size_t k = 0; k < count; ++k) {
-          const gpioevent_data& ev = bufs[i][k];
-          // Since Linux 5.7 ("gpio: Switch timestamps to ktime_get_ns()") the v1 line-event
-          // timestamp is CLOCK_MONOTONIC, the clock of every stepmod time (kernel 6.1 here).
-          pending_push(InputEvent{static_cast<Nanos>(ev.timestamp), in.axis, in.which,
-                                  ev.id == GPIOEVENT_EVENT_RISING_EDGE});
-        }
-      } else if (res < 0 && res != -EINTR && res != -EAGAIN && res != -ECANCELED) {
-        error = -res;
-        error_input = i;
-      }
-      submit_read(i);
-      ++resubmit;
-    }
-    if (resubmit > 0) io_uring_submit(&ring);
-    if (error != 0) {
-      const Input& in = inputs[error_input];
-      throw std::runtime_error(where(in.axis, true, static_cast<unsigned>(in.which), in.offset) +
-                               ": reading events: " + std::strerror(error));
-    }
-  }
-
   void release() noexcept {
-    // The ring first: it cancels the reads that point into `bufs` and at the event fds.
-    if (ring_ready) io_uring_queue_exit(&ring);
-    ring_ready = false;
+    // The reader first: it cancels the reads that use the event fds.
+    events.reset();
     if (outputs_requested) {
       std::fill(shadow.begin(), shadow.end(), 0);
       gpiod_line_set_value_bulk(&out_bulk, shadow.data());
@@ -235,20 +164,15 @@ GpiodBackend::GpiodBackend(const std::string& chip, std::span<const AxisLines> a
     }
 
     if (!d.inputs.empty()) {
-      d.bufs.resize(d.inputs.size());
-      d.pending.resize(d.inputs.size() * kReadBatch * 2);
-      unsigned entries = 1;
-      while (entries < d.inputs.size()) entries <<= 1;
-      const int r = io_uring_queue_init(entries, &d.ring, 0);
-      if (r < 0) {
-        throw std::runtime_error("GPIO chip '" + chip +
-                                 "': io_uring_queue_init: " + std::strerror(-r));
+      std::vector<LineEventReader::Source> sources;
+      for (const Impl::Input& in : d.inputs) {
+        sources.push_back({in.fd, in.axis, in.which,
+                           d.where(in.axis, true, static_cast<unsigned>(in.which), in.offset)});
       }
-      d.ring_ready = true;
-      for (std::size_t i = 0; i < d.inputs.size(); ++i) d.submit_read(i);
-      const int s = io_uring_submit(&d.ring);
-      if (s < 0) {
-        throw std::runtime_error("GPIO chip '" + chip + "': io_uring_submit: " + std::strerror(-s));
+      try {
+        d.events = std::make_unique<LineEventReader>(std::move(sources));
+      } catch (const std::runtime_error& e) {
+        throw std::runtime_error("GPIO chip '" + chip + "': input events: " + e.what());
       }
     }
   } catch (...) {
@@ -301,32 +225,15 @@ bool GpiodBackend::read(unsigned axis, InputLine line) {
 
 std::size_t GpiodBackend::wait_events(std::span<InputEvent> out, Nanos deadline) {
   Impl& d = *d_;
-  if (d.inputs.empty()) {
+  if (!d.events) {  // no input wired: nothing can arrive
     sleep_until(deadline);
     return 0;
   }
-  for (;;) {
-    d.reap();
-    const std::size_t n = d.take_pending(out);
-    if (n > 0 || out.empty()) return n;
-    const Nanos now = monotonic_now();
-    if (now >= deadline) return 0;
-    const Nanos wait = deadline - now;
-    __kernel_timespec ts{};
-    ts.tv_sec = wait / kNsPerSec;
-    ts.tv_nsec = wait % kNsPerSec;
-    io_uring_cqe* cqe = nullptr;
-    const int r = io_uring_wait_cqe_timeout(&d.ring, &cqe, &ts);
-    if (r == -ETIME) return 0;
-    if (r < 0 && r != -EINTR && r != -EAGAIN) {
-      throw std::runtime_error("GPIO chip '" + d.chip_name +
-                               "': waiting for input events: " + std::strerror(-r));
-    }
-  }
+  return d.events->wait(out, deadline);
 }
 
 std::uint64_t GpiodBackend::lost_events() const noexcept {
-  return d_->lost;
+  return 0;
 }
 
 std::uint64_t GpiodBackend::write_errors() const noexcept {

@@ -1,7 +1,7 @@
 #pragma once
 // Backend for `backend = "gpiod"`: a real GPIO chip through libgpiod 1.6 (the v1 character-device
 // uAPI). Outputs are one bulk request written with one ioctl; input edges are read through
-// io_uring with the kernel's timestamps.
+// io_uring (LineEventReader) with the kernel's timestamps.
 #include <memory>
 #include <span>
 #include <string>
@@ -28,15 +28,14 @@ class GpiodBackend final : public Backend {
   bool has_output(unsigned axis, OutputLine line) const noexcept override;
   bool read(unsigned axis, InputLine line) override;
   std::size_t wait_events(std::span<InputEvent> out, Nanos deadline) override;
-  // Events that found the pending queue full. The v1 uAPI gives no sequence numbers, so an
-  // overflow of the kernel's own per-line FIFO (16 events) cannot be seen here.
+  // Always 0: nothing is dropped between the kernel and the caller (see LineEventReader), and
+  // the v1 uAPI has no sequence numbers, so an overflow of the kernel's own per-line FIFO (16
+  // events) cannot be seen.
   std::uint64_t lost_events() const noexcept override;
   void idle_outputs() noexcept override;
 
   // Write errors seen by the pulse thread (it cannot report them itself).
   std::uint64_t write_errors() const noexcept;
-
-  static constexpr unsigned kReadBatch = 16;  // gpioevent_data per read (the kernel FIFO size)
 
  private:
   struct Impl;  // keeps libgpiod, liburing and <linux/gpio.h> out of the users' includes

@@ -199,11 +199,11 @@ void TraceWriter::stop(std::uint64_t dropped_outputs, std::uint64_t dropped_inpu
   closed_ = true;
   drain();
   merger_.release_all([this](const rt::TraceRecord& r) { vcd_.record(r); });
-  if (dropped_outputs != 0 || dropped_inputs != 0 || vcd_.late() != 0 || vcd_.unknown() != 0) {
-    vcd_.comment("stepmod: dropped records: outputs " + std::to_string(dropped_outputs) +
-                 ", inputs " + std::to_string(dropped_inputs) + "; late records " +
-                 std::to_string(vcd_.late()) + "; unknown lines " + std::to_string(vcd_.unknown()));
-  }
+  // Always written, zeros included, so that a script can tell a complete trace from one whose
+  // rings overflowed without guessing.
+  vcd_.comment("stepmod: dropped records: outputs " + std::to_string(dropped_outputs) +
+               ", inputs " + std::to_string(dropped_inputs) + "; late records " +
+               std::to_string(vcd_.late()) + "; unknown lines " + std::to_string(vcd_.unknown()));
   vcd_.close(monotonic_now());
 }
 
