@@ -7,6 +7,7 @@
 #   --cases DIR      test cases: every executable file in DIR (repeatable; default tests/vm/cases)
 #   --bin FILE       a program to put in the VM's PATH (/vm/bin; repeatable). Dynamically linked
 #                    programs get their shared libraries copied too; static ones need nothing.
+#                    Without any --bin, tests/vm/gpiod_check.c is built and used.
 #   --board FILE     a stepmod config whose [[axis]] lines make up the gpio-sim chip (repeatable;
 #                    default tests/vm/board*.toml; the first one's [gpio] chip is checked)
 #   --out DIR        where results.txt, console.log and the initramfs go (default build-vm/vm)
@@ -142,6 +143,13 @@ copy_with_libs() {
     cp -L "$lib" "$ov$lib"
   done < <(ldd "$f" | sed -n 's/.*=> \(\/[^ ]*\) .*/\1/p; s/^\s*\(\/[^ ]*\) (.*/\1/p')
 }
+if ((${#bins[@]} == 0)); then
+  # Run by hand without programs: build the harness's own check program (ctest passes --bin).
+  gcc -std=c11 -O2 -Wall -Wextra -Werror -static -o "$out/gpiod_check" \
+    "$VM_REPO_DIR/tests/vm/gpiod_check.c" -l:libgpiod.a ||
+    vm_die "building tests/vm/gpiod_check.c failed (libgpiod-dev installed?)"
+  bins=("$out/gpiod_check")
+fi
 for b in "${bins[@]}"; do
   [[ -f "$b" && -x "$b" ]] || vm_die "program $b does not exist or is not executable"
   copy_with_libs "$b"
