@@ -2,7 +2,8 @@
 // gpio-sim chip (the test VM) set
 //   STEPMOD_TEST_GPIOSIM_CHIP  chip name, e.g. gpiochip1
 //   STEPMOD_TEST_GPIOSIM_SYSFS its sysfs directory, e.g. /sys/devices/platform/gpio-sim.0/gpiochip1
-// (a bank of at least 8 lines) and the real-chip tests run too.
+// (a bank of at least 8 free lines, pulled down) and the real-chip tests run too: the VM case
+// vm_cases/gpio_backend.sh does that with the `test_gpiod_backend` program.
 #include "gpio/gpiod_backend.hpp"
 
 #include <gtest/gtest.h>
@@ -102,8 +103,8 @@ TEST(GpioGpiodBackend, SimChipInputEdgesWithMonotonicTimestamps) {
 
   const Nanos t0 = monotonic_now();
   sim.pull(5, true);
-  const Nanos t1 = monotonic_now();
   std::size_t n = b.wait_events(ev, monotonic_now() + kNsPerSec);
+  const Nanos t1 = monotonic_now();
   ASSERT_EQ(n, 1u);
   EXPECT_EQ(ev[0].axis, 0);
   EXPECT_EQ(ev[0].line, InputLine::kHome);
