@@ -1,0 +1,386 @@
+#include "planner/axis_planner.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace stepmod::planner {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+Nanos to_ns(double seconds) noexcept {
+  return std::llround(seconds * 1e9);
+}
+}  // namespace
+
+AxisPlanner::AxisPlanner(const PlannerAxis& axis, const PlannerOptions& options) noexcept
+    : ring_(axis.edges), control_(axis.control), timing_(axis.timing), opt_(options) {}
+
+double AxisPlanner::frontier_speed() const noexcept {
+  if (!m_.active) return 0.0;
+  return phases_.velocity_at(m_.tk);
+}
+
+std::int64_t AxisPlanner::planned_steps_at(Nanos t) const noexcept {
+  std::int64_t hi = m_.k;
+  if (hi == 0) return 0;
+  constexpr std::size_t mask = kHistory - 1;
+  if (history_[static_cast<std::size_t>(hi) & mask] <= t) return hi;
+  std::int64_t lo = std::max<std::int64_t>(1, hi - static_cast<std::int64_t>(kHistory) + 1);
+  // Older than the history: the best we know is that it was before step lo.
+  if (history_[static_cast<std::size_t>(lo) & mask] > t) return lo - 1;
+  // Invariant: time(lo) <= t < time(hi).
+  while (hi - lo > 1) {
+    const std::int64_t mid = lo + (hi - lo) / 2;
+    if (history_[static_cast<std::size_t>(mid) & mask] <= t) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+  }
+  return lo;
+}
+
+rt::Edge AxisPlanner::make_edge(Nanos t, rt::OutputLine line, std::uint8_t level, std::int8_t dpos,
+                                std::uint8_t flags) const noexcept {
+  rt::Edge e;
+  e.t = t;
+  e.epoch = (flags & rt::edge_flag::kMotion) != 0 ? m_.epoch : 0;
+  e.line = line;
+  e.level = level;
+  e.dpos = dpos;
+  e.flags = flags;
+  return e;
+}
+
+void AxisPlanner::stage(const rt::Edge& e) noexcept {
+  if (staged_count_ == kStaged) {
+    // Only reachable with a ring far too small for the step rate: make room by pushing the
+    // oldest edge early rather than losing an edge of the motion.
+    if (!ring_->try_push(staged_[staged_head_])) return;
+    last_pushed_t_ = staged_[staged_head_].t;
+    staged_head_ = (staged_head_ + 1) & (kStaged - 1);
+    --staged_count_;
+  }
+  staged_[(staged_head_ + staged_count_) & (kStaged - 1)] = e;
+  ++staged_count_;
+  if (e.t > last_t_) last_t_ = e.t;
+}
+
+void AxisPlanner::stage_sorted(const rt::Edge& e) noexcept {
+  // Behind every staged edge at or before e.t, ahead of later ones (a GPO change must not wait
+  // for a step planned a second ahead).
+  stage(e);
+  std::size_t i = staged_count_ - 1;
+  while (i > 0) {
+    rt::Edge& prev = staged_[(staged_head_ + i - 1) & (kStaged - 1)];
+    rt::Edge& cur = staged_[(staged_head_ + i) & (kStaged - 1)];
+    if (prev.t <= cur.t) break;
+    std::swap(prev, cur);
+    --i;
+  }
+}
+
+void AxisPlanner::flush(Nanos horizon) noexcept {
+  while (staged_count_ != 0) {
+    const rt::Edge& e = staged_[staged_head_];
+    if (e.t > horizon) break;
+    if (!ring_->try_push(e)) break;
+    last_pushed_t_ = e.t;
+    staged_head_ = (staged_head_ + 1) & (kStaged - 1);
+    --staged_count_;
+  }
+}
+
+void AxisPlanner::apply(const Command& c, Nanos now) noexcept {
+  check_abort();
+  switch (c.kind) {
+    case CommandKind::kMove:
+    case CommandKind::kRun:
+    case CommandKind::kBlend:
+      start_motion(c, now);
+      break;
+    case CommandKind::kChangeSpeed:
+      change_speed(c);
+      break;
+    case CommandKind::kStop:
+      stop(c);
+      break;
+    case CommandKind::kStopAfter:
+      stop_after(c);
+      break;
+    case CommandKind::kAbort:
+      if (c.epoch == last_motion_epoch_) abort_last_motion();
+      break;
+    case CommandKind::kSetGpo:
+      set_gpo(c.level, now);
+      break;
+    case CommandKind::kSetPulseFormat:
+      set_pulse_format(c.level, now);
+      break;
+  }
+}
+
+void AxisPlanner::check_abort() noexcept {
+  if (control_ == nullptr) return;
+  const std::uint32_t a = control_->abort_epoch.load(std::memory_order_acquire);
+  if (a == seen_abort_) return;
+  seen_abort_ = a;
+  if (last_motion_epoch_ != 0 && last_motion_epoch_ <= a) abort_last_motion();
+}
+
+void AxisPlanner::abort_last_motion() noexcept {
+  if (last_motion_aborted_ || last_motion_epoch_ == 0) return;
+  last_motion_aborted_ = true;
+  // The pulse thread drops this motion's edges; drop the ones it would never see as well.
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < staged_count_; ++i) {
+    const rt::Edge e = staged_[(staged_head_ + i) & (kStaged - 1)];
+    if ((e.flags & rt::edge_flag::kMotion) != 0 && e.epoch <= last_motion_epoch_) continue;
+    staged_[(staged_head_ + kept++) & (kStaged - 1)] = e;
+  }
+  staged_count_ = kept;
+  m_.active = false;
+  // Its direction edge may have been dropped unexecuted: write the direction again next time.
+  dir_level_ = -1;
+  // The next motion may start right away: only edges that will really run bound it.
+  last_t_ = std::max(motion_floor_t_, nonmotion_t_);
+}
+
+void AxisPlanner::start_motion(const Command& c, Nanos now) noexcept {
+  if (control_ != nullptr && c.epoch <= control_->abort_epoch.load(std::memory_order_acquire)) {
+    return;  // aborted before it started
+  }
+  if (c.epoch <= last_motion_epoch_) return;  // stale or repeated
+  // A new motion replaces one that is still being planned: that one ends on its newest step.
+  if (m_.active) finish_at_frontier();
+  if (want_step_dir_ != step_dir_) step_dir_ = want_step_dir_;
+
+  Motion m;
+  m.active = true;
+  m.epoch = c.epoch;
+  switch (c.kind) {
+    case CommandKind::kMove:
+      m.dir = c.move.dir;
+      build_move(c.move, phases_);
+      m.end = c.move.steps;
+      m.constant_speed = c.move.vp <= c.move.vs;
+      m.vs = c.move.vs;
+      m.decel = c.move.decel;
+      break;
+    case CommandKind::kRun:
+      m.dir = c.run.dir;
+      build_run(c.run, phases_);
+      m.end = kEndless;
+      m.constant_speed = c.run.vp <= c.run.vs;
+      m.can_change_speed = true;
+      m.vs = c.run.vs;
+      m.decel = c.run.decel;
+      break;
+    default:
+      m.dir = c.blend.dir;
+      build_blend(c.blend, phases_);
+      m.end = blend_length(c.blend);
+      m.vs = c.blend.vs;
+      m.decel = c.blend.final_decel;
+      break;
+  }
+  const bool ccw = m.dir == Direction::kCcw;
+  m.line = (step_dir_ || !ccw) ? rt::OutputLine::kStep : rt::OutputLine::kDir;
+  m.base_flags = rt::edge_flag::kMotion | (ccw ? rt::edge_flag::kCcw : 0);
+  m.origin = std::max(now + opt_.start_delay_ns, last_t_);
+  m.tk_ns = m.origin;
+
+  last_motion_epoch_ = c.epoch;
+  last_motion_aborted_ = false;
+  motion_floor_t_ = last_t_;
+  m_ = m;
+  solver_.reset(&phases_);
+
+  if (m_.end <= 0) {
+    finish_at_frontier();  // nothing to move: one marker edge tells the pulse thread it ended
+    return;
+  }
+
+  // Step/direction: the direction line must settle dir_setup_ns before the first step. CW/CCW:
+  // the CCW pulse line rests low. Only a change (or an unknown level) costs an edge.
+  const int target = step_dir_ ? (ccw ? kDirLevelCcw : kDirLevelCw) : 0;
+  if (dir_level_ != target) {
+    StepSolver probe;
+    probe.reset(&phases_);
+    const double t1 = m_.end == 1 ? phases_.end_time() : probe.time_of(1.0);
+    const Nanos first = to_ns(t1);
+    const rt::Phase ph = phases_.empty() ? rt::Phase::kCruise : phases_[0].phase;
+    stage(make_edge(m_.origin, rt::OutputLine::kDir, static_cast<std::uint8_t>(target), 0,
+                    m_.base_flags | static_cast<std::uint8_t>(ph) | rt::edge_flag::kFirst));
+    m_.first_pending = false;
+    if (first < timing_.dir_setup_ns) m_.origin += timing_.dir_setup_ns - first;
+    m_.tk_ns = m_.origin;
+    dir_level_ = target;
+  }
+}
+
+void AxisPlanner::finish_at_frontier() noexcept {
+  if (!m_.active) return;
+  m_.active = false;
+  if (m_.k > 0) {
+    stage(make_edge(m_.tk_ns + timing_.step_pulse_ns, m_.line, 0, 0,
+                    m_.k_flags | rt::edge_flag::kLast));
+    return;
+  }
+  // No step at all: rewrite the direction line at its present level, carrying kFirst/kLast so the
+  // pulse thread still reports the motion finished.
+  const int level = dir_level_ >= 0 ? dir_level_ : 0;
+  dir_level_ = level;
+  std::uint8_t flags = m_.base_flags | rt::edge_flag::kLast;
+  if (m_.first_pending) flags |= rt::edge_flag::kFirst;
+  stage(make_edge(std::max(m_.tk_ns, last_t_), rt::OutputLine::kDir,
+                  static_cast<std::uint8_t>(level), 0, flags));
+}
+
+void AxisPlanner::replan_to_end(std::int64_t end, const Ramp& ramp, bool exact_ramp) noexcept {
+  const double v = phases_.velocity_at(m_.tk);
+  const double remaining = static_cast<double>(end - m_.k);
+  phases_.reset(m_.tk, static_cast<double>(m_.k), v);
+  if (v <= m_.vs || ramp.rate <= 0.0) {
+    phases_.add_cruise(remaining);
+  } else {
+    const double d = ramp_distance(v, m_.vs, ramp);
+    if (!exact_ramp && d <= remaining) {
+      phases_.add_cruise(remaining - d);
+      phases_.add_ramp(m_.vs, ramp);
+    } else {
+      // The ramp alone covers the rest: its rate is adjusted so that it ends exactly on `end`
+      // (a little gentler or steeper than asked for a stop; steeper when a registration count
+      // leaves too few steps).
+      phases_.add_ramp_over(m_.vs, ramp.shape, remaining);
+    }
+  }
+  m_.end = end;
+  m_.can_change_speed = false;
+  solver_.reset(&phases_);
+}
+
+void AxisPlanner::change_speed(const Command& c) noexcept {
+  if (!m_.active || c.epoch != m_.epoch || !m_.can_change_speed) return;
+  if (!(c.run.vp > 0.0)) return;
+  // Replanned from the newest planned step (at most the lookahead ahead of the pulse thread).
+  const double v = phases_.velocity_at(m_.tk);
+  phases_.reset(m_.tk, static_cast<double>(m_.k), v);
+  phases_.add_ramp(c.run.vp, c.run.vp > v ? c.run.accel : c.run.decel);
+  phases_.add_cruise(kInf);
+  m_.decel = c.run.decel;
+  m_.constant_speed = false;
+  solver_.reset(&phases_);
+}
+
+void AxisPlanner::stop(const Command& c) noexcept {
+  if (!m_.active || c.epoch != m_.epoch) return;
+  const double v = phases_.velocity_at(m_.tk);
+  if (m_.constant_speed || v <= m_.vs * (1.0 + 1e-9) || c.ramp.rate <= 0.0) {
+    // Nothing to ramp down: the step already planned is the last one (one step if none yet).
+    if (m_.k == 0) {
+      if (m_.end > 1) replan_to_end(1, c.ramp, true);
+    } else if (m_.end > m_.k) {
+      finish_at_frontier();
+    }
+    return;
+  }
+  const double d = ramp_distance(v, m_.vs, c.ramp);
+  const std::int64_t end = m_.k + std::max<std::int64_t>(1, std::llround(d));
+  if (end >= m_.end) return;  // the motion ends as soon anyway (e.g. already decelerating)
+  replan_to_end(end, c.ramp, true);
+}
+
+void AxisPlanner::stop_after(const Command& c) noexcept {
+  if (!m_.active || c.epoch != m_.epoch) return;
+  // Steps of this motion up to c.t, counting the ones already planned after it.
+  const std::int64_t end = planned_steps_at(c.t) + std::max<std::int64_t>(c.steps, 0);
+  if (end >= m_.end) return;  // already ends there or sooner
+  if (end <= m_.k) {
+    finish_at_frontier();  // the count was reached by steps already planned: end at once
+    return;
+  }
+  // Digest 7.9 step 4: freeze the present speed, cruise, decelerate with the motion's decel.
+  replan_to_end(end, m_.decel, false);
+}
+
+void AxisPlanner::set_gpo(bool level, Nanos now) noexcept {
+  // Not part of any motion: as soon as the ring's order allows (behind edges already pushed).
+  const Nanos t = std::max(now, last_pushed_t_);
+  stage_sorted(make_edge(t, rt::OutputLine::kGpo, level ? 1 : 0, 0, 0));
+  nonmotion_t_ = std::max(nonmotion_t_, t);
+}
+
+void AxisPlanner::set_pulse_format(bool step_dir, Nanos now) noexcept {
+  want_step_dir_ = step_dir;
+  // A motion in progress keeps its format; the next one starts with the new one.
+  if (m_.active || step_dir == step_dir_) return;
+  step_dir_ = step_dir;
+  if (dir_level_ != 0) {
+    // The direction line becomes the CCW pulse line (or back): leave it at its idle level.
+    const Nanos t = std::max(now, last_pushed_t_);
+    stage_sorted(make_edge(t, rt::OutputLine::kDir, 0, 0, 0));
+    nonmotion_t_ = std::max(nonmotion_t_, t);
+    dir_level_ = 0;
+  }
+}
+
+void AxisPlanner::step_once() noexcept {
+  Motion& m = m_;
+  const std::int64_t k = m.k + 1;
+  double t;
+  rt::Phase ph;
+  if (k >= m.end) {
+    // The last step lands exactly at the profile's end (Tt), not at a rounded solve.
+    t = phases_.end_time();
+    ph = phases_.empty() ? rt::Phase::kCruise : phases_[phases_.size() - 1].phase;
+  } else {
+    t = solver_.time_of(static_cast<double>(k));
+    ph = phases_[solver_.phase_index()].phase;
+  }
+  if (t < m.tk) t = m.tk;
+  Nanos ns = m.origin + to_ns(t);
+  if (ns < m.tk_ns) ns = m.tk_ns;
+  const auto flags = static_cast<std::uint8_t>(m.base_flags | static_cast<std::uint8_t>(ph));
+  if (m.k > 0) {
+    // Trailing edge of the previous step: the configured width, or half the period if shorter.
+    const Nanos w = std::min(timing_.step_pulse_ns, (ns - m.tk_ns) / 2);
+    stage(make_edge(m.tk_ns + w, m.line, 0, 0, m.k_flags));
+  }
+  std::uint8_t lead = flags;
+  if (m.first_pending) {
+    lead |= rt::edge_flag::kFirst;
+    m.first_pending = false;
+  }
+  stage(make_edge(ns, m.line, 1, static_cast<std::int8_t>(sign(m.dir)), lead));
+  history_[static_cast<std::size_t>(k) & (kHistory - 1)] = ns;
+  m.k = k;
+  m.tk = t;
+  m.tk_ns = ns;
+  m.k_flags = flags;
+  if (k >= m.end) {
+    stage(make_edge(ns + timing_.step_pulse_ns, m.line, 0, 0, flags | rt::edge_flag::kLast));
+    m.active = false;
+  }
+}
+
+Nanos AxisPlanner::fill(Nanos now) noexcept {
+  check_abort();
+  const Nanos horizon = now + opt_.lookahead_ns;
+  flush(horizon);
+  while (m_.active && staged_count_ == 0) {
+    step_once();
+    flush(horizon);
+  }
+  if (staged_count_ == 0) return now + kIdleServiceInterval;
+  const Nanos head = staged_[staged_head_].t;
+  if (head > horizon) {
+    // Come back when half the lookahead is left before it: refills happen in batches.
+    return head - opt_.lookahead_ns / 2;
+  }
+  // Ring full: about half of what it holds has run by the midpoint to its newest edge.
+  return now + std::max<Nanos>(10 * kNsPerUs, (last_pushed_t_ - now) / 2);
+}
+
+}  // namespace stepmod::planner

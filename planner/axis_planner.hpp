@@ -1,0 +1,118 @@
+#pragma once
+// One axis of the planner: applies Commands to the axis' motion and turns the motion into timed
+// edges in the axis' ring. Owned and run by the planner thread only.
+#include <array>
+#include <cstdint>
+#include <limits>
+
+#include "planner/motion_request.hpp"
+#include "planner/planner.hpp"
+#include "planner/profile.hpp"
+#include "rt/edge.hpp"
+
+namespace stepmod::planner {
+
+// Step/direction format: the direction line is high while the axis runs CCW (position
+// decreasing) and low for CW, which is also the lines' idle level.
+inline constexpr std::uint8_t kDirLevelCcw = 1;
+inline constexpr std::uint8_t kDirLevelCw = 0;
+
+// An axis with nothing to do asks to be serviced again this far ahead; a submit wakes it anyway.
+inline constexpr Nanos kIdleServiceInterval = 10 * kNsPerSec;
+
+class AxisPlanner {
+ public:
+  AxisPlanner(const PlannerAxis& axis, const PlannerOptions& options) noexcept;
+  AxisPlanner(const AxisPlanner&) = delete;
+  AxisPlanner& operator=(const AxisPlanner&) = delete;
+
+  // Applies one command for this axis at time `now`.
+  void apply(const Command& c, Nanos now) noexcept;
+  // Pushes edges while the ring has room, up to now + lookahead. Returns the time by which it
+  // must be called again.
+  Nanos fill(Nanos now) noexcept;
+
+  // Introspection (tests, diagnostics).
+  bool active() const noexcept { return m_.active; }            // a motion is still being planned
+  std::uint32_t epoch() const noexcept { return m_.epoch; }     // newest motion's epoch
+  std::int64_t planned_steps() const noexcept { return m_.k; }  // steps generated so far
+  // Speed at the newest planned step (steps/s), 0 when idle.
+  double frontier_speed() const noexcept;
+  // Steps of the newest motion planned at or before t (from the recent history).
+  std::int64_t planned_steps_at(Nanos t) const noexcept;
+  bool step_dir_format() const noexcept { return step_dir_; }
+
+ private:
+  static constexpr std::int64_t kEndless = std::numeric_limits<std::int64_t>::max();
+  static constexpr std::size_t kHistory = 1u << 14;  // step times kept for stop_after
+  static constexpr std::size_t kStaged = 64;
+
+  struct Motion {
+    bool active = false;
+    std::uint32_t epoch = 0;
+    Direction dir = Direction::kCw;
+    bool constant_speed = false;    // started with vp <= vs: stops end after the next step
+    bool can_change_speed = false;  // a Run that no stop has ended yet
+    std::int64_t end = kEndless;    // step count at which the motion ends
+    double vs = 1.0;
+    Ramp decel;
+    Nanos origin = 0;          // time 0 of the motion
+    std::int64_t k = 0;        // steps generated
+    double tk = 0.0;           // time of step k, s from origin
+    Nanos tk_ns = 0;           // the same, absolute
+    std::uint8_t k_flags = 0;  // flags of step k's edges (without kFirst)
+    rt::OutputLine line = rt::OutputLine::kStep;
+    std::uint8_t base_flags = 0;  // kMotion | kCcw
+    bool first_pending = true;    // kFirst not yet given to an edge
+  };
+
+  void start_motion(const Command& c, Nanos now) noexcept;
+  void change_speed(const Command& c) noexcept;
+  void stop(const Command& c) noexcept;
+  void stop_after(const Command& c) noexcept;
+  void abort_last_motion() noexcept;
+  void check_abort() noexcept;
+  void set_gpo(bool level, Nanos now) noexcept;
+  void set_pulse_format(bool step_dir, Nanos now) noexcept;
+
+  // Ends the motion on its newest planned step (kLast on that step's trailing edge).
+  void finish_at_frontier() noexcept;
+  // Replans from the newest step: cruise at its speed, then ramp to vs so that the motion ends
+  // exactly on step `end`. A ramp that does not fit is made steeper; with `exact_ramp` the ramp's
+  // rate is always adjusted to cover the whole rest (no cruise).
+  void replan_to_end(std::int64_t end, const Ramp& ramp, bool exact_ramp) noexcept;
+  void step_once() noexcept;
+  void stage(const rt::Edge& e) noexcept;
+  void stage_sorted(const rt::Edge& e) noexcept;
+  void flush(Nanos horizon) noexcept;
+  rt::Edge make_edge(Nanos t, rt::OutputLine line, std::uint8_t level, std::int8_t dpos,
+                     std::uint8_t flags) const noexcept;
+
+  rt::SpscRing<rt::Edge>* ring_;
+  const rt::AxisControl* control_;
+  AxisTiming timing_;
+  PlannerOptions opt_;
+
+  bool step_dir_ = true;
+  bool want_step_dir_ = true;  // format asked for; applied when no motion is in progress
+  int dir_level_ = 0;  // -1: unknown (an aborted motion's direction edge may have been dropped)
+  Nanos last_t_ = std::numeric_limits<Nanos>::min();          // newest staged or pushed edge
+  Nanos last_pushed_t_ = std::numeric_limits<Nanos>::min();   // newest edge in the ring
+  Nanos motion_floor_t_ = std::numeric_limits<Nanos>::min();  // last_t_ before the newest motion
+  Nanos nonmotion_t_ = std::numeric_limits<Nanos>::min();     // newest GPO/format edge
+  std::uint32_t last_motion_epoch_ = 0;
+  bool last_motion_aborted_ = false;
+  std::uint32_t seen_abort_ = 0;
+
+  Motion m_;
+  PhaseList phases_;
+  StepSolver solver_;
+
+  std::array<rt::Edge, kStaged> staged_{};  // generated, not yet in the ring, in time order
+  std::size_t staged_head_ = 0;
+  std::size_t staged_count_ = 0;
+
+  std::array<Nanos, kHistory> history_{};  // history_[k % kHistory] = time of step k
+};
+
+}  // namespace stepmod::planner

@@ -1,0 +1,37 @@
+#include "planner/planner_thread.hpp"
+
+#include <pthread.h>
+
+#include "planner/wakeup.hpp"
+#include "rt/clock.hpp"
+
+namespace stepmod::planner {
+
+void PlannerThread::start() {
+  if (thread_.joinable()) return;
+  stop_.store(false, std::memory_order_relaxed);
+  thread_ = std::thread([this] { run(); });
+  pthread_setname_np(thread_.native_handle(), "stepmod-plan");
+}
+
+void PlannerThread::stop() noexcept {
+  if (!thread_.joinable()) return;
+  stop_.store(true, std::memory_order_release);
+  bump_and_wake(planner_.wake_counter());
+  thread_.join();
+}
+
+void PlannerThread::run() noexcept {
+  std::atomic<std::uint32_t>& wake = planner_.wake_counter();
+  while (!stop_.load(std::memory_order_acquire)) {
+    // Read the counter before servicing: a submit during service() changes it, so the wait
+    // below returns at once instead of sleeping on a queued command.
+    const std::uint32_t seen = wake.load(std::memory_order_acquire);
+    const Nanos next = planner_.service(monotonic_now());
+    loops_.fetch_add(1, std::memory_order_relaxed);
+    if (stop_.load(std::memory_order_acquire)) break;
+    if (next > monotonic_now()) wait_for_change(wake, seen, next);
+  }
+}
+
+}  // namespace stepmod::planner

@@ -1,0 +1,34 @@
+#pragma once
+// The planner thread: Planner::service(now), then sleep until the time it asked for or until a
+// command is submitted (the planner's wake counter changes).
+#include <atomic>
+#include <thread>
+
+#include "planner/planner.hpp"
+
+namespace stepmod::planner {
+
+class PlannerThread {
+ public:
+  explicit PlannerThread(Planner& planner) noexcept : planner_(planner) {}
+  ~PlannerThread() { stop(); }
+  PlannerThread(const PlannerThread&) = delete;
+  PlannerThread& operator=(const PlannerThread&) = delete;
+
+  void start();
+  // Wakes the thread and joins it. Idempotent.
+  void stop() noexcept;
+  bool running() const noexcept { return thread_.joinable(); }
+  // Number of service() calls so far (diagnostics, tests).
+  std::uint64_t loops() const noexcept { return loops_.load(std::memory_order_relaxed); }
+
+ private:
+  void run() noexcept;
+
+  Planner& planner_;
+  std::thread thread_;
+  std::atomic<bool> stop_{false};
+  std::atomic<std::uint64_t> loops_{0};
+};
+
+}  // namespace stepmod::planner

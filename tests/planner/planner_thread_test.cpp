@@ -1,0 +1,66 @@
+// The planner thread sleeps while idle and wakes on submit (label: threading).
+#include "planner/planner_thread.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "planner/axis_planner.hpp"
+
+namespace stepmod::planner {
+namespace {
+
+// Polls `pred` for up to `limit`: generous, because the machine may be loaded; the idle sleep it
+// must beat is kIdleServiceInterval (10 s).
+template <typename Pred>
+bool eventually(Pred pred, std::chrono::milliseconds limit = std::chrono::milliseconds(3'000)) {
+  const auto end = std::chrono::steady_clock::now() + limit;
+  while (std::chrono::steady_clock::now() < end) {
+    if (pred()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return pred();
+}
+
+TEST(PlannerThread, WakesOnSubmitAndStops) {
+  static_assert(kIdleServiceInterval >= 10 * kNsPerSec, "the test relies on a long idle sleep");
+  rt::SpscRing<rt::Edge> ring(1u << 16);
+  rt::AxisControl control;
+  PlannerAxis axis{&ring, &control, {}};
+  Planner planner(std::span<const PlannerAxis>(&axis, 1));
+  PlannerThread thread(planner);
+  thread.start();
+  ASSERT_TRUE(thread.running());
+  // Let it reach its idle sleep.
+  ASSERT_TRUE(eventually([&] { return thread.loops() >= 1; }));
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  const std::uint64_t idle_loops = thread.loops();
+
+  Command c;
+  c.kind = CommandKind::kMove;
+  c.epoch = 1;
+  c.move.steps = 20;
+  c.move.vs = c.move.vp = 10'000;
+  ASSERT_TRUE(planner.submit(c));
+  // Without the wake-up the thread would sleep for 10 s before seeing the command.
+  std::uint64_t leading = 0;
+  bool last = false;
+  EXPECT_TRUE(eventually([&] {
+    rt::Edge e;
+    while (ring.try_pop(e)) {
+      if (e.dpos != 0) ++leading;
+      if ((e.flags & rt::edge_flag::kLast) != 0) last = true;
+    }
+    return last;
+  }));
+  EXPECT_EQ(leading, 20u);
+  EXPECT_GT(thread.loops(), idle_loops);
+
+  thread.stop();
+  EXPECT_FALSE(thread.running());
+  thread.stop();  // idempotent
+}
+
+}  // namespace
+}  // namespace stepmod::planner
