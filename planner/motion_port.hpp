@@ -18,8 +18,8 @@ class CommandSink {
 
 class MotionPort {
  public:
-  MotionPort(unsigned axis, CommandSink& sink, rt::AxisFeedback& feedback, rt::AxisControl& control,
-             const rt::StepHistory& history) noexcept
+  MotionPort(unsigned axis, CommandSink& sink, rt::AxisFeedback& feedback,
+             rt::AxisControl& control, const rt::StepHistory& history) noexcept
       : axis_(static_cast<std::uint8_t>(axis)),
         sink_(sink),
         fb_(feedback),
@@ -73,13 +73,6 @@ class MotionPort {
     c.kind = CommandKind::kAbort;
     send(c);
   }
-  // The configured output format: true = step + direction, false = CW + CCW pulse lines.
-  bool set_pulse_format(bool step_dir) noexcept {
-    Command c;
-    c.kind = CommandKind::kSetPulseFormat;
-    c.level = step_dir;
-    return send(c);
-  }
   bool set_gpo(bool level) noexcept {
     Command c;
     c.kind = CommandKind::kSetGpo;
@@ -89,7 +82,9 @@ class MotionPort {
 
   // Feedback, as last published by the pulse thread.
   std::uint32_t epoch() const noexcept { return epoch_; }
-  bool busy() const noexcept { return fb_.finished_epoch.load(std::memory_order_acquire) < epoch_; }
+  bool busy() const noexcept {
+    return fb_.finished_epoch.load(std::memory_order_acquire) < epoch_;
+  }
   std::int64_t steps() const noexcept { return fb_.steps.load(std::memory_order_acquire); }
   // Step count at a past time t (capture, registration): exact while t is within the history.
   bool steps_at(Nanos t, std::int64_t& out) const noexcept {

@@ -10,9 +10,7 @@
 namespace stepmod::planner {
 
 enum class Direction : std::int8_t { kCw = 1, kCcw = -1 };
-inline constexpr int sign(Direction d) noexcept {
-  return static_cast<int>(d);
-}
+inline constexpr int sign(Direction d) noexcept { return static_cast<int>(d); }
 inline constexpr Direction opposite(Direction d) noexcept {
   return d == Direction::kCw ? Direction::kCcw : Direction::kCw;
 }
@@ -63,15 +61,15 @@ struct BlendSpec {
 };
 
 enum class CommandKind : std::uint8_t {
-  kMove,            // start `move` as motion `epoch`
-  kRun,             // start `run` as motion `epoch`
-  kBlend,           // start `blend` as motion `epoch`
-  kChangeSpeed,     // running motion `epoch`: ramp to run.vp with run.accel / run.decel
-  kStop,            // controlled stop of `epoch`: decelerate to vs with `ramp`, then end
-  kStopAfter,       // registration: end `epoch` exactly `steps` steps after the step count at `t`
-  kAbort,           // immediate stop of `epoch` (the pulse thread already drops its edges)
-  kSetGpo,          // general-purpose output level `level` (3602)
-  kSetPulseFormat,  // `level` = true: step + direction outputs, false: CW + CCW pulse outputs
+  kMove,           // start `move` as motion `epoch`
+  kRun,            // start `run` as motion `epoch`
+  kBlend,          // start `blend` as motion `epoch`
+  kChangeSpeed,    // running motion `epoch`: ramp to run.vp with run.accel / run.decel
+  kStop,           // controlled stop of `epoch`: decelerate to vs with `ramp`, then end
+  kStopAfter,      // registration: end `epoch` exactly `steps` steps after the step count at `t`
+  kAbort,          // immediate stop of `epoch` (the pulse thread already drops its edges)
+  kSetGpo,         // general-purpose output level `level` (3602)
+  kSetPulseFormat, // `level` = true: step + direction outputs, false: CW + CCW pulse outputs
 };
 
 struct Command {

@@ -21,13 +21,13 @@ struct AxisTiming {
 };
 
 struct PlannerAxis {
-  rt::SpscRing<rt::Edge>* edges = nullptr;   // producer side
-  const rt::AxisControl* control = nullptr;  // abort_epoch: skip aborted motions
+  rt::SpscRing<rt::Edge>* edges = nullptr;       // producer side
+  const rt::AxisControl* control = nullptr;      // abort_epoch: skip aborted motions
   AxisTiming timing;
 };
 
 struct PlannerOptions {
-  Nanos lookahead_ns = 4 * kNsPerMs;      // keep each ring filled this far ahead of `now`
+  Nanos lookahead_ns = 4 * kNsPerMs;   // keep each ring filled this far ahead of `now`
   Nanos start_delay_ns = 150 * kNsPerUs;  // a new motion's time 0 is at least this after `now`
   std::size_t command_queue = 64;
 };
