@@ -1,0 +1,345 @@
+// The configuration file of INTERFACE.md section 2. Strict by design: an unknown key is an
+// error, because a misspelt key would otherwise silently fall back to its default and the daemon
+// would drive the machine with a setting the user did not write.
+#include "tools/config.hpp"
+
+#include <toml++/toml.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <string_view>
+
+namespace stepmod::tools {
+namespace {
+
+using std::int64_t;
+
+// Highest line offset accepted. gpiochips have at most a few hundred lines; the bound only
+// catches nonsense such as a pin number typed as a physical header position * 1000.
+constexpr int64_t kMaxLineOffset = 4095;
+
+constexpr std::string_view kOutputKeys[gpio::kOutputLinesPerAxis] = {"step", "dir", "gpo"};
+constexpr std::string_view kInputKeys[gpio::kInputLinesPerAxis] = {
+    "capture", "external", "home", "estop", "cw_limit", "ccw_limit", "enc_a", "enc_b", "enc_z"};
+
+class Parser {
+ public:
+  explicit Parser(std::string file) : file_(std::move(file)) {}
+
+  Config run(std::string_view text) {
+    toml::table root;
+    try {
+      root = toml::parse(text, file_);
+    } catch (const toml::parse_error& e) {
+      throw ConfigError(file_ + ":" + std::to_string(e.source().begin.line) +
+                        ": TOML syntax error: " + std::string(e.description()));
+    }
+    Config c;
+    c.file = file_;
+    check_keys(root, "", {"module", "gpio", "rt", "axis"});
+
+    const toml::table* module = sub_table(root, "", "module");
+    parse_module(module, c);
+    parse_gpio(sub_table(root, "", "gpio"), c);
+    parse_rt(sub_table(root, "", "rt"), c);
+    parse_axes(root, module, c);
+    return c;
+  }
+
+ private:
+  [[noreturn]] void fail(const toml::source_region& where, const std::string& key,
+                         const std::string& what) const {
+    std::string loc = file_;
+    if (where.begin.line > 0) loc += ":" + std::to_string(where.begin.line);
+    throw ConfigError(loc + ": key '" + key + "': " + what);
+  }
+
+  static std::string join(const std::string& prefix, std::string_view key) {
+    return prefix.empty() ? std::string(key) : prefix + "." + std::string(key);
+  }
+
+  void check_keys(const toml::table& t, const std::string& prefix,
+                  std::initializer_list<std::string_view> allowed) const {
+    for (auto&& [k, v] : t) {
+      bool ok = false;
+      for (std::string_view a : allowed) ok = ok || k.str() == a;
+      if (!ok) {
+        std::string list;
+        for (std::string_view a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+        fail(k.source(), join(prefix, k.str()), "unknown key (expected one of: " + list + ")");
+      }
+    }
+  }
+
+  // A [table] that may be absent (all defaults); anything else under that name is an error.
+  const toml::table* sub_table(const toml::table& t, const std::string& prefix,
+                               std::string_view key) const {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return nullptr;
+    if (!n->is_table())
+      fail(n->source(), join(prefix, key), "must be a table [" + join(prefix, key) + "]");
+    return n->as_table();
+  }
+
+  static std::string range_text(int64_t lo, int64_t hi) {
+    if (lo == std::numeric_limits<int64_t>::min() && hi == std::numeric_limits<int64_t>::max()) {
+      return "must be an integer";
+    }
+    if (hi == std::numeric_limits<int64_t>::max()) {
+      return "must be an integer >= " + std::to_string(lo);
+    }
+    return "must be an integer " + std::to_string(lo) + ".." + std::to_string(hi);
+  }
+
+  std::optional<int64_t> opt_int(const toml::table* t, const std::string& prefix,
+                                 std::string_view key,
+                                 int64_t lo = std::numeric_limits<int64_t>::min(),
+                                 int64_t hi = std::numeric_limits<int64_t>::max()) const {
+    if (t == nullptr) return std::nullopt;
+    const toml::node* n = t->get(key);
+    if (n == nullptr) return std::nullopt;
+    const auto* v = n->as_integer();
+    if (v == nullptr || v->get() < lo || v->get() > hi) {
+      fail(n->source(), join(prefix, key), range_text(lo, hi));
+    }
+    return v->get();
+  }
+
+  int64_t get_int(const toml::table* t, const std::string& prefix, std::string_view key,
+                  int64_t def, int64_t lo = std::numeric_limits<int64_t>::min(),
+                  int64_t hi = std::numeric_limits<int64_t>::max()) const {
+    return opt_int(t, prefix, key, lo, hi).value_or(def);
+  }
+
+  // A string limited to `choices`; `def` when absent.
+  std::string get_choice(const toml::table* t, const std::string& prefix, std::string_view key,
+                         std::initializer_list<std::string_view> choices,
+                         std::string_view def) const {
+    if (t == nullptr) return std::string(def);
+    const toml::node* n = t->get(key);
+    if (n == nullptr) return std::string(def);
+    const auto* s = n->as_string();
+    for (std::string_view c : choices) {
+      if (s != nullptr && s->get() == c) return s->get();
+    }
+    std::string list;
+    for (std::string_view c : choices) {
+      list += (list.empty() ? "\"" : ", \"") + std::string(c) + "\"";
+    }
+    fail(n->source(), join(prefix, key), "must be one of " + list);
+  }
+
+  void parse_module(const toml::table* m, Config& c) const {
+    const std::string p = "module";
+    if (m != nullptr) check_keys(*m, p, {"type", "name", "scan_us", "plc_timeout_ms"});
+    const toml::node* type = m != nullptr ? m->get("type") : nullptr;
+    if (type == nullptr) {
+      toml::source_region where{};
+      if (m != nullptr) where = m->source();
+      fail(where, "module.type", "required: \"3601\", \"3602\" or \"3202\"");
+    }
+    // The contract writes the type as a string; a bare integer is the same intent, so accept it.
+    std::string ts;
+    if (const auto* s = type->as_string()) ts = s->get();
+    if (const auto* i = type->as_integer()) ts = std::to_string(i->get());
+    if (ts == "3601") {
+      c.type = module::ModuleType::k3601;
+    } else if (ts == "3602") {
+      c.type = module::ModuleType::k3602;
+    } else if (ts == "3202") {
+      c.type = module::ModuleType::k3202;
+    } else {
+      fail(type->source(), "module.type", "must be \"3601\", \"3602\" or \"3202\"");
+    }
+
+    if (const toml::node* n = m->get("name")) {
+      const auto* s = n->as_string();
+      bool ok = s != nullptr && !s->get().empty() && s->get().size() <= 64;
+      if (ok) {
+        for (char ch : s->get()) {
+          ok = ok &&
+               ((ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '-' || ch == '_');
+        }
+      }
+      if (!ok) {
+        fail(n->source(), "module.name",
+             "must be 1..64 characters of a-z, 0-9, '-' and '_' (it names /dev/shm/stepmod.NAME)");
+      }
+      c.name = s->get();
+    }
+    c.scan_ns = get_int(m, p, "scan_us", 1000, 250, 100'000) * kNsPerUs;
+    // Upper bound: an hour; larger values are surely a unit mistake and would overflow nothing,
+    // but would make the watch useless.
+    c.plc_timeout_ns = get_int(m, p, "plc_timeout_ms", 0, 0, 3'600'000) * kNsPerMs;
+  }
+
+  void parse_gpio(const toml::table* g, Config& c) const {
+    const std::string p = "gpio";
+    if (g == nullptr) return;
+    check_keys(*g, p, {"backend", "chip"});
+    c.backend = get_choice(g, p, "backend", {"sim", "gpiod"}, "sim") == "gpiod"
+                    ? Config::Backend::kGpiod
+                    : Config::Backend::kSim;
+    if (const toml::node* n = g->get("chip")) {
+      const auto* s = n->as_string();
+      if (s == nullptr || s->get().empty()) {
+        fail(n->source(), "gpio.chip", "must be a chip name (gpiochip0) or a /dev path");
+      }
+      c.chip = s->get();
+    }
+  }
+
+  void parse_rt(const toml::table* r, Config& c) const {
+    const std::string p = "rt";
+    if (r == nullptr) return;
+    check_keys(*r, p, {"priority", "cpu"});
+    c.rt_priority = static_cast<int>(get_int(r, p, "priority", 80, 1, 99));
+    c.rt_cpu = static_cast<int>(get_int(r, p, "cpu", -1, -1, 1023));
+  }
+
+  void parse_axes(const toml::table& root, const toml::table* module, Config& c) const {
+    const auto shape = c.type == module::ModuleType::k3601 ? 1u : 2u;
+    const toml::node* n = root.get("axis");
+    const toml::array* arr = nullptr;
+    if (n != nullptr) {
+      arr = n->as_array();
+      if (arr == nullptr || !arr->is_array_of_tables()) {
+        fail(n->source(), "axis", "must be [[axis]] tables");
+      }
+    }
+    const std::size_t count = arr != nullptr ? arr->size() : 0;
+    if (count != shape) {
+      toml::source_region where{};
+      if (arr != nullptr && count > 0) {
+        where = (*arr)[count - 1].source();
+      } else if (module != nullptr) {
+        where = module->source();
+      }
+      fail(where, "axis",
+           "module type " + std::to_string(static_cast<unsigned>(c.type)) + " needs exactly " +
+               std::to_string(shape) + " [[axis]] table" + (shape == 1 ? "" : "s") + ", found " +
+               std::to_string(count));
+    }
+    // Line offset -> key that uses it, for the uniqueness check across the whole file.
+    std::map<int64_t, std::string> used;
+    for (std::size_t i = 0; i < count; ++i) {
+      c.axes.push_back(parse_axis(*(*arr)[i].as_table(), i, c.type, used));
+    }
+  }
+
+  AxisConfig parse_axis(const toml::table& t, std::size_t index, module::ModuleType type,
+                        std::map<int64_t, std::string>& used) const {
+    // 1-based like the contract's "axis 1, then axis 2" and the VCD names axis1.step.
+    const std::string p = "axis[" + std::to_string(index + 1) + "]";
+    check_keys(t, p,
+               {"step", "dir", "gpo", "capture", "external", "home", "estop", "cw_limit",
+                "ccw_limit", "enc_a", "enc_b", "enc_z", "step_pulse_ns", "dir_setup_ns", "sim"});
+    AxisConfig a;
+    auto line = [&](std::string_view key) -> std::optional<unsigned> {
+      const auto v = opt_int(&t, p, key, 0, kMaxLineOffset);
+      if (!v) return std::nullopt;
+      const auto [it, fresh] = used.emplace(*v, join(p, key));
+      if (!fresh) {
+        fail(t.get(key)->source(), join(p, key),
+             "line offset " + std::to_string(*v) + " is already used by '" + it->second + "'");
+      }
+      return static_cast<unsigned>(*v);
+    };
+    for (unsigned o = 0; o < gpio::kOutputLinesPerAxis; ++o) a.out[o] = line(kOutputKeys[o]);
+    for (unsigned i = 0; i < gpio::kInputLinesPerAxis; ++i) a.in[i] = line(kInputKeys[i]);
+
+    for (std::string_view req : {"step", "dir"}) {
+      if (t.get(req) == nullptr) {
+        fail(t.source(), join(p, req),
+             "required: the line offset of the " +
+                 std::string(req == "step" ? "step (or CW pulse)" : "direction (or CCW pulse)") +
+                 " output");
+      }
+    }
+    const bool is3602 = type == module::ModuleType::k3602;
+    if (!is3602 && t.get("gpo") != nullptr) {
+      fail(t.get("gpo")->source(), join(p, "gpo"), "only the 3602 has a general-purpose output");
+    }
+    if (is3602) {
+      for (std::string_view k : {"estop", "enc_a", "enc_b", "enc_z"}) {
+        if (const toml::node* n = t.get(k)) {
+          fail(n->source(), join(p, k),
+               k == "estop" ? "the 3602 has no E-stop input (its cw_limit/ccw_limit inputs are "
+                              "configured as limit or E-stop by the PLC)"
+                            : "the 3602 has no encoder input");
+        }
+      }
+    }
+    // A and B only make sense as a pair: one phase alone cannot be decoded.
+    if ((t.get("enc_a") == nullptr) != (t.get("enc_b") == nullptr)) {
+      const std::string_view present = t.get("enc_a") != nullptr ? "enc_a" : "enc_b";
+      fail(t.get(present)->source(), join(p, present),
+           "enc_a and enc_b must both be given (quadrature needs both phases)");
+    }
+    a.step_pulse_ns = get_int(&t, p, "step_pulse_ns", 2'000, 100, 1'000'000);
+    a.dir_setup_ns = get_int(&t, p, "dir_setup_ns", 5'000, 1, 1'000'000);
+    a.sim = parse_sim(sub_table(t, p, "sim"), p + ".sim");
+    return a;
+  }
+
+  SimAxisConfig parse_sim(const toml::table* s, const std::string& p) const {
+    SimAxisConfig c;
+    if (s == nullptr) return c;
+    check_keys(*s, p,
+               {"start_position", "cw_limit_at", "ccw_limit_at", "home_from", "home_to", "contacts",
+                "encoder_ratio", "marker_every"});
+    c.start_position = get_int(s, p, "start_position", 0);
+    c.cw_limit_at = opt_int(s, p, "cw_limit_at");
+    c.ccw_limit_at = opt_int(s, p, "ccw_limit_at");
+    if (c.cw_limit_at && c.ccw_limit_at && !(*c.ccw_limit_at < *c.cw_limit_at)) {
+      fail(s->get("ccw_limit_at")->source(), join(p, "ccw_limit_at"),
+           "must be less than cw_limit_at (" + std::to_string(*c.cw_limit_at) + ")");
+    }
+    c.home_from = opt_int(s, p, "home_from");
+    c.home_to = opt_int(s, p, "home_to");
+    if (c.home_from.has_value() != c.home_to.has_value()) {
+      const std::string_view present = c.home_from ? "home_from" : "home_to";
+      fail(s->get(present)->source(), join(p, present),
+           "home_from and home_to must be given together");
+    }
+    if (c.home_from && *c.home_from > *c.home_to) {
+      fail(s->get("home_to")->source(), join(p, "home_to"),
+           "must be >= home_from (" + std::to_string(*c.home_from) + ")");
+    }
+    c.contacts_nc = get_choice(s, p, "contacts", {"NO", "NC"}, "NO") == "NC";
+    if (const toml::node* n = s->get("encoder_ratio")) {
+      std::optional<double> v;
+      if (const auto* f = n->as_floating_point()) v = f->get();
+      if (const auto* i = n->as_integer()) v = static_cast<double>(i->get());
+      if (!v || !std::isfinite(*v)) {
+        fail(n->source(), join(p, "encoder_ratio"), "must be a finite number");
+      }
+      c.encoder_ratio = *v;
+    }
+    c.marker_every = opt_int(s, p, "marker_every", 1);
+    return c;
+  }
+
+  std::string file_;
+};
+
+}  // namespace
+
+Config parse_config(std::string_view toml_text, const std::string& file_name) {
+  return Parser(file_name).run(toml_text);
+}
+
+Config load_config(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(path + ": cannot read: " + std::strerror(errno));
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return parse_config(ss.str(), path);
+}
+
+}  // namespace stepmod::tools

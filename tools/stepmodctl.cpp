@@ -1,0 +1,474 @@
+// stepmodctl: inspect and drive a running stepmod module through the same shared memory a soft
+// PLC uses (INTERFACE.md 1). Every command behaves like a PLC program would (tools/ctl_commands).
+//
+// Exit status: 0 ok; 1 the module reported an error bit for the command; 2 usage error;
+// 3 the module cannot be reached (no image, wrong module type, no scan within --timeout).
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "ipc/client.hpp"
+#include "ipc/codec.hpp"
+#include "ipc/sim_panel.hpp"
+#include "module/m3601/words_3601.hpp"
+#include "tools/ctl_commands.hpp"
+#include "tools/ctl_status.hpp"
+
+namespace {
+
+using namespace stepmod;
+using tools::ctl::AccelType;
+using tools::ctl::Outcome;
+using tools::ctl::Plc3601;
+using tools::ctl::Profile;
+
+constexpr int kExitOk = 0;
+constexpr int kExitModuleError = 1;
+constexpr int kExitUsage = 2;
+constexpr int kExitUnreachable = 3;
+
+volatile std::sig_atomic_t g_stop = 0;
+void on_signal(int) {
+  g_stop = 1;
+}
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Accepts decimal, 0x hex and 16# (PLC notation) hex, with a sign.
+std::int64_t parse_number(const std::string& s, const char* what) {
+  std::string t = s;
+  bool neg = false;
+  if (!t.empty() && (t[0] == '-' || t[0] == '+')) {
+    neg = t[0] == '-';
+    t.erase(0, 1);
+  }
+  int base = 10;
+  if (t.rfind("0x", 0) == 0 || t.rfind("0X", 0) == 0) {
+    base = 16;
+    t.erase(0, 2);
+  } else if (t.rfind("16#", 0) == 0) {
+    base = 16;
+    t.erase(0, 3);
+  }
+  std::size_t used = 0;
+  long long v = 0;
+  try {
+    v = std::stoll(t, &used, base);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (t.empty() || used != t.size()) {
+    throw UsageError(std::string(what) + ": '" + s + "' is not a number");
+  }
+  return neg ? -v : v;
+}
+
+bool parse_direction(const std::string& s) {
+  if (s == "+" || s == "cw" || s == "CW") return true;
+  if (s == "-" || s == "ccw" || s == "CCW") return false;
+  throw UsageError("direction must be + (cw) or - (ccw), not '" + s + "'");
+}
+
+AccelType parse_accel(const std::string& s) {
+  if (s.empty() || s == "const" || s == "constant") return AccelType::kConstant;
+  if (s == "tri" || s == "triangular") return AccelType::kTriangularS;
+  if (s == "trap" || s == "trapezoidal") return AccelType::kTrapezoidalS;
+  throw UsageError("acceleration type must be const, tri or trap, not '" + s + "'");
+}
+
+// --speed/--accel/--decel/--scurve on a sub-command.
+struct ProfileOpts {
+  std::int32_t speed = 0;
+  std::int32_t accel = 0;
+  std::int32_t decel = 0;
+  std::string scurve;
+  CLI::Option* speed_opt = nullptr;
+
+  void add(CLI::App* app, bool required, bool with_scurve = true) {
+    speed_opt = app->add_option("--speed,-s", speed, "programmed speed, steps/s");
+    app->add_option("--accel,-a", accel, "acceleration, steps/ms/s (1..2000)");
+    app->add_option("--decel,-d", decel, "deceleration, steps/ms/s (1..2000)");
+    if (required) {
+      speed_opt->required();
+      app->get_option("--accel")->required();
+      app->get_option("--decel")->required();
+    }
+    if (with_scurve) {
+      app->add_option("--scurve", scurve, "S-curve acceleration: tri or trap (default constant)")
+          ->check(CLI::IsMember({"tri", "trap", "const"}));
+    }
+  }
+  Profile profile() const { return {speed, accel, decel, parse_accel(scurve)}; }
+};
+
+void print_outcome(const ipc::Client& c, const Outcome& o) {
+  // After a timeout the image says nothing about the command: only the message.
+  if (!o.timed_out) std::cout << tools::ctl::format_status(c.type(), o.in);
+  if (!o.ok) std::cerr << "stepmodctl: " << o.message << "\n";
+}
+
+int exit_for(const Outcome& o) {
+  if (o.ok) return kExitOk;
+  return o.timed_out ? kExitUnreachable : kExitModuleError;
+}
+
+unsigned panel_input(const std::string& s) {
+  static const char* names[] = {"capture", "external", "home", "estop", "cw_limit", "ccw_limit"};
+  for (unsigned i = 0; i < 6; ++i) {
+    if (s == names[i]) return i;
+  }
+  throw UsageError("input must be one of capture, external, home, estop, cw_limit, ccw_limit");
+}
+
+std::string panel_text(const ipc::SimPanelClient& p) {
+  static const char* names[] = {"capture", "external", "home", "estop", "cw_limit", "ccw_limit"};
+  std::string s;
+  for (unsigned a = 0; a < p.axes(); ++a) {
+    const ipc::PanelAxis x = p.read(a);
+    s += "axis " + std::to_string(a + 1) + ": position " + std::to_string(x.position) +
+         "  encoder " + std::to_string(x.encoder) +
+         "  outputs step/cw=" + std::to_string(x.outputs & 1) +
+         " dir/ccw=" + std::to_string((x.outputs >> 1) & 1) +
+         " gpo=" + std::to_string((x.outputs >> 2) & 1) + "\n  forced:";
+    bool any = false;
+    for (unsigned i = 0; i < 6; ++i) {
+      if (x.force_mask & (1u << i)) {
+        s += std::string(" ") + names[i] + "=" + std::to_string((x.force_levels >> i) & 1);
+        any = true;
+      }
+    }
+    s += any ? "\n" : " none\n";
+  }
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "stepmodctl: inspect and drive a running stepmod module through its shared-memory image,\n"
+      "exactly as a PLC program would (write parameters + command bit, wait for the module's\n"
+      "scan, release the bit, show the decoded status).\n\n"
+      "Exit status: 0 ok, 1 the module reported an error bit (Command Error, Invalid Profile,\n"
+      "Home Invalid, Configuration Error) for the command, 2 usage error, 3 module unreachable\n"
+      "(no image /dev/shm/stepmod.NAME, not a 3601 for 3601 commands, or no scan in time).\n"
+      "Numbers accept 0x.. and 16#.. hex. Negative targets: use '--' before them if needed,\n"
+      "e.g. stepmodctl move rel -- -500 -s 1000 -a 10 -d 10.\n"
+      "Commands that drive the module also bump the PLC heartbeat while they run."};
+  app.require_subcommand(1);
+  std::string name = "stepmod";
+  int timeout_ms = 2000;
+  app.add_option("--name,-n", name, "module name: /dev/shm/stepmod.NAME (default stepmod)");
+  app.add_option("--timeout", timeout_ms, "ms to wait for the module's scans/handshakes (2000)");
+
+  // ---- inspection ----
+  auto* status = app.add_subcommand("status",
+                                    "decoded input image: every status bit by name, "
+                                    "positions as numbers");
+  auto* watch = app.add_subcommand("watch", "status, refreshed until Ctrl-C");
+  int interval_ms = 200;
+  watch->add_option("--interval,-i", interval_ms, "refresh period in ms (200)");
+  auto* raw = app.add_subcommand("raw", "read/write image words");
+  raw->require_subcommand(1);
+  auto* raw_get = raw->add_subcommand("get", "print output and input words (decimal and hex)");
+  auto* raw_set = raw->add_subcommand("set", "write one output word (a PLC write)");
+  std::string raw_word;
+  std::string raw_value;
+  raw_set->add_option("WORD", raw_word, "output word index")->required();
+  raw_set->add_option("VALUE", raw_value, "value (decimal, 0x.. or 16#..)")->required();
+
+  // ---- 3601 commands ----
+  auto* configure = app.add_subcommand(
+      "configure", "3601: enter configuration mode with these settings, then command mode");
+  bool c_capture = false, c_external = false, c_home = false, c_estop = false, c_cw = false,
+       c_ccw = false, c_prox = false, c_enc = false, c_diag = false, c_cwccw = false,
+       c_marker = false;
+  std::vector<std::string> c_low;
+  std::int32_t c_vs = 1000;
+  configure->add_flag("--capture", c_capture, "capture input used (bit 0)");
+  configure->add_flag("--external", c_external, "external input used (bit 1)");
+  configure->add_flag("--home", c_home, "home input used (bit 2)");
+  configure->add_flag("--estop", c_estop, "E-stop input used (bit 3)");
+  configure->add_flag("--cw-limit", c_cw, "CW limit used (bit 4)");
+  configure->add_flag("--ccw-limit", c_ccw, "CCW limit used (bit 5)");
+  configure->add_flag("--backplane-proximity", c_prox, "backplane home proximity (bit 6)");
+  configure->add_flag("--encoder", c_enc, "quadrature encoder used (bit 8)");
+  configure->add_flag("--diagnostic-feedback", c_diag, "diagnostic feedback (bit 9)");
+  configure->add_flag("--cw-ccw", c_cwccw, "CW/CCW pulse outputs (bit 10 = 0; default step+dir)");
+  configure->add_flag("--marker-homing", c_marker, "marker-pulse homing (bit 12)");
+  configure
+      ->add_option("--active-low", c_low,
+                   "inputs that are active low (N.C.): capture,external,home,estop,cw_limit,"
+                   "ccw_limit; all others active high")
+      ->delimiter(',');
+  configure->add_option("--start-speed", c_vs, "starting speed, steps/s (1000)");
+
+  auto* move = app.add_subcommand("move", "3601: absolute or relative move");
+  std::string move_kind;
+  std::string move_target;
+  bool move_encoder = false;
+  ProfileOpts move_p;
+  move->add_option("KIND", move_kind, "abs or rel")
+      ->required()
+      ->check(CLI::IsMember({"abs", "rel"}));
+  move->add_option("TARGET", move_target, "target position or offset, steps")->required();
+  move_p.add(move, true);
+  move->add_flag("--encoder", move_encoder, "encoder-count move (command LSW bit 2)");
+
+  auto* jog = app.add_subcommand("jog", "3601: manual move (level-held) for --for seconds");
+  std::string jog_dir;
+  double jog_for = 1.0;
+  std::int32_t jog_reg = 0;
+  ProfileOpts jog_p;
+  jog->add_option("DIR", jog_dir, "+ (cw) or - (ccw)")->required();
+  jog_p.add(jog, true);
+  jog->add_option("--for,-t", jog_for, "seconds to hold the manual move bit (1)");
+  jog->add_option("--registration", jog_reg, "registration move: steps after the stop trigger");
+
+  auto* home = app.add_subcommand("home", "3601: find home in direction + or -");
+  std::string home_dir;
+  ProfileOpts home_p;
+  home->add_option("DIR", home_dir, "+ (cw) or - (ccw)")->required();
+  home_p.add(home, true, false);
+
+  auto* hold = app.add_subcommand("hold", "3601: hold move (controlled stop, resumable)");
+  auto* resume = app.add_subcommand("resume", "3601: resume a held move");
+  ProfileOpts resume_p;
+  resume_p.add(resume, false);
+  auto* stop = app.add_subcommand("stop", "3601: immediate stop");
+  auto* preset = app.add_subcommand("preset", "3601: preset the current position");
+  std::string preset_value;
+  preset->add_option("POSITION", preset_value, "new position")->required();
+  auto* preset_enc = app.add_subcommand("preset-encoder", "3601: preset the encoder count");
+  std::string preset_enc_value = "0";
+  preset_enc->add_option("VALUE", preset_enc_value, "new encoder count (0)");
+  auto* reset = app.add_subcommand("reset", "3601: reset errors");
+  auto* minreg =
+      app.add_subcommand("min-registration", "3601: store the minimum registration distance");
+  std::string minreg_value;
+  minreg->add_option("DISTANCE", minreg_value, "steps, 0 disables")->required();
+
+  auto* blend = app.add_subcommand("blend", "3601: blend move profiles");
+  blend->require_subcommand(1);
+  auto* blend_prog = blend->add_subcommand(
+      "program",
+      "program a profile with the block handshake (program bit, transmit edges, "
+      "acknowledge)");
+  std::vector<std::string> segs;
+  std::int32_t final_decel = 0;
+  std::string final_type;
+  blend_prog
+      ->add_option("--segment", segs,
+                   "LENGTH:SPEED:ACCEL[:tri|trap], once per segment in order (2..16)")
+      ->required();
+  blend_prog->add_option("--final-decel", final_decel, "final deceleration, steps/ms/s")
+      ->required();
+  blend_prog->add_option("--final-type", final_type, "final deceleration type: const|tri|trap");
+  auto* blend_run = blend->add_subcommand("run", "run the stored profile, + or -");
+  std::string blend_dir;
+  blend_run->add_option("DIR", blend_dir, "+ (cw) or - (ccw)")->required();
+
+  auto* wait_idle = app.add_subcommand("wait-idle", "3601: wait until the axis is not moving");
+  double wait_s = 60;
+  wait_idle->add_option("--max", wait_s, "give up after this many seconds (60)");
+
+  // ---- simulator panel ----
+  auto* panel = app.add_subcommand("panel", "simulator panel: show, force or release inputs");
+  auto* panel_show = panel->add_subcommand("show", "positions, outputs and forced inputs");
+  auto* panel_force = panel->add_subcommand("force", "force an input to an electrical level");
+  auto* panel_release = panel->add_subcommand("release", "give an input back to the simulation");
+  unsigned p_axis = 1;
+  std::string p_input;
+  int p_level = 0;
+  panel_force->add_option("AXIS", p_axis, "axis number, 1-based")->required();
+  panel_force->add_option("INPUT", p_input, "capture|external|home|estop|cw_limit|ccw_limit")
+      ->required();
+  panel_force->add_option("LEVEL", p_level, "0 or 1 (electrical)")
+      ->required()
+      ->check(CLI::Range(0, 1));
+  panel_release->add_option("AXIS", p_axis, "axis number, 1-based")->required();
+  panel_release->add_option("INPUT", p_input, "input name, or 'all'")->required();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kExitUsage;
+  }
+
+  try {
+    const auto timeout = std::chrono::milliseconds(timeout_ms);
+
+    if (panel->parsed()) {
+      ipc::SimPanelClient p(name);
+      const unsigned axis = p_axis - 1;
+      if (panel_force->parsed()) {
+        p.force(axis, panel_input(p_input), p_level != 0);
+      } else if (panel_release->parsed()) {
+        if (p_input == "all") {
+          p.release_all(axis);
+        } else {
+          p.release(axis, panel_input(p_input));
+        }
+      }
+      (void)panel_show;
+      std::cout << panel_text(p);
+      return kExitOk;
+    }
+
+    ipc::Client client(name);
+
+    if (status->parsed()) {
+      module::ImageWords in;
+      client.read_inputs(in);
+      std::cout << "module '" << name << "' scan " << client.scan_counter() << "\n"
+                << tools::ctl::format_status(client.type(), in);
+      return kExitOk;
+    }
+    if (watch->parsed()) {
+      std::signal(SIGINT, on_signal);
+      std::signal(SIGTERM, on_signal);
+      while (!g_stop) {
+        module::ImageWords in;
+        client.read_inputs(in);
+        // Home the cursor and clear: a steady display instead of a scrolling log.
+        std::cout << "\x1b[H\x1b[2J"
+                  << "module '" << name << "' scan " << client.scan_counter() << "\n"
+                  << tools::ctl::format_status(client.type(), in) << std::flush;
+        std::this_thread::sleep_for(std::chrono::milliseconds(interval_ms));
+      }
+      return kExitOk;
+    }
+    if (raw_get->parsed()) {
+      module::ImageWords out;
+      module::ImageWords in;
+      client.read_outputs(out);
+      client.read_inputs(in);
+      const auto& s = client.shape();
+      std::cout << "module '" << name << "' type " << static_cast<unsigned>(s.type) << ", "
+                << s.word_bytes * 8 << "-bit words, scan " << client.scan_counter()
+                << ", heartbeat " << client.heartbeat_value() << "\noutput words (PLC -> "
+                << "module):\n"
+                << tools::ctl::format_words(out, s.output_words, s.word_bytes)
+                << "input words (module -> PLC):\n"
+                << tools::ctl::format_words(in, s.input_words, s.word_bytes);
+      return kExitOk;
+    }
+    if (raw_set->parsed()) {
+      const std::int64_t word = parse_number(raw_word, "WORD");
+      const std::int64_t value = parse_number(raw_value, "VALUE");
+      if (word < 0 || word >= static_cast<std::int64_t>(client.shape().output_words)) {
+        throw UsageError("WORD must be 0.." + std::to_string(client.shape().output_words - 1));
+      }
+      const std::int64_t lo = client.shape().word_bytes == 2 ? -32768 : INT32_MIN;
+      const std::int64_t hi = client.shape().word_bytes == 2 ? 65535 : UINT32_MAX;
+      if (value < lo || value > hi) throw UsageError("VALUE does not fit the word size");
+      client.write_word(static_cast<unsigned>(word),
+                        static_cast<std::int32_t>(static_cast<std::uint32_t>(value)));
+      if (!client.wait_scans(2, timeout)) {
+        std::cerr << "stepmodctl: written, but the module did not scan within " << timeout_ms
+                  << " ms\n";
+        return kExitUnreachable;
+      }
+      return kExitOk;
+    }
+
+    // Everything below is a 3601 command.
+    Plc3601 plc(client, timeout);
+    Outcome o;
+    if (configure->parsed()) {
+      namespace cm = module::m3601::cfg_msw;
+      std::uint16_t msw = 0;
+      msw |= c_capture ? cm::kCaptureUsed : 0;
+      msw |= c_external ? cm::kExternalUsed : 0;
+      msw |= c_home ? cm::kHomeUsed : 0;
+      msw |= c_estop ? cm::kEStopUsed : 0;
+      msw |= c_cw ? cm::kCwLimitUsed : 0;
+      msw |= c_ccw ? cm::kCcwLimitUsed : 0;
+      msw |= c_prox ? cm::kBackplaneProximity : 0;
+      msw |= c_enc ? cm::kQuadratureEncoder : 0;
+      msw |= c_diag ? cm::kDiagnosticFeedback : 0;
+      msw |= c_cwccw ? 0 : cm::kStepDirOutput;
+      msw |= c_marker ? cm::kMarkerHoming : 0;
+      // The manual advises active-high level bits even for unused inputs (digest 3.3).
+      std::uint16_t lsw = 0x3F;
+      for (const auto& in : c_low) lsw = static_cast<std::uint16_t>(lsw & ~(1u << panel_input(in)));
+      o = plc.configure(msw, lsw, c_vs);
+    } else if (move->parsed()) {
+      const auto target = static_cast<std::int32_t>(parse_number(move_target, "TARGET"));
+      o = plc.move(move_kind == "abs", target, move_p.profile(), move_encoder);
+    } else if (jog->parsed()) {
+      o = plc.jog(parse_direction(jog_dir), jog_p.profile(),
+                  std::chrono::milliseconds(static_cast<long>(jog_for * 1000)), jog_reg);
+    } else if (home->parsed()) {
+      o = plc.home(parse_direction(home_dir), home_p.profile());
+    } else if (hold->parsed()) {
+      o = plc.hold();
+    } else if (resume->parsed()) {
+      std::optional<Profile> p;
+      if (resume_p.speed_opt->count() > 0) p = resume_p.profile();
+      o = plc.resume(p);
+    } else if (stop->parsed()) {
+      o = plc.immediate_stop();
+    } else if (preset->parsed()) {
+      o = plc.preset_position(static_cast<std::int32_t>(parse_number(preset_value, "POSITION")));
+    } else if (preset_enc->parsed()) {
+      o = plc.preset_encoder(static_cast<std::int32_t>(parse_number(preset_enc_value, "VALUE")));
+    } else if (reset->parsed()) {
+      o = plc.reset_errors();
+    } else if (minreg->parsed()) {
+      o = plc.set_min_registration(
+          static_cast<std::int32_t>(parse_number(minreg_value, "DISTANCE")));
+    } else if (blend_prog->parsed()) {
+      tools::ctl::BlendProfile b;
+      for (const std::string& s : segs) {
+        std::vector<std::string> f;
+        std::size_t start = 0;
+        for (std::size_t i = 0; i <= s.size(); ++i) {
+          if (i == s.size() || s[i] == ':') {
+            f.push_back(s.substr(start, i - start));
+            start = i + 1;
+          }
+        }
+        if (f.size() < 3 || f.size() > 4) {
+          throw UsageError("--segment '" + s + "': expected LENGTH:SPEED:ACCEL[:tri|trap]");
+        }
+        b.segments.push_back({static_cast<std::int32_t>(parse_number(f[0], "LENGTH")),
+                              static_cast<std::int32_t>(parse_number(f[1], "SPEED")),
+                              static_cast<std::int32_t>(parse_number(f[2], "ACCEL")),
+                              parse_accel(f.size() == 4 ? f[3] : "")});
+      }
+      b.final_decel = final_decel;
+      b.final_type = parse_accel(final_type);
+      o = plc.blend_program(b);
+    } else if (blend_run->parsed()) {
+      o = plc.blend_run(parse_direction(blend_dir));
+    } else if (wait_idle->parsed()) {
+      o = plc.wait_idle(std::chrono::milliseconds(static_cast<long>(wait_s * 1000)));
+    } else {
+      std::cerr << app.help();
+      return kExitUsage;
+    }
+    print_outcome(client, o);
+    return exit_for(o);
+  } catch (const UsageError& e) {
+    std::cerr << "stepmodctl: " << e.what() << "\n";
+    return kExitUsage;
+  } catch (const ipc::IpcError& e) {
+    std::cerr << "stepmodctl: " << e.what() << "\n";
+    return kExitUnreachable;
+  }
+}
