@@ -7,27 +7,20 @@
 #include <string>
 #include <vector>
 
+#include "gpio/axis_lines.hpp"
 #include "gpio/backend.hpp"
+#include "gpio/sim_machine.hpp"
 #include "module/personality.hpp"
 #include "rt/clock.hpp"
 
 namespace stepmod::tools {
 
-struct SimAxisConfig {
-  std::int64_t start_position = 0;
-  std::optional<std::int64_t> cw_limit_at;   // absent: never actuated
-  std::optional<std::int64_t> ccw_limit_at;
-  std::optional<std::int64_t> home_from;     // home switch actuated in [home_from, home_to]
-  std::optional<std::int64_t> home_to;
-  bool contacts_nc = false;                  // "NO" (false) or "NC" (true)
-  double encoder_ratio = 1.0;                // X4 counts per step; 0 = no encoder signals
-  std::optional<std::int64_t> marker_every;  // Z pulse period in encoder counts
-};
+// [axis.sim]: the simulated machine's parameters are the sim backend's own.
+using SimAxisConfig = gpio::SimAxisParams;
 
-struct AxisConfig {
-  // Line offsets on the chip; absent = not wired (outputs step and dir are required).
-  std::optional<unsigned> out[gpio::kOutputLinesPerAxis];  // indexed by rt::OutputLine
-  std::optional<unsigned> in[gpio::kInputLinesPerAxis];    // indexed by gpio::InputLine
+// One [[axis]] table. The line offsets (`out[]`, `in[]`, absent = not wired; step and dir are
+// required) are the backend's AxisLines.
+struct AxisConfig : gpio::AxisLines {
   Nanos step_pulse_ns = 2'000;
   Nanos dir_setup_ns = 5'000;
   SimAxisConfig sim;

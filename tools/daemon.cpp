@@ -78,6 +78,9 @@ void Daemon::run(const std::atomic<bool>& stop) {
   rt::PulseThread::Options po;
   po.priority = d.config.rt_priority;
   po.cpu = d.config.rt_cpu;
+#ifdef STEPMOD_SANITIZED
+  po.lock_memory = false;  // the sanitizers' shadow memory cannot be locked
+#endif
   rt::PulseThread pulse(d.stack->engine(), po);
   if (d.trace) d.trace->start();
   if (!pulse.start()) throw std::runtime_error("cannot start the pulse thread");

@@ -12,6 +12,11 @@ constexpr Nanos kStart = kNsPerSec;
 constexpr Nanos kPlannerWake = 20 * kNsPerUs;
 // The planner is serviced at least this often even when it asks for less (bounded staleness).
 constexpr Nanos kPlannerMaxSleep = kNsPerMs;
+
+// The pulse engine stamps the writes it makes on its own (an immediate stop ending a pulse) with
+// its clock: in virtual time that is the machine's `now`. One machine runs at a time per thread.
+thread_local Nanos t_virtual_now = kStart;
+Nanos virtual_clock() noexcept { return t_virtual_now; }
 }  // namespace
 
 VirtualMachineOptions default_3601() {
@@ -38,6 +43,7 @@ VirtualMachine::VirtualMachine(VirtualMachineOptions options)
   so.type = options_.type;
   so.timing.assign(options_.axes.size(), options_.timing);
   stack_ = std::make_unique<tools::Stack>(so, *sim_, nullptr);
+  stack_->engine().set_clock(&virtual_clock);
   step_times_.resize(options_.axes.size());
   last_steps_.assign(options_.axes.size(), 0);
 }
@@ -59,6 +65,7 @@ void VirtualMachine::run_until(Nanos t) {
     const Nanos next = std::min({edge, next_scan_, next_plan_});
     if (next > t) break;
     now_ = next;
+    t_virtual_now = now_;
     if (edge == now_) {
       engine.execute_one(now_);
       for (unsigned a = 0; a < last_steps_.size(); ++a) {
@@ -78,6 +85,7 @@ void VirtualMachine::run_until(Nanos t) {
     }
   }
   now_ = std::max(now_, t);
+  t_virtual_now = now_;
 }
 
 bool VirtualMachine::run_until_true(const std::function<bool()>& done, Nanos limit) {
