@@ -73,6 +73,13 @@ class MotionPort {
     c.kind = CommandKind::kAbort;
     send(c);
   }
+  // The configured output format: true = step + direction, false = CW + CCW pulse lines.
+  bool set_pulse_format(bool step_dir) noexcept {
+    Command c;
+    c.kind = CommandKind::kSetPulseFormat;
+    c.level = step_dir;
+    return send(c);
+  }
   bool set_gpo(bool level) noexcept {
     Command c;
     c.kind = CommandKind::kSetGpo;
