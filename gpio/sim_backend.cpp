@@ -70,8 +70,9 @@ void SimBackend::set_pulse_format(unsigned axis, PulseFormat format) noexcept {
   if (axis < machines_.size()) machines_[axis]->set_pulse_format(format);
 }
 
-void SimBackend::force(unsigned axis, std::uint32_t mask, std::uint32_t levels) noexcept {
-  if (axis < machines_.size()) machines_[axis]->force(mask, levels, monotonic_now());
+void SimBackend::force(unsigned axis, std::uint32_t mask, std::uint32_t levels,
+                       Nanos now) noexcept {
+  if (axis < machines_.size()) machines_[axis]->force(mask, levels, now);
 }
 
 }  // namespace stepmod::gpio

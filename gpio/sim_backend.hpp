@@ -34,7 +34,11 @@ class SimBackend final : public Backend {
   void set_pulse_format(unsigned axis, PulseFormat format) noexcept override;
 
   // Simulator panel. force() on the control thread (the thread calling wait_events).
-  void force(unsigned axis, std::uint32_t mask, std::uint32_t levels) noexcept;
+  // The forced edges are stamped `now` (the daemon: the clock; virtual-time tests: their time).
+  void force(unsigned axis, std::uint32_t mask, std::uint32_t levels, Nanos now) noexcept;
+  void force(unsigned axis, std::uint32_t mask, std::uint32_t levels) noexcept {
+    force(axis, mask, levels, monotonic_now());
+  }
   std::int64_t position(unsigned axis) const noexcept { return machines_[axis]->position(); }
   std::int64_t encoder(unsigned axis) const noexcept { return machines_[axis]->encoder(); }
   std::uint32_t output_levels(unsigned axis) const noexcept {

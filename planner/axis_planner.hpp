@@ -14,8 +14,8 @@ namespace stepmod::planner {
 
 // Step/direction format: the direction line is high while the axis runs CCW (position
 // decreasing) and low for CW, which is also the lines' idle level.
-inline constexpr std::uint8_t kDirLevelCcw = 1;
-inline constexpr std::uint8_t kDirLevelCw = 0;
+inline constexpr std::uint8_t kDirLevelCcw = 0;
+inline constexpr std::uint8_t kDirLevelCw = 1;
 
 // An axis with nothing to do asks to be serviced again this far ahead; a submit wakes it anyway.
 inline constexpr Nanos kIdleServiceInterval = 10 * kNsPerSec;

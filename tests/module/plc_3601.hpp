@@ -101,11 +101,11 @@ class Plc3601 : public ::testing::Test {
     } else {
       forced_levels_ &= ~(1u << static_cast<unsigned>(l));
     }
-    vm_.sim().force(0, forced_mask_, forced_levels_);
+    vm_.sim().force(0, forced_mask_, forced_levels_, vm_.now());
   }
   void release(gpio::InputLine l) {
     forced_mask_ &= ~(1u << static_cast<unsigned>(l));
-    vm_.sim().force(0, forced_mask_, forced_levels_);
+    vm_.sim().force(0, forced_mask_, forced_levels_, vm_.now());
   }
 
   VirtualMachine vm_;
