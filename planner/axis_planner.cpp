@@ -143,8 +143,11 @@ void AxisPlanner::abort_last_motion() noexcept {
   m_.active = false;
   // Its direction edge may have been dropped unexecuted: write the direction again next time.
   dir_level_ = -1;
-  // The next motion may start right away: only edges that will really run bound it.
+  // The next motion (and a GPO change) may go right away: only edges that will really run bound
+  // them. Ring order matters only among those: the pulse thread drops the aborted edges ahead of
+  // them as soon as they reach the head (abort_epoch is set before the abort is submitted).
   last_t_ = std::max(motion_floor_t_, nonmotion_t_);
+  last_pushed_t_ = std::min(last_pushed_t_, last_t_);
 }
 
 void AxisPlanner::start_motion(const Command& c, Nanos now) noexcept {

@@ -12,8 +12,8 @@
 
 namespace stepmod::planner {
 
-// Step/direction format: the direction line is high while the axis runs CCW (position
-// decreasing) and low for CW, which is also the lines' idle level.
+// Step/direction format: the direction line is high while the axis runs CW (position increasing)
+// and low for CCW, as the simulated drive reads it (gpio/sim_machine.cpp). Lines idle low.
 inline constexpr std::uint8_t kDirLevelCcw = 0;
 inline constexpr std::uint8_t kDirLevelCw = 1;
 

@@ -64,7 +64,14 @@ TEST(Edges, OrderedWithPulseWidthsAndFlags) {
   // Cruise at 400 kHz (steps 40000 to 60000): periods of 2.5 us, pulses shrink to half of it.
   const std::uint32_t ep = h.start_move(move(100'000, 1'000, 400'000, 2'000'000, 2'000'000));
   ASSERT_TRUE(h.run_until_finished(ep));
-  const std::vector<Edge> all = h.motion_edges(ep);
+  std::vector<Edge> all = h.motion_edges(ep);
+  // A direction edge leads if CW is not the idle level: check it, then the step pulses alone.
+  if (all.front().line == OutputLine::kDir) {
+    EXPECT_TRUE((all.front().flags & ef::kFirst) != 0);
+    EXPECT_EQ(all.front().level, kDirLevelCw);
+    all.erase(all.begin());
+    all.front().flags |= ef::kFirst;  // so the flag checks below read the same either way
+  }
   ASSERT_EQ(all.size(), 200'000u);
   expect_well_formed(all, timing);
   for (std::size_t i = 0; i < all.size(); i += 2) {
@@ -94,42 +101,54 @@ TEST(Edges, OrderedWithPulseWidthsAndFlags) {
   EXPECT_EQ(all.back().phase(), rt::Phase::kDecel);
 }
 
+// The direction whose direction-line level differs from the idle (low) level the axis starts at.
+constexpr Direction kAwayFromIdle = kDirLevelCw != 0 ? Direction::kCw : Direction::kCcw;
+constexpr std::uint8_t level_of(Direction d) {
+  return d == Direction::kCw ? kDirLevelCw : kDirLevelCcw;
+}
+
 TEST(Edges, DirectionEdgeOnlyOnChangeAndSetupBeforeFirstStep) {
+  static_assert(kDirLevelCw != kDirLevelCcw);
   AxisTiming timing;
   timing.dir_setup_ns = 5'000;
   Harness h(timing);
+  const Direction d1 = kAwayFromIdle;
+  const int sgn = sign(d1);
   // vs = 1 MHz: the first step would come 1 us after time 0, inside the setup time.
-  const std::uint32_t ccw = h.start_move(
-      move(10, 1'000'000, 1'000'000, 1e6, 1e6, AccelShape::kConstant, Direction::kCcw));
-  ASSERT_TRUE(h.run_until_finished(ccw));
-  std::vector<Edge> e = h.motion_edges(ccw);
+  const std::uint32_t m1 =
+      h.start_move(move(10, 1'000'000, 1'000'000, 1e6, 1e6, AccelShape::kConstant, d1));
+  ASSERT_TRUE(h.run_until_finished(m1));
+  std::vector<Edge> e = h.motion_edges(m1);
   ASSERT_EQ(e.front().line, OutputLine::kDir);
-  EXPECT_EQ(e.front().level, kDirLevelCcw);
+  EXPECT_EQ(e.front().level, level_of(d1));
   EXPECT_TRUE((e.front().flags & ef::kFirst) != 0);
-  EXPECT_TRUE((e.front().flags & ef::kCcw) != 0);
-  const std::vector<Edge> s = h.steps(ccw);
+  EXPECT_EQ((e.front().flags & ef::kCcw) != 0, d1 == Direction::kCcw);
+  const std::vector<Edge> s = h.steps(m1);
   ASSERT_EQ(s.size(), 10u);
   EXPECT_GE(s.front().t - e.front().t, 5'000);
-  EXPECT_EQ(s.front().dpos, -1);
+  EXPECT_EQ(s.front().dpos, sgn);
   EXPECT_EQ(s.front().flags & ef::kFirst, 0);  // the direction edge was the first
 
-  const std::uint32_t ccw2 =
-      h.start_move(move(10, 1'000, 1'000, 1e4, 1e4, AccelShape::kConstant, Direction::kCcw));
-  ASSERT_TRUE(h.run_until_finished(ccw2));
-  e = h.motion_edges(ccw2);
+  const std::uint32_t m2 =
+      h.start_move(move(10, 1'000, 1'000, 1e4, 1e4, AccelShape::kConstant, d1));
+  ASSERT_TRUE(h.run_until_finished(m2));
+  e = h.motion_edges(m2);
   EXPECT_EQ(
       std::count_if(e.begin(), e.end(), [](const Edge& x) { return x.line == OutputLine::kDir; }),
       0);
   EXPECT_TRUE((e.front().flags & ef::kFirst) != 0);
   // The next motion starts after the previous one has ended.
-  EXPECT_GE(e.front().t, h.motion_edges(ccw).back().t);
+  EXPECT_GE(e.front().t, h.motion_edges(m1).back().t);
 
-  const std::uint32_t cw = h.start_move(move(10, 1'000, 1'000, 1e4, 1e4));
-  ASSERT_TRUE(h.run_until_finished(cw));
-  e = h.motion_edges(cw);
+  const Direction d3 = opposite(d1);
+  const std::uint32_t m3 =
+      h.start_move(move(10, 1'000, 1'000, 1e4, 1e4, AccelShape::kConstant, d3));
+  ASSERT_TRUE(h.run_until_finished(m3));
+  e = h.motion_edges(m3);
   ASSERT_EQ(e.front().line, OutputLine::kDir);
-  EXPECT_EQ(e.front().level, kDirLevelCw);
-  EXPECT_GE(h.steps(cw).front().t - e.front().t, 5'000);
+  EXPECT_EQ(e.front().level, level_of(d3));
+  EXPECT_GE(h.steps(m3).front().t - e.front().t, 5'000);
+  EXPECT_EQ(h.steps(m3).front().dpos, -sgn);
 }
 
 TEST(Edges, CwCcwFormatPulsesOnTwoLinesWithoutDirectionEdges) {
@@ -150,6 +169,22 @@ TEST(Edges, CwCcwFormatPulsesOnTwoLinesWithoutDirectionEdges) {
   EXPECT_EQ(h.steps(cw).size(), 50u);
   EXPECT_EQ(h.motion_edges(ccw).size(), 100u);  // pulses only: no direction level edge
   expect_well_formed(h.edges, AxisTiming{});
+}
+
+TEST(Edges, PulseFormatChangeLeavesTheSecondLineLow) {
+  Harness h;
+  const std::uint32_t m =
+      h.start_move(move(5, 1'000, 1'000, 1e4, 1e4, AccelShape::kConstant, kAwayFromIdle));
+  ASSERT_TRUE(h.run_until_finished(m));
+  ASSERT_EQ(h.motion_edges(m).front().level, 1);  // direction line left high
+  Command f;
+  f.level = false;  // to CW/CCW: that line is now the CCW pulse output
+  h.send(CommandKind::kSetPulseFormat, f);
+  h.service();
+  const Edge& e = h.edges.back();
+  EXPECT_EQ(e.line, OutputLine::kDir);
+  EXPECT_EQ(e.level, 0);
+  EXPECT_EQ(e.flags & ef::kMotion, 0);
 }
 
 TEST(Edges, GpoEdgeIsImmediateAndNotAMotion) {
@@ -382,6 +417,14 @@ TEST(Abort, DropsTheMotionAndTheNextStartsPromptly) {
   const std::size_t n = h.edges.size();
   h.run_for(20 * kMs);
   EXPECT_EQ(h.edges.size(), n) << "no edge of an aborted motion after the abort";
+
+  // A GPO change is not held behind the dropped edges either.
+  Command g;
+  g.level = true;
+  h.send(CommandKind::kSetGpo, g);
+  h.service();
+  EXPECT_EQ(h.edges.back().line, OutputLine::kGpo);
+  EXPECT_EQ(h.edges.back().t, h.now);
 
   const Nanos start = h.now;
   const std::uint32_t next = h.start_move(move(100, 1'000, 1'000, 1e4, 1e4));
