@@ -41,6 +41,7 @@ struct Daemon::Impl {
   void control_loop(const std::atomic<bool>& stop);
   void sync_panel();
   void shutdown_motion();
+  void idle_outputs();
 };
 
 Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_path)
@@ -112,7 +113,7 @@ void Daemon::run(const std::atomic<bool>& stop) {
   planner.stop();
   pulse.stop();
   pulse.join();
-  d.backend->idle_outputs();
+  d.idle_outputs();
   const auto stats = d.stack->engine().stats().snapshot();
   spdlog::info("pulse thread: {} edges written, lateness p50 {} ns, p99.9 {} ns, max {} ns",
                stats.count, stats.percentile(0.5), stats.percentile(0.999), stats.max);
@@ -182,6 +183,21 @@ void Daemon::Impl::sync_panel() {
     panel->publish_position(a, sim->position(a));
     panel->publish_encoder(a, sim->encoder(a));
     panel->publish_outputs(a, sim->output_levels(a));
+  }
+}
+
+// Outputs to their idle level, recorded in the trace like every other write. The pulse thread
+// has been joined, so this thread may now be the producer of its trace ring.
+void Daemon::Impl::idle_outputs() {
+  backend->idle_outputs();
+  const Nanos now = monotonic_now();
+  for (unsigned a = 0; a < stack->shape().axes; ++a) {
+    const std::uint8_t levels = stack->feedback(a).output_levels.load(std::memory_order_acquire);
+    for (unsigned l = 0; l < rt::kOutputLinesPerAxis; ++l) {
+      if (output_trace && (levels >> l) & 1u) {
+        output_trace->try_push({now, static_cast<std::uint8_t>(a), static_cast<std::uint8_t>(l), 0, 0});
+      }
+    }
   }
 }
 

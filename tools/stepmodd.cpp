@@ -2,7 +2,7 @@
 //   stepmodd --config FILE [--trace FILE.vcd] [--log-level LEVEL]
 // Exit status: 0 after SIGINT/SIGTERM, 2 for a bad command line or config file, 1 when the
 // module cannot be started (GPIO lines, shared memory, trace file).
-#include <spdlog/sinks/stderr_color_sinks.h>
+#include <spdlog/sinks/stdout_color_sinks.h>  // declares stderr_color_mt too
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>

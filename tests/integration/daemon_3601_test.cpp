@@ -172,12 +172,17 @@ TEST_F(Daemon3601, RelativeMoveExactPulsesAndProfileTiming) {
   EXPECT_EQ(vcd.timescale, "1 ns");
   const auto steps = vcd.rising("axis1.step");
   ASSERT_EQ(steps.size(), 20'000u);  // exact pulse count
-  // The direction line is set (CW = high) before the first step and never changes during it.
-  const auto& dir = vcd.wires.at("axis1.dir");
-  for (const VcdChange& c : dir) {
-    if (c.t >= steps.front()) ADD_FAILURE() << "direction changed during the move at " << c.t;
+  // The direction line is set (CW = high) before the first step and never changes during the
+  // move; at shutdown every output goes back to its idle (low) level.
+  int dir_level = 0;
+  for (const VcdChange& c : vcd.wires.at("axis1.dir")) {
+    if (c.t < steps.front()) dir_level = c.level;
+    if (c.t >= steps.front() && c.t <= steps.back()) {
+      ADD_FAILURE() << "direction changed during the move at " << c.t;
+    }
   }
-  EXPECT_EQ(vcd.final_level("axis1.dir"), 1);
+  EXPECT_EQ(dir_level, 1);
+  EXPECT_EQ(vcd.final_level("axis1.dir"), 0);
   EXPECT_EQ(vcd.final_level("axis1.step"), 0);
   if (!kTimingChecks) return;
 
