@@ -3,36 +3,12 @@
 #include <bit>
 
 #include "ipc/codec.hpp"
+#include "module/m3601/params_3601.hpp"
 #include "module/m3601/personality_3601.hpp"
 #include "module/m3601/words_3601.hpp"
 
 namespace stepmod::module::m3601 {
 
-namespace {
-
-constexpr std::int32_t kMinTarget = -8'388'608;
-constexpr std::int32_t kMaxTarget = 8'388'607;
-constexpr std::int32_t kMaxSpeed = 1'000'000;
-constexpr std::int32_t kMinRate = 1;     // steps/ms/s
-constexpr std::int32_t kMaxRate = 2000;  // steps/ms/s
-
-// Accel/decel words are steps/ms/s; the planner works in steps/s^2 (digest 7.1).
-double rate_from_word(std::int32_t steps_per_ms_per_s) { return steps_per_ms_per_s * 1000.0; }
-
-planner::AccelShape shape_from_lsw(std::uint16_t lsw) {
-  if (!(lsw & cmd_lsw::kSCurve)) return planner::AccelShape::kConstant;
-  return (lsw & cmd_lsw::kTrapezoidalS) ? planner::AccelShape::kTrapezoidalS
-                                        : planner::AccelShape::kTriangularS;
-}
-
-bool rate_in_range(std::int32_t v) { return v >= kMinRate && v <= kMaxRate; }
-
-// Words 2-3: target position / preset value / registration count (decimal split).
-std::optional<std::int32_t> target_words(const ImageWords& out) {
-  return ipc::codec::decode_3601(out.w[out_word::kTargetMsw], out.w[out_word::kTargetLsw]);
-}
-
-}  // namespace
 
 // Level-sensitive command bits: the manual move runs while its bit is held.
 void Personality3601::handle_levels(const ImageWords& out) {
@@ -75,22 +51,31 @@ void Personality3601::handle_command_edge(const ImageWords& out, std::uint16_t r
     case cmd_msw::kHold: command_hold(); break;
     case cmd_msw::kResume: command_resume(out); break;
     case cmd_msw::kImmediateStop: command_immediate_stop(); break;
-    case cmd_msw::kManualCw: command_manual(out, planner::Direction::kCw); break;
-    case cmd_msw::kManualCcw: command_manual(out, planner::Direction::kCcw); break;
-    case cmd_msw::kPresetPosition: command_preset_position(out); break;
-    case cmd_msw::kResetErrors: command_reset_errors(out); break;
-    default:
-      // Find Home, Preset Encoder and the blend commands are not emulated yet: refuse them
-      // visibly rather than ignore them.
-      reject();
+    case cmd_msw::kFindHomeCw: command_home(out, planner::Direction::kCw); break;
+    case cmd_msw::kFindHomeCcw: command_home(out, planner::Direction::kCcw); break;
+    case cmd_msw::kManualCw:
+    case cmd_msw::kManualCcw: {
+      const auto dir = (rising & cmd_msw::kManualCw) ? planner::Direction::kCw
+                                                     : planner::Direction::kCcw;
+      if (lsw_ & cmd_lsw::kEncoderFollower) {
+        command_follower(out, dir);
+      } else {
+        command_manual(out, dir);
+      }
       break;
+    }
+    case cmd_msw::kPresetPosition: command_preset_position(out); break;
+    case cmd_msw::kPresetEncoder: command_preset_encoder(out); break;
+    case cmd_msw::kResetErrors: command_reset_errors(out); break;
+    case cmd_msw::kRunBlendCw: command_run_blend(out, planner::Direction::kCw); break;
+    case cmd_msw::kRunBlendCcw: command_run_blend(out, planner::Direction::kCcw); break;
+    default: break;  // bits 0..13 are all handled above; 14 was refused before
   }
 }
 
 std::optional<Personality3601::Profile> Personality3601::read_profile(const ImageWords& out,
                                                                        bool ramped) {
-  const auto speed =
-      ipc::codec::decode_3601_unsigned(out.w[out_word::kSpeedMsw], out.w[out_word::kSpeedLsw]);
+  const auto speed = speed_words(out);
   const std::int32_t accel = static_cast<std::int16_t>(out.w[out_word::kAccel]);
   const std::int32_t decel = static_cast<std::int16_t>(out.w[out_word::kDecel]);
   // 3601-CE-04 / IP-02: speed, accel or decel outside its range.
@@ -149,7 +134,7 @@ void Personality3601::command_move(const ImageWords& out, bool absolute) {
     return;
   }
   if (lsw_ & cmd_lsw::kEncoderMove) {
-    reject();  // encoder moves are not emulated yet
+    command_encoder_move(out, absolute);
     return;
   }
   // 3601-CE-06: an absolute move needs a valid position.
@@ -258,70 +243,6 @@ void Personality3601::fault_stop() {
   // Digest 7.7: limit / E-stop trip during a move: immediate stop, IE, PI, Stopped.
   immediate_stop(StopCause::kFault);
   status_.input_error = true;
-}
-
-// Manual Move + / - (MSW bits 7/8, level held): 3601 manual Ch.4 "Manual Move".
-void Personality3601::command_manual(const ImageWords& out, planner::Direction dir) {
-  if (moving()) {
-    reject();  // 3601-CE-03
-    return;
-  }
-  const auto target = target_words(out);
-  if (!target) {
-    reject_profile();  // 3601-CE-04
-    return;
-  }
-  if (*target != 0) {
-    reject();  // registration moves are not emulated yet (A3)
-    return;
-  }
-  const auto profile = read_profile(out, false);
-  if (!profile) return;
-  // 3601-IE-03: a manual move toward an active end limit raises IE and does not move; so does
-  // one with the E-stop active (A15).
-  if (inputs_.active(gpio::InputLine::kEStop) ||
-      inputs_.active(dir == planner::Direction::kCw ? gpio::InputLine::kCwLimit
-                                                    : gpio::InputLine::kCcwLimit)) {
-    status_.input_error = true;
-    return;
-  }
-  status_.move_complete = false;
-  status_.hold = false;
-  status_.stopped = false;
-  status_.at_home = false;
-  status_.input_error = false;
-  activity_ = Activity::kManual;
-  dir_ = dir;
-  move_decel_ = profile->decel;
-  stop_cause_ = StopCause::kNone;
-  // One-shot (Vp = 0, digest 7.8; 3601-STP-N1: no Stopped on release) and a start with the
-  // External input active (digest 7.6: one step, then stop) both output a single pulse.
-  const bool external = inputs_.active(gpio::InputLine::kExternal);
-  std::uint32_t epoch = 0;
-  if (profile->vp == 0 || external) {
-    planner::MoveSpec one;
-    one.steps = 1;
-    one.dir = dir;
-    one.vs = cfg_.starting_speed;
-    one.vp = cfg_.starting_speed;
-    one.accel = profile->accel;
-    one.decel = profile->decel;
-    epoch = motion_.start_move(one);
-    if (external) stop_cause_ = StopCause::kExternal;
-  } else {
-    planner::RunSpec run;
-    run.dir = dir;
-    run.vs = cfg_.starting_speed;
-    run.vp = profile->vp;  // <= vs: constant-speed mode, no ramps (planner)
-    run.accel = profile->accel;
-    run.decel = profile->decel;
-    epoch = motion_.start_run(run);
-  }
-  if (epoch == 0) {
-    activity_ = Activity::kIdle;
-    stop_cause_ = StopCause::kNone;
-    reject();
-  }
 }
 
 // Preset Position (MSW bit 9): 3601 manual Ch.4 "Preset Position".

@@ -16,11 +16,19 @@ void Personality3601::on_input(const gpio::InputEvent& e) {
     // only while the quadrature encoder is configured (moving or not, digest 7.12).
     const int d = quadrature_.update(inputs_.level(InputLine::kEncA),
                                      inputs_.level(InputLine::kEncB));
-    if (configured_ && cfg_.has(cfg_msw::kQuadratureEncoder)) encoder_ += d;
+    if (d != 0 && configured_ && cfg_.has(cfg_msw::kQuadratureEncoder)) {
+      encoder_ += d;
+      encoder_changed(e.t);
+    }
     return;
   }
   if (!configured_ || config_mode_) return;
   const bool now_active = inputs_.active(e.line);
+  if (activity_ == Activity::kHoming) {
+    // Homing has its own rules for the home input, the marker, the limits and the E-stop.
+    homing_on_input(e, was_active, now_active);
+    if (e.line != InputLine::kCapture) return;
+  }
   if (now_active == was_active) return;
 
   if (now_active && e.line == InputLine::kCapture) {
@@ -35,6 +43,7 @@ void Personality3601::on_input(const gpio::InputEvent& e) {
     return;
   }
   if (!moving() || stop_cause_ == StopCause::kImmediate || stop_cause_ == StopCause::kFault) return;
+  if (activity_ == Activity::kManual && manual_on_input(e, now_active)) return;
 
   if (now_active && e.line == InputLine::kEStop) {
     fault_stop();  // 3601-IE-01, PI-03, STP-02

@@ -19,7 +19,7 @@ Personality3601::Personality3601(gpio::Backend& backend, planner::MotionPort& mo
 
 const ModuleShape& Personality3601::shape() const noexcept { return kShape; }
 
-void Personality3601::scan(const ImageWords& out, ImageWords& in, Nanos /*now*/) {
+void Personality3601::scan(const ImageWords& out, ImageWords& in, Nanos now) {
   const auto msw = static_cast<std::uint16_t>(out.w[out_word::kMsw]);
   lsw_ = static_cast<std::uint16_t>(out.w[out_word::kLsw]);
   poll_motion_end();
@@ -46,16 +46,37 @@ void Personality3601::scan(const ImageWords& out, ImageWords& in, Nanos /*now*/)
     }
   } else {
     config_after_motion_ = false;
-    handle_levels(out);
-    const std::uint16_t rising = msw & static_cast<std::uint16_t>(~prev_msw_);
-    if (rising & (cmd_msw::kCommandMask | cmd_msw::kReserved14)) handle_command_edge(out, rising);
+    command_mode_scan(out, msw, now);
   }
   prev_msw_ = msw;
+  prev_lsw_ = lsw_;
 
   if (config_mode_) {
     compose_configuration_image(in);
   } else {
     compose_command_image(in);
+  }
+}
+
+// One command-mode scan: level bits and runtime monitors first (a released manual bit stops the
+// axis even while CE is set), then the command edges.
+void Personality3601::command_mode_scan(const ImageWords& out, std::uint16_t msw, Nanos now) {
+  handle_levels(out);
+  if (!configured_) {
+    const std::uint16_t rising = msw & static_cast<std::uint16_t>(~prev_msw_);
+    if (rising & (cmd_msw::kCommandMask | cmd_msw::kReserved14)) handle_command_edge(out, rising);
+    return;
+  }
+  manual_scan(out);
+  encoder_scan(out);
+  if (activity_ == Activity::kHoming) homing_scan(now);
+  blend_programming_scan(out);
+  const std::uint16_t rising = msw & static_cast<std::uint16_t>(~prev_msw_);
+  if (rising & (cmd_msw::kCommandMask | cmd_msw::kReserved14)) {
+    handle_command_edge(out, rising);
+  } else if (msw == 0 && (lsw_ & cmd_lsw::kStoreMinRegistration) &&
+             !(prev_lsw_ & cmd_lsw::kStoreMinRegistration) && !status_.command_error) {
+    command_min_registration(out);  // MSW = 0, LSW bit 10 rising (digest 3.8)
   }
 }
 
@@ -106,15 +127,25 @@ void Personality3601::enter_command_mode() {
 }
 
 void Personality3601::poll_motion_end() {
-  if (activity_ == Activity::kIdle || motion_.busy()) return;
+  if (activity_ == Activity::kIdle || activity_ == Activity::kFollower || motion_.busy()) return;
+  if (activity_ == Activity::kHoming) {
+    // A homing sequence is several motions and pauses; it ends when homing_motion_ended says.
+    const StopCause cause = stop_cause_;
+    stop_cause_ = StopCause::kNone;
+    homing_motion_ended(cause);
+    return;
+  }
   const Activity ended = activity_;
   activity_ = Activity::kIdle;
   const StopCause cause = stop_cause_;
   stop_cause_ = StopCause::kNone;
   switch (cause) {
     case StopCause::kNone:
-      // 3601-MC-01: an absolute/relative move that reached its target.
-      if (ended == Activity::kMove) status_.move_complete = true;
+      // 3601-MC-01: an absolute/relative, encoder or blend move that reached its target.
+      if (ended == Activity::kMove || ended == Activity::kEncoderMove ||
+          ended == Activity::kBlend) {
+        status_.move_complete = true;
+      }
       // 3601-STP-N1: a one-shot manual move ends without Stopped.
       break;
     case StopCause::kHold:
@@ -187,6 +218,9 @@ void Personality3601::compose_command_image(ImageWords& in) const {
   // is live whether or not homing is configured (A44).
   std::uint16_t lsw = inputs_.active_bits();
   if (lsw_ & cmd_lsw::kBackplaneProximity) lsw |= status_lsw::kProximityEcho;
+  lsw |= blend_status_lsw();
+  if (activity_ == Activity::kFollower) lsw |= status_lsw::kFollowerMode;
+  if (min_registration_ != 0) lsw |= status_lsw::kMinRegistrationSet;
 
   in = ImageWords{};
   in.w[in_word::kStatusMsw] = static_cast<std::int16_t>(msw);

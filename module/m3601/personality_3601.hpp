@@ -25,7 +25,15 @@ class Personality3601 final : public Personality {
  private:
   // What the axis is doing; a motion is in progress from acceptance until the pulse thread
   // reports its end (digest 7.16).
-  enum class Activity : std::uint8_t { kIdle, kMove, kManual };
+  enum class Activity : std::uint8_t {
+    kIdle,
+    kMove,         // absolute / relative move (commands_3601.cpp)
+    kEncoderMove,  // absolute / relative move to an encoder count (encoder_3601.cpp)
+    kManual,       // manual move, and registration move (manual_3601.cpp)
+    kHoming,       // Find Home + / - (homing_3601.cpp)
+    kBlend,        // blend move (blend_3601.cpp)
+    kFollower,     // encoder follower (encoder_3601.cpp)
+  };
   // Why a motion is ending early; decides the status bits when it has ended.
   enum class StopCause : std::uint8_t { kNone, kHold, kExternal, kRelease, kImmediate, kFault };
 
@@ -54,6 +62,7 @@ class Personality3601 final : public Personality {
   void compose_configuration_image(ImageWords& in) const;
 
   // Command mode.
+  void command_mode_scan(const ImageWords& out, std::uint16_t msw, Nanos now);
   void poll_motion_end();
   void handle_levels(const ImageWords& out);
   void handle_command_edge(const ImageWords& out, std::uint16_t rising);
@@ -61,10 +70,49 @@ class Personality3601 final : public Personality {
   void command_hold();
   void command_resume(const ImageWords& out);
   void command_immediate_stop();
-  void command_manual(const ImageWords& out, planner::Direction dir);
   void command_preset_position(const ImageWords& out);
   void command_reset_errors(const ImageWords& out);
   void compose_command_image(ImageWords& in) const;
+
+  // ==== Manual and registration moves (manual_3601.cpp) =======================================
+  // Rising edge of a manual-move bit (without the follower bit).
+  void command_manual(const ImageWords& out, planner::Direction dir);
+  // Every command-mode scan: runtime changes of speed/accel/decel/target (3601-CE-17/19/30..33).
+  void manual_scan(const ImageWords& out);
+  // Command LSW bit 10 rising with MSW = 0: store the minimum registration distance.
+  void command_min_registration(const ImageWords& out);
+  // An input edge during a manual/registration move; true if it was fully handled here.
+  bool manual_on_input(const gpio::InputEvent& e, bool now_active);
+  // ==== end manual and registration ============================================================
+
+  // ==== Homing (homing_3601.cpp) ===============================================================
+  void command_home(const ImageWords& out, planner::Direction dir);
+  // Every command-mode scan while homing: pause timers, backplane proximity bit edges.
+  void homing_scan(Nanos now);
+  // Every input edge while homing (home, limits, E-stop, marker); the generic rules are skipped.
+  void homing_on_input(const gpio::InputEvent& e, bool was_active, bool now_active);
+  // A motion of the homing sequence has ended (the pulse thread finished or aborted it).
+  void homing_motion_ended(StopCause cause);
+  // ==== end homing =============================================================================
+
+  // ==== Blend moves (blend_3601.cpp) ===========================================================
+  // Every command-mode scan: the programming handshake (LSW bits 8/9, acknowledge LSW bit 9).
+  void blend_programming_scan(const ImageWords& out);
+  void command_run_blend(const ImageWords& out, planner::Direction dir);
+  // Status LSW bits owned by blends: running (8), acknowledge (9).
+  std::uint16_t blend_status_lsw() const noexcept;
+  // ==== end blend ==============================================================================
+
+  // ==== Encoder: encoder move, preset encoder, follower (encoder_3601.cpp) =====================
+  void command_encoder_move(const ImageWords& out, bool absolute);
+  void command_preset_encoder(const ImageWords& out);
+  // Rising edge of a manual-move bit with command LSW bit 7 (encoder follower).
+  void command_follower(const ImageWords& out, planner::Direction dir);
+  // Every command-mode scan: follower ratio/direction changes and rules, encoder-move target.
+  void encoder_scan(const ImageWords& out);
+  // After every encoder count change (X4 decoding or diagnostic feedback), at the edge's time.
+  void encoder_changed(Nanos t);
+  // ==== end encoder ============================================================================
 
   // Motion helpers.
   struct Profile {
@@ -114,6 +162,14 @@ class Personality3601 final : public Personality {
   std::int64_t capture_ = 0;             // captured value
   std::uint16_t prev_msw_ = 0;           // last scan's command word MSW (edge detection)
   std::uint16_t lsw_ = 0;                // this scan's command word LSW (proximity echo)
+  std::uint16_t prev_lsw_ = 0;           // last scan's command word LSW (edge detection)
+
+  // ==== State of the features in their own files: each block belongs to its file. ==========
+  // -- manual_3601.cpp --
+  std::int32_t min_registration_ = 0;  // minimum registration distance; 0 = off (LSW bit 10)
+  // -- homing_3601.cpp --
+  // -- blend_3601.cpp --
+  // -- encoder_3601.cpp --
 };
 
 }  // namespace stepmod::module::m3601
