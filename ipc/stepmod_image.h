@@ -138,7 +138,7 @@ STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, unused) == STEPMOD_OFF_END_OF_FI
  * holding the lock (sequence stuck odd) is taken over after stale_ns.
  * ------------------------------------------------------------------------------------------- */
 static inline int64_t stepmod_monotonic_ns(void) {
-  struct timespec ts;
+  struct timespec ts = {0, 0};
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
 }
@@ -197,7 +197,7 @@ static inline void stepmod_word_store(stepmod_words_t* w, unsigned word_bytes, u
 static inline int stepmod_seq_read(const uint32_t* seq, const stepmod_words_t* w,
                                    unsigned word_bytes, unsigned n, int32_t* out,
                                    unsigned max_tries) {
-  unsigned t, i;
+  unsigned t = 0, i = 0;
   for (t = 0; t < max_tries; ++t) {
     const uint32_t s0 = __atomic_load_n(seq, __ATOMIC_ACQUIRE);
     if (s0 & 1u) continue;
@@ -212,7 +212,7 @@ static inline int stepmod_seq_read(const uint32_t* seq, const stepmod_words_t* w
 /* Writes n words under the sequence lock. */
 static inline void stepmod_seq_write(uint32_t* seq, stepmod_words_t* w, unsigned word_bytes,
                                      unsigned n, const int32_t* in) {
-  unsigned i;
+  unsigned i = 0;
   const uint32_t odd = stepmod_seq_write_begin(seq, STEPMOD_SEQ_STALE_NS);
   for (i = 0; i < n; ++i) stepmod_word_store(w, word_bytes, i, in[i]);
   stepmod_seq_write_end(seq, odd);

@@ -23,7 +23,7 @@ struct PulseThreadOptions {
   Nanos spin_ns = 30 * kNsPerUs;       // wake this long before an edge and spin to it
   Nanos max_sleep_ns = 50 * kNsPerUs;  // longest sleep without looking for new work
   bool lock_memory = true;             // mlockall(MCL_CURRENT | MCL_FUTURE)
-  std::size_t prefault_stack_bytes = 64 * 1024;  // stack touched before the loop
+  std::size_t prefault_stack_bytes = std::size_t{64} * 1024;  // stack touched before the loop
 };
 
 class PulseThread {

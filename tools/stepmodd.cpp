@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 #include <atomic>
+#include <exception>
 #include <csignal>
 #include <optional>
 #include <pthread.h>
@@ -17,11 +18,7 @@
 
 namespace {
 
-std::atomic<bool> g_stop{false};
-
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"stepmodd: software replacement for an AMCI 3601/3602/3202 stepper module"};
   std::string config_path;
   std::optional<std::string> trace_path;
@@ -50,8 +47,8 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  // SIGINT/SIGTERM are taken by a dedicated thread with sigwait; every other thread (created
-  // after this) inherits the blocked mask, so no handler ever runs on the pulse thread.
+  // SIGINT/SIGTERM are blocked in every thread (the threads created below inherit the mask) and
+  // taken here with sigtimedwait, so no handler ever runs on the pulse thread.
   sigset_t signals;
   sigemptyset(&signals);
   sigaddset(&signals, SIGINT);
@@ -60,25 +57,44 @@ int main(int argc, char** argv) {
 
   try {
     stepmod::tools::Daemon daemon(config, trace_path);
-    std::thread waiter([&signals] {
-      int sig = 0;
-      sigwait(&signals, &sig);
-      spdlog::info("signal {}: stopping", sig);
-      g_stop.store(true, std::memory_order_release);
+    std::atomic<bool> stop{false};
+    std::atomic<bool> finished{false};
+    std::exception_ptr failure;
+    std::thread runner([&] {
+      try {
+        daemon.run(stop);
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      finished.store(true, std::memory_order_release);
     });
-    try {
-      daemon.run(g_stop);
-    } catch (...) {
-      // Wake the signal thread so that it can be joined, then report.
-      pthread_kill(waiter.native_handle(), SIGTERM);
-      waiter.join();
-      throw;
+    // The runner only ends on its own after a failure; look at it every 100 ms.
+    const timespec poll{0, 100'000'000};
+    while (!finished.load(std::memory_order_acquire)) {
+      const int sig = sigtimedwait(&signals, nullptr, &poll);
+      if (sig > 0) {
+        spdlog::info("signal {}: stopping", sig);
+        stop.store(true, std::memory_order_release);
+        break;
+      }
     }
-    waiter.join();
+    runner.join();
+    if (failure) std::rethrow_exception(failure);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;
   }
   spdlog::info("stopped");
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (...) {
+    // Logging itself failed (or worse): nothing more can be reported.
+    return 1;
+  }
 }

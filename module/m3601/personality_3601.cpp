@@ -158,12 +158,10 @@ void Personality3601::poll_motion_end() {
         status_.stopped = true;  // 3601-STP-01: manual move stopped by the External input
       }
       break;
-    case StopCause::kRelease:
-      status_.stopped = true;  // 3601-STP-01
-      break;
-    case StopCause::kImmediate:
-    case StopCause::kFault:
-      status_.stopped = true;  // 3601-STP-02/03/04
+    case StopCause::kRelease:    // 3601-STP-01
+    case StopCause::kImmediate:  // 3601-STP-03
+    case StopCause::kFault:      // 3601-STP-02/04
+      status_.stopped = true;
       break;
   }
 }
