@@ -18,8 +18,7 @@ Client::Client(const std::string& name) : name_(name) {
   map_ = ShmMapping::open(image_object(name), STEPMOD_IMAGE_SIZE);
   img_ = static_cast<stepmod_image_t*>(map_.data());
   const std::string path = "/dev/shm" + image_object(name);
-  __atomic_thread_fence(__ATOMIC_ACQUIRE);
-  if (std::memcmp(img_->magic, STEPMOD_IMAGE_MAGIC, sizeof img_->magic) != 0) {
+  if (!stepmod_magic_is(img_->magic, STEPMOD_IMAGE_MAGIC)) {
     throw IpcError(path + " is not a stepmod image (bad magic; daemon still starting?)");
   }
   if (img_->version != STEPMOD_LAYOUT_VERSION) {

@@ -22,9 +22,8 @@ ShmImage::ShmImage(const std::string& name, const module::ModuleShape& shape)
   img_->output_words = shape.output_words;
   img_->input_words = shape.input_words;
   img_->owner_pid = static_cast<std::uint64_t>(::getpid());
-  // The magic goes in last, after a release fence: a client that sees it sees a whole header.
-  __atomic_thread_fence(__ATOMIC_RELEASE);
-  std::memcpy(img_->magic, STEPMOD_IMAGE_MAGIC, sizeof img_->magic);
+  // The magic goes in last: a client that sees it sees a whole header.
+  stepmod_publish_magic(img_->magic, STEPMOD_IMAGE_MAGIC);
 }
 
 bool ShmImage::read_outputs(module::ImageWords& out) const noexcept {

@@ -15,8 +15,7 @@ SimPanelServer::SimPanelServer(const std::string& name, unsigned axes) : axes_(a
   p_->version = STEPMOD_PANEL_VERSION;
   p_->axes = axes;
   p_->owner_pid = static_cast<std::uint64_t>(::getpid());
-  __atomic_thread_fence(__ATOMIC_RELEASE);  // header before magic, as for the image
-  std::memcpy(p_->magic, STEPMOD_PANEL_MAGIC, sizeof p_->magic);
+  stepmod_publish_magic(p_->magic, STEPMOD_PANEL_MAGIC);  // header before magic, as for the image
 }
 
 void SimPanelServer::publish_position(unsigned axis, std::int64_t steps) noexcept {
@@ -40,8 +39,7 @@ SimPanelClient::SimPanelClient(const std::string& name) {
   map_ = ShmMapping::open(panel_object(name), STEPMOD_PANEL_SIZE);
   p_ = static_cast<stepmod_panel_t*>(map_.data());
   const std::string path = "/dev/shm" + panel_object(name);
-  __atomic_thread_fence(__ATOMIC_ACQUIRE);
-  if (std::memcmp(p_->magic, STEPMOD_PANEL_MAGIC, sizeof p_->magic) != 0) {
+  if (!stepmod_magic_is(p_->magic, STEPMOD_PANEL_MAGIC)) {
     throw IpcError(path + " is not a stepmod simulator panel (bad magic)");
   }
   if (p_->version != STEPMOD_PANEL_VERSION) {
