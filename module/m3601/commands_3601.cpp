@@ -182,6 +182,10 @@ void Personality3601::command_hold() {
     }
     return;
   }
+  if (activity_ == Activity::kBlend) {
+    blend_hold();  // 3601-CE-23: CE, the blend continues, CE clears at its end
+    return;
+  }
   // 3601-CE-07: Hold while no absolute/relative move is in progress. During a manual move the
   // motion also stops, controlled (A43).
   reject();

@@ -54,10 +54,13 @@ void Personality3601::on_input(const gpio::InputEvent& e) {
     // 3601-IE-02 / PI-04 / STP-04: absolute and relative moves stop at either limit; a manual
     // move only at the limit in its direction of travel, so that it can be driven off a limit.
     const bool in_travel_direction = cw_limit == (dir_ == planner::Direction::kCw);
-    if (activity_ == Activity::kMove || in_travel_direction) fault_stop();
+    const bool either_limit = activity_ == Activity::kMove || activity_ == Activity::kBlend;
+    if (either_limit || in_travel_direction) fault_stop();  // blends too (3601-IE-02)
     return;
   }
-  if (now_active && e.line == InputLine::kExternal && stop_cause_ == StopCause::kNone) {
+  // Digest 7.10 rule 8: blends ignore the External input.
+  if (now_active && e.line == InputLine::kExternal && stop_cause_ == StopCause::kNone &&
+      activity_ != Activity::kBlend) {
     // 3601-HLD-02: a controlled stop to the Hold state for absolute/relative moves; a
     // controlled stop (Stopped) for manual moves (digest 7.6).
     stop_cause_ = StopCause::kExternal;

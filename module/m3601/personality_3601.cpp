@@ -105,6 +105,7 @@ void Personality3601::enter_command_mode() {
   config_mode_ = false;
   // Edges are detected against the command words from here on, not the configuration words.
   prev_msw_ = 0;
+  blend_erase();  // 3601-CE-20: any configuration erases the stored blend profile
   if (!pending_) {
     configured_ = false;  // CfgE stays set; commands are refused until a valid configuration
     return;
@@ -139,6 +140,10 @@ void Personality3601::poll_motion_end() {
   activity_ = Activity::kIdle;
   const StopCause cause = stop_cause_;
   stop_cause_ = StopCause::kNone;
+  if (ended == Activity::kBlend) {
+    blend_motion_ended(cause);  // MC / Stopped / CE-23 self-clear (blend_3601.cpp)
+    return;
+  }
   switch (cause) {
     case StopCause::kNone:
       // 3601-MC-01: an absolute/relative, encoder or blend move that reached its target.

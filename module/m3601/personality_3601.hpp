@@ -101,6 +101,15 @@ class Personality3601 final : public Personality {
   void command_run_blend(const ImageWords& out, planner::Direction dir);
   // Status LSW bits owned by blends: running (8), acknowledge (9).
   std::uint16_t blend_status_lsw() const noexcept;
+  // Hold while a blend runs (3601-CE-23): CE now, cleared by itself when the blend ends.
+  void blend_hold();
+  // A blend motion has ended (called by poll_motion_end instead of its generic outcome).
+  void blend_motion_ended(StopCause cause);
+  // A configuration erases the stored profile and any programming cycle (3601-CE-20).
+  void blend_erase();
+  // One programming block, read on a transmit rising edge; false if it holds an error.
+  bool blend_first_block(const ImageWords& out);
+  bool blend_segment_block(const ImageWords& out);
   // ==== end blend ==============================================================================
 
   // ==== Encoder: encoder move, preset encoder, follower (encoder_3601.cpp) =====================
@@ -169,6 +178,15 @@ class Personality3601 final : public Personality {
   std::int32_t min_registration_ = 0;  // minimum registration distance; 0 = off (LSW bit 10)
   // -- homing_3601.cpp --
   // -- blend_3601.cpp --
+  planner::BlendSpec blend_profile_{};   // stored profile (dir and vs are set by Run Blend)
+  bool blend_stored_ = false;            // a complete, valid profile is stored
+  planner::BlendSpec blend_pending_{};   // the profile of the programming cycle under way
+  bool blend_cycle_ = false;             // program bit (LSW 8) held: a cycle is under way
+  bool blend_spoiled_ = false;           // this cycle had an error or was refused: store nothing
+  unsigned blend_blocks_ = 0;            // blocks read in this cycle (first block included)
+  std::int64_t blend_total_ = 0;         // sum of the segment lengths read so far
+  bool blend_ack_ = false;               // status LSW bit 9
+  bool blend_hold_error_ = false;        // CE was set by a Hold during the running blend
   // -- encoder_3601.cpp --
 };
 
