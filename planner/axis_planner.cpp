@@ -18,6 +18,7 @@ AxisPlanner::AxisPlanner(const PlannerAxis& axis, const PlannerOptions& options)
 
 double AxisPlanner::frontier_speed() const noexcept {
   if (!m_.active) return 0.0;
+  if (m_.follow) return f_.v;
   return phases_.velocity_at(m_.tk);
 }
 
@@ -94,11 +95,16 @@ void AxisPlanner::flush(Nanos horizon) noexcept {
 
 void AxisPlanner::apply(const Command& c, Nanos now) noexcept {
   check_abort();
+  now_ = std::max(now_, now);
   switch (c.kind) {
     case CommandKind::kMove:
     case CommandKind::kRun:
     case CommandKind::kBlend:
+    case CommandKind::kFollow:
       start_motion(c, now);
+      break;
+    case CommandKind::kFollowUpdate:
+      follow_update(c);
       break;
     case CommandKind::kChangeSpeed:
       change_speed(c);
@@ -180,6 +186,15 @@ void AxisPlanner::start_motion(const Command& c, Nanos now) noexcept {
       m.vs = c.run.vs;
       m.decel = c.run.decel;
       break;
+    case CommandKind::kFollow:
+      // Steps and their direction come from follow_step as the target moves.
+      m.dir = c.follow.target < 0 ? Direction::kCcw : Direction::kCw;
+      m.end = kEndless;
+      m.follow = true;
+      m.vs = c.follow.vs;
+      f_ = FollowState{};
+      f_.spec = c.follow;
+      break;
     default:
       m.dir = c.blend.dir;
       build_blend(c.blend, phases_);
@@ -204,6 +219,7 @@ void AxisPlanner::start_motion(const Command& c, Nanos now) noexcept {
     finish_at_frontier();  // nothing to move: one marker edge tells the pulse thread it ended
     return;
   }
+  if (m_.follow) return;  // the direction is written with the first step (follow_step)
 
   // Step/direction: the direction line must settle dir_setup_ns before the first step. CW/CCW:
   // the CCW pulse line rests low. Only a change (or an unknown level) costs an edge.
@@ -225,6 +241,10 @@ void AxisPlanner::start_motion(const Command& c, Nanos now) noexcept {
 
 void AxisPlanner::finish_at_frontier() noexcept {
   if (!m_.active) return;
+  if (m_.follow) {
+    follow_finish();
+    return;
+  }
   m_.active = false;
   if (m_.k > 0) {
     stage(make_edge(m_.tk_ns + timing_.step_pulse_ns, m_.line, 0, 0,
@@ -279,6 +299,11 @@ void AxisPlanner::change_speed(const Command& c) noexcept {
 
 void AxisPlanner::stop(const Command& c) noexcept {
   if (!m_.active || c.epoch != m_.epoch) return;
+  if (m_.follow) {
+    // A follow motion keeps its own (decel) law: it ends once at rest on its target.
+    f_.finishing = true;
+    return;
+  }
   const double v = phases_.velocity_at(m_.tk);
   if (m_.constant_speed || v <= m_.vs * (1.0 + 1e-9) || c.ramp.rate <= 0.0) {
     // Nothing to ramp down: the step already planned is the last one (one step if none yet).
@@ -296,7 +321,7 @@ void AxisPlanner::stop(const Command& c) noexcept {
 }
 
 void AxisPlanner::stop_after(const Command& c) noexcept {
-  if (!m_.active || c.epoch != m_.epoch) return;
+  if (!m_.active || c.epoch != m_.epoch || m_.follow) return;
   // Steps of this motion up to c.t, counting the ones already planned after it.
   const std::int64_t end = planned_steps_at(c.t) + std::max<std::int64_t>(c.steps, 0);
   if (end >= m_.end) return;  // already ends there or sooner
@@ -370,10 +395,15 @@ void AxisPlanner::step_once() noexcept {
 
 Nanos AxisPlanner::fill(Nanos now) noexcept {
   check_abort();
+  now_ = std::max(now_, now);
   const Nanos horizon = now + opt_.lookahead_ns;
   flush(horizon);
   while (m_.active && staged_count_ == 0) {
-    step_once();
+    if (m_.follow) {
+      if (!follow_step()) break;  // at rest on the target: the next target wakes us
+    } else {
+      step_once();
+    }
     flush(horizon);
   }
   if (staged_count_ == 0) return now + kIdleServiceInterval;
@@ -384,6 +414,132 @@ Nanos AxisPlanner::fill(Nanos now) noexcept {
   }
   // Ring full: about half of what it holds has run by the midpoint to its newest edge.
   return now + std::max<Nanos>(10 * kNsPerUs, (last_pushed_t_ - now) / 2);
+}
+
+void AxisPlanner::follow_update(const Command& c) noexcept {
+  if (!m_.active || !m_.follow || c.epoch != m_.epoch) return;
+  f_.spec = c.follow;
+}
+
+void AxisPlanner::follow_finish() noexcept {
+  m_.active = false;
+  // Every step's trailing edge is already staged: a marker edge (the direction line rewritten at
+  // its present level) carries kLast so that the pulse thread reports the motion finished.
+  const int level = dir_level_ >= 0 ? dir_level_ : 0;
+  dir_level_ = level;
+  std::uint8_t flags = m_.base_flags | rt::edge_flag::kLast;
+  if (m_.first_pending) flags |= rt::edge_flag::kFirst;
+  m_.first_pending = false;
+  stage(make_edge(std::max(now_, last_t_), rt::OutputLine::kDir, static_cast<std::uint8_t>(level),
+                  0, flags));
+}
+
+// The follow law (FollowSpec): the speed of the next step is the highest that
+//   * the accel allows from the previous step's speed (v^2 + 2a per step; 0 = jump to `speed`),
+//   * still lets the axis stop on the target (vs^2 + 2d (n - 1) for n steps left; 0 = no limit),
+//   * stays within vmax (accel > 0) or the master's `speed` (accel = 0);
+// the step interval is 2 / (v_prev + v_next), exact for a constant rate. A target behind the axis
+// (it moved back) is handled by decelerating at d down to vs, stopping and reversing. Steps are
+// decided when planned, at most the lookahead ahead of their time, so they only ever use a known
+// target and the count stays exact.
+bool AxisPlanner::follow_step() noexcept {
+  FollowState& f = f_;
+  const FollowSpec& s = f.spec;
+  const double vs = std::max(s.vs, 1.0);
+  const double vmax = std::max(s.vmax, 1.0);
+  const double cap = s.accel > 0.0 ? vmax : std::clamp(s.speed, 1.0, vmax);
+  const Nanos floor_t = now_ + opt_.start_delay_ns;
+  // A step at the present speed would already be overdue: the axis has been waiting for its
+  // target, so it starts again from rest.
+  if (f.v > 0.0 && m_.tk_ns + to_ns(1.0 / f.v) < now_) f.v = 0.0;
+
+  const std::int64_t e = s.target - f.pos;
+  const int want = e > 0 ? 1 : (e < 0 ? -1 : 0);
+  int dir = want;
+  double v = 0.0;
+  if (f.v > 0.0 && want != f.dir) {
+    // On or past the target while moving: ramp down to vs at d, then stop.
+    const double v2 = f.v * f.v - 2.0 * s.decel;
+    if (s.decel > 0.0 && f.v > vs && v2 >= vs * vs) {
+      v = std::sqrt(v2);
+      dir = f.dir;
+    } else {
+      f.v = 0.0;
+    }
+  }
+  if (v == 0.0) {
+    if (want == 0) {
+      f.v = 0.0;
+      if (f.finishing) {
+        follow_finish();
+        return true;
+      }
+      return false;
+    }
+    const double n = static_cast<double>(want > 0 ? e : -e);
+    v = cap;
+    if (s.accel > 0.0) v = std::min(v, f.v > 0.0 ? std::sqrt(f.v * f.v + 2.0 * s.accel) : vs);
+    if (s.decel > 0.0) {
+      v = std::min(v, std::sqrt(vs * vs + 2.0 * s.decel * (n - 1.0)));
+      // It cannot slow down faster than d either (the target came closer than planned for).
+      if (f.v > 0.0) v = std::max(v, std::sqrt(std::max(0.0, f.v * f.v - 2.0 * s.decel)));
+    }
+    v = std::max(v, 1.0);
+  }
+
+  // Time of the step.
+  const bool from_rest = f.v <= 0.0;
+  Nanos t;
+  if (!from_rest) {
+    t = m_.tk_ns + to_ns(2.0 / (f.v + v));
+  } else {
+    t = floor_t;
+    if (m_.k > 0) t = std::max(t, m_.tk_ns + to_ns(1.0 / v));
+  }
+  t = std::max(t, last_t_ + 1);
+  if (from_rest || dir != sign(m_.dir) || m_.k == 0) {
+    const bool ccw = dir < 0;
+    m_.dir = ccw ? Direction::kCcw : Direction::kCw;
+    m_.line = (step_dir_ || !ccw) ? rt::OutputLine::kStep : rt::OutputLine::kDir;
+    m_.base_flags = rt::edge_flag::kMotion | (ccw ? rt::edge_flag::kCcw : 0);
+    const int level = step_dir_ ? (ccw ? kDirLevelCcw : kDirLevelCw) : 0;
+    if (dir_level_ != level) {
+      // Step/direction: the direction line settles dir_setup_ns before the step.
+      const Nanos td = std::max(last_t_, std::max(now_, t - timing_.dir_setup_ns));
+      std::uint8_t flags = m_.base_flags;
+      if (m_.first_pending) flags |= rt::edge_flag::kFirst;
+      m_.first_pending = false;
+      stage(make_edge(td, rt::OutputLine::kDir, static_cast<std::uint8_t>(level), 0, flags));
+      dir_level_ = level;
+      t = std::max(t, td + timing_.dir_setup_ns);
+    }
+  }
+  rt::Phase ph = rt::Phase::kCruise;
+  if (!from_rest && dir == f.dir) {
+    if (v > f.v * (1.0 + 1e-9)) ph = rt::Phase::kAccel;
+    if (v < f.v * (1.0 - 1e-9)) ph = rt::Phase::kDecel;
+  }
+  const auto flags = static_cast<std::uint8_t>(m_.base_flags | static_cast<std::uint8_t>(ph));
+  std::uint8_t lead = flags;
+  if (m_.first_pending) {
+    lead |= rt::edge_flag::kFirst;
+    m_.first_pending = false;
+  }
+  stage(make_edge(t, m_.line, 1, static_cast<std::int8_t>(dir), lead));
+  // The trailing edge goes with it (the next step is not known yet): the configured width, or
+  // half the shortest period the next step can come at.
+  const double v_up = s.accel > 0.0 ? std::sqrt(v * v + 2.0 * s.accel) : std::max(v, cap);
+  const Nanos w = std::max<Nanos>(1, std::min(timing_.step_pulse_ns, to_ns(0.5 / v_up)));
+  stage(make_edge(t + w, m_.line, 0, 0, flags));
+  const std::int64_t k = m_.k + 1;
+  history_[static_cast<std::size_t>(k) & (kHistory - 1)] = t;
+  m_.k = k;
+  m_.tk_ns = t;
+  m_.k_flags = flags;
+  f.pos += dir;
+  f.dir = dir;
+  f.v = v;
+  return true;
 }
 
 }  // namespace stepmod::planner

@@ -64,6 +64,16 @@ class AxisPlanner {
     rt::OutputLine line = rt::OutputLine::kStep;
     std::uint8_t base_flags = 0;  // kMotion | kCcw
     bool first_pending = true;    // kFirst not yet given to an edge
+    bool follow = false;          // a follow motion (FollowSpec): steps come from follow_step
+  };
+
+  // The servo state of a follow motion (encoder follower).
+  struct FollowState {
+    FollowSpec spec;          // latest target, speed and ramps
+    std::int64_t pos = 0;     // net steps planned (CW positive) since the motion's start
+    int dir = 0;              // sense of the newest step: +1 CW, -1 CCW, 0 before the first
+    double v = 0.0;           // speed of the newest step (steps/s); 0 = at rest
+    bool finishing = false;   // kStop seen: end as soon as the axis rests on its target
   };
 
   void start_motion(const Command& c, Nanos now) noexcept;
@@ -74,6 +84,11 @@ class AxisPlanner {
   void check_abort() noexcept;
   void set_gpo(bool level, Nanos now) noexcept;
   void set_pulse_format(bool step_dir, Nanos now) noexcept;
+  void follow_update(const Command& c) noexcept;
+  // Plans the next step of the follow motion (or ends it); false when there is nothing to do.
+  bool follow_step() noexcept;
+  // Ends the follow motion where it is (its steps' trailing edges are already staged).
+  void follow_finish() noexcept;
 
   // Ends the motion on its newest planned step (kLast on that step's trailing edge).
   void finish_at_frontier() noexcept;
@@ -105,6 +120,8 @@ class AxisPlanner {
   std::uint32_t seen_abort_ = 0;
 
   Motion m_;
+  FollowState f_;
+  Nanos now_ = 0;  // time of the latest apply/fill (a follow step from rest starts after it)
   PhaseList phases_;
   StepSolver solver_;
 

@@ -45,6 +45,20 @@ class MotionPort {
     c.blend = b;
     return start(c);
   }
+  // Encoder follower: a follow motion (FollowSpec), then its new targets. stop() ends it once it
+  // has reached its target and is at rest; immediate_stop() cuts it.
+  std::uint32_t start_follow(const FollowSpec& f) noexcept {
+    Command c;
+    c.kind = CommandKind::kFollow;
+    c.follow = f;
+    return start(c);
+  }
+  bool follow(const FollowSpec& f) noexcept {
+    Command c;
+    c.kind = CommandKind::kFollowUpdate;
+    c.follow = f;
+    return send(c);
+  }
   bool change_speed(double vp, Ramp accel, Ramp decel) noexcept {
     Command c;
     c.kind = CommandKind::kChangeSpeed;

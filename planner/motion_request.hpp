@@ -60,6 +60,23 @@ struct BlendSpec {
   Ramp final_decel;
 };
 
+// Encoder follower (3601 fw 4.1, digest 7.12): a motion without an end whose goal moves. `target`
+// is the net step count (CW positive) from the follow motion's start that the axis must reach; the
+// module sends a new target as the master encoder counts. The planner closes the gap like a
+// velocity servo: each step is taken at the highest speed the ramps allow that still lets the axis
+// stop on the target (speed^2 <= vs^2 + 2 decel (remaining - 1)), so the steps never run ahead of
+// the known target unless the target moves back; a target behind the axis is reached by
+// decelerating to vs, reversing and following again. The count is exact: the axis ends on the
+// last target it was given.
+struct FollowSpec {
+  std::int64_t target = 0;
+  double vs = 1.0;             // speed jumped to from rest and decelerated to (starting speed)
+  double vmax = 1'000'000.0;   // speed limit with a non-zero accel
+  double speed = 1.0;          // accel = 0: the speed pending steps are output at (the master's)
+  double accel = 0.0;          // steps/s^2; 0 = jump to `speed`
+  double decel = 0.0;          // steps/s^2; 0 = stop (and reverse) without a ramp
+};
+
 enum class CommandKind : std::uint8_t {
   kMove,           // start `move` as motion `epoch`
   kRun,            // start `run` as motion `epoch`
@@ -70,6 +87,8 @@ enum class CommandKind : std::uint8_t {
   kAbort,          // immediate stop of `epoch` (the pulse thread already drops its edges)
   kSetGpo,         // general-purpose output level `level` (3602)
   kSetPulseFormat, // `level` = true: step + direction outputs, false: CW + CCW pulse outputs
+  kFollow,         // start `follow` as motion `epoch` (encoder follower; ends with kStop/kAbort)
+  kFollowUpdate,   // follow motion `epoch`: new target, speed and ramps from `follow`
 };
 
 struct Command {
@@ -83,6 +102,7 @@ struct Command {
   Nanos t = 0;
   bool level = false;
   BlendSpec blend;
+  FollowSpec follow;
 };
 
 }  // namespace stepmod::planner
