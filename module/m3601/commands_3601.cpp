@@ -14,6 +14,7 @@ namespace stepmod::module::m3601 {
 void Personality3601::handle_levels(const ImageWords& out) {
   const auto msw = static_cast<std::uint16_t>(out.w[out_word::kMsw]);
   if (activity_ != Activity::kManual || stop_cause_ != StopCause::kNone) return;
+  if (manual_owns_release()) return;  // one-shot / registration: manual_scan (manual_3601.cpp)
   const std::uint16_t bit =
       dir_ == planner::Direction::kCw ? cmd_msw::kManualCw : cmd_msw::kManualCcw;
   if (!(msw & bit)) {

@@ -67,7 +67,7 @@ void Personality3601::command_mode_scan(const ImageWords& out, std::uint16_t msw
     if (rising & (cmd_msw::kCommandMask | cmd_msw::kReserved14)) handle_command_edge(out, rising);
     return;
   }
-  manual_scan(out);
+  manual_scan(out, now);
   encoder_scan(out);
   if (activity_ == Activity::kHoming) homing_scan(now);
   blend_programming_scan(out);
@@ -105,6 +105,9 @@ void Personality3601::enter_command_mode() {
   config_mode_ = false;
   // Edges are detected against the command words from here on, not the configuration words.
   prev_msw_ = 0;
+  // 3601 Ch.4 "Registration Move": the minimum registration distance is reset by every
+  // configuration (3601-LSW-01 then reads 0).
+  min_registration_ = 0;
   blend_erase();  // 3601-CE-20: any configuration erases the stored blend profile
   if (!pending_) {
     configured_ = false;  // CfgE stays set; commands are refused until a valid configuration
@@ -203,6 +206,7 @@ void Personality3601::compose_command_image(ImageWords& in) const {
     if (phase == rt::Phase::kAccel) msw |= status_msw::kAccelerating;
     if (phase == rt::Phase::kDecel) msw |= status_msw::kDecelerating;
   }
+  msw |= manual_status_msw();  // 3601-DIR-01: a one-shot's direction while its bit is held
   if (status_.hold) msw |= status_msw::kHoldState;
   // 3601-STP-N1: never together with MC, AH or Hld.
   if (status_.stopped && !status_.move_complete && !status_.at_home && !status_.hold) {

@@ -77,12 +77,24 @@ class Personality3601 final : public Personality {
   // ==== Manual and registration moves (manual_3601.cpp) =======================================
   // Rising edge of a manual-move bit (without the follower bit).
   void command_manual(const ImageWords& out, planner::Direction dir);
-  // Every command-mode scan: runtime changes of speed/accel/decel/target (3601-CE-17/19/30..33).
-  void manual_scan(const ImageWords& out);
+  // Every command-mode scan: runtime changes of speed/accel/decel/target (3601-CE-17/19/30..33),
+  // the release of a one-shot or registration move's bit, the registration trigger at `now`.
+  void manual_scan(const ImageWords& out, Nanos now);
   // Command LSW bit 10 rising with MSW = 0: store the minimum registration distance.
   void command_min_registration(const ImageWords& out);
   // An input edge during a manual/registration move; true if it was fully handled here.
   bool manual_on_input(const gpio::InputEvent& e, bool now_active);
+  // Status MSW direction bit of a one-shot manual move whose bit is still held (3601-DIR-01).
+  std::uint16_t manual_status_msw() const noexcept;
+  // True while the manual move's own bit release is handled by manual_scan (one-shot,
+  // registration), not by handle_levels' plain controlled stop.
+  bool manual_owns_release() const noexcept;
+  // Registration helpers (manual_3601.cpp).
+  bool registration_start_allowed(std::int32_t count, double vp, const planner::Ramp& decel);
+  void manual_runtime_checks(const ImageWords& out);
+  void manual_error_stop();
+  void registration_check(Nanos now, Nanos present_since, StopCause cause);
+  std::int64_t registration_steps_at(Nanos t) const noexcept;
   // ==== end manual and registration ============================================================
 
   // ==== Homing (homing_3601.cpp) ===============================================================
@@ -176,6 +188,24 @@ class Personality3601 final : public Personality {
   // ==== State of the features in their own files: each block belongs to its file. ==========
   // -- manual_3601.cpp --
   std::int32_t min_registration_ = 0;  // minimum registration distance; 0 = off (LSW bit 10)
+  enum class ManualKind : std::uint8_t { kPlain, kOneShot, kRegistration };
+  struct ManualRun {
+    ManualKind kind = ManualKind::kPlain;
+    bool ramped = false;                  // initial Vp > Vs: the speed may change on the fly
+    std::uint16_t bit = 0;                // the command MSW bit that keeps it running
+    std::array<std::int32_t, 8> words{};  // words 0..7 at the start (4..7: after a change)
+    std::int32_t vp = 0;                  // programmed speed in force
+    // Registration only:
+    std::int32_t count = 0;          // steps output after the trigger (R)
+    std::int32_t dmin = 0;           // minimum distance in force at the start
+    std::int64_t start_steps = 0;    // pulse count at the start
+    bool triggered = false;          // the trigger has been acted on (stop_after sent)
+    Nanos released_since = -1;       // scan that first saw the bit reset
+    Nanos external_since = -1;       // time the External input became active
+    Nanos checked_until = -1;        // the count is known <= Dmin up to this time
+  };
+  ManualRun manual_;
+  bool one_shot_held_ = false;  // a one-shot's bit still held: direction bit stays on (DIR-01)
   // -- homing_3601.cpp --
   // -- blend_3601.cpp --
   planner::BlendSpec blend_profile_{};   // stored profile (dir and vs are set by Run Blend)
