@@ -175,6 +175,7 @@ void Personality3601::command_move(const ImageWords& out, bool absolute) {
 
 // Hold (MSW bit 2): 3601 manual Ch.4 "Hold Move".
 void Personality3601::command_hold() {
+  if (activity_ == Activity::kEncoderMove) return;  // A4: ignored, no CE (encoder_3601.cpp)
   if (activity_ == Activity::kMove) {
     // A hold already under way (or the External input's) needs nothing more.
     if (stop_cause_ == StopCause::kNone) {
@@ -276,6 +277,8 @@ void Personality3601::command_preset_position(const ImageWords& out) {
   }
   set_position(*value);
   status_.position_invalid = false;  // 3601-PI-C1; 3601-MC-03: MC is left as it is
+  // Digest 7.12: with diagnostic feedback the encoder register (own pulse count) is preset too.
+  if (cfg_.has(cfg_msw::kDiagnosticFeedback)) encoder_ = *value;
 }
 
 // Reset Errors (MSW bit 11): clears CE, IE, HI and IP, never PI or CfgE (A7).

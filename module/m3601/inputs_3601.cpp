@@ -54,13 +54,14 @@ void Personality3601::on_input(const gpio::InputEvent& e) {
     // 3601-IE-02 / PI-04 / STP-04: absolute and relative moves stop at either limit; a manual
     // move only at the limit in its direction of travel, so that it can be driven off a limit.
     const bool in_travel_direction = cw_limit == (dir_ == planner::Direction::kCw);
-    const bool either_limit = activity_ == Activity::kMove || activity_ == Activity::kBlend;
+    const bool either_limit = activity_ == Activity::kMove || activity_ == Activity::kBlend ||
+                              activity_ == Activity::kEncoderMove;  // digest 7.7
     if (either_limit || in_travel_direction) fault_stop();  // blends too (3601-IE-02)
     return;
   }
   // Digest 7.10 rule 8: blends ignore the External input.
   if (now_active && e.line == InputLine::kExternal && stop_cause_ == StopCause::kNone &&
-      activity_ != Activity::kBlend) {
+      activity_ != Activity::kBlend && activity_ != Activity::kFollower) {  // 7.6: no effect
     // 3601-HLD-02: a controlled stop to the Hold state for absolute/relative moves; a
     // controlled stop (Stopped) for manual moves (digest 7.6).
     stop_cause_ = StopCause::kExternal;

@@ -133,6 +133,18 @@ class Personality3601 final : public Personality {
   void encoder_scan(const ImageWords& out);
   // After every encoder count change (X4 decoding or diagnostic feedback), at the edge's time.
   void encoder_changed(Nanos t);
+  // Encoder move: the target crossed in the direction of travel starts the deceleration.
+  void encoder_move_watch();
+  // Follower helpers: the per-scan rules, entering (false after a CE), the parameter words
+  // (false after a CE), the planner's follow motion, leaving (Stopped, 3601-STP-05).
+  void follower_scan(const ImageWords& out, std::uint16_t msw);
+  bool follower_enter();
+  bool follower_params(const ImageWords& out);
+  planner::FollowSpec follower_spec() const noexcept;
+  void follower_start_motion();
+  void follower_send(Nanos t, bool force);
+  void follower_cut();   // a CE while following: output stops at once, follower mode is left
+  void follower_exit();
   // ==== end encoder ============================================================================
 
   // Motion helpers.
@@ -218,6 +230,30 @@ class Personality3601 final : public Personality {
   bool blend_ack_ = false;               // status LSW bit 9
   bool blend_hold_error_ = false;        // CE was set by a Hold during the running blend
   // -- encoder_3601.cpp --
+  std::int64_t encoder_target_ = 0;   // encoder move: the count at which deceleration starts
+  bool encoder_watch_ = false;        // encoder move: the target is still being watched
+  bool encoder_stop_pending_ = false; // encoder move: its stop could not be queued yet
+  std::int64_t diag_steps_ = 0;       // diagnostic feedback: pulse count already counted
+  struct Follower {
+    std::uint16_t dir_bit = 0;        // MSW bit in force: 7 same sense, 8 reverse; 0 = no output
+    int sense = 0;                    // +1 same, -1 reverse, 0 no output
+    std::int32_t mul = 1;             // word 2
+    std::int32_t div = 1;             // word 3
+    std::int32_t accel = 0;           // word 6, steps/ms/s (0 = jump)
+    std::int32_t decel = 0;           // word 7
+    std::int64_t rem = 0;             // fraction of a step owed, in 1/div steps (0 <= rem < div)
+    std::int64_t last_encoder = 0;    // encoder count already turned into steps
+    std::int64_t target = 0;          // pulse count (motion_.steps()) the axis must reach
+    std::int64_t base = 0;            // pulse count at the running follow motion's start
+    bool running = false;             // our follow motion takes new targets (not told to stop)
+    bool motion = false;              // our follow motion may still be busy
+    bool leaving = false;             // LSW bit 7 cleared: leave once the owed steps are out
+    bool dirty = false;               // target or parameters not yet sent to the planner
+    Nanos sent_t = 0;                 // time of the last update sent from an encoder edge
+    Nanos count_t = 0;                // time of the last encoder count
+    double speed = 0.0;               // master's rate x ratio (steps/s); 0 = not known yet
+  };
+  Follower follow_;
 };
 
 }  // namespace stepmod::module::m3601
