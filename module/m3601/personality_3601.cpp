@@ -37,6 +37,7 @@ void Personality3601::scan(const ImageWords& out, ImageWords& in, Nanos now) {
     if (moving()) {
       if (!config_after_motion_) status_.command_error = true;
       config_after_motion_ = true;
+      if (activity_ == Activity::kHoming) homing_timers(now);  // its 2-s pauses go on meanwhile
     } else {
       if (config_after_motion_) status_.command_error = false;
       config_after_motion_ = false;

@@ -105,6 +105,16 @@ class Personality3601 final : public Personality {
   void homing_on_input(const gpio::InputEvent& e, bool was_active, bool now_active);
   // A motion of the homing sequence has ended (the pulse thread finished or aborted it).
   void homing_motion_ended(StopCause cause);
+  // The 2-s pauses; also called while the configuration-mode bit waits for the end (CE-01).
+  void homing_timers(Nanos now);
+  // Homing internals (homing_3601.cpp): the step tables' events and actions.
+  friend struct HomingTable;
+  enum class HomingStep : std::uint8_t;
+  enum class HomingEvent : std::uint8_t;
+  void homing_event(HomingEvent ev);
+  void homing_limit(bool ahead);
+  bool homing_run(planner::Direction d, bool creep);
+  void homing_fail();
   // ==== end homing =============================================================================
 
   // ==== Blend moves (blend_3601.cpp) ===========================================================
@@ -219,6 +229,36 @@ class Personality3601 final : public Personality {
   ManualRun manual_;
   bool one_shot_held_ = false;  // a one-shot's bit still held: direction bit stays on (DIR-01)
   // -- homing_3601.cpp --
+  // The homing sequence under way (digest 7.11; A12: the step lists are tables in the .cpp).
+  enum class HomingStep : std::uint8_t {
+    kSearch,       // Vp toward the commanded direction, looking for home / proximity
+    kApproach,     // proximity seen: slowing to (or at) Vs, looking for the final edge
+    kFoundStop,    // H-A: home found, controlled stop to Vs
+    kPause1,       // 2 s before reversing (after the found-stop or an end limit)
+    kReverse,      // Vp opposite, until the home (proximity) signal is passed
+    kReverseStop,  // controlled stop after passing it
+    kPause2,       // 2 s before the creep
+    kCreep,        // Vs (no ramp) toward the commanded direction
+    kLimitStop,    // immediate stop at the end limit ahead (H-C)
+    kFinishing,    // immediate stop at the home event; completes when the motion has ended
+  };
+  enum class HomingEvent : std::uint8_t {
+    kHomeRise, kHomeFall, kProxRise, kProxFall, kMarker, kMotionEnd, kPauseOver
+  };
+  struct Homing {
+    planner::Direction dir = planner::Direction::kCw;  // commanded direction
+    HomingStep step = HomingStep::kSearch;
+    std::uint8_t variant = 0;       // index of the step table (homing option 1..4, minus 1)
+    bool segment = false;           // a motion of the sequence is in progress
+    bool limit_reversed = false;    // reversed from the end limit ahead (H-C) or started at it
+    bool limit_error = false;       // ended by a limit error (no Stopped, 3601-STP-04)
+    bool prox = false;              // backplane proximity bit as last seen
+    Nanos pause_end = -1;           // end of the running pause; -1: starts at the next scan
+    double vp = 0;
+    planner::Ramp accel;
+    planner::Ramp decel;
+  };
+  Homing homing_;
   // -- blend_3601.cpp --
   planner::BlendSpec blend_profile_{};   // stored profile (dir and vs are set by Run Blend)
   bool blend_stored_ = false;            // a complete, valid profile is stored
