@@ -236,24 +236,16 @@ void Personality3601::command_run_blend(const ImageWords& out, planner::Directio
     return;
   }
   // 3601-CE-21: target, speed, accel and decel words must be 0.
-  for (unsigned w = out_word::kTargetMsw; w <= out_word::kDecel; ++w) {
-    if (out.w[w] != 0) {
-      reject();
-      return;
-    }
+  if (!words_zero(out, out_word::kTargetMsw, out_word::kDecel)) {
+    reject();
+    return;
   }
   // 3601-CE-15: the command LSW must be 0 with Run Blend.
   if (lsw_ != 0) {
     reject();
     return;
   }
-  // A15: no move starts while the E-stop is active or toward an active end limit.
-  if (inputs_.active(gpio::InputLine::kEStop) ||
-      inputs_.active(dir == planner::Direction::kCw ? gpio::InputLine::kCwLimit
-                                                    : gpio::InputLine::kCcwLimit)) {
-    status_.input_error = true;
-    return;
-  }
+  if (inputs_block_start(dir)) return;  // A15
   planner::BlendSpec spec = blend_profile_;
   spec.dir = dir;  // + = CW, - = CCW; a profile never reverses (digest 7.10 rule 6)
   spec.vs = cfg_.starting_speed;
@@ -263,11 +255,7 @@ void Personality3601::command_run_blend(const ImageWords& out, planner::Directio
   }
   // A new move clears the previous move's outcome (3601-MC-03, HLD-C1, IE-C1, STP-C1). The
   // position need not be valid: PI is left as it is (digest 7.10 rule 6).
-  status_.move_complete = false;
-  status_.hold = false;
-  status_.stopped = false;
-  status_.at_home = false;
-  status_.input_error = false;
+  clear_move_outcome();
   activity_ = Activity::kBlend;
   dir_ = dir;
   move_decel_ = spec.final_decel;  // CE-22 brings the blend down with it

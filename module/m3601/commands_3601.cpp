@@ -94,6 +94,39 @@ std::optional<Personality3601::Profile> Personality3601::read_profile(const Imag
                  {rate_from_word(decel), shape}};
 }
 
+// 3601-HLD-03: with the External input active an absolute/relative move (or its resumption)
+// outputs one step in the commanded direction, then holds.
+void Personality3601::start_abs_rel(std::int64_t steps, const Profile& p) {
+  if (inputs_.active(gpio::InputLine::kExternal)) {
+    if (start_move_steps(steps < 0 ? -1 : 1, p)) stop_cause_ = StopCause::kExternal;
+    return;
+  }
+  start_move_steps(steps, p);
+}
+
+bool Personality3601::inputs_block_start(planner::Direction dir) {
+  const auto limit =
+      dir == planner::Direction::kCw ? gpio::InputLine::kCwLimit : gpio::InputLine::kCcwLimit;
+  if (!inputs_.active(gpio::InputLine::kEStop) && !inputs_.active(limit)) return false;
+  status_.input_error = true;
+  return true;
+}
+
+void Personality3601::clear_move_outcome() noexcept {
+  status_.move_complete = false;
+  status_.hold = false;
+  status_.stopped = false;
+  status_.at_home = false;
+  status_.input_error = false;
+}
+
+bool Personality3601::words_zero(const ImageWords& out, unsigned first, unsigned last) noexcept {
+  for (unsigned w = first; w <= last; ++w) {
+    if (out.w[w] != 0) return false;
+  }
+  return true;
+}
+
 bool Personality3601::start_move_steps(std::int64_t steps, const Profile& p) {
   planner::MoveSpec spec;
   spec.steps = steps < 0 ? -steps : steps;
@@ -145,32 +178,14 @@ void Personality3601::command_move(const ImageWords& out, bool absolute) {
   }
   const std::int64_t steps = absolute ? *target - position() : *target;
   const planner::Direction dir = steps < 0 ? planner::Direction::kCcw : planner::Direction::kCw;
-  // A15: no move starts while the E-stop is active or toward an active end limit.
-  if (inputs_.active(gpio::InputLine::kEStop) ||
-      inputs_.active(dir == planner::Direction::kCw ? gpio::InputLine::kCwLimit
-                                                    : gpio::InputLine::kCcwLimit)) {
-    status_.input_error = true;
-    return;
-  }
-  // A new move clears the previous move's outcome (3601-MC-03, HLD-C1, IE-C1, STP-C1).
-  status_.move_complete = false;
-  status_.hold = false;
-  status_.stopped = false;
-  status_.at_home = false;
-  status_.input_error = false;
+  if (inputs_block_start(dir)) return;
+  clear_move_outcome();
   move_target_ = absolute ? *target : position() + *target;
   if (steps == 0) {
     status_.move_complete = true;  // already at the target: nothing to output
     return;
   }
-  // 3601-HLD-03: with the External input active the move outputs one step, then holds.
-  if (inputs_.active(gpio::InputLine::kExternal)) {
-    if (start_move_steps(dir == planner::Direction::kCw ? 1 : -1, *profile)) {
-      stop_cause_ = StopCause::kExternal;
-    }
-    return;
-  }
-  start_move_steps(steps, *profile);
+  start_abs_rel(steps, *profile);
 }
 
 // Hold (MSW bit 2): 3601 manual Ch.4 "Hold Move".
@@ -210,12 +225,7 @@ void Personality3601::command_resume(const ImageWords& out) {
   const std::int64_t remaining = held_.target - position();
   const planner::Direction dir =
       remaining < 0 ? planner::Direction::kCcw : planner::Direction::kCw;
-  if (inputs_.active(gpio::InputLine::kEStop) ||
-      inputs_.active(dir == planner::Direction::kCw ? gpio::InputLine::kCwLimit
-                                                    : gpio::InputLine::kCcwLimit)) {
-    status_.input_error = true;  // A15
-    return;
-  }
+  if (inputs_block_start(dir)) return;
   status_.hold = false;
   status_.input_error = false;
   move_target_ = held_.target;
@@ -223,14 +233,8 @@ void Personality3601::command_resume(const ImageWords& out) {
     status_.move_complete = true;
     return;
   }
-  if (inputs_.active(gpio::InputLine::kExternal)) {
-    // 7.5: if the External input is still active the move again yields one step and holds.
-    if (start_move_steps(dir == planner::Direction::kCw ? 1 : -1, *profile)) {
-      stop_cause_ = StopCause::kExternal;
-    }
-    return;
-  }
-  start_move_steps(remaining, *profile);
+  // 7.5: if the External input is still active the move again yields one step and holds.
+  start_abs_rel(remaining, *profile);
 }
 
 // Immediate Stop (MSW bit 4): no deceleration; position invalid. A6: at rest nothing changes.
@@ -259,11 +263,9 @@ void Personality3601::command_preset_position(const ImageWords& out) {
     return;
   }
   // 3601-CE-09: speed, accel and decel words must be 0.
-  for (unsigned w = out_word::kSpeedMsw; w <= out_word::kDecel; ++w) {
-    if (out.w[w] != 0) {
-      reject();
-      return;
-    }
+  if (!words_zero(out, out_word::kSpeedMsw, out_word::kDecel)) {
+    reject();
+    return;
   }
   // 3601-CE-15: the command LSW must be 0.
   if (lsw_ != 0) {

@@ -41,19 +41,9 @@ void Personality3601::command_encoder_move(const ImageWords& out, bool absolute)
   const std::int64_t goal = absolute ? static_cast<std::int64_t>(*target) : encoder_ + *target;
   const std::int64_t counts = goal - encoder_;
   const planner::Direction dir = counts < 0 ? planner::Direction::kCcw : planner::Direction::kCw;
-  // A15: no move starts while the E-stop is active or toward an active end limit.
-  if (inputs_.active(gpio::InputLine::kEStop) ||
-      inputs_.active(dir == planner::Direction::kCw ? gpio::InputLine::kCwLimit
-                                                    : gpio::InputLine::kCcwLimit)) {
-    status_.input_error = true;
-    return;
-  }
+  if (inputs_block_start(dir)) return;  // A15
   // A new move clears the previous move's outcome (3601-MC-03, HLD-C1, IE-C1, STP-C1).
-  status_.move_complete = false;
-  status_.hold = false;
-  status_.stopped = false;
-  status_.at_home = false;
-  status_.input_error = false;
+  clear_move_outcome();
   if (counts == 0) {
     status_.move_complete = true;  // already on the count: nothing to output
     return;
@@ -109,11 +99,9 @@ void Personality3601::command_preset_encoder(const ImageWords& out) {
     return;
   }
   // 3601-CE-09: speed, accel and decel words must be 0.
-  for (unsigned w = out_word::kSpeedMsw; w <= out_word::kDecel; ++w) {
-    if (out.w[w] != 0) {
-      reject();
-      return;
-    }
+  if (!words_zero(out, out_word::kSpeedMsw, out_word::kDecel)) {
+    reject();
+    return;
   }
   // 3601-CE-15: the command LSW must be 0.
   if (lsw_ != 0) {
@@ -224,11 +212,7 @@ bool Personality3601::follower_enter() {
   }
   // Entering is the start of a move operation: the previous outcome is cleared (3601-MC-03,
   // HLD-C1, IE-C1, STP-C1).
-  status_.move_complete = false;
-  status_.hold = false;
-  status_.stopped = false;
-  status_.at_home = false;
-  status_.input_error = false;
+  clear_move_outcome();
   activity_ = Activity::kFollower;
   stop_cause_ = StopCause::kNone;
   dir_ = planner::Direction::kCw;

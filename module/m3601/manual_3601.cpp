@@ -28,17 +28,8 @@ void Personality3601::command_manual(const ImageWords& out, planner::Direction d
   if (registration && !registration_start_allowed(*target, profile->vp, profile->decel)) return;
   // 3601-IE-03: a manual move toward an active end limit raises IE and does not move; so does
   // one with the E-stop active (A15).
-  if (inputs_.active(gpio::InputLine::kEStop) ||
-      inputs_.active(dir == planner::Direction::kCw ? gpio::InputLine::kCwLimit
-                                                    : gpio::InputLine::kCcwLimit)) {
-    status_.input_error = true;
-    return;
-  }
-  status_.move_complete = false;
-  status_.hold = false;
-  status_.stopped = false;
-  status_.at_home = false;
-  status_.input_error = false;
+  if (inputs_block_start(dir)) return;
+  clear_move_outcome();
   activity_ = Activity::kManual;
   dir_ = dir;
   move_decel_ = profile->decel;
@@ -328,11 +319,9 @@ void Personality3601::command_min_registration(const ImageWords& out) {
     reject();
     return;
   }
-  for (unsigned w = out_word::kSpeedMsw; w <= out_word::kDecel; ++w) {
-    if (out.w[w] != 0) {
-      reject();
-      return;
-    }
+  if (!words_zero(out, out_word::kSpeedMsw, out_word::kDecel)) {
+    reject();
+    return;
   }
   // 3601-CE-25: outside 0 ... 8,388,607 or negative (CE only; the value in force is kept).
   const auto d = target_words(out);

@@ -167,6 +167,14 @@ class Personality3601 final : public Personality {
   // CE + IP for an out-of-range value (CE-04/IP-02) or Vp < Vs (CE-05/IP-01) when `ramped`.
   std::optional<Profile> read_profile(const ImageWords& out, bool ramped);
   bool start_move_steps(std::int64_t steps, const Profile& p);
+  void start_abs_rel(std::int64_t steps, const Profile& p);
+  // A15: no move starts while the E-stop is active or toward an active end limit. True (with
+  // Input Error set) when the move must not start.
+  bool inputs_block_start(planner::Direction dir);
+  // A new move clears the previous move's outcome (3601-MC-03, HLD-C1, IE-C1, STP-C1, AH-01).
+  void clear_move_outcome() noexcept;
+  // Whether output words first..last are all 0 (the "must be 0" rules of the command table).
+  static bool words_zero(const ImageWords& out, unsigned first, unsigned last) noexcept;
   void immediate_stop(StopCause cause);
   void fault_stop();  // limit/E-stop: immediate stop, IE, PI (digest 7.7)
   bool moving() const noexcept { return activity_ != Activity::kIdle; }
