@@ -184,12 +184,7 @@ void Personality3601::command_home(const ImageWords& out, planner::Direction dir
     return;
   }
 
-  // A new move clears the previous move's outcome (3601-MC-03, HLD-C1, STP-C1, AH-01, IE-C1).
-  status_.move_complete = false;
-  status_.hold = false;
-  status_.stopped = false;
-  status_.at_home = false;
-  status_.input_error = false;
+  clear_move_outcome();
   activity_ = Activity::kHoming;
   homing_.limit_reversed = limit_ahead;
   homing_.step = reverse_first ? HomingStep::kReverse : HomingStep::kSearch;
