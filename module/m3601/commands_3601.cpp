@@ -255,6 +255,21 @@ void Personality3601::fault_stop() {
   status_.input_error = true;
 }
 
+// The value of Preset Position / Preset Encoder (words 2-3); nullopt after rejecting the command.
+std::optional<std::int32_t> Personality3601::preset_value(const ImageWords& out) {
+  // 3601-CE-09: speed, accel and decel words must be 0; 3601-CE-15: the command LSW must be 0.
+  if (!words_zero(out, out_word::kSpeedMsw, out_word::kDecel) || lsw_ != 0) {
+    reject();
+    return std::nullopt;
+  }
+  const auto value = target_words(out);
+  if (!value || *value < kMinTarget || *value > kMaxTarget) {
+    reject();  // 3601-CE-04
+    return std::nullopt;
+  }
+  return value;
+}
+
 // Preset Position (MSW bit 9): 3601 manual Ch.4 "Preset Position".
 void Personality3601::command_preset_position(const ImageWords& out) {
   // The position register cannot be rewritten under a moving axis.
@@ -262,21 +277,8 @@ void Personality3601::command_preset_position(const ImageWords& out) {
     reject();
     return;
   }
-  // 3601-CE-09: speed, accel and decel words must be 0.
-  if (!words_zero(out, out_word::kSpeedMsw, out_word::kDecel)) {
-    reject();
-    return;
-  }
-  // 3601-CE-15: the command LSW must be 0.
-  if (lsw_ != 0) {
-    reject();
-    return;
-  }
-  const auto value = target_words(out);
-  if (!value || *value < kMinTarget || *value > kMaxTarget) {
-    reject();  // 3601-CE-04
-    return;
-  }
+  const auto value = preset_value(out);
+  if (!value) return;
   set_position(*value);
   status_.position_invalid = false;  // 3601-PI-C1; 3601-MC-03: MC is left as it is
   // Digest 7.12: with diagnostic feedback the encoder register (own pulse count) is preset too.

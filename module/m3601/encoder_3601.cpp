@@ -98,21 +98,8 @@ void Personality3601::command_preset_encoder(const ImageWords& out) {
     reject();
     return;
   }
-  // 3601-CE-09: speed, accel and decel words must be 0.
-  if (!words_zero(out, out_word::kSpeedMsw, out_word::kDecel)) {
-    reject();
-    return;
-  }
-  // 3601-CE-15: the command LSW must be 0.
-  if (lsw_ != 0) {
-    reject();
-    return;
-  }
-  const auto value = target_words(out);
-  if (!value || *value < kMinTarget || *value > kMaxTarget) {
-    reject();  // 3601-CE-04
-    return;
-  }
+  const auto value = preset_value(out);
+  if (!value) return;
   // Not under a motion that steers by the count (the manual does not say; an encoder move's
   // target would silently move). The follower cannot get here (CE-39 / CE-15).
   if (activity_ == Activity::kEncoderMove) {

@@ -175,6 +175,7 @@ class Personality3601 final : public Personality {
   void clear_move_outcome() noexcept;
   // Whether output words first..last are all 0 (the "must be 0" rules of the command table).
   static bool words_zero(const ImageWords& out, unsigned first, unsigned last) noexcept;
+  std::optional<std::int32_t> preset_value(const ImageWords& out);
   void immediate_stop(StopCause cause);
   void fault_stop();  // limit/E-stop: immediate stop, IE, PI (digest 7.7)
   bool moving() const noexcept { return activity_ != Activity::kIdle; }
