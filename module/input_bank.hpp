@@ -30,9 +30,7 @@ class InputBank {
   bool used(gpio::InputLine l) const noexcept { return (used_ >> idx(l)) & 1u; }
 
   // Logical state: a used input at its active level. An unused input is never active (A27).
-  bool active(gpio::InputLine l) const noexcept {
-    return used(l) && active_at(l, level(l));
-  }
+  bool active(gpio::InputLine l) const noexcept { return used(l) && active_at(l, level(l)); }
   // Whether an input would be active at the given electrical level (for edge classification).
   bool active_at(gpio::InputLine l, bool level) const noexcept {
     const bool high_active = (active_high_ >> idx(l)) & 1u;

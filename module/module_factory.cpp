@@ -7,9 +7,12 @@ namespace stepmod::module {
 
 ModuleShape shape_of(ModuleType t) noexcept {
   switch (t) {
-    case ModuleType::k3601: return {t, 1, 2, 8, 8};
-    case ModuleType::k3602: return {t, 2, 2, 16, 16};
-    case ModuleType::k3202: return {t, 2, 4, 16, 16};
+    case ModuleType::k3601:
+      return {t, 1, 2, 8, 8};
+    case ModuleType::k3602:
+      return {t, 2, 2, 16, 16};
+    case ModuleType::k3202:
+      return {t, 2, 4, 16, 16};
   }
   return {t, 1, 2, 8, 8};
 }
@@ -20,9 +23,11 @@ std::unique_ptr<Personality> make_personality(ModuleType type, gpio::Backend& ba
     throw std::invalid_argument("module needs one motion port per axis");
   }
   switch (type) {
-    case ModuleType::k3601: return std::make_unique<m3601::Personality3601>(backend, *axes[0]);
+    case ModuleType::k3601:
+      return std::make_unique<m3601::Personality3601>(backend, *axes[0]);
     case ModuleType::k3602:
-    case ModuleType::k3202: break;
+    case ModuleType::k3202:
+      break;
   }
   throw std::invalid_argument("module type " + std::to_string(static_cast<unsigned>(type)) +
                               " has no personality yet (only 3601)");

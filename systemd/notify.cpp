@@ -14,8 +14,14 @@ void send([[maybe_unused]] const std::string& state) {
 }
 }  // namespace
 
-void notify_ready(const std::string& status) { send("READY=1\nSTATUS=" + status); }
-void notify_stopping() { send("STOPPING=1"); }
-void notify_status(const std::string& status) { send("STATUS=" + status); }
+void notify_ready(const std::string& status) {
+  send("READY=1\nSTATUS=" + status);
+}
+void notify_stopping() {
+  send("STOPPING=1");
+}
+void notify_status(const std::string& status) {
+  send("STATUS=" + status);
+}
 
 }  // namespace stepmod::systemd

@@ -5,12 +5,12 @@
 #include <spdlog/sinks/stdout_color_sinks.h>  // declares stderr_color_mt too
 #include <spdlog/spdlog.h>
 
+#include <pthread.h>
 #include <CLI/CLI.hpp>
 #include <atomic>
-#include <exception>
 #include <csignal>
+#include <exception>
 #include <optional>
-#include <pthread.h>
 #include <thread>
 
 #include "tools/config.hpp"
@@ -23,8 +23,7 @@ int run(int argc, char** argv) {
   std::string config_path;
   std::optional<std::string> trace_path;
   std::string log_level = "info";
-  app.add_option("--config", config_path, "module configuration (TOML, see README)")
-      ->required();
+  app.add_option("--config", config_path, "module configuration (TOML, see README)")->required();
   app.add_option("--trace", trace_path, "write every GPIO line change to this VCD file");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));

@@ -9,7 +9,6 @@
 
 namespace stepmod::module::m3601 {
 
-
 // Level-sensitive command bits: the manual move runs while its bit is held.
 void Personality3601::handle_levels(const ImageWords& out) {
   const auto msw = static_cast<std::uint16_t>(out.w[out_word::kMsw]);
@@ -47,17 +46,31 @@ void Personality3601::handle_command_edge(const ImageWords& out, std::uint16_t r
     return;
   }
   switch (rising & cmd_msw::kCommandMask) {
-    case cmd_msw::kAbsoluteMove: command_move(out, true); break;
-    case cmd_msw::kRelativeMove: command_move(out, false); break;
-    case cmd_msw::kHold: command_hold(); break;
-    case cmd_msw::kResume: command_resume(out); break;
-    case cmd_msw::kImmediateStop: command_immediate_stop(); break;
-    case cmd_msw::kFindHomeCw: command_home(out, planner::Direction::kCw); break;
-    case cmd_msw::kFindHomeCcw: command_home(out, planner::Direction::kCcw); break;
+    case cmd_msw::kAbsoluteMove:
+      command_move(out, true);
+      break;
+    case cmd_msw::kRelativeMove:
+      command_move(out, false);
+      break;
+    case cmd_msw::kHold:
+      command_hold();
+      break;
+    case cmd_msw::kResume:
+      command_resume(out);
+      break;
+    case cmd_msw::kImmediateStop:
+      command_immediate_stop();
+      break;
+    case cmd_msw::kFindHomeCw:
+      command_home(out, planner::Direction::kCw);
+      break;
+    case cmd_msw::kFindHomeCcw:
+      command_home(out, planner::Direction::kCcw);
+      break;
     case cmd_msw::kManualCw:
     case cmd_msw::kManualCcw: {
-      const auto dir = (rising & cmd_msw::kManualCw) ? planner::Direction::kCw
-                                                     : planner::Direction::kCcw;
+      const auto dir =
+          (rising & cmd_msw::kManualCw) ? planner::Direction::kCw : planner::Direction::kCcw;
       if (lsw_ & cmd_lsw::kEncoderFollower) {
         command_follower(out, dir);
       } else {
@@ -65,17 +78,28 @@ void Personality3601::handle_command_edge(const ImageWords& out, std::uint16_t r
       }
       break;
     }
-    case cmd_msw::kPresetPosition: command_preset_position(out); break;
-    case cmd_msw::kPresetEncoder: command_preset_encoder(out); break;
-    case cmd_msw::kResetErrors: command_reset_errors(out); break;
-    case cmd_msw::kRunBlendCw: command_run_blend(out, planner::Direction::kCw); break;
-    case cmd_msw::kRunBlendCcw: command_run_blend(out, planner::Direction::kCcw); break;
-    default: break;  // bits 0..13 are all handled above; 14 was refused before
+    case cmd_msw::kPresetPosition:
+      command_preset_position(out);
+      break;
+    case cmd_msw::kPresetEncoder:
+      command_preset_encoder(out);
+      break;
+    case cmd_msw::kResetErrors:
+      command_reset_errors(out);
+      break;
+    case cmd_msw::kRunBlendCw:
+      command_run_blend(out, planner::Direction::kCw);
+      break;
+    case cmd_msw::kRunBlendCcw:
+      command_run_blend(out, planner::Direction::kCcw);
+      break;
+    default:
+      break;  // bits 0..13 are all handled above; 14 was refused before
   }
 }
 
 std::optional<Personality3601::Profile> Personality3601::read_profile(const ImageWords& out,
-                                                                       bool ramped) {
+                                                                      bool ramped) {
   const auto speed = speed_words(out);
   const std::int32_t accel = static_cast<std::int16_t>(out.w[out_word::kAccel]);
   const std::int32_t decel = static_cast<std::int16_t>(out.w[out_word::kDecel]);
@@ -90,8 +114,8 @@ std::optional<Personality3601::Profile> Personality3601::read_profile(const Imag
     return std::nullopt;
   }
   const planner::AccelShape shape = shape_from_lsw(lsw_);
-  return Profile{static_cast<double>(*speed), {rate_from_word(accel), shape},
-                 {rate_from_word(decel), shape}};
+  return Profile{
+      static_cast<double>(*speed), {rate_from_word(accel), shape}, {rate_from_word(decel), shape}};
 }
 
 // 3601-HLD-03: with the External input active an absolute/relative move (or its resumption)
@@ -223,8 +247,7 @@ void Personality3601::command_resume(const ImageWords& out) {
   const auto profile = read_profile(out, true);
   if (!profile) return;
   const std::int64_t remaining = held_.target - position();
-  const planner::Direction dir =
-      remaining < 0 ? planner::Direction::kCcw : planner::Direction::kCw;
+  const planner::Direction dir = remaining < 0 ? planner::Direction::kCcw : planner::Direction::kCw;
   if (inputs_block_start(dir)) return;
   status_.hold = false;
   status_.input_error = false;

@@ -7,20 +7,30 @@ namespace stepmod::module::m3601 {
 
 std::string_view describe(ConfigFault f) noexcept {
   switch (f) {
-    case ConfigFault::kNone: return "valid";
-    case ConfigFault::kNoHoming: return "#1 no way to home (neither home input nor marker homing)";
-    case ConfigFault::kNoEndLimit: return "#2 neither CW nor CCW end limit configured";
-    case ConfigFault::kEncoderAndDiagnostic: return "#3 quadrature encoder and diagnostic feedback";
-    case ConfigFault::kMarkerWithoutEncoder: return "#4 marker homing without quadrature encoder";
-    case ConfigFault::kDiagnosticWithCwCcw: return "#5 diagnostic feedback with CW/CCW outputs";
-    case ConfigFault::kStartingSpeedRange: return "#6 starting speed outside 1..1,000,000";
-    case ConfigFault::kStartingSpeedLswRange: return "#7 starting speed LSW outside 0..999";
-    case ConfigFault::kReservedBits: return "#8 reserved configuration bit set";
+    case ConfigFault::kNone:
+      return "valid";
+    case ConfigFault::kNoHoming:
+      return "#1 no way to home (neither home input nor marker homing)";
+    case ConfigFault::kNoEndLimit:
+      return "#2 neither CW nor CCW end limit configured";
+    case ConfigFault::kEncoderAndDiagnostic:
+      return "#3 quadrature encoder and diagnostic feedback";
+    case ConfigFault::kMarkerWithoutEncoder:
+      return "#4 marker homing without quadrature encoder";
+    case ConfigFault::kDiagnosticWithCwCcw:
+      return "#5 diagnostic feedback with CW/CCW outputs";
+    case ConfigFault::kStartingSpeedRange:
+      return "#6 starting speed outside 1..1,000,000";
+    case ConfigFault::kStartingSpeedLswRange:
+      return "#7 starting speed LSW outside 0..999";
+    case ConfigFault::kReservedBits:
+      return "#8 reserved configuration bit set";
     case ConfigFault::kMarkerWithoutProximity:
       return "#9 marker homing without home input or backplane proximity";
     case ConfigFault::kMarkerWithBothProximities:
       return "#10 marker homing with both home input and backplane proximity";
-    case ConfigFault::kUnusedWordsNonZero: return "#11 unused configuration word not zero";
+    case ConfigFault::kUnusedWordsNonZero:
+      return "#11 unused configuration word not zero";
   }
   return "?";
 }

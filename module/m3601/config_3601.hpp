@@ -11,9 +11,9 @@
 namespace stepmod::module::m3601 {
 
 struct Config3601 {
-  std::uint16_t msw = 0;          // configuration bits MSW, as written (mode bit included)
-  std::uint16_t lsw = 0;          // input active levels
-  std::int16_t vs_msw = 0;        // starting speed words, as written (for the mirror)
+  std::uint16_t msw = 0;    // configuration bits MSW, as written (mode bit included)
+  std::uint16_t lsw = 0;    // input active levels
+  std::int16_t vs_msw = 0;  // starting speed words, as written (for the mirror)
   std::int16_t vs_lsw = 0;
   std::int32_t starting_speed = 0;  // steps/s
 

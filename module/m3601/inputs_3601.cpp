@@ -14,8 +14,8 @@ void Personality3601::on_input(const gpio::InputEvent& e) {
   if (e.line == InputLine::kEncA || e.line == InputLine::kEncB) {
     // X4 decoding runs on every edge so the decoder never loses the phase; the register counts
     // only while the quadrature encoder is configured (moving or not, digest 7.12).
-    const int d = quadrature_.update(inputs_.level(InputLine::kEncA),
-                                     inputs_.level(InputLine::kEncB));
+    const int d =
+        quadrature_.update(inputs_.level(InputLine::kEncA), inputs_.level(InputLine::kEncB));
     if (d != 0 && configured_ && cfg_.has(cfg_msw::kQuadratureEncoder)) {
       encoder_ += d;
       encoder_changed(e.t);
@@ -56,7 +56,7 @@ void Personality3601::on_input(const gpio::InputEvent& e) {
     const bool in_travel_direction = cw_limit == (dir_ == planner::Direction::kCw);
     const bool either_limit = activity_ == Activity::kMove || activity_ == Activity::kBlend ||
                               activity_ == Activity::kEncoderMove;  // digest 7.7
-    if (either_limit || in_travel_direction) fault_stop();  // blends too (3601-IE-02)
+    if (either_limit || in_travel_direction) fault_stop();          // blends too (3601-IE-02)
     return;
   }
   // Digest 7.10 rule 8: blends ignore the External input.

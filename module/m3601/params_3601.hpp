@@ -29,7 +29,9 @@ inline planner::AccelShape shape_from_lsw(std::uint16_t lsw) {
                                         : planner::AccelShape::kTriangularS;
 }
 
-inline bool rate_in_range(std::int32_t v) { return v >= kMinRate && v <= kMaxRate; }
+inline bool rate_in_range(std::int32_t v) {
+  return v >= kMinRate && v <= kMaxRate;
+}
 
 // Words 2-3: target position / preset value / registration count (decimal split; nullopt for an
 // LSW outside -999..999 or words of opposite signs).

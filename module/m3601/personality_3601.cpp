@@ -17,7 +17,9 @@ Personality3601::Personality3601(gpio::Backend& backend, planner::MotionPort& mo
   quadrature_.reset(inputs_.level(gpio::InputLine::kEncA), inputs_.level(gpio::InputLine::kEncB));
 }
 
-const ModuleShape& Personality3601::shape() const noexcept { return kShape; }
+const ModuleShape& Personality3601::shape() const noexcept {
+  return kShape;
+}
 
 void Personality3601::scan(const ImageWords& out, ImageWords& in, Nanos now) {
   const auto msw = static_cast<std::uint16_t>(out.w[out_word::kMsw]);

@@ -95,8 +95,14 @@ class ShmPlc {
     const auto a = ipc::codec::encode_3601(w23);
     const auto b = ipc::codec::encode_3601(w45);
     module::ImageWords o{};
-    o.w = {static_cast<std::int16_t>(msw), static_cast<std::int16_t>(lsw), a.msw, a.lsw, b.msw,
-           b.lsw, w6, w7};
+    o.w = {static_cast<std::int16_t>(msw),
+           static_cast<std::int16_t>(lsw),
+           a.msw,
+           a.lsw,
+           b.msw,
+           b.lsw,
+           w6,
+           w7};
     client_.write_outputs(o);
   }
   // An edge-triggered command, set until the module has scanned it, then cleared.
@@ -153,7 +159,9 @@ class Daemon3601 : public ::testing::Test {
 };
 
 // Ideal time of step k (s(t) = k) on the constant-acceleration ramp from vs at rate a.
-double ramp_step_time(double vs, double a, double k) { return (-vs + std::sqrt(vs * vs + 2 * a * k)) / a; }
+double ramp_step_time(double vs, double a, double k) {
+  return (-vs + std::sqrt(vs * vs + 2 * a * k)) / a;
+}
 
 TEST_F(Daemon3601, RelativeMoveExactPulsesAndProfileTiming) {
   start();
@@ -307,8 +315,9 @@ TEST(Daemon3601Config, BadConfigExitsTwoNamingTheKeyAndCreatesNothing) {
   const std::string path = std::string(dir) + "/bad.toml";
   FILE* f = std::fopen(path.c_str(), "w");
   ASSERT_NE(f, nullptr);
-  std::fputs("[module]\ntype = \"3601\"\nname = \"badcfg\"\nscan_us = 10\n[[axis]]\nstep = 1\ndir = 2\n",
-             f);
+  std::fputs(
+      "[module]\ntype = \"3601\"\nname = \"badcfg\"\nscan_us = 10\n[[axis]]\nstep = 1\ndir = 2\n",
+      f);
   std::fclose(f);
   std::string err;
   EXPECT_EQ(DaemonProcess::run_to_exit("--config " + path, &err), 2);

@@ -219,8 +219,12 @@ TEST_F(Commands3601, CE_03_MoveWhileMovingIsRefusedAndTheMoveContinues) {
 
 TEST_F(Commands3601, CE_04_ParameterOutOfRange) {
   const Move bad[] = {
-      {.target = 8'388'608},  {.target = -8'388'609}, {.target = 100, .speed = 1'000'001},
-      {.target = 100, .accel = 0}, {.target = 100, .accel = 2001}, {.target = 100, .decel = 0},
+      {.target = 8'388'608},
+      {.target = -8'388'609},
+      {.target = 100, .speed = 1'000'001},
+      {.target = 100, .accel = 0},
+      {.target = 100, .accel = 2001},
+      {.target = 100, .decel = 0},
       {.target = 100, .decel = -5},
   };
   for (const Move& p : bad) {
@@ -386,6 +390,81 @@ TEST_F(Commands3601, STP_N1_OneShotManualMoveOutputsOnePulse) {
   vm_.scans(5);
   EXPECT_FALSE(status(kStopped));
   EXPECT_EQ(motor(), 1);
+}
+
+TEST_F(Commands3601, CE_L2_ResetErrorsClearsCommandErrorAndTheOtherNonFatalErrors) {
+  command(cmd::kRelativeMove, {.target = 100, .speed = 500});  // Vp < Vs: CE + IP
+  ASSERT_TRUE(status(kCommandError));
+  ASSERT_TRUE(status(kInvalidProfile));
+  command(cmd::kResetErrors);
+  EXPECT_FALSE(status(kCommandError));
+  EXPECT_FALSE(status(kInvalidProfile));   // A7: IP too
+  EXPECT_FALSE(status(kPositionInvalid));  // ... but never PI
+}
+
+TEST_F(Commands3601, CE_L3_CommandErrorDoesNotClearItself) {
+  command(cmd::kRelativeMove, {.target = 3'000});
+  command(cmd::kResume);  // CE-08 while the move runs
+  ASSERT_TRUE(status(kCommandError));
+  ASSERT_TRUE(wait_idle());
+  vm_.scans(50);
+  // Only CE-01 (configuration) and CE-23 (Hold during a blend) clear themselves.
+  EXPECT_TRUE(status(kCommandError));
+  EXPECT_EQ(position(), 3'000);
+}
+
+TEST_F(Commands3601, IP_03_TheLongestMoveFitsTheRegisters) {
+  // A32: on the 3601 every value beyond the documented ranges is a range error (CE-04/IP-02),
+  // so no accepted move can overflow: the longest one (-8,388,608 -> 8,388,607) is planned.
+  command(cmd::kPresetPosition, {.target = -8'388'608, .speed = 0, .accel = 0, .decel = 0});
+  command(cmd::kAbsoluteMove,
+          {.target = 8'388'607, .speed = 1'000'000, .accel = 2000, .decel = 2000});
+  EXPECT_TRUE(moving());
+  EXPECT_FALSE(status(kInvalidProfile));
+  EXPECT_FALSE(status(kCommandError));
+  command(cmd::kImmediateStop);
+  ASSERT_TRUE(wait_idle());
+}
+
+TEST_F(Commands3601, MC_02_NoMoveCompleteAfterAnErrorOrAManualMove) {
+  command(cmd::kRelativeMove, {.target = 50'000});
+  vm_.run_for(300 * kNsPerMs);
+  force(gpio::InputLine::kEStop, true);
+  ASSERT_TRUE(wait_idle());
+  EXPECT_FALSE(status(kMoveComplete));  // ended with an error
+  release(gpio::InputLine::kEStop);
+  set_words(cmd::kManualCw, 0, 0, 5'000, 10, 10);
+  vm_.run_for(300 * kNsPerMs);
+  word(0) = 0;
+  ASSERT_TRUE(wait_idle());
+  EXPECT_FALSE(status(kMoveComplete));  // manual moves never set MC
+  EXPECT_TRUE(status(kStopped));
+}
+
+TEST_F(Commands3601, STP_C1_StoppedClearsWhenTheNextMoveStarts) {
+  command(cmd::kRelativeMove, {.target = 50'000});
+  vm_.run_for(200 * kNsPerMs);
+  command(cmd::kImmediateStop);
+  ASSERT_TRUE(wait_idle());
+  ASSERT_TRUE(status(kStopped));
+  command(cmd::kRelativeMove, {.target = 1'000});
+  EXPECT_FALSE(status(kStopped));
+  ASSERT_TRUE(wait_idle());
+  EXPECT_FALSE(status(kStopped));
+  EXPECT_TRUE(status(kMoveComplete));
+}
+
+TEST_F(Commands3601, HLD_C1_HoldClearsWhenANewMoveStartsInsteadOfResume) {
+  command(cmd::kRelativeMove, {.target = 30'000});
+  vm_.run_for(800 * kNsPerMs);
+  command(cmd::kHold);
+  ASSERT_TRUE(wait_idle());
+  ASSERT_TRUE(status(kHoldState));
+  command(cmd::kRelativeMove, {.target = -500});  // a completely new move, no resume
+  EXPECT_FALSE(status(kHoldState));
+  ASSERT_TRUE(wait_idle());
+  command(cmd::kResume);  // the held move is gone
+  EXPECT_TRUE(status(kCommandError));
 }
 
 TEST_F(Commands3601, MOK_01_ModuleOkAlwaysSet) {

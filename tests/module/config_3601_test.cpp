@@ -40,9 +40,13 @@ TEST_F(Config3601, CFG_01_PowerUpInCommandModeWithConfigurationError) {
   EXPECT_EQ(motor(), 0);
 }
 
-TEST_F(Config3601, CFG_02_NoWayToHome) { EXPECT_TRUE(rejected(kCwLimitUsed | kStepDirOutput)); }
+TEST_F(Config3601, CFG_02_NoWayToHome) {
+  EXPECT_TRUE(rejected(kCwLimitUsed | kStepDirOutput));
+}
 
-TEST_F(Config3601, CFG_03_NoEndLimit) { EXPECT_TRUE(rejected(kHomeUsed | kStepDirOutput)); }
+TEST_F(Config3601, CFG_03_NoEndLimit) {
+  EXPECT_TRUE(rejected(kHomeUsed | kStepDirOutput));
+}
 
 TEST_F(Config3601, CFG_04_EncoderAndDiagnosticFeedback) {
   EXPECT_TRUE(rejected(kMinimal | kQuadratureEncoder | kDiagnosticFeedback));
@@ -99,7 +103,7 @@ TEST_F(Config3601, CFG_12_UnusedWordsNotZero) {
   }
 }
 
-TEST_F(Config3601, CFG_13_ValidConfigurationClearsErrorAndInvalidatesPosition) {
+TEST_F(Config3601, CFG_13_PI_01_ValidConfigurationClearsErrorAndInvalidatesPosition) {
   configure();
   EXPECT_FALSE(status(kConfigMode));
   EXPECT_FALSE(status(kConfigurationError));

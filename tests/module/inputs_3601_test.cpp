@@ -53,7 +53,7 @@ TEST_F(Inputs3601, A27_UnusedInputReadsInactive) {
   EXPECT_EQ(motor(), 300);
 }
 
-TEST_F(Inputs3601, IE_01_EStopWhileMovingStopsImmediately) {
+TEST_F(Inputs3601, IE_01_PI_03_STP_02_EStopWhileMovingStopsImmediately) {
   command(cmd::kRelativeMove, {.target = 50'000});
   vm_.run_for(400 * kNsPerMs);
   force(InputLine::kEStop, true);
@@ -74,7 +74,7 @@ TEST_F(Inputs3601, A15_EStopActiveBlocksANewMove) {
   EXPECT_EQ(motor(), 0);
 }
 
-TEST_F(Inputs3601, IE_02_LimitDuringRelativeMoveStopsImmediately) {
+TEST_F(Inputs3601, IE_02_PI_04_STP_04_LimitDuringRelativeMoveStopsImmediately) {
   command(cmd::kRelativeMove, {.target = 200'000, .speed = 50'000, .accel = 100, .decel = 100});
   ASSERT_TRUE(wait_idle(20 * kNsPerSec));
   EXPECT_TRUE(status(kInputError));

@@ -88,7 +88,9 @@ class Plc3601 : public ::testing::Test {
     word(0) = 0;
     vm_.scans(1);
   }
-  bool moving() const { return status(m::status_msw::kMovingCw) || status(m::status_msw::kMovingCcw); }
+  bool moving() const {
+    return status(m::status_msw::kMovingCw) || status(m::status_msw::kMovingCcw);
+  }
   // Runs until the axis is at rest (not moving), at most `limit`.
   bool wait_idle(Nanos limit = 30 * kNsPerSec) {
     return vm_.run_until_true([this] { return !moving(); }, limit);

@@ -66,7 +66,9 @@ std::string read_file(const std::string& path) {
 
 }  // namespace
 
-std::string DaemonProcess::daemon_path() { return STEPMOD_DAEMON_PATH; }
+std::string DaemonProcess::daemon_path() {
+  return STEPMOD_DAEMON_PATH;
+}
 
 DaemonProcess::DaemonProcess(const std::string& toml, bool trace) {
   static std::atomic<int> counter{0};
@@ -126,7 +128,9 @@ int DaemonProcess::terminate(int timeout_ms) {
   return rc;
 }
 
-std::string DaemonProcess::log() const { return read_file(log_); }
+std::string DaemonProcess::log() const {
+  return read_file(log_);
+}
 
 int DaemonProcess::run_to_exit(const std::string& args, std::string* stderr_text) {
   char tmpl[] = "/tmp/stepmod-run-XXXXXX";

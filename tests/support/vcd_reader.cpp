@@ -36,7 +36,8 @@ Vcd read_vcd(const std::string& path) {
     if (definitions) {
       if (tok == "$timescale") {
         std::string part;
-        while (in >> part && part != "$end") vcd.timescale += (vcd.timescale.empty() ? "" : " ") + part;
+        while (in >> part && part != "$end")
+          vcd.timescale += (vcd.timescale.empty() ? "" : " ") + part;
       } else if (tok == "$var") {
         std::string type, width, id, name, end;
         in >> type >> width >> id >> name >> end;

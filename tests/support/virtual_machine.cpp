@@ -16,7 +16,9 @@ constexpr Nanos kPlannerMaxSleep = kNsPerMs;
 // The pulse engine stamps the writes it makes on its own (an immediate stop ending a pulse) with
 // its clock: in virtual time that is the machine's `now`. One machine runs at a time per thread.
 thread_local Nanos t_virtual_now = kStart;
-Nanos virtual_clock() noexcept { return t_virtual_now; }
+Nanos virtual_clock() noexcept {
+  return t_virtual_now;
+}
 }  // namespace
 
 VirtualMachineOptions default_3601() {
