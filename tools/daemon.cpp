@@ -2,6 +2,10 @@
 
 #include <spdlog/spdlog.h>
 
+#include <pthread.h>
+#include <sched.h>
+
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <thread>
@@ -106,6 +110,22 @@ void Daemon::run(const std::atomic<bool>& stop) {
                d.sim != nullptr ? "sim" : "gpiod", d.config.scan_ns / kNsPerUs);
   systemd::notify_ready("running");
 
+  // The control thread reads the input edges. The v1 GPIO uAPI keeps only 16 unread edges per
+  // line and drops further ones silently, so this thread must run as soon as an edge arrives,
+  // not when the scheduler next gives it a time slice (on a single-core board a busy process,
+  // the soft PLC for one, otherwise makes it lose edges; an E-stop edge would wait as well).
+  // Real-time, below the pulse thread; set after the other threads have been started so that
+  // they do not inherit it. The simulated machine has no such buffer: left as it is.
+  if (d.sim == nullptr) {
+    sched_param sp{};
+    sp.sched_priority = std::max(1, d.config.rt_priority - 10);
+    const int rc = pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp);
+    if (rc != 0) {
+      spdlog::warn("control thread: SCHED_FIFO priority {} refused ({}); input edges may be lost "
+                   "under load",
+                   sp.sched_priority, std::strerror(rc));
+    }
+  }
   d.control_loop(stop);
 
   systemd::notify_stopping();
