@@ -21,11 +21,13 @@ PulseEngine::PulseEngine(gpio::Backend& backend, std::span<const AxisLink> axes,
       axes_(axes.begin(), axes.end()),
       abort_seen_(axes.size(), 0),
       trace_(trace),
-      pulse_high_(axes.size(), kNoPulse) {}
+      pulse_high_(axes.size(), kNoPulse),
+      in_motion_(axes.size(), 0) {}
 
 Nanos PulseEngine::next_due() noexcept {
   Nanos best = kNever;
   int best_axis = -1;
+  bool starved = false;
   for (unsigned axis = 0; axis < axes_.size(); ++axis) {
     const AxisLink& link = axes_[axis];
     if (link.control != nullptr &&
@@ -37,6 +39,7 @@ Nanos PulseEngine::next_due() noexcept {
     // head only after it has been executed.
     drop_stale(axis);
     const Edge* e = link.edges->peek();
+    if (e == nullptr && in_motion_[axis] != 0) starved = true;
     // Strictly earlier only: on a tie the lower axis goes first, a stable order for tests.
     if (e != nullptr && e->t < best) {
       best = e->t;
@@ -44,6 +47,7 @@ Nanos PulseEngine::next_due() noexcept {
     }
   }
   next_axis_ = best_axis;
+  starved_ = starved;
   return best;
 }
 
@@ -62,6 +66,7 @@ void PulseEngine::apply_abort(unsigned axis) noexcept {
   const std::uint32_t a = link.control->abort_epoch.load(std::memory_order_acquire);
   abort_seen_[axis] = a;
   drop_stale(axis);
+  in_motion_[axis] = 0;
   // A step pulse of the aborted motion left high would be half a pulse: the drive may or may not
   // count it. End it now so the line rests at its idle level. A pulse of a newer motion (epoch >
   // a) is not ours to touch.
@@ -123,6 +128,9 @@ void PulseEngine::execute_one(Nanos write_time) noexcept {
       fb->last_step_t.store(write_time, std::memory_order_relaxed);
       fb->steps.store(steps, std::memory_order_release);
     }
+  }
+  if ((e.flags & edge_flag::kMotion) != 0) {
+    in_motion_[axis] = (e.flags & edge_flag::kLast) != 0 ? 0 : 1;
   }
   if (fb != nullptr && (e.flags & edge_flag::kMotion) != 0) {
     fb->epoch.store(e.epoch, std::memory_order_release);

@@ -40,6 +40,10 @@ class PulseEngine {
   // write, the feedback and the trace with `write_time`; lateness = write_time - edge time.
   void execute_one(Nanos write_time) noexcept;
 
+  // As of the last next_due(): some axis is in a motion (its last executed motion edge was not
+  // the motion's last) and has no edge queued: the planner is behind, an edge may come any time.
+  bool starved() const noexcept { return starved_; }
+
   LatenessStats& stats() noexcept { return stats_; }
   const LatenessStats& stats() const noexcept { return stats_; }
   // Any thread: trace records lost because the trace ring was full.
@@ -63,11 +67,13 @@ class PulseEngine {
   SpscRing<TraceRecord>* trace_;
   LatenessStats stats_;
   int next_axis_ = -1;  // axis of the edge next_due() found
+  bool starved_ = false;
   std::atomic<std::uint64_t> trace_dropped_{0};
   // Per axis: the line of a step pulse whose leading edge was written and whose trailing edge
   // was not yet (kNoPulse if none): the line an immediate stop must bring low.
   static constexpr std::uint8_t kNoPulse = 0xff;
   std::vector<std::uint8_t> pulse_high_;
+  std::vector<std::uint8_t> in_motion_;  // per axis: a motion's edges executed, not its last
   ClockFn clock_ = &monotonic_now;
 };
 

@@ -1,8 +1,11 @@
 #include "rt/pulse_thread.hpp"
 
+#include <linux/futex.h>
 #include <pthread.h>
 #include <sched.h>
 #include <sys/mman.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -29,6 +32,29 @@ inline void cpu_relax() noexcept {
   for (std::size_t i = 0; i < bytes; i += 1024) p[i] = 0;
 }
 
+// Sleeps until `deadline` (absolute CLOCK_MONOTONIC) or until `word` no longer holds `seen`
+// (FUTEX_WAIT_BITSET measures an absolute timeout on CLOCK_MONOTONIC). Returns early on a
+// signal or a spurious wake-up, which the loop tolerates: it re-reads the clock every turn.
+void futex_sleep_until(std::atomic<std::uint32_t>& word, std::uint32_t seen,
+                       Nanos deadline) noexcept {
+  static_assert(sizeof(std::atomic<std::uint32_t>) == sizeof(std::uint32_t));
+  const timespec ts = to_timespec(deadline);
+  syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&word), FUTEX_WAIT_BITSET_PRIVATE, seen,
+          &ts, nullptr, FUTEX_BITSET_MATCH_ANY);
+}
+
+// CPU time of the calling thread (a system call: read once per 100 ms only).
+Nanos thread_cpu_now() noexcept {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<Nanos>(ts.tv_sec) * kNsPerSec + ts.tv_nsec;
+}
+
+void futex_wake_all(std::atomic<std::uint32_t>& word) noexcept {
+  syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&word), FUTEX_WAKE_PRIVATE, INT32_MAX,
+          nullptr, nullptr, 0);
+}
+
 }  // namespace
 
 PulseThread::PulseThread(PulseEngine& engine, Options options)
@@ -40,21 +66,42 @@ PulseThread::~PulseThread() {
 }
 
 bool PulseThread::start() {
-  if (thread_.joinable()) return false;
+  if (joinable_) return false;
   stop_.store(false, std::memory_order_relaxed);
   ready_.store(false, std::memory_order_relaxed);
   status_ = Status{};
-  try {
-    thread_ = std::thread([this] { body(); });
-  } catch (const std::system_error&) {
-    return false;
+  // A small stack of our own: mlockall(MCL_CURRENT) makes all of it resident, and the default
+  // (RLIMIT_STACK, 8 MB) would all be.
+  pthread_attr_t attr;
+  if (pthread_attr_init(&attr) != 0) return false;
+  if (options_.stack_bytes > 0) {
+    pthread_attr_setstacksize(&attr, std::max<std::size_t>(options_.stack_bytes,
+                                                           options_.prefault_stack_bytes + 65536));
   }
+  const int rc = pthread_create(
+      &thread_, &attr,
+      [](void* self) -> void* {
+        static_cast<PulseThread*>(self)->body();
+        return nullptr;
+      },
+      this);
+  pthread_attr_destroy(&attr);
+  if (rc != 0) return false;
+  joinable_ = true;
+  pthread_setname_np(thread_, "stepmod-pulse");
   ready_.wait(false, std::memory_order_acquire);
   return true;
 }
 
 void PulseThread::join() {
-  if (thread_.joinable()) thread_.join();
+  if (!joinable_) return;
+  pthread_join(thread_, nullptr);
+  joinable_ = false;
+}
+
+void PulseThread::ring() noexcept {
+  doorbell_.fetch_add(1, std::memory_order_release);
+  futex_wake_all(doorbell_);
 }
 
 void PulseThread::body() noexcept {
@@ -70,7 +117,14 @@ void PulseThread::setup() noexcept {
   // (no CAP_IPC_LOCK and a small RLIMIT_MEMLOCK) is recorded; the thread still runs, with the
   // risk of a page fault at an edge.
   if (options_.lock_memory) {
-    if (mlockall(MCL_CURRENT | MCL_FUTURE) == 0) {
+    // MCL_ONFAULT: pages are locked as they are touched, and never paged out after, instead of
+    // every mapping being populated whole (other threads' 8 MB stacks, whole libraries: twice
+    // the resident memory). Everything the loop uses was touched before it starts (rings and
+    // statistics are initialised when allocated; the stack is prefaulted below); a code page
+    // run for the first time costs one minor fault, once. Kernels before 4.4: plain mlockall.
+    int rc = mlockall(MCL_CURRENT | MCL_FUTURE | MCL_ONFAULT);
+    if (rc != 0 && errno == EINVAL) rc = mlockall(MCL_CURRENT | MCL_FUTURE);
+    if (rc == 0) {
       status_.memory_locked = true;
     } else {
       status_.mlock_errno = errno;
@@ -105,12 +159,36 @@ void PulseThread::setup() noexcept {
 }
 
 // No allocation, lock, logging or system call in here but the engine's line writes, the clock
-// (vDSO) and clock_nanosleep.
+// (vDSO) and the sleep (a futex wait with a deadline: clock_nanosleep that ring() can end).
 void PulseThread::loop() noexcept {
-  const Nanos spin_ns = options_.spin_ns;
+  const Nanos max_spin = options_.spin_ns;
+  const Nanos min_spin = std::min(options_.min_spin_ns, max_spin);
   const Nanos max_sleep_ns = options_.max_sleep_ns;
+  const Nanos quiet_sleep_ns = std::max(options_.quiet_sleep_ns, max_sleep_ns);
+  // Adaptive spin: `late` estimates a high percentile of how late a sleep's wake-up is (it
+  // rises by 1/8 of an excess, decays by 1/64 of a shortfall, and slowly while the thread
+  // spins through gaps without sleeping, so one long stall does not keep it spinning for
+  // good). The thread wakes late + 2 us before an edge, within [min_spin, max_spin].
+  constexpr Nanos kMargin = 2 * kNsPerUs;
+  Nanos late = max_spin;
+  Nanos spin_ns = max_spin;
   std::uint64_t loops = 0;
   std::uint64_t edges = 0;
+  std::uint64_t sleeps = 0;
+  std::uint32_t bell = doorbell_.load(std::memory_order_acquire);
+  Nanos awake_until = 0;
+  bool spinning = false;  // this gap is being spun through (counted once for the decay)
+  // Off-CPU budget (see pulse_thread.hpp): once per window, the thread's CPU time (a clock
+  // read, like the others) updates `debt`, the CPU time used beyond the allowed share; while
+  // there is debt the spin is capped at min_spin (an economy window), else it is not.
+  constexpr Nanos kWindow = 20 * kNsPerMs;
+  constexpr Nanos kMaxDebt = 200 * kNsPerMs;
+  Nanos debt = 0;
+  const Nanos min_off = static_cast<Nanos>(options_.min_off_cpu_permille);
+  Nanos window_start = monotonic_now();
+  Nanos window_cpu = thread_cpu_now();
+  Nanos spin_cap = max_spin;
+  spin_now_.store(spin_ns, std::memory_order_relaxed);
   while (!stop_.load(std::memory_order_acquire)) {
     loops_.store(++loops, std::memory_order_relaxed);
     const Nanos t = engine_.next_due();
@@ -120,13 +198,46 @@ void PulseThread::loop() noexcept {
       // overhead, which is what a drive sees.
       engine_.execute_one(now);
       edges_.store(++edges, std::memory_order_relaxed);
+      spinning = false;
       continue;
     }
-    if (t == kNever || t - now > spin_ns) {
-      Nanos wake = now + max_sleep_ns;
-      if (t != kNever) wake = std::min(wake, t - spin_ns);
-      sleep_until(wake);
+    const std::uint32_t b = doorbell_.load(std::memory_order_acquire);
+    if (b != bell) {
+      bell = b;
+      awake_until = now + options_.awake_ns;
+    }
+    if (min_off > 0 && now - window_start >= kWindow) {
+      const Nanos cpu = thread_cpu_now();
+      debt += (cpu - window_cpu) - (now - window_start) * (1000 - min_off) / 1000;
+      debt = std::clamp(debt, -kMaxDebt, kMaxDebt);
+      spin_cap = debt > 0 ? min_spin : max_spin;
+      window_start = now;
+      window_cpu = cpu;
+    }
+    const Nanos spin_eff = std::min(spin_ns, spin_cap);
+    if (t == kNever || t - now > spin_eff) {
+      // Poll for new work while a producer said some may come, or while a motion is starved
+      // (its ring ran dry before its last edge); otherwise wait for the edge or a ring().
+      const bool poll = now < awake_until || engine_.starved();
+      Nanos wake = now + (poll ? max_sleep_ns : quiet_sleep_ns);
+      const bool for_edge = t != kNever && t - spin_eff <= wake;
+      if (for_edge) wake = t - spin_eff;
+      futex_sleep_until(doorbell_, bell, wake);
+      sleeps_.store(++sleeps, std::memory_order_relaxed);
+      const Nanos woke = monotonic_now();
+      if (for_edge && min_spin < max_spin) {
+        const Nanos over = std::clamp<Nanos>(woke - wake, 0, 2 * max_spin);
+        late += over > late ? (over - late) / 8 : -((late - over) / 64);
+        spin_ns = std::clamp(late + kMargin, min_spin, max_spin);
+        spin_now_.store(std::min(spin_ns, spin_cap), std::memory_order_relaxed);
+      }
+      spinning = false;
       continue;
+    }
+    if (!spinning && min_spin < max_spin) {
+      spinning = true;
+      late -= late / 256;
+      spin_ns = std::clamp(late + kMargin, min_spin, max_spin);
     }
     // Within spin_ns of the edge: spin. Each turn goes back through next_due(), so an immediate
     // stop or an earlier edge of another axis is still seen while spinning.

@@ -1,15 +1,41 @@
 #pragma once
-// The pulse thread: owns the real-time loop around a PulseEngine. Sleeps (clock_nanosleep,
-// absolute) to shortly before the next edge, spins on the clock to it, writes it. The sleep is
-// bounded so that an edge that becomes due earlier (another axis starts, the planner refills) or
-// an immediate stop is noticed within max_sleep_ns even though nothing wakes the thread.
+// The pulse thread: owns the real-time loop around a PulseEngine. Sleeps (absolute
+// CLOCK_MONOTONIC deadline) to shortly before the next edge, spins on the clock to it, writes it.
+// The sleep is bounded so that an edge that becomes due earlier (another axis starts, the planner
+// refills) or an immediate stop is noticed within max_sleep_ns even though nothing wakes the
+// thread.
+//
+// Two things keep the thread from burning a core (issue 5's figures):
+//  * Doorbell. The sleep is a futex wait on a counter with the same absolute deadline (the one
+//    system call the loop makes besides the line write and the clock, standing in for
+//    clock_nanosleep). A producer that calls ring() after queueing work (the daemon: after a
+//    scan that submitted a command) wakes it. With quiet_sleep_ns > max_sleep_ns, the thread
+//    only polls every max_sleep_ns for awake_ns after a ring, or while an axis is in a motion
+//    whose ring has run dry; otherwise it sleeps up to quiet_sleep_ns (or to its next edge).
+//    The default (quiet_sleep_ns = max_sleep_ns) keeps the plain bounded poll for producers that
+//    never ring.
+//  * Adaptive spin. The thread measures how late its own wake-ups are and wakes that much (plus
+//    a margin) before an edge: between min_spin_ns and spin_ns. Spinning through every gap
+//    shorter than spin_ns would keep the thread on the CPU all the time at 50 kHz, and the
+//    kernel's real-time bandwidth limit (sched_rt_runtime_us, 95 %) then takes the CPU away
+//    for 50 ms each second.
+//  * Off-CPU budget. Even sleeping in every gap, at 50 kHz on a VM (wake-ups ~15 us late) the
+//    thread is on the CPU ~96 % of the time, and the kernel's starvation guard for normal
+//    threads (RT throttling; on 6.12+ the fair server) still takes 50 ms of each second when a
+//    normal thread is queued on its CPU. Every 20 ms the thread reads its own CPU time and
+//    keeps a running balance of the CPU it used beyond (1000 - min_off_cpu_permille) per mille;
+//    while that balance is positive it wakes only min_spin_ns before an edge (sleeping longer,
+//    leaving the CPU to others): some edges are late by a wake-up's jitter instead of 2,500
+//    edges by 50 ms. It cannot help where
+//    edges are closer than min_spin_ns (1 Msteps/s): there the pulse thread needs a CPU of its
+//    own (rt.cpu, with no other thread scheduled on it: isolcpus or a cpuset).
 //
 // Setup that may be refused (mlockall, SCHED_FIFO, affinity) is attempted, recorded in Status
 // and never fatal: the caller decides whether to warn. Nothing logs inside the thread.
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
-#include <thread>
+#include <pthread.h>
 
 #include "rt/clock.hpp"
 #include "rt/pulse_engine.hpp"
@@ -20,9 +46,17 @@ namespace stepmod::rt {
 struct PulseThreadOptions {
   int priority = 80;                   // SCHED_FIFO priority (1 ... 99); <= 0: stay SCHED_OTHER
   int cpu = -1;                        // CPU to pin to; -1 = not pinned
-  Nanos spin_ns = 30 * kNsPerUs;       // wake this long before an edge and spin to it
+  Nanos spin_ns = 30 * kNsPerUs;       // wake at most this long before an edge and spin to it
+  Nanos min_spin_ns = 10 * kNsPerUs;   // ... and at least this long (= spin_ns: fixed spin)
   Nanos max_sleep_ns = 50 * kNsPerUs;  // longest sleep without looking for new work
-  bool lock_memory = true;             // mlockall(MCL_CURRENT | MCL_FUTURE)
+  Nanos quiet_sleep_ns = 50 * kNsPerUs;  // longest sleep when no ring() is recent (see above)
+  Nanos awake_ns = 20 * kNsPerMs;        // how long a ring() keeps the max_sleep_ns poll on
+  // Off-CPU share the thread keeps, per mille, on balance; 0 = off. See the note above.
+  unsigned min_off_cpu_permille = 70;
+  // mlockall(MCL_CURRENT | MCL_FUTURE | MCL_ONFAULT): pages stay resident once touched; nothing
+  // is populated that nobody uses (see setup()).
+  bool lock_memory = true;
+  std::size_t stack_bytes = std::size_t{256} * 1024;          // this thread's whole stack
   std::size_t prefault_stack_bytes = std::size_t{64} * 1024;  // stack touched before the loop
 };
 
@@ -52,16 +86,25 @@ class PulseThread {
   // thread could not be created or was already started.
   bool start();
   // Any thread: asks the loop to end; it does within about max_sleep_ns.
-  void stop() noexcept { stop_.store(true, std::memory_order_release); }
+  void stop() noexcept {
+    stop_.store(true, std::memory_order_release);
+    ring();
+  }
   // Waits for the thread to end (no-op if not running). Call stop() first.
   void join();
+  // Any thread but the pulse thread: new work may be queued (a command was submitted, an
+  // immediate stop requested): wakes the thread if it sleeps and keeps it polling for awake_ns.
+  void ring() noexcept;
 
   const Status& status() const noexcept { return status_; }
   const Options& options() const noexcept { return options_; }
-  bool running() const noexcept { return thread_.joinable(); }
+  bool running() const noexcept { return joinable_; }
   // Any thread: loop iterations and edges written so far (for tests and diagnostics).
   std::uint64_t loops() const noexcept { return loops_.load(std::memory_order_relaxed); }
   std::uint64_t edges() const noexcept { return edges_.load(std::memory_order_relaxed); }
+  // Any thread: sleeps so far and the spin the adaptive estimate uses now (diagnostics).
+  std::uint64_t sleeps() const noexcept { return sleeps_.load(std::memory_order_relaxed); }
+  Nanos spin_now() const noexcept { return spin_now_.load(std::memory_order_relaxed); }
 
  private:
   void body() noexcept;
@@ -71,11 +114,15 @@ class PulseThread {
   PulseEngine& engine_;
   const Options options_;
   Status status_;
-  std::thread thread_;
+  pthread_t thread_{};
+  bool joinable_ = false;
+  std::atomic<std::uint32_t> doorbell_{0};
   std::atomic<bool> stop_{false};
   std::atomic<bool> ready_{false};
   std::atomic<std::uint64_t> loops_{0};
   std::atomic<std::uint64_t> edges_{0};
+  std::atomic<std::uint64_t> sleeps_{0};
+  std::atomic<Nanos> spin_now_{0};
 };
 
 }  // namespace stepmod::rt
