@@ -214,6 +214,9 @@ static inline int stepmod_seq_read(const uint32_t* seq, const stepmod_words_t* w
                                    unsigned max_tries) {
   unsigned t = 0, i = 0;
   for (t = 0; t < max_tries; ++t) {
+    /* On a single-CPU board a writer preempted inside its write only finishes once this reader
+     * gives the CPU up: spin a little, then yield. */
+    if (t > 0 && (t % 32u) == 0u) sched_yield();
     const uint32_t s0 = __atomic_load_n(seq, __ATOMIC_ACQUIRE);
     if (s0 & 1u) continue;
     /* Acquire loads: the second sequence load cannot move before any of them. */
