@@ -41,6 +41,24 @@ struct Daemon::Impl {
   std::unique_ptr<ipc::ShmImage> image;
   std::unique_ptr<ipc::SimPanelServer> panel;
   std::uint64_t input_trace_dropped = 0;
+  rt::PulseThread* pulse = nullptr;  // while run() runs
+  std::uint32_t planner_wakes = 0;   // the planner's wake counter as last seen by kick()
+
+  // After the control thread may have submitted commands (or set an immediate stop, which is
+  // also submitted): ring the pulse thread's doorbell so that it polls for the new edges. It
+  // otherwise sleeps until its next edge (PulseThreadOptions::quiet_sleep_ns).
+  void kick() noexcept {
+    const std::uint32_t w = stack->planner().wake_counter().load(std::memory_order_acquire);
+    if (w == planner_wakes) return;
+    planner_wakes = w;
+    if (pulse != nullptr) pulse->ring();
+  }
+  bool axes_at_rest() noexcept {
+    for (unsigned a = 0; a < stack->shape().axes; ++a) {
+      if (stack->motion(a).busy()) return false;
+    }
+    return true;
+  }
 
   void control_loop(const std::atomic<bool>& stop);
   void sync_panel();
@@ -60,6 +78,10 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
   StackOptions so;
   so.type = config.type;
   for (const AxisConfig& a : config.axes) so.timing.push_back({a.step_pulse_ns, a.dir_setup_ns});
+  // A new motion's time 0 is this long after the planner takes its command. The pulse thread,
+  // rung when the command is submitted (kick()), polls every max_sleep_ns (50 us) and wakes
+  // ~15-20 us late: 100 us covers it and is 50 us off the command latency (issue 5).
+  so.planner.start_delay_ns = 100 * kNsPerUs;
   if (trace_path) {
     d.output_trace = std::make_unique<rt::SpscRing<rt::TraceRecord>>(kTraceRing);
     d.input_trace = std::make_unique<rt::SpscRing<rt::TraceRecord>>(kTraceRing);
@@ -86,7 +108,12 @@ void Daemon::run(const std::atomic<bool>& stop) {
 #ifdef STEPMOD_SANITIZED
   po.lock_memory = false;  // the sanitizers' shadow memory cannot be locked
 #endif
+  // Every command reaches the pulse thread through kick(): between commands it need not poll
+  // (issue 5: an idle daemon polling every 50 us used a fifth of a core).
+  po.quiet_sleep_ns = 100 * kNsPerMs;
   rt::PulseThread pulse(d.stack->engine(), po);
+  d.pulse = &pulse;
+  d.planner_wakes = d.stack->planner().wake_counter().load();
   if (d.trace) d.trace->start();
   if (!pulse.start()) throw std::runtime_error("cannot start the pulse thread");
   const auto& st = pulse.status();
@@ -108,6 +135,9 @@ void Daemon::run(const std::atomic<bool>& stop) {
   spdlog::info("module {} '{}' running: /dev/shm/stepmod.{}, {} backend, scan {} us",
                static_cast<unsigned>(d.config.type), d.config.name, d.config.name,
                d.sim != nullptr ? "sim" : "gpiod", d.config.scan_ns / kNsPerUs);
+  // The VCD's times are relative to this instant; an outside tool (bench/daemon_bench) needs it
+  // to compare trace times with its own CLOCK_MONOTONIC readings.
+  if (d.trace) spdlog::info("trace: #0 is CLOCK_MONOTONIC {} ns", d.start);
   systemd::notify_ready("running");
 
   // The control thread reads the input edges. The v1 GPIO uAPI keeps only 16 unread edges per
@@ -161,7 +191,16 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
   bool plc_stopped = false;
 
   while (!stop.load(std::memory_order_acquire)) {
-    const std::size_t n = backend->wait_events(events, next_scan);
+    std::size_t n = 0;
+    if (sim != nullptr && axes_at_rest()) {
+      // The simulated machine has no file descriptor to block on: its wait_events polls in
+      // 50 us steps. With every axis at rest only the panel, applied by this thread, changes an
+      // input: sleep to the scan in one go, then drain (issue 5: idle CPU).
+      if (monotonic_now() < next_scan) sleep_until(next_scan);
+      n = backend->wait_events(events, 0);
+    } else {
+      n = backend->wait_events(events, next_scan);
+    }
     for (std::size_t i = 0; i < n; ++i) {
       const gpio::InputEvent& e = events[i];
       if (input_trace) {
@@ -171,6 +210,7 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
       }
       personality.on_input(e);
     }
+    kick();
     if (panel) sync_panel();
     const Nanos now = monotonic_now();
     if (now < next_scan) continue;
@@ -191,6 +231,7 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
       }
     }
     personality.scan(out, in, now);
+    kick();
     image->publish_inputs(in);
     next_scan += config.scan_ns;
     if (next_scan <= now) next_scan = now + config.scan_ns;  // overrun: skip, never burst
@@ -224,6 +265,7 @@ void Daemon::Impl::idle_outputs() {
 // Immediate stop of every axis, and wait (bounded) until the pulse thread has acknowledged it.
 void Daemon::Impl::shutdown_motion() {
   stack->personality().shutdown();
+  kick();
   const Nanos deadline = monotonic_now() + kStopAckTimeout;
   for (unsigned a = 0; a < stack->shape().axes; ++a) {
     while (stack->motion(a).busy() && monotonic_now() < deadline) {
