@@ -1,0 +1,364 @@
+// Benchmarks 2 (daemon CPU), 4 and 5 of issue 5, against a real stepmodd (3601 on the simulated
+// machine), driven through shared memory the way a PLC drives it.
+//
+//   daemon_bench latency   --stepmodd PATH [--scan-us 1000] [--commands 1000]
+//       Benchmark 4: PLC write of a relative-move command into the shared image -> first step
+//       edge (the daemon's VCD trace), both CLOCK_MONOTONIC; p50/p99 over --commands moves,
+//       written at random phases of the scan.
+//   daemon_bench footprint --stepmodd PATH [--seconds 10]
+//       Benchmark 5: VmRSS and CPU (sum of /proc/PID/task/*/schedstat) of a daemon with one
+//       configured, idle axis.
+//   daemon_bench cpu       --stepmodd PATH --rate STEPS_PER_S [--seconds 5]
+//       Benchmark 2 (CPU part): CPU of the daemon while its axis runs a long move at --rate.
+//
+// Output: human-readable lines plus "RESULT key=value ..." lines for scripts/bench.
+#include <dirent.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "ipc/client.hpp"
+#include "ipc/codec.hpp"
+#include "module/m3601/words_3601.hpp"
+#include "rt/clock.hpp"
+
+namespace {
+
+using namespace stepmod;
+namespace m = module::m3601;
+using std::chrono::milliseconds;
+
+const char* arg(int argc, char** argv, const char* name, const char* def) {
+  for (int i = 2; i + 1 < argc; ++i) {
+    if (std::strcmp(argv[i], name) == 0) return argv[i + 1];
+  }
+  return def;
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream f(path);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// A stepmodd child process on a private config; SIGTERM on destruction.
+class Daemon {
+ public:
+  Daemon(const std::string& exe, unsigned scan_us, bool trace) {
+    char tmpl[] = "/tmp/stepmod-bench-XXXXXX";
+    dir_ = mkdtemp(tmpl);
+    name_ = "bench" + std::to_string(getpid());
+    config_ = dir_ + "/3601.toml";
+    log_ = dir_ + "/stepmodd.log";
+    if (trace) trace_ = dir_ + "/trace.vcd";
+    std::ofstream(config_) << "[module]\ntype = \"3601\"\nname = \"" << name_
+                           << "\"\nscan_us = " << scan_us
+                           << "\n[gpio]\nbackend = \"sim\"\n[rt]\npriority = 80\n"
+                              "[[axis]]\nstep = 1\ndir = 2\nhome = 3\ncw_limit = 4\nccw_limit = 5\n"
+                              "[axis.sim]\ncw_limit_at = 100000000\nccw_limit_at = -100000000\n"
+                              "home_from = -200\nhome_to = -100\n";
+    pid_ = fork();
+    if (pid_ == 0) {
+      std::freopen(log_.c_str(), "w", stderr);
+      std::vector<std::string> a{exe, "--config", config_};
+      if (trace) {
+        a.push_back("--trace");
+        a.push_back(trace_);
+      }
+      std::vector<char*> av;
+      for (auto& s : a) av.push_back(s.data());
+      av.push_back(nullptr);
+      execv(av[0], av.data());
+      _exit(127);
+    }
+    const std::string shm = "/dev/shm/stepmod." + name_;
+    for (int i = 0; i < 1000; ++i) {
+      struct stat st{};
+      if (stat(shm.c_str(), &st) == 0) {
+        std::this_thread::sleep_for(milliseconds(50));  // let it start scanning
+        return;
+      }
+      std::this_thread::sleep_for(milliseconds(10));
+    }
+    throw std::runtime_error("stepmodd did not start: " + slurp(log_));
+  }
+  ~Daemon() {
+    stop();
+    std::system(("rm -rf " + dir_).c_str());
+  }
+  int stop() {
+    if (pid_ <= 0) return 0;
+    kill(pid_, SIGTERM);
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return status;
+  }
+  pid_t pid() const { return pid_; }
+  const std::string& name() const { return name_; }
+  const std::string& trace() const { return trace_; }
+  std::string log() const { return slurp(log_); }
+
+ private:
+  std::string dir_, name_, config_, log_, trace_;
+  pid_t pid_ = -1;
+};
+
+struct Plc {
+  explicit Plc(const std::string& name) : c(name) {}
+  ipc::Client c;
+  void scans(unsigned n) {
+    if (!c.wait_scans(n, milliseconds(2000))) throw std::runtime_error("module not scanning");
+  }
+  std::uint16_t status() {
+    module::ImageWords w;
+    c.read_inputs(w);
+    return static_cast<std::uint16_t>(w.w[0]);
+  }
+  module::ImageWords words(std::uint16_t msw, std::uint16_t lsw, std::int32_t a, std::int32_t b,
+                           std::int16_t w6, std::int16_t w7) {
+    const auto x = ipc::codec::encode_3601(a), y = ipc::codec::encode_3601(b);
+    module::ImageWords o{};
+    o.w = {static_cast<std::int16_t>(msw), static_cast<std::int16_t>(lsw), x.msw, x.lsw, y.msw,
+           y.lsw, w6, w7};
+    return o;
+  }
+  // Step/direction outputs, home and end limits (the minimum the 3601 accepts), starting speed.
+  void configure(std::int32_t vs) {
+    const std::uint16_t used = m::cfg_msw::kHomeUsed | m::cfg_msw::kCwLimitUsed |
+                               m::cfg_msw::kCcwLimitUsed;
+    c.write_outputs(words(m::cfg_msw::kStepDirOutput | used | m::cfg_msw::kConfigMode, used, vs,
+                          0, 0, 0));
+    scans(3);
+    if (status() & m::status_msw::kConfigurationError) throw std::runtime_error("config error");
+    c.write_outputs(words(0, 0, 0, 0, 0, 0));
+    scans(3);
+  }
+  // Writes a relative move (the PLC's one write of the command); returns the write's time.
+  Nanos relative_move(std::int32_t steps, std::int32_t speed) {
+    const auto w = words(m::cmd_msw::kRelativeMove, 0, steps, speed, 2000, 2000);
+    c.write_outputs(w);
+    return monotonic_now();
+  }
+  void release() {
+    c.write_word(0, 0);
+    scans(2);
+  }
+};
+
+// Rising-edge times (ns from #0) of one VCD wire.
+std::vector<Nanos> vcd_rising(const std::string& path, const std::string& wire) {
+  std::ifstream f(path);
+  std::string line, id;
+  Nanos t = 0;
+  int level = 0;
+  std::vector<Nanos> out;
+  while (std::getline(f, line)) {
+    if (line.rfind("$var", 0) == 0) {
+      std::istringstream s(line);
+      std::string var, type, width, ident, name;
+      s >> var >> type >> width >> ident >> name;
+      if (name == wire) id = ident;
+    } else if (!line.empty() && line[0] == '#') {
+      t = std::stoll(line.substr(1));
+    } else if (!id.empty() && line.size() >= 2 && (line[0] == '0' || line[0] == '1') &&
+               line.substr(1) == id) {
+      const int l = line[0] - '0';
+      if (l == 1 && level == 0) out.push_back(t);
+      level = l;
+    }
+  }
+  return out;
+}
+
+double pct(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const auto i = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size()))) - 1;
+  return v[std::min(i, v.size() - 1)];
+}
+
+int latency(int argc, char** argv) {
+  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
+  const unsigned scan_us = static_cast<unsigned>(std::atoi(arg(argc, argv, "--scan-us", "1000")));
+  const int n = std::atoi(arg(argc, argv, "--commands", "1000"));
+  Daemon d(exe, scan_us, true);
+  Plc plc(d.name());
+  plc.configure(1'000'000);
+  std::mt19937 rng(42);
+  std::uniform_int_distribution<int> phase(0, static_cast<int>(scan_us));
+  std::vector<Nanos> writes;
+  for (int i = 0; i < n; ++i) {
+    // A PLC's scan is not synchronised with the module's: write at a random phase.
+    std::this_thread::sleep_for(std::chrono::microseconds(phase(rng)));
+    writes.push_back(plc.relative_move(i % 2 == 0 ? 2 : -2, 1'000'000));
+    plc.scans(3);
+    plc.release();
+  }
+  const std::string log = d.log();
+  d.stop();
+  const std::string log_all = d.log();
+  const auto at = log_all.find("#0 is CLOCK_MONOTONIC ");
+  if (at == std::string::npos) {
+    std::printf("latency: no trace origin in the log:\n%s\n", log_all.c_str());
+    return 1;
+  }
+  const Nanos origin = std::stoll(log_all.substr(at + 22));
+  const std::vector<Nanos> rising = vcd_rising(d.trace(), "axis1.step");
+  std::vector<double> lat;
+  std::size_t j = 0;
+  for (const Nanos w : writes) {
+    while (j < rising.size() && origin + rising[j] < w) ++j;
+    if (j == rising.size()) break;
+    lat.push_back(static_cast<double>(origin + rising[j] - w) / 1000.0);
+  }
+  const double p50 = pct(lat, 0.5), p99 = pct(lat, 0.99),
+               mx = lat.empty() ? 0 : *std::max_element(lat.begin(), lat.end());
+  std::printf("command latency, scan %u us: %zu commands, write -> first step edge p50 %.1f us, "
+              "p99 %.1f us, max %.1f us (target p99 < %u us)\n",
+              scan_us, lat.size(), p50, p99, mx, scan_us + 200);
+  std::printf("RESULT bench=latency scan_us=%u n=%zu p50_us=%.1f p99_us=%.1f max_us=%.1f\n",
+              scan_us, lat.size(), p50, p99, mx);
+  return lat.size() == writes.size() ? 0 : 1;
+}
+
+// CPU ns of every thread of `pid` (schedstat: time on CPU), by thread name.
+std::map<std::string, double> thread_cpu(pid_t pid) {
+  std::map<std::string, double> out;
+  const std::string base = "/proc/" + std::to_string(pid) + "/task";
+  DIR* dir = opendir(base.c_str());
+  if (dir == nullptr) return out;
+  while (dirent* e = readdir(dir)) {
+    if (e->d_name[0] == '.') continue;
+    const std::string t = base + "/" + e->d_name;
+    std::string comm = slurp(t + "/comm");
+    if (!comm.empty() && comm.back() == '\n') comm.pop_back();
+    std::istringstream s(slurp(t + "/schedstat"));
+    double ns = 0;
+    s >> ns;
+    out[comm + "/" + e->d_name] += ns;
+  }
+  closedir(dir);
+  return out;
+}
+
+double total(const std::map<std::string, double>& m) {
+  double s = 0;
+  for (auto& [k, v] : m) s += v;
+  return s;
+}
+
+long vm_rss_kb(pid_t pid) {
+  std::istringstream s(slurp("/proc/" + std::to_string(pid) + "/status"));
+  std::string line;
+  while (std::getline(s, line)) {
+    if (line.rfind("VmRSS:", 0) == 0) return std::atol(line.c_str() + 6);
+  }
+  return -1;
+}
+
+// CPU % of one core over `seconds`, per thread and in total.
+double measure_cpu(pid_t pid, double seconds, const char* what) {
+  const auto a = thread_cpu(pid);
+  const Nanos t0 = monotonic_now();
+  std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+  const auto b = thread_cpu(pid);
+  const double wall = static_cast<double>(monotonic_now() - t0);
+  std::printf("  %s, per thread:", what);
+  for (auto& [k, v] : b) {
+    const auto it = a.find(k);
+    std::printf(" %s %.2f%%", k.c_str(), 100.0 * (v - (it == a.end() ? 0 : it->second)) / wall);
+  }
+  std::printf("\n");
+  return 100.0 * (total(b) - total(a)) / wall;
+}
+
+int footprint(int argc, char** argv) {
+  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
+  const double seconds = std::atof(arg(argc, argv, "--seconds", "10"));
+  Daemon d(exe, 1000, false);
+  Plc plc(d.name());
+  plc.configure(1'000);
+  std::this_thread::sleep_for(milliseconds(500));
+  const double cpu = measure_cpu(d.pid(), seconds, "idle");
+  const long rss = vm_rss_kb(d.pid());
+  d.stop();
+  // Side by side: what merely waking 1,000 times a second (the scan) costs on this machine.
+  double floor_pct = 0;
+  std::thread bare([&] {
+    timespec t0{}, c0{}, c1{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c0);
+    Nanos t = monotonic_now();
+    const Nanos start = t;
+    while (t - start < static_cast<Nanos>(seconds * 1e9)) {
+      t += kNsPerMs;
+      sleep_until(t);
+    }
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c1);
+    (void)t0;
+    const double used = static_cast<double>(c1.tv_sec - c0.tv_sec) * 1e9 +
+                        static_cast<double>(c1.tv_nsec - c0.tv_nsec);
+    floor_pct = 100.0 * used / static_cast<double>(monotonic_now() - start);
+  });
+  bare.join();
+  std::printf("footprint: idle daemon, one configured axis, scan 1000 us: VmRSS %.1f MB, CPU "
+              "%.2f %% of a core over %.0f s (a bare 1 kHz clock_nanosleep loop: %.2f %%)\n",
+              static_cast<double>(rss) / 1024.0, cpu, seconds, floor_pct);
+  std::printf("RESULT bench=footprint rss_mb=%.2f idle_cpu_pct=%.3f floor_1khz_pct=%.3f\n",
+              static_cast<double>(rss) / 1024.0, cpu, floor_pct);
+  return 0;
+}
+
+int cpu(int argc, char** argv) {
+  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
+  const double seconds = std::atof(arg(argc, argv, "--seconds", "5"));
+  const int rate = std::atoi(arg(argc, argv, "--rate", "1000"));
+  Daemon d(exe, 1000, false);
+  Plc plc(d.name());
+  plc.configure(rate);
+  const auto steps = static_cast<std::int32_t>(static_cast<double>(rate) * (seconds + 3));
+  plc.relative_move(steps, rate);
+  plc.scans(3);
+  plc.release();
+  std::this_thread::sleep_for(milliseconds(500));
+  const bool moving = (plc.status() & (m::status_msw::kMovingCw | m::status_msw::kMovingCcw)) != 0;
+  const double pct_cpu = measure_cpu(d.pid(), seconds, "moving");
+  std::printf("daemon CPU at %d steps/s: %.1f %% of a core (moving: %s)\n", rate, pct_cpu,
+              moving ? "yes" : "NO");
+  std::printf("RESULT bench=cpu rate=%d cpu_pct=%.2f moving=%d\n", rate, pct_cpu, moving ? 1 : 0);
+  return moving ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  signal(SIGPIPE, SIG_IGN);
+  const std::string cmd = argc > 1 ? argv[1] : "";
+  try {
+    if (cmd == "latency") return latency(argc, argv);
+    if (cmd == "footprint") return footprint(argc, argv);
+    if (cmd == "cpu") return cpu(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "daemon_bench: %s\n", e.what());
+    return 1;
+  }
+  std::fprintf(stderr,
+               "usage: daemon_bench latency|footprint|cpu --stepmodd PATH [--scan-us US] "
+               "[--commands N] [--seconds S] [--rate STEPS_PER_S]\n");
+  return 2;
+}
