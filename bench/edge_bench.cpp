@@ -9,7 +9,7 @@
 //       Benchmark 2: for each rate (steps/s per axis, ascending) one constant-speed move of
 //       rate x seconds steps on every axis at once; a rate passes when no edge is lost or
 //       reordered (step levels alternate, write times never go back, rising edges = steps = sim
-//       position change) and p99.9 lateness < 10 us. Stops at the first failure.
+//       position change) and p99.9 lateness < 10 us. Reports the highest passing rate.
 //
 // Output: human-readable lines, plus one "RESULT key=value ..." line per measurement for
 // scripts/bench.
@@ -249,7 +249,8 @@ int rate(int argc, char** argv) {
   const Nanos lookahead = std::atol(arg(argc, argv, "--lookahead-us", "0")) * kNsPerUs;
   const std::string list =
       arg(argc, argv, "--rates",
-          n_axes == 1 ? "250000,500000,1000000,1500000,2000000" : "250000,500000,750000,1000000");
+          n_axes == 1 ? "25000,100000,250000,500000,1000000,1500000,2000000"
+                      : "25000,100000,250000,500000,1000000");
   std::vector<double> rates;
   for (std::size_t p = 0; p < list.size();) {
     const std::size_t q = std::min(list.find(',', p), list.size());
@@ -288,8 +289,9 @@ int rate(int argc, char** argv) {
                 n_axes, r, ok ? 1 : 0, static_cast<unsigned long long>(errors), us(p999),
                 us(s.max));
     std::fflush(stdout);
-    if (!ok) break;
-    best = r;
+    // Every rate is tried: low rates fail on wake-up jitter (the thread sleeps between edges),
+    // high ones on losing the CPU (it spins), so passing is not monotonic in the rate.
+    if (ok) best = std::max(best, r);
   }
   std::printf("RESULT bench=rate_max axes=%u steps_per_s_per_axis=%.0f total=%.0f\n", n_axes, best,
               best * n_axes);
