@@ -234,7 +234,13 @@ int latency(int argc, char** argv) {
               scan_us, lat.size(), p50, p99, mx, scan_us + 200);
   std::printf("RESULT bench=latency scan_us=%u n=%zu p50_us=%.1f p99_us=%.1f max_us=%.1f\n",
               scan_us, lat.size(), p50, p99, mx);
-  return lat.size() == writes.size() ? 0 : 1;
+  if (lat.size() != writes.size()) {
+    std::printf("latency: %zu of %zu commands have a step edge after them in the trace (%zu "
+                "rising edges); daemon log:\n%s\n",
+                lat.size(), writes.size(), rising.size(), log_all.c_str());
+    return 1;
+  }
+  return 0;
 }
 
 // CPU ns of every thread of `pid` (schedstat: time on CPU), by thread name.
