@@ -74,6 +74,14 @@ class MotionPort {
     return send(c);
   }
   bool stop_after(Nanos t, std::int64_t steps) noexcept {
+    // Exactness backstop in the pulse thread (AxisControl::limit_steps): the count at t plus
+    // `steps` in the motion's direction, once the motion's own edges have started to run.
+    std::int64_t at_t = 0;
+    if (fb_.epoch.load(std::memory_order_acquire) == epoch_ && steps_at(t, at_t)) {
+      const bool ccw = (fb_.flags.load(std::memory_order_acquire) & rt::edge_flag::kCcw) != 0;
+      ctl_.limit_steps.store(at_t + (ccw ? -steps : steps), std::memory_order_relaxed);
+      ctl_.limit_epoch.store(epoch_, std::memory_order_release);
+    }
     Command c;
     c.kind = CommandKind::kStopAfter;
     c.t = t;

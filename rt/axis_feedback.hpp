@@ -25,6 +25,13 @@ struct AxisControl {
   // Immediate stop: motion edges whose epoch <= abort_epoch are dropped by the pulse thread, which
   // then brings a high step line low and reports the epoch in AxisFeedback::finished_epoch.
   std::atomic<std::uint32_t> abort_epoch{0};
+  // Step-count cap (registration): motion `limit_epoch` may not take the step count past
+  // `limit_steps` (beyond it in its own direction); the pulse thread drops its later steps. The
+  // planner plans the stop from its frontier, a few ms ahead, so for a short count it may have
+  // queued steps beyond it already: this makes the count exact anyway. Written limit_steps first
+  // (relaxed), then limit_epoch (release).
+  std::atomic<std::int64_t> limit_steps{0};
+  std::atomic<std::uint32_t> limit_epoch{0};
 };
 
 // Time -> step count, for events stamped in the past (capture input, registration trigger).

@@ -22,7 +22,10 @@ PulseEngine::PulseEngine(gpio::Backend& backend, std::span<const AxisLink> axes,
       abort_seen_(axes.size(), 0),
       trace_(trace),
       pulse_high_(axes.size(), kNoPulse),
-      in_motion_(axes.size(), 0) {}
+      in_motion_(axes.size(), 0),
+      pulse_late_(axes.size(), 0),
+      dir_late_(axes.size(), 0),
+      truncated_epoch_(axes.size(), 0) {}
 
 Nanos PulseEngine::next_due() noexcept {
   Nanos best = kNever;
@@ -38,12 +41,16 @@ Nanos PulseEngine::next_due() noexcept {
     // it has not yet learnt was aborted, and aborted edges queued behind a GPO edge reach the
     // head only after it has been executed.
     drop_stale(axis);
+    drop_beyond_limit(axis);
     const Edge* e = link.edges->peek();
     if (e == nullptr && in_motion_[axis] != 0) starved = true;
     // Strictly earlier only: on a tie the lower axis goes first, a stable order for tests.
-    if (e != nullptr && e->t < best) {
-      best = e->t;
-      best_axis = static_cast<int>(axis);
+    if (e != nullptr) {
+      const Nanos t = due(axis, *e);
+      if (t < best) {
+        best = t;
+        best_axis = static_cast<int>(axis);
+      }
     }
   }
   next_axis_ = best_axis;
@@ -57,6 +64,42 @@ void PulseEngine::drop_stale(unsigned axis) noexcept {
   SpscRing<Edge>& ring = *axes_[axis].edges;
   for (const Edge* e = ring.peek(); e != nullptr; e = ring.peek()) {
     if ((e->flags & edge_flag::kMotion) == 0 || e->epoch > seen) break;
+    ring.pop();
+  }
+}
+
+Nanos PulseEngine::due(unsigned axis, const Edge& e) const noexcept {
+  // The pulse's trailing edge: a drive needs the whole high time, however late the rise was.
+  if (e.level == 0 && pulse_high_[axis] == static_cast<std::uint8_t>(e.line)) {
+    return e.t + pulse_late_[axis];
+  }
+  // The first step after a direction change: the whole set-up time after the direction write.
+  if (e.dpos != 0) return e.t + dir_late_[axis];
+  return e.t;
+}
+
+// Registration exactness (AxisControl::limit_steps): steps of the capped motion beyond its cap
+// are dropped, and with them the rest of that motion's edges but the end of a pulse under way.
+void PulseEngine::drop_beyond_limit(unsigned axis) noexcept {
+  const AxisLink& link = axes_[axis];
+  if (link.control == nullptr || link.feedback == nullptr) return;
+  const std::uint32_t epoch = link.control->limit_epoch.load(std::memory_order_acquire);
+  if (epoch == 0) return;
+  const std::int64_t limit = link.control->limit_steps.load(std::memory_order_relaxed);
+  SpscRing<Edge>& ring = *link.edges;
+  for (const Edge* e = ring.peek(); e != nullptr; e = ring.peek()) {
+    if ((e->flags & edge_flag::kMotion) == 0 || e->epoch != epoch) return;
+    if (e->level == 0 && pulse_high_[axis] == static_cast<std::uint8_t>(e->line)) return;
+    if (truncated_epoch_[axis] != epoch) {
+      const std::int64_t steps = link.feedback->steps.load(std::memory_order_relaxed);
+      const bool beyond = (e->dpos > 0 && steps >= limit) || (e->dpos < 0 && steps <= limit);
+      if (!beyond) return;
+      truncated_epoch_[axis] = epoch;
+    }
+    if ((e->flags & edge_flag::kLast) != 0) {
+      in_motion_[axis] = 0;
+      store_max(link.feedback->finished_epoch, epoch);
+    }
     ring.pop();
   }
 }
@@ -114,12 +157,21 @@ void PulseEngine::execute_one(Nanos write_time) noexcept {
   const Edge e = *p;
   link.edges->pop();
 
+  // Before write() clears pulse_high_: whether this edge ends the pulse under way.
+  const bool direction_edge = e.dpos == 0 && e.line == OutputLine::kDir &&
+                              pulse_high_[axis] != static_cast<std::uint8_t>(e.line) &&
+                              (e.flags & edge_flag::kMotion) != 0;
   write(axis, e.line, e.level != 0, write_time);
+  if (direction_edge) dir_late_[axis] = std::max<Nanos>(0, write_time - e.t);
 
   AxisFeedback* fb = link.feedback;
   if (e.dpos != 0) {
     // A step's leading edge.
-    if (e.level != 0) pulse_high_[axis] = static_cast<std::uint8_t>(e.line);
+    dir_late_[axis] = 0;
+    if (e.level != 0) {
+      pulse_high_[axis] = static_cast<std::uint8_t>(e.line);
+      pulse_late_[axis] = std::max<Nanos>(0, write_time - e.t);
+    }
     if (fb != nullptr) {
       const std::int64_t steps = fb->steps.load(std::memory_order_relaxed) + e.dpos;
       // History first: a reader that sees the new count in `steps` and then asks the history

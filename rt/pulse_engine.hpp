@@ -60,6 +60,10 @@ class PulseEngine {
   void apply_abort(unsigned axis) noexcept;
   void write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept;
   void drop_stale(unsigned axis) noexcept;
+  void drop_beyond_limit(unsigned axis) noexcept;
+  // When the head edge of `axis` may be written: its time, pushed back so that a late leading
+  // edge still gets its full pulse width and a late direction edge its full set-up time.
+  Nanos due(unsigned axis, const Edge& e) const noexcept;
 
   gpio::Backend& backend_;
   std::vector<AxisLink> axes_;  // sized once in the constructor
@@ -74,6 +78,11 @@ class PulseEngine {
   static constexpr std::uint8_t kNoPulse = 0xff;
   std::vector<std::uint8_t> pulse_high_;
   std::vector<std::uint8_t> in_motion_;  // per axis: a motion's edges executed, not its last
+  // Per axis: how late the leading edge of the pulse now high was written, and how late the last
+  // direction edge was (until the next step): the trailing edge / next step keep their spacing.
+  std::vector<Nanos> pulse_late_;
+  std::vector<Nanos> dir_late_;
+  std::vector<std::uint32_t> truncated_epoch_;  // per axis: motion cut at its step-count cap
   ClockFn clock_ = &monotonic_now;
 };
 

@@ -569,6 +569,25 @@ TEST_F(Manual3601, Registration_ExactlyRStepsAfterTheExternalEdge) {
   EXPECT_NEAR(period_before(vm_.step_times(0).back(), 3 * kNsPerMs), 1e6, 1e5);
 }
 
+// At constant speed (Vp <= Vs) no steps are needed to stop, so any count >= 1 is legal, and the
+// planner has already queued a lookahead's worth of steps (4 ms = 40 at 10,000 steps/s) when
+// the trigger comes: the pulse thread's step-count cap keeps the count exact anyway.
+TEST_F(Manual3601, Registration_SmallCountAtConstantSpeedIsExact) {
+  configure(kFullConfigMsw, kAllActiveHigh, 10'000);  // Vs = 10,000 steps/s
+  command(cmd::kPresetPosition, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  start(cmd::kManualCw, {.target = 3, .speed = 10'000, .accel = 10, .decel = 10});
+  vm_.run_for(200 * kNsPerMs);
+  const Nanos t = vm_.now();
+  const std::int64_t before = motor();
+  force(InputLine::kExternal, true);
+  ASSERT_TRUE(wait_idle());
+  EXPECT_EQ(steps_after(t), 3u);
+  EXPECT_EQ(motor(), before + 3);
+  EXPECT_EQ(position(), motor());
+  EXPECT_TRUE(status(kStopped));
+  EXPECT_FALSE(errors());
+}
+
 TEST_F(Manual3601, Registration_TriggerByReleasingTheBit) {
   start(cmd::kManualCcw, {.target = 8'000, .speed = 10'000, .accel = 10, .decel = 20});
   vm_.run_for(kAtSpeed);

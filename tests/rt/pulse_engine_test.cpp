@@ -269,7 +269,8 @@ TEST(PulseEngine, PushesTraceRecordsAndCountsDrops) {
   EXPECT_EQ(r.t, 2'007);
   EXPECT_EQ(r.axis, 0);
   ASSERT_TRUE(trace.try_pop(r));
-  EXPECT_EQ(r.t, 1'000 + kWidth + 7);
+  // The trailing edge keeps the full width after the late rise, then is itself 7 ns late.
+  EXPECT_EQ(r.t, 1'000 + 7 + kWidth + 7);
   EXPECT_EQ(r.level, 0);
 }
 
@@ -282,10 +283,74 @@ TEST(PulseEngine, RecordsLateness) {
   }
   const auto s = rig.engine->stats().snapshot();
   EXPECT_EQ(s.count, 100u);
+  // Leading edges 1,000 late; trailing edges wait out the full width after their late rise
+  // (1,000) and are then 3,000 late themselves: 4,000 after their scheduled time.
   EXPECT_EQ(s.min, 1'000);
-  EXPECT_EQ(s.max, 3'000);
+  EXPECT_EQ(s.max, 4'000);
   EXPECT_NEAR(s.percentile(0.5), 1'000, 10);
-  EXPECT_EQ(s.percentile(0.99), 3'000);
+  EXPECT_EQ(s.percentile(0.99), 4'000);
+}
+
+TEST(PulseEngine, LateLeadingEdgeStillGetsTheFullPulseWidth) {
+  Rig rig(1);
+  push_step(rig.ring(0), 10'000, kWidth, 1);
+  Nanos t = rig.engine->next_due();
+  ASSERT_EQ(t, 10'000);
+  rig.engine->execute_one(t + 1'500);  // the rise is 1.5 us late
+  t = rig.engine->next_due();
+  EXPECT_EQ(t, 10'000 + 1'500 + kWidth);  // not 12,000: the drive would see a 0.5 us pulse
+  rig.engine->execute_one(t);
+  const auto& w = rig.backend.writes();
+  ASSERT_EQ(w.size(), 2u);
+  EXPECT_EQ(w[1].t - w[0].t, kWidth);
+}
+
+TEST(PulseEngine, LateDirectionEdgeStillGetsTheFullSetupTime) {
+  Rig rig(1);
+  constexpr Nanos kSetup = 5'000;
+  rig.ring(0).try_push(make_edge(0, 1, OutputLine::kDir, true, 0, kMotion | edge_flag::kFirst));
+  push_step(rig.ring(0), kSetup, kWidth, 1);
+  push_step(rig.ring(0), kSetup + 10'000, kWidth, 1);
+  rig.engine->execute_one(rig.engine->next_due() + 4'000);  // direction written 4 us late
+  EXPECT_EQ(rig.engine->next_due(), kSetup + 4'000);
+  rig.engine->execute_one(kSetup + 4'000);
+  rig.engine->execute_one(rig.engine->next_due());
+  // Only the first step after the direction change is pushed back.
+  EXPECT_EQ(rig.engine->next_due(), kSetup + 10'000);
+}
+
+TEST(PulseEngine, StepCountCapDropsTheCappedMotionsLaterSteps) {
+  Rig rig(1);
+  // Ten steps planned; the control side caps the motion at 4 (a registration count that the
+  // planner had already planned past).
+  for (int i = 0; i < 10; ++i) push_step(rig.ring(0), i * 10'000, kWidth, 3, +1, 0, i == 9);
+  rig.ctl(0).limit_steps.store(4);
+  rig.ctl(0).limit_epoch.store(3);
+  rig.run_all();
+  EXPECT_EQ(rig.fb(0).steps.load(), 4);
+  EXPECT_EQ(rig.fb(0).finished_epoch.load(), 3u);  // the dropped last edge still ends it
+  const auto& w = rig.backend.writes();
+  ASSERT_EQ(w.size(), 8u);  // four whole pulses: no half pulse
+  EXPECT_FALSE(w.back().level);
+}
+
+TEST(PulseEngine, StepCountCapOfAnotherMotionChangesNothing) {
+  Rig rig(1);
+  for (int i = 0; i < 5; ++i) push_step(rig.ring(0), i * 10'000, kWidth, 2, -1, 0, i == 4);
+  rig.ctl(0).limit_steps.store(-2);
+  rig.ctl(0).limit_epoch.store(1);  // an older motion's cap
+  rig.run_all();
+  EXPECT_EQ(rig.fb(0).steps.load(), -5);
+}
+
+TEST(PulseEngine, StepCountCapCountsDownForACcwMotion) {
+  Rig rig(1);
+  for (int i = 0; i < 6; ++i) push_step(rig.ring(0), i * 10'000, kWidth, 2, -1, 0, i == 5);
+  rig.ctl(0).limit_steps.store(-2);
+  rig.ctl(0).limit_epoch.store(2);
+  rig.run_all();
+  EXPECT_EQ(rig.fb(0).steps.load(), -2);
+  EXPECT_EQ(rig.fb(0).finished_epoch.load(), 2u);
 }
 
 }  // namespace
