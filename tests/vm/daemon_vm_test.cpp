@@ -833,7 +833,13 @@ std::string case_estop() {
   check(pos_later == pos, "the position kept changing after the stop");
   check(static_cast<std::int64_t>(rising.size()) == -pos,
         fmt("VCD: %zu pulses, position %lld", rising.size(), static_cast<long long>(pos)));
-  check(last_step_after < 20'000'000, "steps continued more than 20 ms after the E-stop edge");
+  // Immediate, not controlled: a controlled stop from 2,000 to 500 steps/s at 10 steps/ms/s takes
+  // (2000^2 - 500^2) / (2 * 10,000) = 187 steps. Counted in steps, not time: the qemu guest runs
+  // under TCG on a shared host and stalls for tens of ms now and then (the pulse thread with it).
+  constexpr std::int64_t kControlledStopSteps = 187;
+  check(after < kControlledStopSteps,
+        fmt("%lld steps after the E-stop edge: no faster than a controlled stop (%lld)",
+            static_cast<long long>(after), static_cast<long long>(kControlledStopSteps)));
   return fmt("E-stop edge stopped the move: %s; %lld steps = position, last step %lld us after "
              "the kernel's edge time",
              status_names(s).c_str(), static_cast<long long>(-pos),
