@@ -118,9 +118,10 @@ void Daemon::run(const std::atomic<bool>& stop) {
   if (!pulse.start()) throw std::runtime_error("cannot start the pulse thread");
   const auto& st = pulse.status();
   if (!st.fifo) {
-    spdlog::warn("pulse thread: SCHED_FIFO priority {} refused ({}); running without real-time "
-                 "priority: pulse timing will suffer under load",
-                 po.priority, std::strerror(st.sched_errno));
+    spdlog::warn(
+        "pulse thread: SCHED_FIFO priority {} refused ({}); running without real-time "
+        "priority: pulse timing will suffer under load",
+        po.priority, std::strerror(st.sched_errno));
   }
   if (!st.memory_locked) {
     spdlog::warn("mlockall refused ({}); memory is not locked", std::strerror(st.mlock_errno));
@@ -256,7 +257,8 @@ void Daemon::Impl::idle_outputs() {
     const std::uint8_t levels = stack->feedback(a).output_levels.load(std::memory_order_acquire);
     for (unsigned l = 0; l < rt::kOutputLinesPerAxis; ++l) {
       if (output_trace && (levels >> l) & 1u) {
-        output_trace->try_push({now, static_cast<std::uint8_t>(a), static_cast<std::uint8_t>(l), 0, 0});
+        output_trace->try_push(
+            {now, static_cast<std::uint8_t>(a), static_cast<std::uint8_t>(l), 0, 0});
       }
     }
   }
