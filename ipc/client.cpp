@@ -3,6 +3,8 @@
 #include <cstring>
 #include <thread>
 
+#include "ipc/snapshot.hpp"
+
 namespace stepmod::ipc {
 namespace {
 // How long a writer waits for another writer's odd sequence before assuming it died.
@@ -41,23 +43,13 @@ Client::Client(const std::string& name) : name_(name) {
 }
 
 bool Client::read_inputs(module::ImageWords& in) const noexcept {
-  module::ImageWords tmp;
-  if (!stepmod_seq_read(&img_->input_seq, &img_->input_image, shape_.word_bytes, shape_.input_words,
-                        tmp.w.data(), kReadTries)) {
-    return false;
-  }
-  in = tmp;
-  return true;
+  return read_snapshot(&img_->input_seq, &img_->input_image, shape_.word_bytes, shape_.input_words,
+                       kReadTries, in);
 }
 
 bool Client::read_outputs(module::ImageWords& out) const noexcept {
-  module::ImageWords tmp;
-  if (!stepmod_seq_read(&img_->output_seq, &img_->output_image, shape_.word_bytes,
-                        shape_.output_words, tmp.w.data(), kReadTries)) {
-    return false;
-  }
-  out = tmp;
-  return true;
+  return read_snapshot(&img_->output_seq, &img_->output_image, shape_.word_bytes,
+                       shape_.output_words, kReadTries, out);
 }
 
 void Client::require_writable() const {

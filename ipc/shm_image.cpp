@@ -4,6 +4,8 @@
 
 #include <cstring>
 
+#include "ipc/snapshot.hpp"
+
 namespace stepmod::ipc {
 
 ShmImage::ShmImage(const std::string& name, const module::ModuleShape& shape)
@@ -27,13 +29,8 @@ ShmImage::ShmImage(const std::string& name, const module::ModuleShape& shape)
 }
 
 bool ShmImage::read_outputs(module::ImageWords& out) const noexcept {
-  module::ImageWords tmp;
-  if (!stepmod_seq_read(&img_->output_seq, &img_->output_image, shape_.word_bytes,
-                        shape_.output_words, tmp.w.data(), kReadTries)) {
-    return false;
-  }
-  out = tmp;
-  return true;
+  return read_snapshot(&img_->output_seq, &img_->output_image, shape_.word_bytes,
+                       shape_.output_words, kReadTries, out);
 }
 
 void ShmImage::publish_inputs(const module::ImageWords& in) noexcept {
