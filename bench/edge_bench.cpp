@@ -2,7 +2,7 @@
 // thread (SCHED_FIFO) and the simulated machine, wired as stepmodd wires them (tools/stack.cpp),
 // with a checking backend in front of the sim that verifies every write.
 //
-//   edge_bench timing [--edges 200000] [--edge-hz 50000] [--priority 80]
+//   edge_bench timing [--edges 200000] [--edge-hz 50000] [--priority 80] [--pulse-ns N]
 //       Benchmark 1: lateness (write time - scheduled time, rt::LatenessStats) of >= --edges
 //       evenly spaced edges at --edge-hz (step pulse = half the step period).
 //   edge_bench rate [--axes 1|2] [--seconds 10] [--rates R1,R2,...] [--priority 80]
@@ -185,7 +185,9 @@ struct Rig {
   std::unique_ptr<planner::PlannerThread> plan_thread;
 };
 
-double us(Nanos ns) { return static_cast<double>(ns) / 1000.0; }
+double us(Nanos ns) {
+  return static_cast<double>(ns) / 1000.0;
+}
 
 double cpu_seconds() {
   rusage ru{};
@@ -208,12 +210,15 @@ int timing(int argc, char** argv) {
   const double step_rate = edge_hz / 2;  // two edges per step
   const auto period = static_cast<Nanos>(1e9 / step_rate);
   const Nanos min_spin = std::atol(arg(argc, argv, "--min-spin-us", "-1")) * kNsPerUs;
-  // Pulse = half the period: edges evenly spaced.
+  // Pulse = half the period by default: edges evenly spaced. The engine keeps a step's whole
+  // pulse width after a late leading edge, so a wide pulse leaves only the low time to catch up
+  // in; --pulse-ns 2000 (stepmodd's default) shows the same rate with a drive-sized pulse.
+  const Nanos pulse = std::atol(arg(argc, argv, "--pulse-ns", "0"));
   const int cpu = std::atoi(arg(argc, argv, "--cpu", "-1"));
   const Nanos spin = std::atol(arg(argc, argv, "--spin-us", "-1")) * kNsPerUs;
   const int min_off = std::atoi(arg(argc, argv, "--min-off-permille", "-1"));
-  Rig rig(1, period / 2, priority, 0, min_spin < 0 ? -1 : min_spin, cpu, spin < 0 ? -1 : spin,
-          min_off);
+  Rig rig(1, pulse > 0 ? pulse : period / 2, priority, 0, min_spin < 0 ? -1 : min_spin, cpu,
+          spin < 0 ? -1 : spin, min_off);
   if (!rig.start()) return 1;
   const std::int64_t steps = (edges + 1) / 2;
   rig.move_all(steps, step_rate);
@@ -224,21 +229,23 @@ int timing(int argc, char** argv) {
   }
   const auto s = rig.engine->stats().snapshot();
   const auto& c = rig.backend->check(0);
-  std::printf("edge timing: %llu edges at %.0f Hz, priority %d: lateness p50 %.2f us, p99 %.2f "
-              "us, p99.9 %.2f us, max %.2f us (lost/reordered %llu)\n",
-              static_cast<unsigned long long>(s.count), edge_hz, priority, us(s.percentile(0.5)),
-              us(s.percentile(0.99)), us(s.percentile(0.999)), us(s.max),
-              static_cast<unsigned long long>(c.level_repeats + c.time_backwards));
+  std::printf(
+      "edge timing: %llu edges at %.0f Hz, priority %d: lateness p50 %.2f us, p99 %.2f "
+      "us, p99.9 %.2f us, max %.2f us (lost/reordered %llu)\n",
+      static_cast<unsigned long long>(s.count), edge_hz, priority, us(s.percentile(0.5)),
+      us(s.percentile(0.99)), us(s.percentile(0.999)), us(s.max),
+      static_cast<unsigned long long>(c.level_repeats + c.time_backwards));
   std::printf("pulse thread: %llu loops, %llu sleeps, spin now %.1f us, process cpu %.2f s\n",
               static_cast<unsigned long long>(rig.pulse->loops()),
               static_cast<unsigned long long>(rig.pulse->sleeps()), us(rig.pulse->spin_now()),
               cpu_seconds());
-  std::printf("RESULT bench=timing edges=%llu p50_us=%.3f p99_us=%.3f p999_us=%.3f max_us=%.3f "
-              "errors=%llu fifo=%d\n",
-              static_cast<unsigned long long>(s.count), us(s.percentile(0.5)),
-              us(s.percentile(0.99)), us(s.percentile(0.999)), us(s.max),
-              static_cast<unsigned long long>(c.level_repeats + c.time_backwards),
-              rig.pulse->status().fifo ? 1 : 0);
+  std::printf(
+      "RESULT bench=timing edges=%llu p50_us=%.3f p99_us=%.3f p999_us=%.3f max_us=%.3f "
+      "errors=%llu fifo=%d\n",
+      static_cast<unsigned long long>(s.count), us(s.percentile(0.5)), us(s.percentile(0.99)),
+      us(s.percentile(0.999)), us(s.max),
+      static_cast<unsigned long long>(c.level_repeats + c.time_backwards),
+      rig.pulse->status().fifo ? 1 : 0);
   return 0;
 }
 
@@ -247,10 +254,9 @@ int rate(int argc, char** argv) {
   const double seconds = std::atof(arg(argc, argv, "--seconds", "10"));
   const int priority = std::atoi(arg(argc, argv, "--priority", "80"));
   const Nanos lookahead = std::atol(arg(argc, argv, "--lookahead-us", "0")) * kNsPerUs;
-  const std::string list =
-      arg(argc, argv, "--rates",
-          n_axes == 1 ? "25000,100000,250000,500000,1000000,1500000,2000000"
-                      : "25000,100000,250000,500000,1000000");
+  const std::string list = arg(argc, argv, "--rates",
+                               n_axes == 1 ? "25000,100000,250000,500000,1000000,1500000,2000000"
+                                           : "25000,100000,250000,500000,1000000");
   std::vector<double> rates;
   for (std::size_t p = 0; p < list.size();) {
     const std::size_t q = std::min(list.find(',', p), list.size());
@@ -280,11 +286,12 @@ int rate(int argc, char** argv) {
     }
     const Nanos p999 = s.percentile(0.999);
     const bool ok = finished && errors == 0 && p999 < 10 * kNsPerUs;
-    std::printf("rate %u axis x %.0f steps/s for %.1f s: %s (edges %llu, errors %llu, lateness "
-                "p50 %.2f us p99.9 %.2f us max %.2f us, wall %.2f s, cpu %.2f s)\n",
-                n_axes, r, seconds, ok ? "ok" : "FAIL", static_cast<unsigned long long>(s.count),
-                static_cast<unsigned long long>(errors), us(s.percentile(0.5)), us(p999),
-                us(s.max), wall, cpu);
+    std::printf(
+        "rate %u axis x %.0f steps/s for %.1f s: %s (edges %llu, errors %llu, lateness "
+        "p50 %.2f us p99.9 %.2f us max %.2f us, wall %.2f s, cpu %.2f s)\n",
+        n_axes, r, seconds, ok ? "ok" : "FAIL", static_cast<unsigned long long>(s.count),
+        static_cast<unsigned long long>(errors), us(s.percentile(0.5)), us(p999), us(s.max), wall,
+        cpu);
     std::printf("RESULT bench=rate axes=%u rate=%.0f ok=%d errors=%llu p999_us=%.3f max_us=%.3f\n",
                 n_axes, r, ok ? 1 : 0, static_cast<unsigned long long>(errors), us(p999),
                 us(s.max));
@@ -304,8 +311,9 @@ int main(int argc, char** argv) {
   const std::string cmd = argc > 1 ? argv[1] : "";
   if (cmd == "timing") return timing(argc, argv);
   if (cmd == "rate") return rate(argc, argv);
-  std::fprintf(stderr, "usage: edge_bench timing [--edges N] [--edge-hz HZ] [--priority P]\n"
-                       "       edge_bench rate [--axes 1|2] [--seconds S] [--rates R1,R2,..]"
-                       " [--priority P]\n");
+  std::fprintf(stderr,
+               "usage: edge_bench timing [--edges N] [--edge-hz HZ] [--priority P]\n"
+               "       edge_bench rate [--axes 1|2] [--seconds S] [--rates R1,R2,..]"
+               " [--priority P]\n");
   return 2;
 }
