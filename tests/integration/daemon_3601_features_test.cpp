@@ -11,6 +11,7 @@
 #include "ipc/sim_panel.hpp"
 #include "module/m3601/words_3601.hpp"
 #include "tests/support/daemon_process.hpp"
+#include "tests/support/sim_config.hpp"
 #include "tests/support/vcd_reader.hpp"
 #include "tools/ctl_commands.hpp"
 
@@ -22,26 +23,7 @@ using namespace m::status_msw;
 using std::chrono::milliseconds;
 using tools::ctl::Profile;
 
-constexpr const char* kConfig = R"(
-[module]
-type = "3601"
-name = "{NAME}"
-
-[[axis]]
-step = 1
-dir = 2
-capture = 3
-external = 4
-home = 5
-estop = 6
-cw_limit = 7
-ccw_limit = 8
-enc_a = 9
-enc_b = 10
-enc_z = 11
-
-[axis.sim]
-start_position = -3000
+constexpr const char* kSim = R"(start_position = -3000
 cw_limit_at = 200000
 ccw_limit_at = -200000
 home_from = 5000
@@ -58,7 +40,7 @@ constexpr std::uint16_t kConfigBits = m::cfg_msw::kCaptureUsed | m::cfg_msw::kEx
 class Daemon3601Features : public ::testing::Test {
  protected:
   void SetUp() override {
-    daemon_ = std::make_unique<DaemonProcess>(kConfig);
+    daemon_ = std::make_unique<DaemonProcess>(sim_3601_config("", kSim));
     ASSERT_TRUE(daemon_->wait_ready()) << daemon_->log();
     client_ = std::make_unique<ipc::Client>(daemon_->name());
     plc_ = std::make_unique<tools::ctl::Plc3601>(*client_, milliseconds(3000));

@@ -13,6 +13,7 @@
 #include "ipc/sim_panel.hpp"
 #include "module/m3601/words_3601.hpp"
 #include "tests/support/daemon_process.hpp"
+#include "tests/support/sim_config.hpp"
 #include "tests/support/vcd_reader.hpp"
 
 namespace stepmod::testing {
@@ -31,33 +32,7 @@ constexpr bool kTimingChecks = false;
 constexpr bool kTimingChecks = true;
 #endif
 
-constexpr const char* kConfig = R"(
-[module]
-type = "3601"
-name = "{NAME}"
-scan_us = 1000
-{EXTRA}
-[gpio]
-backend = "sim"
-
-[rt]
-priority = 80
-
-[[axis]]
-step = 1
-dir = 2
-capture = 3
-external = 4
-home = 5
-estop = 6
-cw_limit = 7
-ccw_limit = 8
-enc_a = 9
-enc_b = 10
-enc_z = 11
-
-[axis.sim]
-cw_limit_at = 1000000
+constexpr const char* kSim = R"(cw_limit_at = 1000000
 ccw_limit_at = -1000000
 home_from = 5000
 home_to = 5100
@@ -66,9 +41,7 @@ marker_every = 4000
 )";
 
 std::string config(const std::string& extra = "") {
-  std::string c = kConfig;
-  c.replace(c.find("{EXTRA}"), 7, extra);
-  return c;
+  return sim_3601_config(extra, kSim);
 }
 
 // A PLC program's side of the image, over the real shared memory.

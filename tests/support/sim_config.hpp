@@ -1,0 +1,40 @@
+#pragma once
+// The config file of the end-to-end tests: a 3601 on the simulated machine with every input
+// wired, named {NAME} (DaemonProcess fills in a unique name).
+#include <string>
+
+namespace stepmod::testing {
+
+// `module_extra`: more [module] keys (e.g. "plc_timeout_ms = 300"); `sim`: the [axis.sim] keys.
+inline std::string sim_3601_config(const std::string& module_extra, const std::string& sim) {
+  return R"(
+[module]
+type = "3601"
+name = "{NAME}"
+scan_us = 1000
+)" + module_extra +
+         R"(
+[gpio]
+backend = "sim"
+
+[rt]
+priority = 80
+
+[[axis]]
+step = 1
+dir = 2
+capture = 3
+external = 4
+home = 5
+estop = 6
+cw_limit = 7
+ccw_limit = 8
+enc_a = 9
+enc_b = 10
+enc_z = 11
+
+[axis.sim]
+)" + sim;
+}
+
+}  // namespace stepmod::testing
