@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
 #include <optional>
@@ -72,6 +73,31 @@ std::int64_t parse_number(const std::string& s, const char* what) {
   return neg ? -v : v;
 }
 
+// The 3601 carries a 32-bit parameter as MSW * 1000 + LSW in two 16-bit INTs (digest 2.1).
+// Beyond this range the MSW would wrap and the module would read another, possibly valid,
+// number (a target of 65,537,000 would arrive as 1,000 and move the axis). Values the words can
+// carry but the module refuses (a target beyond 8,388,607) are sent: the module reports them.
+constexpr std::int64_t kSplitMin = -32'768'999;
+constexpr std::int64_t kSplitMax = 32'767'999;
+
+std::int32_t split_number(const std::string& s, const char* what) {
+  const std::int64_t v = parse_number(s, what);
+  if (v < kSplitMin || v > kSplitMax) {
+    throw UsageError(std::string(what) + ": '" + s + "' does not fit the 3601's two words (" +
+                     std::to_string(kSplitMin) + ".." + std::to_string(kSplitMax) + ")");
+  }
+  return static_cast<std::int32_t>(v);
+}
+
+// A plain 16-bit word (accelerations); a wider value would be truncated to another number.
+std::int32_t word_number(const std::string& s, const char* what) {
+  const std::int64_t v = parse_number(s, what);
+  if (v < INT16_MIN || v > INT16_MAX) {
+    throw UsageError(std::string(what) + ": '" + s + "' does not fit a 16-bit word");
+  }
+  return static_cast<std::int32_t>(v);
+}
+
 bool parse_direction(const std::string& s) {
   if (s == "+" || s == "cw" || s == "CW") return true;
   if (s == "-" || s == "ccw" || s == "CCW") return false;
@@ -94,9 +120,12 @@ struct ProfileOpts {
   CLI::Option* speed_opt = nullptr;
 
   void add(CLI::App* app, bool required, bool with_scurve = true) {
-    speed_opt = app->add_option("--speed,-s", speed, "programmed speed, steps/s");
-    app->add_option("--accel,-a", accel, "acceleration, steps/ms/s (1..2000)");
-    app->add_option("--decel,-d", decel, "deceleration, steps/ms/s (1..2000)");
+    speed_opt = app->add_option("--speed,-s", speed, "programmed speed, steps/s")
+                    ->check(CLI::Range(kSplitMin, kSplitMax));
+    app->add_option("--accel,-a", accel, "acceleration, steps/ms/s (1..2000)")
+        ->check(CLI::Range(INT16_MIN, INT16_MAX));
+    app->add_option("--decel,-d", decel, "deceleration, steps/ms/s (1..2000)")
+        ->check(CLI::Range(INT16_MIN, INT16_MAX));
     if (required) {
       speed_opt->required();
       app->get_option("--accel")->required();
@@ -168,7 +197,8 @@ int main(int argc, char** argv) {
   std::string name = "stepmod";
   int timeout_ms = 2000;
   app.add_option("--name,-n", name, "module name: /dev/shm/stepmod.NAME (default stepmod)");
-  app.add_option("--timeout", timeout_ms, "ms to wait for the module's scans/handshakes (2000)");
+  app.add_option("--timeout", timeout_ms, "ms to wait for the module's scans/handshakes (2000)")
+      ->check(CLI::NonNegativeNumber);
 
   // ---- inspection ----
   auto* status = app.add_subcommand("status",
@@ -176,7 +206,8 @@ int main(int argc, char** argv) {
                                     "positions as numbers");
   auto* watch = app.add_subcommand("watch", "status, refreshed until Ctrl-C");
   int interval_ms = 200;
-  watch->add_option("--interval,-i", interval_ms, "refresh period in ms (200)");
+  watch->add_option("--interval,-i", interval_ms, "refresh period in ms (200)")
+      ->check(CLI::Range(1, 3'600'000));
   auto* raw = app.add_subcommand("raw", "read/write image words");
   raw->require_subcommand(1);
   auto* raw_get = raw->add_subcommand("get", "print output and input words (decimal and hex)");
@@ -210,7 +241,8 @@ int main(int argc, char** argv) {
                    "inputs that are active low (N.C.): capture,external,home,estop,cw_limit,"
                    "ccw_limit; all others active high")
       ->delimiter(',');
-  configure->add_option("--start-speed", c_vs, "starting speed, steps/s (1000)");
+  configure->add_option("--start-speed", c_vs, "starting speed, steps/s (1000)")
+      ->check(CLI::Range(kSplitMin, kSplitMax));
 
   auto* move = app.add_subcommand("move", "3601: absolute or relative move");
   std::string move_kind;
@@ -231,8 +263,10 @@ int main(int argc, char** argv) {
   ProfileOpts jog_p;
   jog->add_option("DIR", jog_dir, "+ (cw) or - (ccw)")->required();
   jog_p.add(jog, true);
-  jog->add_option("--for,-t", jog_for, "seconds to hold the manual move bit (1)");
-  jog->add_option("--registration", jog_reg, "registration move: steps after the stop trigger");
+  jog->add_option("--for,-t", jog_for, "seconds to hold the manual move bit (1)")
+      ->check(CLI::Range(0.0, 1e6));
+  jog->add_option("--registration", jog_reg, "registration move: steps after the stop trigger")
+      ->check(CLI::Range(kSplitMin, kSplitMax));
 
   auto* home = app.add_subcommand("home", "3601: find home in direction + or -");
   std::string home_dir;
@@ -270,8 +304,10 @@ int main(int argc, char** argv) {
       ->add_option("--segment", segs,
                    "LENGTH:SPEED:ACCEL[:tri|trap], once per segment in order (2..16)")
       ->required();
+  // Word 5 carries the type in bits 15..14 and the value in bits 13..0.
   blend_prog->add_option("--final-decel", final_decel, "final deceleration, steps/ms/s")
-      ->required();
+      ->required()
+      ->check(CLI::Range(0, 0x3FFF));
   blend_prog->add_option("--final-type", final_type, "final deceleration type: const|tri|trap");
   auto* blend_run = blend->add_subcommand("run", "run the stored profile, + or -");
   std::string blend_dir;
@@ -279,7 +315,8 @@ int main(int argc, char** argv) {
 
   auto* wait_idle = app.add_subcommand("wait-idle", "3601: wait until the axis is not moving");
   double wait_s = 60;
-  wait_idle->add_option("--max", wait_s, "give up after this many seconds (60)");
+  wait_idle->add_option("--max", wait_s, "give up after this many seconds (60)")
+      ->check(CLI::Range(0.0, 1e6));
 
   // ---- simulator panel ----
   auto* panel = app.add_subcommand("panel", "simulator panel: show, force or release inputs");
@@ -408,7 +445,7 @@ int main(int argc, char** argv) {
       for (const auto& in : c_low) lsw = static_cast<std::uint16_t>(lsw & ~(1u << panel_input(in)));
       o = plc.configure(msw, lsw, c_vs);
     } else if (move->parsed()) {
-      const auto target = static_cast<std::int32_t>(parse_number(move_target, "TARGET"));
+      const std::int32_t target = split_number(move_target, "TARGET");
       o = plc.move(move_kind == "abs", target, move_p.profile(), move_encoder);
     } else if (jog->parsed()) {
       o = plc.jog(parse_direction(jog_dir), jog_p.profile(),
@@ -424,14 +461,13 @@ int main(int argc, char** argv) {
     } else if (stop->parsed()) {
       o = plc.immediate_stop();
     } else if (preset->parsed()) {
-      o = plc.preset_position(static_cast<std::int32_t>(parse_number(preset_value, "POSITION")));
+      o = plc.preset_position(split_number(preset_value, "POSITION"));
     } else if (preset_enc->parsed()) {
-      o = plc.preset_encoder(static_cast<std::int32_t>(parse_number(preset_enc_value, "VALUE")));
+      o = plc.preset_encoder(split_number(preset_enc_value, "VALUE"));
     } else if (reset->parsed()) {
       o = plc.reset_errors();
     } else if (minreg->parsed()) {
-      o = plc.set_min_registration(
-          static_cast<std::int32_t>(parse_number(minreg_value, "DISTANCE")));
+      o = plc.set_min_registration(split_number(minreg_value, "DISTANCE"));
     } else if (blend_prog->parsed()) {
       tools::ctl::BlendProfile b;
       for (const std::string& s : segs) {
@@ -446,9 +482,8 @@ int main(int argc, char** argv) {
         if (f.size() < 3 || f.size() > 4) {
           throw UsageError("--segment '" + s + "': expected LENGTH:SPEED:ACCEL[:tri|trap]");
         }
-        b.segments.push_back({static_cast<std::int32_t>(parse_number(f[0], "LENGTH")),
-                              static_cast<std::int32_t>(parse_number(f[1], "SPEED")),
-                              static_cast<std::int32_t>(parse_number(f[2], "ACCEL")),
+        b.segments.push_back({split_number(f[0], "LENGTH"), split_number(f[1], "SPEED"),
+                              word_number(f[2], "ACCEL"),
                               parse_accel(f.size() == 4 ? f[3] : "")});
       }
       b.final_decel = final_decel;
