@@ -23,6 +23,14 @@ using std::int64_t;
 // catches nonsense such as a pin number typed as a physical header position * 1000.
 constexpr int64_t kMaxLineOffset = 4095;
 
+// [axis.sim] bounds. Positions: far beyond any machine (a trillion steps), small enough that
+// position * encoder_ratio stays exact in a double and the step count never overflows.
+// encoder_ratio: the simulated motor emits |ratio| encoder counts per step from the pulse
+// thread's line write, one at a time; a real encoder/motor pair is well below 1000 (a
+// 2500-line encoder on a 200-step motor: 50), and a huge value would stall the pulse thread.
+constexpr int64_t kMaxSimPosition = 1'000'000'000'000;
+constexpr double kMaxEncoderRatio = 1000.0;
+
 constexpr std::string_view kOutputKeys[gpio::kOutputLinesPerAxis] = {"step", "dir", "gpo"};
 constexpr std::string_view kInputKeys[gpio::kInputLinesPerAxis] = {
     "capture", "external", "home", "estop", "cw_limit", "ccw_limit", "enc_a", "enc_b", "enc_z"};
@@ -293,15 +301,17 @@ class Parser {
     check_keys(*s, p,
                {"start_position", "cw_limit_at", "ccw_limit_at", "home_from", "home_to", "contacts",
                 "encoder_ratio", "marker_every"});
-    c.start_position = get_int(s, p, "start_position", 0);
-    c.cw_limit_at = opt_int(s, p, "cw_limit_at");
-    c.ccw_limit_at = opt_int(s, p, "ccw_limit_at");
+    constexpr int64_t lo = -kMaxSimPosition;
+    constexpr int64_t hi = kMaxSimPosition;
+    c.start_position = get_int(s, p, "start_position", 0, lo, hi);
+    c.cw_limit_at = opt_int(s, p, "cw_limit_at", lo, hi);
+    c.ccw_limit_at = opt_int(s, p, "ccw_limit_at", lo, hi);
     if (c.cw_limit_at && c.ccw_limit_at && !(*c.ccw_limit_at < *c.cw_limit_at)) {
       fail(s->get("ccw_limit_at")->source(), join(p, "ccw_limit_at"),
            "must be less than cw_limit_at (" + std::to_string(*c.cw_limit_at) + ")");
     }
-    c.home_from = opt_int(s, p, "home_from");
-    c.home_to = opt_int(s, p, "home_to");
+    c.home_from = opt_int(s, p, "home_from", lo, hi);
+    c.home_to = opt_int(s, p, "home_to", lo, hi);
     if (c.home_from.has_value() != c.home_to.has_value()) {
       const std::string_view present = c.home_from ? "home_from" : "home_to";
       fail(s->get(present)->source(), join(p, present),
@@ -316,8 +326,8 @@ class Parser {
       std::optional<double> v;
       if (const auto* f = n->as_floating_point()) v = f->get();
       if (const auto* i = n->as_integer()) v = static_cast<double>(i->get());
-      if (!v || !std::isfinite(*v)) {
-        fail(n->source(), join(p, "encoder_ratio"), "must be a finite number");
+      if (!v || !std::isfinite(*v) || std::fabs(*v) > kMaxEncoderRatio) {
+        fail(n->source(), join(p, "encoder_ratio"), "must be a finite number, -1000 .. 1000");
       }
       c.encoder_ratio = *v;
     }

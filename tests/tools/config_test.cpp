@@ -362,14 +362,38 @@ TEST(ConfigError, SimMarkerEveryPositive) {
 }
 
 TEST(ConfigError, SimEncoderRatioFinite) {
-  EXPECT_CONFIG_ERROR(std::string(kMinimal3601) + "[axis.sim]\nencoder_ratio = inf\n",
-                      "test.toml:9: key 'axis[1].sim.encoder_ratio': must be a finite number");
-  EXPECT_CONFIG_ERROR(std::string(kMinimal3601) + "[axis.sim]\nencoder_ratio = nan\n",
-                      "test.toml:9: key 'axis[1].sim.encoder_ratio': must be a finite number");
+  const std::string msg =
+      "test.toml:9: key 'axis[1].sim.encoder_ratio': must be a finite number, -1000 .. 1000";
+  EXPECT_CONFIG_ERROR(std::string(kMinimal3601) + "[axis.sim]\nencoder_ratio = inf\n", msg);
+  EXPECT_CONFIG_ERROR(std::string(kMinimal3601) + "[axis.sim]\nencoder_ratio = nan\n", msg);
+  // Each step emits |ratio| counts from the pulse thread: a huge ratio would stall it.
+  EXPECT_CONFIG_ERROR(std::string(kMinimal3601) + "[axis.sim]\nencoder_ratio = 1e12\n", msg);
+  EXPECT_CONFIG_ERROR(std::string(kMinimal3601) + "[axis.sim]\nencoder_ratio = -1001\n", msg);
+  EXPECT_EQ(parse_config(std::string(kMinimal3601) + "[axis.sim]\nencoder_ratio = -1000\n", "t")
+                .axes[0]
+                .sim.encoder_ratio,
+            -1000.0);
   EXPECT_EQ(parse_config(std::string(kMinimal3601) + "[axis.sim]\nencoder_ratio = 2\n", "t")
                 .axes[0]
                 .sim.encoder_ratio,
             2.0);
+}
+
+TEST(ConfigError, SimPositionsBounded) {
+  // Beyond +-10^12 steps the step count could overflow and position * ratio lose exactness.
+  EXPECT_CONFIG_ERROR(
+      std::string(kMinimal3601) + "[axis.sim]\nstart_position = 9223372036854775807\n",
+      "test.toml:9: key 'axis[1].sim.start_position': must be an integer "
+      "-1000000000000..1000000000000");
+  EXPECT_CONFIG_ERROR(std::string(kMinimal3601) + "[axis.sim]\ncw_limit_at = 1000000000001\n",
+                      "test.toml:9: key 'axis[1].sim.cw_limit_at': must be an integer "
+                      "-1000000000000..1000000000000");
+  EXPECT_EQ(
+      parse_config(std::string(kMinimal3601) + "[axis.sim]\nhome_from = -1000000000000\n"
+                   "home_to = 1000000000000\n", "t")
+          .axes[0]
+          .sim.home_to,
+      1'000'000'000'000);
 }
 
 TEST(ConfigError, TablesMustBeTables) {
