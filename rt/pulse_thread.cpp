@@ -43,7 +43,7 @@ void futex_sleep_until(std::atomic<std::uint32_t>& word, std::uint32_t seen,
           &ts, nullptr, FUTEX_BITSET_MATCH_ANY);
 }
 
-// CPU time of the calling thread (a system call: read once per 100 ms only).
+// CPU time of the calling thread (a system call: read once per 20 ms window only).
 Nanos thread_cpu_now() noexcept {
   timespec ts{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
