@@ -283,6 +283,13 @@ class Daemon {
     for (std::string l; std::getline(in, l);) info("  stepmodd: " + l);
   }
   Vcd trace() const { return stepmod::testing::read_vcd(trace_); }
+  // SIGTERM, the daemon's log into the case output, exit status 0 required, then its trace.
+  Vcd stop_and_trace() {
+    const int rc = terminate();
+    print_log();
+    check(rc == 0, fmt("stepmodd exit status %d", rc));
+    return trace();
+  }
   const std::string& name() const { return name_; }
   std::int64_t exit_time() const { return exit_time_; }
 
@@ -726,10 +733,7 @@ std::string case_move() {
   const std::vector<Sample>& samples = sampler.stop();
   const std::int64_t pos = plc.position();
   const std::uint16_t s = plc.msw();
-  const int rc = d.terminate();
-  d.print_log();
-  check(rc == 0, fmt("stepmodd exit status %d", rc));
-  const Vcd v = d.trace();
+  const Vcd v = d.stop_and_trace();
 
   const auto rising = v.rising("axis1.step");
   const auto sw = wire(v, "axis1.step");
@@ -809,10 +813,7 @@ std::string case_estop() {
   const std::int64_t pos_later = plc.position();
   estop.pull(false);
   plc.scans(3);
-  const int rc = d.terminate();
-  d.print_log();
-  check(rc == 0, fmt("stepmodd exit status %d", rc));
-  const Vcd v = d.trace();
+  const Vcd v = d.stop_and_trace();
   const auto rising = v.rising("axis1.step");
   const auto es = wire(v, "axis1.estop");
   info(fmt("E-stop pulled up: status %s, position %lld, seen by the PLC after %lld ms",
@@ -874,10 +875,7 @@ std::string case_capture() {
   }
   check(plc.wait([&] { return plc.status(st::kMoveComplete); }, 15'000), "move not complete");
   const std::int64_t pos = plc.position();
-  const int rc = d.terminate();
-  d.print_log();
-  check(rc == 0, fmt("stepmodd exit status %d", rc));
-  const Vcd v = d.trace();
+  const Vcd v = d.stop_and_trace();
   const auto rising = v.rising("axis1.step");
   const auto cw = wire(v, "axis1.capture");
   check(cw.size() == 2 * kCaptures, fmt("VCD: %zu capture edges, drove %d", cw.size(), 2 * kCaptures));
@@ -940,10 +938,7 @@ std::string case_burst() {
   }
   check(plc.wait([&] { return plc.status(st::kMoveComplete); }, 15'000), "move not complete");
   const std::int64_t pos = plc.position();
-  const int rc = d.terminate();
-  d.print_log();
-  check(rc == 0, fmt("stepmodd exit status %d", rc));
-  const Vcd v = d.trace();
+  const Vcd v = d.stop_and_trace();
   const auto rising = v.rising("axis1.step");
   const auto cw = wire(v, "axis1.capture");
   const auto ew = wire(v, "axis1.external");
@@ -1146,8 +1141,7 @@ std::string case_homing() {
   if (plc.status(st::kCommandError) && !plc.moving()) {
     const std::uint16_t s = plc.msw();
     d.terminate();
-    fail("Find Home CW refused (" + status_names(s) +
-         "): homing is not implemented yet (module/m3601/homing_3601.cpp)");
+    fail("Find Home CW refused: " + status_names(s));
   }
   check(plc.wait([&] { return plc.status(st::kMovingCw); }, 2'000),
         "Find Home CW did not start moving CW: " + status_names(plc.msw()));
