@@ -34,10 +34,8 @@ FollowSpec spec(std::int64_t target, double accel, double decel, double speed = 
 std::uint32_t start_follow(Harness& h, const FollowSpec& f) {
   Command c;
   c.kind = CommandKind::kFollow;
-  c.epoch = ++h.epoch;
   c.follow = f;
-  h.submit(c);
-  return h.epoch;
+  return h.start(c);
 }
 
 void update(Harness& h, const FollowSpec& f) {

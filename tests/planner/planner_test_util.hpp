@@ -32,29 +32,30 @@ struct Harness {
     c.axis = 0;
     return planner->submit(c);
   }
+  // Starts a motion as the next epoch. The raw Command protocol on purpose (not MotionPort): the
+  // tests also send stale epochs, which MotionPort cannot.
+  std::uint32_t start(Command c) {
+    c.epoch = ++epoch;
+    submit(c);
+    return epoch;
+  }
   std::uint32_t start_move(const MoveSpec& m) {
     Command c;
     c.kind = CommandKind::kMove;
-    c.epoch = ++epoch;
     c.move = m;
-    submit(c);
-    return epoch;
+    return start(c);
   }
   std::uint32_t start_run(const RunSpec& r) {
     Command c;
     c.kind = CommandKind::kRun;
-    c.epoch = ++epoch;
     c.run = r;
-    submit(c);
-    return epoch;
+    return start(c);
   }
   std::uint32_t start_blend(const BlendSpec& b) {
     Command c;
     c.kind = CommandKind::kBlend;
-    c.epoch = ++epoch;
     c.blend = b;
-    submit(c);
-    return epoch;
+    return start(c);
   }
   void send(CommandKind kind, Command c = {}) {
     c.kind = kind;
