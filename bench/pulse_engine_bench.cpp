@@ -35,19 +35,28 @@ struct Axis {
   StepHistory history;
 };
 
+// n axes and the links the engine takes (the axes stay where they are: the engine keeps
+// pointers).
+struct Axes {
+  explicit Axes(unsigned n) {
+    for (unsigned i = 0; i < n; ++i) {
+      axes.push_back(std::make_unique<Axis>());
+      links.push_back({&axes[i]->ring, &axes[i]->feedback, &axes[i]->control, &axes[i]->history});
+    }
+  }
+  std::vector<std::unique_ptr<Axis>> axes;
+  std::vector<AxisLink> links;
+};
+
 // range(0) axes, range(1) != 0: with a trace ring (drained as we go, as the trace thread would).
 void BM_PulseEngine_Edge(benchmark::State& state) {
   const auto n = static_cast<unsigned>(state.range(0));
   const bool traced = state.range(1) != 0;
   NullBackend backend;
-  std::vector<std::unique_ptr<Axis>> axes;
-  std::vector<AxisLink> links;
-  for (unsigned i = 0; i < n; ++i) {
-    axes.push_back(std::make_unique<Axis>());
-    links.push_back({&axes[i]->ring, &axes[i]->feedback, &axes[i]->control, &axes[i]->history});
-  }
+  Axes rig(n);
+  auto& axes = rig.axes;
   SpscRing<TraceRecord> trace(4096);
-  PulseEngine engine(backend, links, traced ? &trace : nullptr);
+  PulseEngine engine(backend, rig.links, traced ? &trace : nullptr);
   Nanos t = 0;
   unsigned k = 0;
   for (auto _ : state) {
@@ -76,13 +85,8 @@ BENCHMARK(BM_PulseEngine_Edge)->ArgsProduct({{1, 2, 4}, {0, 1}});
 void BM_PulseEngine_NextDueIdle(benchmark::State& state) {
   const auto n = static_cast<unsigned>(state.range(0));
   NullBackend backend;
-  std::vector<std::unique_ptr<Axis>> axes;
-  std::vector<AxisLink> links;
-  for (unsigned i = 0; i < n; ++i) {
-    axes.push_back(std::make_unique<Axis>());
-    links.push_back({&axes[i]->ring, &axes[i]->feedback, &axes[i]->control, &axes[i]->history});
-  }
-  PulseEngine engine(backend, links, nullptr);
+  Axes rig(n);
+  PulseEngine engine(backend, rig.links, nullptr);
   for (auto _ : state) benchmark::DoNotOptimize(engine.next_due());
 }
 BENCHMARK(BM_PulseEngine_NextDueIdle)->Arg(1)->Arg(4);
