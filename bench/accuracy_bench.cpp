@@ -18,10 +18,10 @@
 #include <cstdio>
 #include <vector>
 
+#include "core/spsc_ring.hpp"
 #include "planner/planner.hpp"
 #include "rt/axis_feedback.hpp"
 #include "rt/edge.hpp"
-#include "rt/spsc_ring.hpp"
 
 namespace {
 
@@ -38,9 +38,12 @@ struct Profile {
 
 LD factor(AccelShape s) {
   switch (s) {
-    case AccelShape::kConstant: return 1.0L;
-    case AccelShape::kTriangularS: return 2.0L;
-    default: return 4.0L / 3.0L;
+    case AccelShape::kConstant:
+      return 1.0L;
+    case AccelShape::kTriangularS:
+      return 2.0L;
+    default:
+      return 4.0L / 3.0L;
   }
 }
 
@@ -56,7 +59,8 @@ struct RefRamp {
   LD pos(LD t) const {
     if (T == 0) return 0;
     switch (shape) {
-      case AccelShape::kConstant: return v1 * t + sg * a * t * t / 2;
+      case AccelShape::kConstant:
+        return v1 * t + sg * a * t * t / 2;
       case AccelShape::kTriangularS: {
         if (t <= T / 2) return v1 * t + sg * a * t * t * t / (3 * T);
         const LD u = T - t;
@@ -105,7 +109,10 @@ struct RefMove {
     LD hi = tt;
     for (int i = 0; i < 100 && hi - lo > 1e-13L; ++i) {
       const LD mid = (lo + hi) / 2;
-      if (pos(mid) < static_cast<LD>(n)) lo = mid; else hi = mid;
+      if (pos(mid) < static_cast<LD>(n))
+        lo = mid;
+      else
+        hi = mid;
     }
     return (lo + hi) / 2;
   }
@@ -113,7 +120,7 @@ struct RefMove {
 
 // The planner's leading-edge times (ns from the motion's time 0) for the move.
 std::vector<Nanos> planned(const Profile& p) {
-  rt::SpscRing<rt::Edge> ring(1u << 15);
+  SpscRing<rt::Edge> ring(1u << 15);
   rt::AxisControl control;
   const planner::PlannerAxis axis{&ring, &control, {}};
   planner::Planner plan(std::span(&axis, 1));
@@ -179,10 +186,11 @@ int main() {
     }
     const bool count_ok = static_cast<std::int64_t>(got.size()) == p.n;
     if (!count_ok) max_err = 1e18;
-    std::printf("accuracy %-28s N=%-8lld steps %-8zu Tt %.6f s  max |scheduled - ideal| %.1f ns "
-                "(step %lld)\n",
-                p.name, static_cast<long long>(p.n), got.size(), static_cast<double>(ref.tt),
-                max_err, static_cast<long long>(at));
+    std::printf(
+        "accuracy %-28s N=%-8lld steps %-8zu Tt %.6f s  max |scheduled - ideal| %.1f ns "
+        "(step %lld)\n",
+        p.name, static_cast<long long>(p.n), got.size(), static_cast<double>(ref.tt), max_err,
+        static_cast<long long>(at));
     std::printf("RESULT bench=accuracy profile=\"%s\" max_err_ns=%.1f\n", p.name, max_err);
     if (max_err > worst) worst = max_err;
   }

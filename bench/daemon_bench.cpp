@@ -31,10 +31,10 @@
 #include <thread>
 #include <vector>
 
+#include "core/clock.hpp"
 #include "ipc/client.hpp"
 #include "ipc/codec.hpp"
 #include "module/m3601/words_3601.hpp"
-#include "rt/clock.hpp"
 
 namespace {
 
@@ -88,7 +88,7 @@ class Daemon {
     }
     const std::string shm = "/dev/shm/stepmod." + name_;
     for (int i = 0; i < 1000; ++i) {
-      struct stat st{};
+      struct stat st {};
       if (stat(shm.c_str(), &st) == 0) {
         std::this_thread::sleep_for(milliseconds(50));  // let it start scanning
         return;
@@ -126,24 +126,30 @@ struct Plc {
     if (!c.wait_scans(n, milliseconds(2000))) throw std::runtime_error("module not scanning");
   }
   std::uint16_t status() {
-    module::ImageWords w;
+    ImageWords w;
     c.read_inputs(w);
     return static_cast<std::uint16_t>(w.w[0]);
   }
-  module::ImageWords words(std::uint16_t msw, std::uint16_t lsw, std::int32_t a, std::int32_t b,
-                           std::int16_t w6, std::int16_t w7) {
+  ImageWords words(std::uint16_t msw, std::uint16_t lsw, std::int32_t a, std::int32_t b,
+                   std::int16_t w6, std::int16_t w7) {
     const auto x = ipc::codec::encode_3601(a), y = ipc::codec::encode_3601(b);
-    module::ImageWords o{};
-    o.w = {static_cast<std::int16_t>(msw), static_cast<std::int16_t>(lsw), x.msw, x.lsw, y.msw,
-           y.lsw, w6, w7};
+    ImageWords o{};
+    o.w = {static_cast<std::int16_t>(msw),
+           static_cast<std::int16_t>(lsw),
+           x.msw,
+           x.lsw,
+           y.msw,
+           y.lsw,
+           w6,
+           w7};
     return o;
   }
   // Step/direction outputs, home and end limits (the minimum the 3601 accepts), starting speed.
   void configure(std::int32_t vs) {
-    const std::uint16_t used = m::cfg_msw::kHomeUsed | m::cfg_msw::kCwLimitUsed |
-                               m::cfg_msw::kCcwLimitUsed;
-    c.write_outputs(words(m::cfg_msw::kStepDirOutput | used | m::cfg_msw::kConfigMode, used, vs,
-                          0, 0, 0));
+    const std::uint16_t used =
+        m::cfg_msw::kHomeUsed | m::cfg_msw::kCwLimitUsed | m::cfg_msw::kCcwLimitUsed;
+    c.write_outputs(
+        words(m::cfg_msw::kStepDirOutput | used | m::cfg_msw::kConfigMode, used, vs, 0, 0, 0));
     scans(3);
     if (status() & m::status_msw::kConfigurationError) throw std::runtime_error("config error");
     c.write_outputs(words(0, 0, 0, 0, 0, 0));
@@ -229,15 +235,17 @@ int latency(int argc, char** argv) {
   }
   const double p50 = pct(lat, 0.5), p99 = pct(lat, 0.99),
                mx = lat.empty() ? 0 : *std::max_element(lat.begin(), lat.end());
-  std::printf("command latency, scan %u us: %zu commands, write -> first step edge p50 %.1f us, "
-              "p99 %.1f us, max %.1f us (target p99 < %u us)\n",
-              scan_us, lat.size(), p50, p99, mx, scan_us + 200);
+  std::printf(
+      "command latency, scan %u us: %zu commands, write -> first step edge p50 %.1f us, "
+      "p99 %.1f us, max %.1f us (target p99 < %u us)\n",
+      scan_us, lat.size(), p50, p99, mx, scan_us + 200);
   std::printf("RESULT bench=latency scan_us=%u n=%zu p50_us=%.1f p99_us=%.1f max_us=%.1f\n",
               scan_us, lat.size(), p50, p99, mx);
   if (lat.size() != writes.size()) {
-    std::printf("latency: %zu of %zu commands have a step edge after them in the trace (%zu "
-                "rising edges); daemon log:\n%s\n",
-                lat.size(), writes.size(), rising.size(), log_all.c_str());
+    std::printf(
+        "latency: %zu of %zu commands have a step edge after them in the trace (%zu "
+        "rising edges); daemon log:\n%s\n",
+        lat.size(), writes.size(), rising.size(), log_all.c_str());
     return 1;
   }
   return 0;
@@ -322,9 +330,10 @@ int footprint(int argc, char** argv) {
     floor_pct = 100.0 * used / static_cast<double>(monotonic_now() - start);
   });
   bare.join();
-  std::printf("footprint: idle daemon, one configured axis, scan 1000 us: VmRSS %.1f MB, CPU "
-              "%.2f %% of a core over %.0f s (a bare 1 kHz clock_nanosleep loop: %.2f %%)\n",
-              static_cast<double>(rss) / 1024.0, cpu, seconds, floor_pct);
+  std::printf(
+      "footprint: idle daemon, one configured axis, scan 1000 us: VmRSS %.1f MB, CPU "
+      "%.2f %% of a core over %.0f s (a bare 1 kHz clock_nanosleep loop: %.2f %%)\n",
+      static_cast<double>(rss) / 1024.0, cpu, seconds, floor_pct);
   std::printf("RESULT bench=footprint rss_mb=%.2f idle_cpu_pct=%.3f floor_1khz_pct=%.3f\n",
               static_cast<double>(rss) / 1024.0, cpu, floor_pct);
   return 0;

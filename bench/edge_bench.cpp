@@ -45,24 +45,22 @@ class CheckingBackend final : public gpio::Backend {
   explicit CheckingBackend(gpio::SimBackend& sim) : sim_(sim), axes_(sim.axes()) {}
 
   unsigned axes() const noexcept override { return sim_.axes(); }
-  void write(unsigned axis, rt::OutputLine line, bool level, Nanos t) noexcept override {
+  void write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept override {
     AxisCheck& c = axes_[axis];
     if (t < c.last_t) ++c.time_backwards;
     c.last_t = t;
-    if (line == rt::OutputLine::kStep) {
+    if (line == OutputLine::kStep) {
       if (level == c.step_level) ++c.level_repeats;  // a lost or reordered edge
       c.step_level = level;
       if (level) ++c.rising;
     }
     sim_.write(axis, line, level, t);
   }
-  bool has_input(unsigned a, gpio::InputLine l) const noexcept override {
-    return sim_.has_input(a, l);
-  }
-  bool has_output(unsigned a, rt::OutputLine l) const noexcept override {
+  bool has_input(unsigned a, InputLine l) const noexcept override { return sim_.has_input(a, l); }
+  bool has_output(unsigned a, OutputLine l) const noexcept override {
     return sim_.has_output(a, l);
   }
-  bool read(unsigned a, gpio::InputLine l) override { return sim_.read(a, l); }
+  bool read(unsigned a, InputLine l) override { return sim_.read(a, l); }
   std::size_t wait_events(std::span<gpio::InputEvent> out, Nanos deadline) override {
     return sim_.wait_events(out, deadline);
   }
@@ -86,7 +84,7 @@ class CheckingBackend final : public gpio::Backend {
 // One machine: axes, rings, planner, engine, threads (tools/stack.cpp without the module).
 struct Rig {
   struct Axis {
-    rt::SpscRing<rt::Edge> edges{1u << 15};  // as tools::StackOptions::edge_ring
+    SpscRing<rt::Edge> edges{1u << 15};  // as tools::StackOptions::edge_ring
     rt::AxisFeedback feedback;
     rt::AxisControl control;
     rt::StepHistory history;

@@ -8,10 +8,10 @@
 
 #include <memory>
 
+#include "core/spsc_ring.hpp"
 #include "planner/planner.hpp"
 #include "rt/axis_feedback.hpp"
 #include "rt/edge.hpp"
-#include "rt/spsc_ring.hpp"
 
 namespace {
 
@@ -32,7 +32,7 @@ constexpr Case kSTriangular{AccelShape::kTriangularS, 400'000, 1'000, 1'000'000,
 constexpr Case kSTrapezoidal{AccelShape::kTrapezoidalS, 400'000, 1'000, 1'000'000, 2e6, 2e6};
 
 void run(benchmark::State& state, const Case& k) {
-  rt::SpscRing<rt::Edge> ring(1u << 15);  // as the daemon's (tools::StackOptions::edge_ring)
+  SpscRing<rt::Edge> ring(1u << 15);  // as the daemon's (tools::StackOptions::edge_ring)
   rt::AxisControl control;
   const planner::PlannerAxis axis{&ring, &control, {}};
   std::int64_t edges = 0;
@@ -67,10 +67,18 @@ void run(benchmark::State& state, const Case& k) {
       benchmark::Counter(static_cast<double>(edges) / static_cast<double>(state.iterations()));
 }
 
-void BM_Planner_Trapezoid(benchmark::State& s) { run(s, kTrapezoid); }
-void BM_Planner_Triangle(benchmark::State& s) { run(s, kTriangle); }
-void BM_Planner_SCurveTriangular(benchmark::State& s) { run(s, kSTriangular); }
-void BM_Planner_SCurveTrapezoidal(benchmark::State& s) { run(s, kSTrapezoidal); }
+void BM_Planner_Trapezoid(benchmark::State& s) {
+  run(s, kTrapezoid);
+}
+void BM_Planner_Triangle(benchmark::State& s) {
+  run(s, kTriangle);
+}
+void BM_Planner_SCurveTriangular(benchmark::State& s) {
+  run(s, kSTriangular);
+}
+void BM_Planner_SCurveTrapezoidal(benchmark::State& s) {
+  run(s, kSTrapezoidal);
+}
 BENCHMARK(BM_Planner_Trapezoid)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Planner_Triangle)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Planner_SCurveTriangular)->Unit(benchmark::kMillisecond);

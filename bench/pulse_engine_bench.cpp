@@ -20,9 +20,9 @@ class NullBackend : public gpio::Backend {
   void write(unsigned, OutputLine, bool level, Nanos) noexcept override {
     benchmark::DoNotOptimize(level);
   }
-  bool has_input(unsigned, gpio::InputLine) const noexcept override { return false; }
+  bool has_input(unsigned, InputLine) const noexcept override { return false; }
   bool has_output(unsigned, OutputLine) const noexcept override { return true; }
-  bool read(unsigned, gpio::InputLine) override { return false; }
+  bool read(unsigned, InputLine) override { return false; }
   std::size_t wait_events(std::span<gpio::InputEvent>, Nanos) override { return 0; }
   std::uint64_t lost_events() const noexcept override { return 0; }
   void idle_outputs() noexcept override {}

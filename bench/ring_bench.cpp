@@ -5,13 +5,13 @@
 #include <cstdint>
 #include <thread>
 
+#include "core/spsc_ring.hpp"
 #include "rt/edge.hpp"
-#include "rt/spsc_ring.hpp"
 
 namespace {
 
+using stepmod::SpscRing;
 using stepmod::rt::Edge;
-using stepmod::rt::SpscRing;
 
 // Same thread, one push then one pop: the uncontended cost of both sides.
 void BM_SpscRing_PushPop(benchmark::State& state) {

@@ -9,8 +9,8 @@
 namespace stepmod::gpio {
 
 struct AxisLines {
-  std::optional<unsigned> out[kOutputLinesPerAxis];  // indexed by rt::OutputLine
-  std::optional<unsigned> in[kInputLinesPerAxis];    // indexed by gpio::InputLine
+  std::optional<unsigned> out[kOutputLinesPerAxis];  // indexed by OutputLine
+  std::optional<unsigned> in[kInputLinesPerAxis];    // indexed by InputLine
 
   bool has_output(OutputLine l) const noexcept { return out[static_cast<unsigned>(l)].has_value(); }
   bool has_input(InputLine l) const noexcept { return in[static_cast<unsigned>(l)].has_value(); }

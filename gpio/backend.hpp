@@ -8,29 +8,10 @@
 #include <span>
 #include <string_view>
 
-#include "rt/clock.hpp"
-#include "rt/edge.hpp"
+#include "core/clock.hpp"
+#include "core/lines.hpp"
 
 namespace stepmod::gpio {
-
-using rt::OutputLine;
-using rt::kOutputLinesPerAxis;
-
-// Input lines of one axis. The first six are in the order of the simulator panel's force bits
-// (INTERFACE.md section 4): 0 capture, 1 external, 2 home, 3 E-stop, 4 CW limit, 5 CCW limit.
-enum class InputLine : std::uint8_t {
-  kCapture = 0,
-  kExternal = 1,
-  kHome = 2,
-  kEStop = 3,
-  kCwLimit = 4,
-  kCcwLimit = 5,
-  kEncA = 6,
-  kEncB = 7,
-  kEncZ = 8,
-};
-inline constexpr unsigned kInputLinesPerAxis = 9;
-inline constexpr unsigned kPanelInputs = 6;  // inputs the simulator panel can force
 
 // Config-file key of each line (INTERFACE.md section 2), also the VCD wire suffix.
 std::string_view input_key(InputLine l) noexcept;

@@ -23,8 +23,8 @@
 #include <optional>
 #include <span>
 
+#include "core/spsc_ring.hpp"
 #include "gpio/backend.hpp"
-#include "rt/spsc_ring.hpp"
 
 namespace stepmod::gpio {
 
@@ -109,7 +109,7 @@ class SimMachine {
   std::int64_t pos_ = 0;      // motor position
   std::int64_t count_ = 0;    // encoder count
   std::uint16_t sim_in_ = 0;  // simulated input levels (wired lines only)
-  rt::SpscRing<InputEvent> ring_;
+  SpscRing<InputEvent> ring_;
 
   // consumer-owned
   static constexpr std::size_t kPendingCapacity = 256;
@@ -124,7 +124,7 @@ class SimMachine {
   std::atomic<std::uint8_t> format_{static_cast<std::uint8_t>(PulseFormat::kStepDir)};
   std::atomic<std::uint32_t> force_mask_{0};
   std::atomic<std::uint32_t> force_levels_{0};
-  alignas(rt::kCacheLine) std::atomic<std::int64_t> position_pub_{0};
+  alignas(kCacheLine) std::atomic<std::int64_t> position_pub_{0};
   std::atomic<std::int64_t> encoder_pub_{0};
   std::atomic<std::uint32_t> outputs_pub_{0};
   std::atomic<std::uint16_t> sim_in_pub_{0};

@@ -89,13 +89,13 @@ VcdTrace::~VcdTrace() {
   if (f_ != nullptr) std::fclose(f_);
 }
 
-int VcdTrace::wire_index(const rt::TraceRecord& r) const noexcept {
+int VcdTrace::wire_index(const TraceRecord& r) const noexcept {
   if (r.line >= kLineSlots) return -1;
   const std::size_t k = (r.axis * 2u + (r.is_input ? 1u : 0u)) * kLineSlots + r.line;
   return k < index_.size() ? index_[k] : -1;
 }
 
-void VcdTrace::record(const rt::TraceRecord& r) {
+void VcdTrace::record(const TraceRecord& r) {
   if (f_ == nullptr) return;
   const int i = wire_index(r);
   if (i < 0) {
@@ -146,8 +146,8 @@ void VcdTrace::close(Nanos end) {
 // ---- TraceWriter --------------------------------------------------------------------------------
 
 TraceWriter::TraceWriter(const std::string& path, std::span<const TraceWire> wires, Nanos start,
-                         rt::SpscRing<rt::TraceRecord>& outputs,
-                         rt::SpscRing<rt::TraceRecord>& inputs, Nanos window, Nanos period)
+                         SpscRing<TraceRecord>& outputs, SpscRing<TraceRecord>& inputs,
+                         Nanos window, Nanos period)
     : vcd_(path, wires, start),
       outputs_(outputs),
       inputs_(inputs),
@@ -168,14 +168,14 @@ void TraceWriter::start() {
 }
 
 void TraceWriter::drain() {
-  rt::TraceRecord r;
+  TraceRecord r;
   while (outputs_.try_pop(r)) merger_.add(r);
   while (inputs_.try_pop(r)) merger_.add(r);
 }
 
 void TraceWriter::step(Nanos now) {
   drain();
-  merger_.release(now - window_, [this](const rt::TraceRecord& r) { vcd_.record(r); });
+  merger_.release(now - window_, [this](const TraceRecord& r) { vcd_.record(r); });
   // Flush about once a second: a crashed daemon leaves at most that much unwritten, and the
   // pulse thread never waits for the disk anyway.
   if (now - last_flush_ >= kNsPerSec) {
@@ -198,7 +198,7 @@ void TraceWriter::stop(std::uint64_t dropped_outputs, std::uint64_t dropped_inpu
   if (thread_.joinable()) thread_.join();
   closed_ = true;
   drain();
-  merger_.release_all([this](const rt::TraceRecord& r) { vcd_.record(r); });
+  merger_.release_all([this](const TraceRecord& r) { vcd_.record(r); });
   // Always written, zeros included, so that a script can tell a complete trace from one whose
   // rings overflowed without guessing.
   vcd_.comment("stepmod: dropped records: outputs " + std::to_string(dropped_outputs) +

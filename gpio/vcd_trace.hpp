@@ -18,9 +18,9 @@
 #include <thread>
 #include <vector>
 
+#include "core/spsc_ring.hpp"
+#include "core/trace_record.hpp"
 #include "gpio/backend.hpp"
-#include "rt/spsc_ring.hpp"
-#include "rt/trace_record.hpp"
 
 namespace stepmod::gpio {
 
@@ -52,7 +52,7 @@ class VcdTrace {
   // that does not change its line's level writes nothing (VCD holds changes). A record older
   // than the last written time (later than the merge window allowed) is written at that time,
   // so the file stays valid, and counted in late().
-  void record(const rt::TraceRecord& r);
+  void record(const TraceRecord& r);
   void comment(std::string_view text);
   // Writes a final timestamp `end` (if later than the last change) so viewers show the whole
   // run, flushes and closes. Throws std::runtime_error if the file could not be written.
@@ -64,7 +64,7 @@ class VcdTrace {
   std::uint64_t changes() const noexcept { return changes_; }
 
  private:
-  int wire_index(const rt::TraceRecord& r) const noexcept;
+  int wire_index(const TraceRecord& r) const noexcept;
 
   std::string path_;
   std::FILE* f_ = nullptr;
@@ -81,7 +81,7 @@ class VcdTrace {
 // record with t < cut. Not thread-safe: used by the trace thread only.
 class TraceMerger {
  public:
-  void add(const rt::TraceRecord& r) { heap_.push(Held{r, seq_++}); }
+  void add(const TraceRecord& r) { heap_.push(Held{r, seq_++}); }
   template <typename Sink>
   void release(Nanos cut, Sink&& sink) {
     while (!heap_.empty() && heap_.top().r.t < cut) {
@@ -100,7 +100,7 @@ class TraceMerger {
 
  private:
   struct Held {
-    rt::TraceRecord r;
+    TraceRecord r;
     std::uint64_t seq;
     // priority_queue is a max-heap: "less" means later.
     bool operator<(const Held& o) const noexcept {
@@ -117,7 +117,7 @@ class TraceWriter {
   // thread's. Both must outlive the writer. `window`: how late a record may arrive relative to
   // the other ring and still be sorted in; `period`: how often the thread drains the rings.
   TraceWriter(const std::string& path, std::span<const TraceWire> wires, Nanos start,
-              rt::SpscRing<rt::TraceRecord>& outputs, rt::SpscRing<rt::TraceRecord>& inputs,
+              SpscRing<TraceRecord>& outputs, SpscRing<TraceRecord>& inputs,
               Nanos window = 50 * kNsPerMs, Nanos period = 5 * kNsPerMs);
   ~TraceWriter();  // stop() if still running (without dropped counts)
   TraceWriter(const TraceWriter&) = delete;
@@ -140,8 +140,8 @@ class TraceWriter {
   void drain();
 
   VcdTrace vcd_;
-  rt::SpscRing<rt::TraceRecord>& outputs_;
-  rt::SpscRing<rt::TraceRecord>& inputs_;
+  SpscRing<TraceRecord>& outputs_;
+  SpscRing<TraceRecord>& inputs_;
   const Nanos window_;
   const Nanos period_;
   TraceMerger merger_;

@@ -9,10 +9,6 @@ namespace stepmod::ipc {
 namespace {
 // How long a writer waits for another writer's odd sequence before assuming it died.
 constexpr std::int64_t kStaleWriterNs = STEPMOD_SEQ_STALE_NS;
-
-unsigned axes_of(module::ModuleType t) {
-  return t == module::ModuleType::k3601 ? 1 : 2;
-}
 }  // namespace
 
 Client::Client(const std::string& name) : name_(name) {
@@ -27,27 +23,24 @@ Client::Client(const std::string& name) : name_(name) {
     throw IpcError(path + " has layout version " + std::to_string(img_->version) +
                    ", this program understands version " + std::to_string(STEPMOD_LAYOUT_VERSION));
   }
-  const std::uint32_t t = img_->module_type;
-  if (t != 3601 && t != 3602 && t != 3202) {
-    throw IpcError(path + " names unknown module type " + std::to_string(t));
+  const auto type = module_type_from_number(img_->module_type);
+  if (!type) {
+    throw IpcError(path + " names unknown module type " + std::to_string(img_->module_type));
   }
-  shape_.type = static_cast<module::ModuleType>(t);
-  shape_.axes = axes_of(shape_.type);
-  shape_.word_bytes = img_->word_bytes;
-  shape_.output_words = img_->output_words;
-  shape_.input_words = img_->input_words;
-  if ((shape_.word_bytes != 2 && shape_.word_bytes != 4) ||
-      shape_.output_words > STEPMOD_MAX_WORDS || shape_.input_words > STEPMOD_MAX_WORDS) {
-    throw IpcError(path + " has an impossible shape (word size or word counts)");
+  shape_ = shape_of(*type);
+  if (img_->word_bytes != shape_.word_bytes || img_->output_words != shape_.output_words ||
+      img_->input_words != shape_.input_words) {
+    throw IpcError(path + " has a shape (word size or word counts) that is not the " +
+                   std::to_string(img_->module_type) + "'s");
   }
 }
 
-bool Client::read_inputs(module::ImageWords& in) const noexcept {
+bool Client::read_inputs(ImageWords& in) const noexcept {
   return read_snapshot(&img_->input_seq, &img_->input_image, shape_.word_bytes, shape_.input_words,
                        kReadTries, in);
 }
 
-bool Client::read_outputs(module::ImageWords& out) const noexcept {
+bool Client::read_outputs(ImageWords& out) const noexcept {
   return read_snapshot(&img_->output_seq, &img_->output_image, shape_.word_bytes,
                        shape_.output_words, kReadTries, out);
 }
@@ -59,7 +52,7 @@ void Client::require_writable() const {
   }
 }
 
-void Client::write_outputs(const module::ImageWords& out) {
+void Client::write_outputs(const ImageWords& out) {
   require_writable();
   const std::uint32_t odd = stepmod_seq_write_begin(&img_->output_seq, kStaleWriterNs);
   for (unsigned i = 0; i < shape_.output_words; ++i) {
@@ -68,11 +61,11 @@ void Client::write_outputs(const module::ImageWords& out) {
   stepmod_seq_write_end(&img_->output_seq, odd);
 }
 
-void Client::update_outputs(const std::function<void(module::ImageWords&)>& edit) {
+void Client::update_outputs(const std::function<void(ImageWords&)>& edit) {
   require_writable();
   const std::uint32_t odd = stepmod_seq_write_begin(&img_->output_seq, kStaleWriterNs);
   // Holding the sequence odd makes us the only writer, so a plain read of the words is current.
-  module::ImageWords w;
+  ImageWords w;
   for (unsigned i = 0; i < shape_.output_words; ++i) {
     w.w[i] = stepmod_word_load(&img_->output_image, shape_.word_bytes, i);
   }
@@ -88,7 +81,7 @@ void Client::write_word(unsigned index, std::int32_t value) {
     throw IpcError("output word " + std::to_string(index) + " out of range 0.." +
                    std::to_string(shape_.output_words - 1));
   }
-  update_outputs([&](module::ImageWords& w) { w.w[index] = value; });
+  update_outputs([&](ImageWords& w) { w.w[index] = value; });
 }
 
 std::uint64_t Client::scan_counter() const noexcept {

@@ -9,9 +9,9 @@
 #include <span>
 #include <string>
 
+#include "core/module_shape.hpp"
 #include "ipc/shm_object.hpp"
 #include "ipc/stepmod_image.h"
-#include "module/personality.hpp"
 
 namespace stepmod::ipc {
 
@@ -24,23 +24,23 @@ class Client {
   explicit Client(const std::string& name);
 
   const std::string& name() const noexcept { return name_; }
-  const module::ModuleShape& shape() const noexcept { return shape_; }
-  module::ModuleType type() const noexcept { return shape_.type; }
+  const ModuleShape& shape() const noexcept { return shape_; }
+  ModuleType type() const noexcept { return shape_.type; }
   // False when the image could only be opened read-only (permissions): writes throw IpcError.
   bool writable() const noexcept { return map_.writable(); }
 
   // Consistent snapshots (words sign-extended; unused words 0); false if a writer kept the
   // sequence busy for kReadTries attempts.
-  bool read_inputs(module::ImageWords& in) const noexcept;
-  bool read_outputs(module::ImageWords& out) const noexcept;
+  bool read_inputs(ImageWords& in) const noexcept;
+  bool read_outputs(ImageWords& out) const noexcept;
 
   // Writes the first output_words words under the output seqlock (truncated to the word size).
-  void write_outputs(const module::ImageWords& out);
+  void write_outputs(const ImageWords& out);
   // Sets one output word, leaving the others as they are.
   void write_word(unsigned index, std::int32_t value);
   // Read-modify-write of the whole output image as one seqlock write: `edit` sees the present
   // words and changes them; no other cooperating writer can interleave.
-  void update_outputs(const std::function<void(module::ImageWords&)>& edit);
+  void update_outputs(const std::function<void(ImageWords&)>& edit);
 
   std::uint64_t scan_counter() const noexcept;
   // Waits until the scan counter has advanced by `n` from its value at the call. false on
@@ -67,7 +67,7 @@ class Client {
   std::string name_;
   ShmMapping map_;
   stepmod_image_t* img_ = nullptr;
-  module::ModuleShape shape_{};
+  ModuleShape shape_{};
 };
 
 }  // namespace stepmod::ipc

@@ -1,6 +1,6 @@
 #pragma once
 // The manuals' encodings of 32-bit numbers in backplane words (digest MODULES.md section 2).
-// Words are passed as the sign-extended int32 values of module::ImageWords; only their low 16
+// Words are passed as the sign-extended int32 values of ImageWords; only their low 16
 // bits count for the 16-bit modules.
 #include <cstdint>
 #include <optional>

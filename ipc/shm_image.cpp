@@ -8,8 +8,7 @@
 
 namespace stepmod::ipc {
 
-ShmImage::ShmImage(const std::string& name, const module::ModuleShape& shape)
-    : name_(name), shape_(shape) {
+ShmImage::ShmImage(const std::string& name, const ModuleShape& shape) : name_(name), shape_(shape) {
   check_name(name);
   if ((shape.word_bytes != 2 && shape.word_bytes != 4) || shape.output_words > STEPMOD_MAX_WORDS ||
       shape.input_words > STEPMOD_MAX_WORDS) {
@@ -28,12 +27,12 @@ ShmImage::ShmImage(const std::string& name, const module::ModuleShape& shape)
   stepmod_publish_magic(img_->magic, STEPMOD_IMAGE_MAGIC);
 }
 
-bool ShmImage::read_outputs(module::ImageWords& out) const noexcept {
+bool ShmImage::read_outputs(ImageWords& out) const noexcept {
   return read_snapshot(&img_->output_seq, &img_->output_image, shape_.word_bytes,
                        shape_.output_words, kReadTries, out);
 }
 
-void ShmImage::publish_inputs(const module::ImageWords& in) noexcept {
+void ShmImage::publish_inputs(const ImageWords& in) noexcept {
   // Only the module writes the input image, so the lock is always free (stale_ns 0 never waits;
   // the pulse/control threads must not block on a foreign process).
   const std::uint32_t odd = stepmod_seq_write_begin(&img_->input_seq, 0);

@@ -6,9 +6,9 @@
 #include <optional>
 #include <string>
 
+#include "core/module_shape.hpp"
 #include "ipc/shm_object.hpp"
 #include "ipc/stepmod_image.h"
-#include "module/personality.hpp"
 
 namespace stepmod::ipc {
 
@@ -26,22 +26,22 @@ class ShmImage {
   // Creates /dev/shm/stepmod.<name> (mode 0660, 4096 bytes) and fills the header for `shape`.
   // Throws IpcError for a bad name or if the object exists and its owner is alive or unknown;
   // a leftover of a crashed daemon (owner pid gone) is replaced (see ShmMapping::create).
-  ShmImage(const std::string& name, const module::ModuleShape& shape);
+  ShmImage(const std::string& name, const ModuleShape& shape);
   ~ShmImage() = default;  // unmaps and unlinks
   ShmImage(const ShmImage&) = delete;
   ShmImage& operator=(const ShmImage&) = delete;
 
   const std::string& name() const noexcept { return name_; }
-  const module::ModuleShape& shape() const noexcept { return shape_; }
+  const ModuleShape& shape() const noexcept { return shape_; }
 
   // One consistent snapshot of the PLC's output words, sign-extended to int32 (unused words 0).
   // false if the PLC was mid-write on every try: `out` is untouched and the caller keeps its
   // previous snapshot, as a real module keeps the last good backplane frame.
-  bool read_outputs(module::ImageWords& out) const noexcept;
+  bool read_outputs(ImageWords& out) const noexcept;
 
   // Writes the input words under the input seqlock (each truncated to the word size), then
   // increments the scan counter: one call per completed scan.
-  void publish_inputs(const module::ImageWords& in) noexcept;
+  void publish_inputs(const ImageWords& in) noexcept;
 
   std::uint64_t scan_counter() const noexcept;
   // The PLC heartbeat value (INTERFACE.md 3.2); the caller watches it for changes.
@@ -57,7 +57,7 @@ class ShmImage {
 
  private:
   std::string name_;
-  module::ModuleShape shape_;
+  ModuleShape shape_;
   ShmMapping map_;
   stepmod_image_t* img_ = nullptr;
 };

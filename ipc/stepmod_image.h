@@ -259,7 +259,7 @@ static inline void stepmod_heartbeat(stepmod_image_t* im) {
 #define STEPMOD_PANEL_VERSION 1u
 #define STEPMOD_PANEL_MAX_AXES 2u
 
-/* Force-mask / level bits (INTERFACE.md 4), the order of gpio::InputLine. */
+/* Force-mask / level bits (INTERFACE.md 4), the order of InputLine. */
 enum stepmod_panel_input {
   STEPMOD_IN_CAPTURE = 0,
   STEPMOD_IN_EXTERNAL = 1,

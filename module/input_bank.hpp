@@ -13,13 +13,13 @@ class InputBank {
  public:
   // Electrical levels as read at start-up.
   void init(gpio::Backend& backend, unsigned axis) {
-    for (unsigned i = 0; i < gpio::kInputLinesPerAxis; ++i) {
-      const auto line = static_cast<gpio::InputLine>(i);
+    for (unsigned i = 0; i < kInputLinesPerAxis; ++i) {
+      const auto line = static_cast<InputLine>(i);
       level_[i] = backend.has_input(axis, line) && backend.read(axis, line);
     }
   }
-  void set_level(gpio::InputLine l, bool level) noexcept { level_[idx(l)] = level; }
-  bool level(gpio::InputLine l) const noexcept { return level_[idx(l)]; }
+  void set_level(InputLine l, bool level) noexcept { level_[idx(l)] = level; }
+  bool level(InputLine l) const noexcept { return level_[idx(l)]; }
 
   // used: bit n = input n enabled (n = InputLine value 0..5); active_high: bit n = 1 if the
   // input is active when its line is high (N.O. contact), 0 if active when low (N.C.).
@@ -27,27 +27,27 @@ class InputBank {
     used_ = used;
     active_high_ = active_high;
   }
-  bool used(gpio::InputLine l) const noexcept { return (used_ >> idx(l)) & 1u; }
+  bool used(InputLine l) const noexcept { return (used_ >> idx(l)) & 1u; }
 
   // Logical state: a used input at its active level. An unused input is never active (A27).
-  bool active(gpio::InputLine l) const noexcept { return used(l) && active_at(l, level(l)); }
+  bool active(InputLine l) const noexcept { return used(l) && active_at(l, level(l)); }
   // Whether an input would be active at the given electrical level (for edge classification).
-  bool active_at(gpio::InputLine l, bool level) const noexcept {
+  bool active_at(InputLine l, bool level) const noexcept {
     const bool high_active = (active_high_ >> idx(l)) & 1u;
     return level == high_active;
   }
   // Bits 0..5 = logical states of capture, external, home, E-stop, CW limit, CCW limit.
   std::uint16_t active_bits() const noexcept {
     std::uint16_t bits = 0;
-    for (unsigned i = 0; i < gpio::kPanelInputs; ++i) {
-      if (active(static_cast<gpio::InputLine>(i))) bits |= static_cast<std::uint16_t>(1u << i);
+    for (unsigned i = 0; i < kPanelInputs; ++i) {
+      if (active(static_cast<InputLine>(i))) bits |= static_cast<std::uint16_t>(1u << i);
     }
     return bits;
   }
 
  private:
-  static constexpr unsigned idx(gpio::InputLine l) noexcept { return static_cast<unsigned>(l); }
-  std::array<bool, gpio::kInputLinesPerAxis> level_{};
+  static constexpr unsigned idx(InputLine l) noexcept { return static_cast<unsigned>(l); }
+  std::array<bool, kInputLinesPerAxis> level_{};
   std::uint16_t used_ = 0;
   std::uint16_t active_high_ = 0;
 };

@@ -5,18 +5,6 @@
 
 namespace stepmod::module {
 
-ModuleShape shape_of(ModuleType t) noexcept {
-  switch (t) {
-    case ModuleType::k3601:
-      return {t, 1, 2, 8, 8};
-    case ModuleType::k3602:
-      return {t, 2, 2, 16, 16};
-    case ModuleType::k3202:
-      return {t, 2, 4, 16, 16};
-  }
-  return {t, 1, 2, 8, 8};
-}
-
 std::unique_ptr<Personality> make_personality(ModuleType type, gpio::Backend& backend,
                                               std::span<planner::MotionPort* const> axes) {
   if (axes.size() != shape_of(type).axes) {

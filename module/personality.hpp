@@ -6,30 +6,11 @@
 #include <memory>
 #include <span>
 
+#include "core/module_shape.hpp"
 #include "gpio/backend.hpp"
 #include "planner/motion_port.hpp"
-#include "rt/clock.hpp"
 
 namespace stepmod::module {
-
-enum class ModuleType : std::uint32_t { k3601 = 3601, k3602 = 3602, k3202 = 3202 };
-
-// The backplane words of one image, sign-extended to 32 bits (16-bit modules use the low 16 bits
-// of each value; ipc/ truncates and sign-extends at the shared-memory boundary).
-struct ImageWords {
-  std::array<std::int32_t, 16> w{};
-  bool operator==(const ImageWords&) const = default;
-};
-
-// Static facts of a module type (INTERFACE.md section 3 header fields).
-struct ModuleShape {
-  ModuleType type;
-  unsigned axes;
-  unsigned word_bytes;    // 2 or 4
-  unsigned output_words;  // PLC -> module
-  unsigned input_words;   // module -> PLC
-};
-ModuleShape shape_of(ModuleType t) noexcept;
 
 // What a personality may touch besides the image: one MotionPort per axis and the inputs.
 struct AxisIo {

@@ -42,7 +42,7 @@ std::int64_t AxisPlanner::planned_steps_at(Nanos t) const noexcept {
   return lo;
 }
 
-rt::Edge AxisPlanner::make_edge(Nanos t, rt::OutputLine line, std::uint8_t level, std::int8_t dpos,
+rt::Edge AxisPlanner::make_edge(Nanos t, OutputLine line, std::uint8_t level, std::int8_t dpos,
                                 std::uint8_t flags) const noexcept {
   rt::Edge e;
   e.t = t;
@@ -204,7 +204,7 @@ void AxisPlanner::start_motion(const Command& c, Nanos now) noexcept {
       break;
   }
   const bool ccw = m.dir == Direction::kCcw;
-  m.line = (step_dir_ || !ccw) ? rt::OutputLine::kStep : rt::OutputLine::kDir;
+  m.line = (step_dir_ || !ccw) ? OutputLine::kStep : OutputLine::kDir;
   m.base_flags = rt::edge_flag::kMotion | (ccw ? rt::edge_flag::kCcw : 0);
   m.origin = std::max(now + opt_.start_delay_ns, last_t_);
   m.tk_ns = m.origin;
@@ -230,7 +230,7 @@ void AxisPlanner::start_motion(const Command& c, Nanos now) noexcept {
     const double t1 = m_.end == 1 ? phases_.end_time() : probe.time_of(1.0);
     const Nanos first = to_ns(t1);
     const rt::Phase ph = phases_.empty() ? rt::Phase::kCruise : phases_[0].phase;
-    stage(make_edge(m_.origin, rt::OutputLine::kDir, static_cast<std::uint8_t>(target), 0,
+    stage(make_edge(m_.origin, OutputLine::kDir, static_cast<std::uint8_t>(target), 0,
                     m_.base_flags | static_cast<std::uint8_t>(ph) | rt::edge_flag::kFirst));
     m_.first_pending = false;
     if (first < timing_.dir_setup_ns) m_.origin += timing_.dir_setup_ns - first;
@@ -257,8 +257,8 @@ void AxisPlanner::finish_at_frontier() noexcept {
   dir_level_ = level;
   std::uint8_t flags = m_.base_flags | rt::edge_flag::kLast;
   if (m_.first_pending) flags |= rt::edge_flag::kFirst;
-  stage(make_edge(std::max(m_.tk_ns, last_t_), rt::OutputLine::kDir,
-                  static_cast<std::uint8_t>(level), 0, flags));
+  stage(make_edge(std::max(m_.tk_ns, last_t_), OutputLine::kDir, static_cast<std::uint8_t>(level),
+                  0, flags));
 }
 
 void AxisPlanner::replan_to_end(std::int64_t end, const Ramp& ramp, bool exact_ramp) noexcept {
@@ -336,7 +336,7 @@ void AxisPlanner::stop_after(const Command& c) noexcept {
 void AxisPlanner::set_gpo(bool level, Nanos now) noexcept {
   // Not part of any motion: as soon as the ring's order allows (behind edges already pushed).
   const Nanos t = std::max(now, last_pushed_t_);
-  stage_sorted(make_edge(t, rt::OutputLine::kGpo, level ? 1 : 0, 0, 0));
+  stage_sorted(make_edge(t, OutputLine::kGpo, level ? 1 : 0, 0, 0));
   nonmotion_t_ = std::max(nonmotion_t_, t);
 }
 
@@ -348,7 +348,7 @@ void AxisPlanner::set_pulse_format(bool step_dir, Nanos now) noexcept {
   if (dir_level_ != 0) {
     // The direction line becomes the CCW pulse line (or back): leave it at its idle level.
     const Nanos t = std::max(now, last_pushed_t_);
-    stage_sorted(make_edge(t, rt::OutputLine::kDir, 0, 0, 0));
+    stage_sorted(make_edge(t, OutputLine::kDir, 0, 0, 0));
     nonmotion_t_ = std::max(nonmotion_t_, t);
     dir_level_ = 0;
   }
@@ -430,8 +430,8 @@ void AxisPlanner::follow_finish() noexcept {
   std::uint8_t flags = m_.base_flags | rt::edge_flag::kLast;
   if (m_.first_pending) flags |= rt::edge_flag::kFirst;
   m_.first_pending = false;
-  stage(make_edge(std::max(now_, last_t_), rt::OutputLine::kDir, static_cast<std::uint8_t>(level),
-                  0, flags));
+  stage(make_edge(std::max(now_, last_t_), OutputLine::kDir, static_cast<std::uint8_t>(level), 0,
+                  flags));
 }
 
 // The follow law (FollowSpec): the speed of the next step is the highest that
@@ -500,7 +500,7 @@ bool AxisPlanner::follow_step() noexcept {
   if (from_rest || dir != sign(m_.dir) || m_.k == 0) {
     const bool ccw = dir < 0;
     m_.dir = ccw ? Direction::kCcw : Direction::kCw;
-    m_.line = (step_dir_ || !ccw) ? rt::OutputLine::kStep : rt::OutputLine::kDir;
+    m_.line = (step_dir_ || !ccw) ? OutputLine::kStep : OutputLine::kDir;
     m_.base_flags = rt::edge_flag::kMotion | (ccw ? rt::edge_flag::kCcw : 0);
     const int level = step_dir_ ? (ccw ? kDirLevelCcw : kDirLevelCw) : 0;
     if (dir_level_ != level) {
@@ -509,7 +509,7 @@ bool AxisPlanner::follow_step() noexcept {
       std::uint8_t flags = m_.base_flags;
       if (m_.first_pending) flags |= rt::edge_flag::kFirst;
       m_.first_pending = false;
-      stage(make_edge(td, rt::OutputLine::kDir, static_cast<std::uint8_t>(level), 0, flags));
+      stage(make_edge(td, OutputLine::kDir, static_cast<std::uint8_t>(level), 0, flags));
       dir_level_ = level;
       t = std::max(t, td + timing_.dir_setup_ns);
     }

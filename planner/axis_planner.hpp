@@ -61,7 +61,7 @@ class AxisPlanner {
     double tk = 0.0;           // time of step k, s from origin
     Nanos tk_ns = 0;           // the same, absolute
     std::uint8_t k_flags = 0;  // flags of step k's edges (without kFirst)
-    rt::OutputLine line = rt::OutputLine::kStep;
+    OutputLine line = OutputLine::kStep;
     std::uint8_t base_flags = 0;  // kMotion | kCcw
     bool first_pending = true;    // kFirst not yet given to an edge
     bool follow = false;          // a follow motion (FollowSpec): steps come from follow_step
@@ -69,11 +69,11 @@ class AxisPlanner {
 
   // The servo state of a follow motion (encoder follower).
   struct FollowState {
-    FollowSpec spec;          // latest target, speed and ramps
-    std::int64_t pos = 0;     // net steps planned (CW positive) since the motion's start
-    int dir = 0;              // sense of the newest step: +1 CW, -1 CCW, 0 before the first
-    double v = 0.0;           // speed of the newest step (steps/s); 0 = at rest
-    bool finishing = false;   // kStop seen: end as soon as the axis rests on its target
+    FollowSpec spec;         // latest target, speed and ramps
+    std::int64_t pos = 0;    // net steps planned (CW positive) since the motion's start
+    int dir = 0;             // sense of the newest step: +1 CW, -1 CCW, 0 before the first
+    double v = 0.0;          // speed of the newest step (steps/s); 0 = at rest
+    bool finishing = false;  // kStop seen: end as soon as the axis rests on its target
   };
 
   void start_motion(const Command& c, Nanos now) noexcept;
@@ -100,10 +100,10 @@ class AxisPlanner {
   void stage(const rt::Edge& e) noexcept;
   void stage_sorted(const rt::Edge& e) noexcept;
   void flush(Nanos horizon) noexcept;
-  rt::Edge make_edge(Nanos t, rt::OutputLine line, std::uint8_t level, std::int8_t dpos,
+  rt::Edge make_edge(Nanos t, OutputLine line, std::uint8_t level, std::int8_t dpos,
                      std::uint8_t flags) const noexcept;
 
-  rt::SpscRing<rt::Edge>* ring_;
+  SpscRing<rt::Edge>* ring_;
   const rt::AxisControl* control_;
   AxisTiming timing_;
   PlannerOptions opt_;

@@ -5,12 +5,14 @@
 #include <array>
 #include <cstdint>
 
-#include "rt/clock.hpp"
+#include "core/clock.hpp"
 
 namespace stepmod::planner {
 
 enum class Direction : std::int8_t { kCw = 1, kCcw = -1 };
-inline constexpr int sign(Direction d) noexcept { return static_cast<int>(d); }
+inline constexpr int sign(Direction d) noexcept {
+  return static_cast<int>(d);
+}
 inline constexpr Direction opposite(Direction d) noexcept {
   return d == Direction::kCw ? Direction::kCcw : Direction::kCw;
 }
@@ -70,25 +72,25 @@ struct BlendSpec {
 // last target it was given.
 struct FollowSpec {
   std::int64_t target = 0;
-  double vs = 1.0;             // speed jumped to from rest and decelerated to (starting speed)
-  double vmax = 1'000'000.0;   // speed limit with a non-zero accel
-  double speed = 1.0;          // accel = 0: the speed pending steps are output at (the master's)
-  double accel = 0.0;          // steps/s^2; 0 = jump to `speed`
-  double decel = 0.0;          // steps/s^2; 0 = stop (and reverse) without a ramp
+  double vs = 1.0;            // speed jumped to from rest and decelerated to (starting speed)
+  double vmax = 1'000'000.0;  // speed limit with a non-zero accel
+  double speed = 1.0;         // accel = 0: the speed pending steps are output at (the master's)
+  double accel = 0.0;         // steps/s^2; 0 = jump to `speed`
+  double decel = 0.0;         // steps/s^2; 0 = stop (and reverse) without a ramp
 };
 
 enum class CommandKind : std::uint8_t {
-  kMove,           // start `move` as motion `epoch`
-  kRun,            // start `run` as motion `epoch`
-  kBlend,          // start `blend` as motion `epoch`
-  kChangeSpeed,    // running motion `epoch`: ramp to run.vp with run.accel / run.decel
-  kStop,           // controlled stop of `epoch`: decelerate to vs with `ramp`, then end
-  kStopAfter,      // registration: end `epoch` exactly `steps` steps after the step count at `t`
-  kAbort,          // immediate stop of `epoch` (the pulse thread already drops its edges)
-  kSetGpo,         // general-purpose output level `level` (3602)
-  kSetPulseFormat, // `level` = true: step + direction outputs, false: CW + CCW pulse outputs
-  kFollow,         // start `follow` as motion `epoch` (encoder follower; ends with kStop/kAbort)
-  kFollowUpdate,   // follow motion `epoch`: new target, speed and ramps from `follow`
+  kMove,            // start `move` as motion `epoch`
+  kRun,             // start `run` as motion `epoch`
+  kBlend,           // start `blend` as motion `epoch`
+  kChangeSpeed,     // running motion `epoch`: ramp to run.vp with run.accel / run.decel
+  kStop,            // controlled stop of `epoch`: decelerate to vs with `ramp`, then end
+  kStopAfter,       // registration: end `epoch` exactly `steps` steps after the step count at `t`
+  kAbort,           // immediate stop of `epoch` (the pulse thread already drops its edges)
+  kSetGpo,          // general-purpose output level `level` (3602)
+  kSetPulseFormat,  // `level` = true: step + direction outputs, false: CW + CCW pulse outputs
+  kFollow,          // start `follow` as motion `epoch` (encoder follower; ends with kStop/kAbort)
+  kFollowUpdate,    // follow motion `epoch`: new target, speed and ramps from `follow`
 };
 
 struct Command {

@@ -7,11 +7,11 @@
 #include <span>
 #include <vector>
 
+#include "core/spsc_ring.hpp"
 #include "planner/motion_port.hpp"
 #include "planner/motion_request.hpp"
 #include "rt/axis_feedback.hpp"
 #include "rt/edge.hpp"
-#include "rt/spsc_ring.hpp"
 
 namespace stepmod::planner {
 
@@ -21,13 +21,13 @@ struct AxisTiming {
 };
 
 struct PlannerAxis {
-  rt::SpscRing<rt::Edge>* edges = nullptr;       // producer side
-  const rt::AxisControl* control = nullptr;      // abort_epoch: skip aborted motions
+  SpscRing<rt::Edge>* edges = nullptr;       // producer side
+  const rt::AxisControl* control = nullptr;  // abort_epoch: skip aborted motions
   AxisTiming timing;
 };
 
 struct PlannerOptions {
-  Nanos lookahead_ns = 4 * kNsPerMs;   // keep each ring filled this far ahead of `now`
+  Nanos lookahead_ns = 4 * kNsPerMs;      // keep each ring filled this far ahead of `now`
   Nanos start_delay_ns = 150 * kNsPerUs;  // a new motion's time 0 is at least this after `now`
   std::size_t command_queue = 64;
 };
@@ -53,7 +53,7 @@ class Planner final : public CommandSink {
  private:
   PlannerOptions options_;
   std::vector<std::unique_ptr<AxisPlanner>> axes_;
-  rt::SpscRing<Command> queue_;
+  SpscRing<Command> queue_;
   std::atomic<std::uint32_t> wake_{0};
 };
 

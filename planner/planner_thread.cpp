@@ -2,8 +2,8 @@
 
 #include <pthread.h>
 
+#include "core/clock.hpp"
 #include "planner/wakeup.hpp"
-#include "rt/clock.hpp"
 
 namespace stepmod::planner {
 

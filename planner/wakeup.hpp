@@ -5,7 +5,7 @@
 #include <atomic>
 #include <cstdint>
 
-#include "rt/clock.hpp"
+#include "core/clock.hpp"
 
 namespace stepmod::planner {
 

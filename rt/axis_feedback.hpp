@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "rt/clock.hpp"
+#include "core/clock.hpp"
 #include "rt/edge.hpp"
 
 namespace stepmod::rt {

@@ -3,13 +3,10 @@
 // travel in that axis' SpscRing<Edge> in non-decreasing time order.
 #include <cstdint>
 
-#include "rt/clock.hpp"
+#include "core/clock.hpp"
+#include "core/lines.hpp"
 
 namespace stepmod::rt {
-
-// Output lines of one axis, in the order of the simulator panel's "output levels" bits.
-enum class OutputLine : std::uint8_t { kStep = 0, kDir = 1, kGpo = 2 };
-inline constexpr unsigned kOutputLinesPerAxis = 3;
 
 // Motion phase of the move an edge belongs to; drives the accelerating/decelerating status bits.
 enum class Phase : std::uint8_t { kCruise = 0, kAccel = 1, kDecel = 2 };

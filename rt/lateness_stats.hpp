@@ -19,7 +19,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "rt/clock.hpp"
+#include "core/clock.hpp"
 
 namespace stepmod::rt {
 

@@ -8,12 +8,12 @@
 #include <span>
 #include <vector>
 
+#include "core/spsc_ring.hpp"
+#include "core/trace_record.hpp"
 #include "gpio/backend.hpp"
 #include "rt/axis_feedback.hpp"
 #include "rt/edge.hpp"
 #include "rt/lateness_stats.hpp"
-#include "rt/spsc_ring.hpp"
-#include "rt/trace_record.hpp"
 
 namespace stepmod::rt {
 

@@ -32,23 +32,23 @@
 //
 // Setup that may be refused (mlockall, SCHED_FIFO, affinity) is attempted, recorded in Status
 // and never fatal: the caller decides whether to warn. Nothing logs inside the thread.
+#include <pthread.h>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
-#include <pthread.h>
 
-#include "rt/clock.hpp"
+#include "core/clock.hpp"
 #include "rt/pulse_engine.hpp"
 
 namespace stepmod::rt {
 
 // Outside PulseThread so that `Options{}` can be a default argument of its constructor.
 struct PulseThreadOptions {
-  int priority = 80;                   // SCHED_FIFO priority (1 ... 99); <= 0: stay SCHED_OTHER
-  int cpu = -1;                        // CPU to pin to; -1 = not pinned
-  Nanos spin_ns = 30 * kNsPerUs;       // wake at most this long before an edge and spin to it
-  Nanos min_spin_ns = 10 * kNsPerUs;   // ... and at least this long (= spin_ns: fixed spin)
-  Nanos max_sleep_ns = 50 * kNsPerUs;  // longest sleep without looking for new work
+  int priority = 80;                     // SCHED_FIFO priority (1 ... 99); <= 0: stay SCHED_OTHER
+  int cpu = -1;                          // CPU to pin to; -1 = not pinned
+  Nanos spin_ns = 30 * kNsPerUs;         // wake at most this long before an edge and spin to it
+  Nanos min_spin_ns = 10 * kNsPerUs;     // ... and at least this long (= spin_ns: fixed spin)
+  Nanos max_sleep_ns = 50 * kNsPerUs;    // longest sleep without looking for new work
   Nanos quiet_sleep_ns = 50 * kNsPerUs;  // longest sleep when no ring() is recent (see above)
   Nanos awake_ns = 20 * kNsPerMs;        // how long a ring() keeps the max_sleep_ns poll on
   // Off-CPU share the thread keeps, per mille, on balance; 0 = off. See the note above.

@@ -31,8 +31,8 @@ constexpr int64_t kMaxLineOffset = 4095;
 constexpr int64_t kMaxSimPosition = 1'000'000'000'000;
 constexpr double kMaxEncoderRatio = 1000.0;
 
-constexpr std::string_view kOutputKeys[gpio::kOutputLinesPerAxis] = {"step", "dir", "gpo"};
-constexpr std::string_view kInputKeys[gpio::kInputLinesPerAxis] = {
+constexpr std::string_view kOutputKeys[kOutputLinesPerAxis] = {"step", "dir", "gpo"};
+constexpr std::string_view kInputKeys[kInputLinesPerAxis] = {
     "capture", "external", "home", "estop", "cw_limit", "ccw_limit", "enc_a", "enc_b", "enc_z"};
 
 class Parser {
@@ -155,12 +155,8 @@ class Parser {
     std::string ts;
     if (const auto* s = type->as_string()) ts = s->get();
     if (const auto* i = type->as_integer()) ts = std::to_string(i->get());
-    if (ts == "3601") {
-      c.type = module::ModuleType::k3601;
-    } else if (ts == "3602") {
-      c.type = module::ModuleType::k3602;
-    } else if (ts == "3202") {
-      c.type = module::ModuleType::k3202;
+    if (const auto t = module_type_from_name(ts)) {
+      c.type = *t;
     } else {
       fail(type->source(), "module.type", "must be \"3601\", \"3602\" or \"3202\"");
     }
@@ -211,7 +207,7 @@ class Parser {
   }
 
   void parse_axes(const toml::table& root, const toml::table* module, Config& c) const {
-    const auto shape = c.type == module::ModuleType::k3601 ? 1u : 2u;
+    const unsigned shape = shape_of(c.type).axes;
     const toml::node* n = root.get("axis");
     const toml::array* arr = nullptr;
     if (n != nullptr) {
@@ -240,7 +236,7 @@ class Parser {
     }
   }
 
-  AxisConfig parse_axis(const toml::table& t, std::size_t index, module::ModuleType type,
+  AxisConfig parse_axis(const toml::table& t, std::size_t index, ModuleType type,
                         std::map<int64_t, std::string>& used) const {
     // 1-based like the contract's "axis 1, then axis 2" and the VCD names axis1.step.
     const std::string p = "axis[" + std::to_string(index + 1) + "]";
@@ -258,8 +254,8 @@ class Parser {
       }
       return static_cast<unsigned>(*v);
     };
-    for (unsigned o = 0; o < gpio::kOutputLinesPerAxis; ++o) a.out[o] = line(kOutputKeys[o]);
-    for (unsigned i = 0; i < gpio::kInputLinesPerAxis; ++i) a.in[i] = line(kInputKeys[i]);
+    for (unsigned o = 0; o < kOutputLinesPerAxis; ++o) a.out[o] = line(kOutputKeys[o]);
+    for (unsigned i = 0; i < kInputLinesPerAxis; ++i) a.in[i] = line(kInputKeys[i]);
 
     for (std::string_view req : {"step", "dir"}) {
       if (t.get(req) == nullptr) {
@@ -269,7 +265,7 @@ class Parser {
                  " output");
       }
     }
-    const bool is3602 = type == module::ModuleType::k3602;
+    const bool is3602 = type == ModuleType::k3602;
     if (!is3602 && t.get("gpo") != nullptr) {
       fail(t.get("gpo")->source(), join(p, "gpo"), "only the 3602 has a general-purpose output");
     }

@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "core/clock.hpp"
 #include "gpio/axis_lines.hpp"
 #include "gpio/backend.hpp"
 #include "gpio/sim_machine.hpp"
 #include "module/personality.hpp"
-#include "rt/clock.hpp"
 
 namespace stepmod::tools {
 
@@ -28,7 +28,7 @@ struct AxisConfig : gpio::AxisLines {
 
 struct Config {
   std::string file;  // the path it was read from
-  module::ModuleType type = module::ModuleType::k3601;
+  ModuleType type = ModuleType::k3601;
   std::string name = "stepmod";
   Nanos scan_ns = 1'000 * kNsPerUs;
   Nanos plc_timeout_ns = 0;  // 0 = heartbeat watch off
@@ -45,7 +45,7 @@ class ConfigError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-Config load_config(const std::string& path);              // throws ConfigError
+Config load_config(const std::string& path);  // throws ConfigError
 Config parse_config(std::string_view toml_text, const std::string& file_name);  // same checks
 
 }  // namespace stepmod::tools

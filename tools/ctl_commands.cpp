@@ -9,7 +9,6 @@
 namespace stepmod::tools::ctl {
 
 namespace m = module::m3601;
-using module::ImageWords;
 
 namespace {
 // Errors that mean "the module rejected or failed this command" (status MSW).
@@ -32,7 +31,7 @@ void put_profile(ImageWords& w, const Profile& p) {
 
 Plc3601::Plc3601(ipc::Client& client, std::chrono::milliseconds timeout)
     : c_(client), timeout_(timeout) {
-  if (client.type() != module::ModuleType::k3601) {
+  if (client.type() != ModuleType::k3601) {
     throw ipc::IpcError("module '" + client.name() + "' is a " +
                         std::to_string(static_cast<unsigned>(client.type())) +
                         ", not a 3601: use 'raw set' to drive it");

@@ -40,7 +40,7 @@ struct Outcome {
   bool ok = true;          // no error bit for this command, no timeout
   bool timed_out = false;  // the module did not scan or did not answer a handshake
   std::string message;     // error bits by name, or the timeout, when !ok
-  module::ImageWords in;   // input image after the command
+  ImageWords in;           // input image after the command
 };
 
 class Plc3601 {
@@ -86,10 +86,9 @@ class Plc3601 {
   // Makes sure none of `bits` is set in output word `word` (so the next set is a 0->1 edge).
   bool release_bits(unsigned word, std::uint16_t bits);
   // Writes words (the whole image), waits for the module, clears `edge_bit` in word 0, waits.
-  Outcome edge_command(const module::ImageWords& words, std::uint16_t edge_bit,
-                       std::uint16_t error_mask);
+  Outcome edge_command(const ImageWords& words, std::uint16_t edge_bit, std::uint16_t error_mask);
   Outcome finish(std::uint16_t error_mask, bool timed_out, const std::string& what);
-  module::ImageWords outputs() const;
+  ImageWords outputs() const;
   bool wait_status(std::uint16_t lsw_bit, bool want, std::chrono::milliseconds timeout);
 
   ipc::Client& c_;

@@ -9,8 +9,6 @@
 namespace stepmod::tools::ctl {
 namespace {
 
-using module::ImageWords;
-
 std::uint16_t u16(std::int32_t w) {
   return static_cast<std::uint16_t>(w & 0xFFFF);
 }
@@ -221,23 +219,23 @@ std::string set_bit_names(std::uint32_t word, const std::vector<BitName>& names)
   return s.empty() ? "-" : s;
 }
 
-std::string format_status(module::ModuleType type, const module::ImageWords& in) {
+std::string format_status(ModuleType type, const ImageWords& in) {
   std::ostringstream o;
   switch (type) {
-    case module::ModuleType::k3601:
+    case ModuleType::k3601:
       format_3601(o, in);
       break;
-    case module::ModuleType::k3602:
+    case ModuleType::k3602:
       format_3602(o, in);
       break;
-    case module::ModuleType::k3202:
+    case ModuleType::k3202:
       format_3202(o, in);
       break;
   }
   return o.str();
 }
 
-std::string format_words(const module::ImageWords& w, unsigned count, unsigned word_bytes) {
+std::string format_words(const ImageWords& w, unsigned count, unsigned word_bytes) {
   std::ostringstream o;
   for (unsigned i = 0; i < count; ++i) {
     const std::uint32_t raw = word_bytes == 2 ? (static_cast<std::uint32_t>(w.w[i]) & 0xFFFFu)

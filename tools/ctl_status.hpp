@@ -27,9 +27,9 @@ const std::vector<BitName>& status_names_3202();
 std::string set_bit_names(std::uint32_t word, const std::vector<BitName>& names);
 
 // The whole decoded input image, multi-line, for `type`.
-std::string format_status(module::ModuleType type, const module::ImageWords& in);
+std::string format_status(ModuleType type, const ImageWords& in);
 
 // One line per word: index, decimal, hex (word-size digits).
-std::string format_words(const module::ImageWords& w, unsigned count, unsigned word_bytes);
+std::string format_words(const ImageWords& w, unsigned count, unsigned word_bytes);
 
 }  // namespace stepmod::tools::ctl

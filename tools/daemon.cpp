@@ -34,8 +34,8 @@ struct Daemon::Impl {
   Nanos start = monotonic_now();
   std::unique_ptr<gpio::Backend> backend;
   gpio::SimBackend* sim = nullptr;  // the same object when backend = "sim"
-  std::unique_ptr<rt::SpscRing<rt::TraceRecord>> output_trace;
-  std::unique_ptr<rt::SpscRing<rt::TraceRecord>> input_trace;
+  std::unique_ptr<SpscRing<TraceRecord>> output_trace;
+  std::unique_ptr<SpscRing<TraceRecord>> input_trace;
   std::unique_ptr<gpio::TraceWriter> trace;
   std::unique_ptr<Stack> stack;
   std::unique_ptr<ipc::ShmImage> image;
@@ -83,8 +83,8 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
   // ~15-20 us late: 100 us covers it and is 50 us off the command latency (issue 5).
   so.planner.start_delay_ns = 100 * kNsPerUs;
   if (trace_path) {
-    d.output_trace = std::make_unique<rt::SpscRing<rt::TraceRecord>>(kTraceRing);
-    d.input_trace = std::make_unique<rt::SpscRing<rt::TraceRecord>>(kTraceRing);
+    d.output_trace = std::make_unique<SpscRing<TraceRecord>>(kTraceRing);
+    d.input_trace = std::make_unique<SpscRing<TraceRecord>>(kTraceRing);
   }
   d.stack = std::make_unique<Stack>(so, *d.backend, d.output_trace.get());
   d.image = std::make_unique<ipc::ShmImage>(config.name, d.stack->shape());
@@ -152,9 +152,10 @@ void Daemon::run(const std::atomic<bool>& stop) {
     sp.sched_priority = std::max(1, d.config.rt_priority - 10);
     const int rc = pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp);
     if (rc != 0) {
-      spdlog::warn("control thread: SCHED_FIFO priority {} refused ({}); input edges may be lost "
-                   "under load",
-                   sp.sched_priority, std::strerror(rc));
+      spdlog::warn(
+          "control thread: SCHED_FIFO priority {} refused ({}); input edges may be lost "
+          "under load",
+          sp.sched_priority, std::strerror(rc));
     }
   }
   d.control_loop(stop);
@@ -184,8 +185,8 @@ void Daemon::run(const std::atomic<bool>& stop) {
 void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
   module::Personality& personality = stack->personality();
   std::array<gpio::InputEvent, 64> events{};
-  module::ImageWords out{};
-  module::ImageWords in{};
+  ImageWords out{};
+  ImageWords in{};
   Nanos next_scan = monotonic_now();
   std::uint64_t last_heartbeat = image->heartbeat();
   Nanos heartbeat_changed = next_scan;
@@ -205,8 +206,8 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     for (std::size_t i = 0; i < n; ++i) {
       const gpio::InputEvent& e = events[i];
       if (input_trace) {
-        const rt::TraceRecord r{e.t, e.axis, static_cast<std::uint8_t>(e.line),
-                                static_cast<std::uint8_t>(e.level), 1};
+        const TraceRecord r{e.t, e.axis, static_cast<std::uint8_t>(e.line),
+                            static_cast<std::uint8_t>(e.level), 1};
         if (!input_trace->try_push(r)) ++input_trace_dropped;
       }
       personality.on_input(e);
@@ -255,7 +256,7 @@ void Daemon::Impl::idle_outputs() {
   const Nanos now = monotonic_now();
   for (unsigned a = 0; a < stack->shape().axes; ++a) {
     const std::uint8_t levels = stack->feedback(a).output_levels.load(std::memory_order_acquire);
-    for (unsigned l = 0; l < rt::kOutputLinesPerAxis; ++l) {
+    for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
       if (output_trace && (levels >> l) & 1u) {
         output_trace->try_push(
             {now, static_cast<std::uint8_t>(a), static_cast<std::uint8_t>(l), 0, 0});

@@ -4,9 +4,8 @@
 
 namespace stepmod::tools {
 
-Stack::Stack(const StackOptions& options, gpio::Backend& backend,
-             rt::SpscRing<rt::TraceRecord>* trace)
-    : backend_(backend), shape_(module::shape_of(options.type)) {
+Stack::Stack(const StackOptions& options, gpio::Backend& backend, SpscRing<TraceRecord>* trace)
+    : backend_(backend), shape_(shape_of(options.type)) {
   if (options.timing.size() != shape_.axes || backend.axes() != shape_.axes) {
     throw std::invalid_argument("the module, its timing and its backend disagree on the axes");
   }

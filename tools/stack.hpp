@@ -6,19 +6,19 @@
 #include <memory>
 #include <vector>
 
+#include "core/spsc_ring.hpp"
+#include "core/trace_record.hpp"
 #include "gpio/backend.hpp"
 #include "module/personality.hpp"
 #include "planner/motion_port.hpp"
 #include "planner/planner.hpp"
 #include "rt/axis_feedback.hpp"
 #include "rt/pulse_engine.hpp"
-#include "rt/spsc_ring.hpp"
-#include "rt/trace_record.hpp"
 
 namespace stepmod::tools {
 
 struct StackOptions {
-  module::ModuleType type = module::ModuleType::k3601;
+  ModuleType type = ModuleType::k3601;
   std::vector<planner::AxisTiming> timing;  // one per axis
   planner::PlannerOptions planner;
   std::size_t edge_ring = 1u << 15;  // edges per axis: > lookahead x max edge rate (2 MHz x 4 ms)
@@ -27,7 +27,7 @@ struct StackOptions {
 class Stack {
  public:
   // `backend` and `trace` (may be null) must outlive the stack.
-  Stack(const StackOptions& options, gpio::Backend& backend, rt::SpscRing<rt::TraceRecord>* trace);
+  Stack(const StackOptions& options, gpio::Backend& backend, SpscRing<TraceRecord>* trace);
   ~Stack();
   Stack(const Stack&) = delete;
   Stack& operator=(const Stack&) = delete;
@@ -36,14 +36,14 @@ class Stack {
   planner::Planner& planner() noexcept { return *planner_; }
   rt::PulseEngine& engine() noexcept { return *engine_; }
   module::Personality& personality() noexcept { return *personality_; }
-  const module::ModuleShape& shape() const noexcept { return shape_; }
+  const ModuleShape& shape() const noexcept { return shape_; }
   planner::MotionPort& motion(unsigned axis) noexcept { return *axes_[axis]->port; }
   const rt::AxisFeedback& feedback(unsigned axis) const noexcept { return axes_[axis]->feedback; }
 
  private:
   struct Axis {
     explicit Axis(std::size_t ring) : edges(ring) {}
-    rt::SpscRing<rt::Edge> edges;
+    SpscRing<rt::Edge> edges;
     rt::AxisFeedback feedback;
     rt::AxisControl control;
     rt::StepHistory history;
@@ -51,7 +51,7 @@ class Stack {
   };
 
   gpio::Backend& backend_;
-  module::ModuleShape shape_;
+  ModuleShape shape_;
   std::vector<std::unique_ptr<Axis>> axes_;  // stable addresses: the threads hold pointers
   std::unique_ptr<planner::Planner> planner_;
   std::unique_ptr<rt::PulseEngine> engine_;

@@ -369,7 +369,7 @@ int main(int argc, char** argv) {
     ipc::Client client(name);
 
     if (status->parsed()) {
-      module::ImageWords in;
+      ImageWords in;
       client.read_inputs(in);
       std::cout << "module '" << name << "' scan " << client.scan_counter() << "\n"
                 << tools::ctl::format_status(client.type(), in);
@@ -379,7 +379,7 @@ int main(int argc, char** argv) {
       std::signal(SIGINT, on_signal);
       std::signal(SIGTERM, on_signal);
       while (!g_stop) {
-        module::ImageWords in;
+        ImageWords in;
         client.read_inputs(in);
         // Home the cursor and clear: a steady display instead of a scrolling log.
         std::cout << "\x1b[H\x1b[2J"
@@ -390,8 +390,8 @@ int main(int argc, char** argv) {
       return kExitOk;
     }
     if (raw_get->parsed()) {
-      module::ImageWords out;
-      module::ImageWords in;
+      ImageWords out;
+      ImageWords in;
       client.read_outputs(out);
       client.read_inputs(in);
       const auto& s = client.shape();
@@ -483,8 +483,7 @@ int main(int argc, char** argv) {
           throw UsageError("--segment '" + s + "': expected LENGTH:SPEED:ACCEL[:tri|trap]");
         }
         b.segments.push_back({split_number(f[0], "LENGTH"), split_number(f[1], "SPEED"),
-                              word_number(f[2], "ACCEL"),
-                              parse_accel(f.size() == 4 ? f[3] : "")});
+                              word_number(f[2], "ACCEL"), parse_accel(f.size() == 4 ? f[3] : "")});
       }
       b.final_decel = final_decel;
       b.final_type = parse_accel(final_type);

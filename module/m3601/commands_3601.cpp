@@ -121,7 +121,7 @@ std::optional<Personality3601::Profile> Personality3601::read_profile(const Imag
 // 3601-HLD-03: with the External input active an absolute/relative move (or its resumption)
 // outputs one step in the commanded direction, then holds.
 void Personality3601::start_abs_rel(std::int64_t steps, const Profile& p) {
-  if (inputs_.active(gpio::InputLine::kExternal)) {
+  if (inputs_.active(InputLine::kExternal)) {
     if (start_move_steps(steps < 0 ? -1 : 1, p)) stop_cause_ = StopCause::kExternal;
     return;
   }
@@ -129,9 +129,8 @@ void Personality3601::start_abs_rel(std::int64_t steps, const Profile& p) {
 }
 
 bool Personality3601::inputs_block_start(planner::Direction dir) {
-  const auto limit =
-      dir == planner::Direction::kCw ? gpio::InputLine::kCwLimit : gpio::InputLine::kCcwLimit;
-  if (!inputs_.active(gpio::InputLine::kEStop) && !inputs_.active(limit)) return false;
+  const auto limit = dir == planner::Direction::kCw ? InputLine::kCwLimit : InputLine::kCcwLimit;
+  if (!inputs_.active(InputLine::kEStop) && !inputs_.active(limit)) return false;
   status_.input_error = true;
   return true;
 }

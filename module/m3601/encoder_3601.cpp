@@ -48,7 +48,7 @@ void Personality3601::command_encoder_move(const ImageWords& out, bool absolute)
     status_.move_complete = true;  // already on the count: nothing to output
     return;
   }
-  if (inputs_.active(gpio::InputLine::kExternal)) {
+  if (inputs_.active(InputLine::kExternal)) {
     // Digest 7.6 (inferred): External already active → one step, then a stop without Hold.
     if (start_move_steps(dir == planner::Direction::kCw ? 1 : -1, *profile)) {
       activity_ = Activity::kEncoderMove;
@@ -193,7 +193,7 @@ bool Personality3601::follower_enter() {
   }
   // 3601-CE-42 / A24: "cannot be started when either of the end limit switches are active";
   // the manual names no error, the digest recommends CE.
-  if (inputs_.active(gpio::InputLine::kCwLimit) || inputs_.active(gpio::InputLine::kCcwLimit)) {
+  if (inputs_.active(InputLine::kCwLimit) || inputs_.active(InputLine::kCcwLimit)) {
     reject();
     return false;
   }

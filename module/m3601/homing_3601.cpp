@@ -16,7 +16,6 @@ namespace stepmod::module::m3601 {
 
 namespace {
 
-using gpio::InputLine;
 using planner::Direction;
 
 constexpr Nanos kPause = 2 * kNsPerSec;  // digest 7.11: every homing pause is 2 s

@@ -5,8 +5,6 @@
 
 namespace stepmod::module::m3601 {
 
-using gpio::InputLine;
-
 void Personality3601::on_input(const gpio::InputEvent& e) {
   const bool was_active = inputs_.active(e.line);
   inputs_.set_level(e.line, e.level);

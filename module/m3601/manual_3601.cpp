@@ -56,7 +56,7 @@ void Personality3601::command_manual(const ImageWords& out, planner::Direction d
   // One-shot (Vp = 0, digest 7.8; 3601-STP-N1: no Stopped on release) and a start with the
   // External input active (digest 7.6: one step, then stop) both output a single pulse. A
   // registration move never gets here with the External input active (3601-CE-27).
-  const bool external = inputs_.active(gpio::InputLine::kExternal);
+  const bool external = inputs_.active(InputLine::kExternal);
   std::uint32_t epoch = 0;
   if (profile->vp == 0 || external) {
     planner::MoveSpec one;
@@ -107,7 +107,7 @@ bool Personality3601::registration_start_allowed(std::int32_t count, double vp,
     return false;
   }
   // 3601-CE-27 / IP-12: started with the External input active, whatever the minimum distance.
-  if (inputs_.active(gpio::InputLine::kExternal)) {
+  if (inputs_.active(InputLine::kExternal)) {
     reject_profile();
     return false;
   }
@@ -179,7 +179,7 @@ void Personality3601::manual_scan(const ImageWords& out, Nanos now) {
     if (stop_cause_ != StopCause::kNone) return;  // stopped by an invalid change
   }
   // The External input's level is also followed here (its edges come through manual_on_input).
-  if (!inputs_.active(gpio::InputLine::kExternal)) {
+  if (!inputs_.active(InputLine::kExternal)) {
     manual_.external_since = -1;
   } else if (manual_.external_since < 0) {
     manual_.external_since = now;
@@ -335,7 +335,7 @@ void Personality3601::command_min_registration(const ImageWords& out) {
 // Input edges during a manual move: a registration move takes the External input as its
 // trigger (digest 7.6); the limits and the E-stop keep the generic rules (inputs_3601.cpp).
 bool Personality3601::manual_on_input(const gpio::InputEvent& e, bool now_active) {
-  if (manual_.kind != ManualKind::kRegistration || e.line != gpio::InputLine::kExternal) {
+  if (manual_.kind != ManualKind::kRegistration || e.line != InputLine::kExternal) {
     return false;
   }
   if (manual_.triggered || stop_cause_ != StopCause::kNone) return true;

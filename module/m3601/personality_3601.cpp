@@ -8,13 +8,13 @@
 namespace stepmod::module::m3601 {
 
 namespace {
-constexpr ModuleShape kShape{ModuleType::k3601, 1, 2, 8, 8};
+constexpr ModuleShape kShape = shape_of(ModuleType::k3601);
 }  // namespace
 
 Personality3601::Personality3601(gpio::Backend& backend, planner::MotionPort& motion)
     : backend_(backend), motion_(motion) {
   inputs_.init(backend_, motion_.axis());
-  quadrature_.reset(inputs_.level(gpio::InputLine::kEncA), inputs_.level(gpio::InputLine::kEncB));
+  quadrature_.reset(inputs_.level(InputLine::kEncA), inputs_.level(InputLine::kEncB));
 }
 
 const ModuleShape& Personality3601::shape() const noexcept {

@@ -18,7 +18,7 @@ TEST(GpioTraceWriterThread, WritesEverythingPushedWhileRunningAndOnStop) {
   const std::string path = (std::filesystem::temp_directory_path() /
                             ("stepmod_gpio_thread_" + std::to_string(::getpid()) + ".vcd"))
                                .string();
-  rt::SpscRing<rt::TraceRecord> outs(1024), ins(1024);
+  SpscRing<TraceRecord> outs(1024), ins(1024);
   const std::vector<TraceWire> wires = {{0, false, 0, false}, {0, true, 2, false}};
   const Nanos start = monotonic_now();
   TraceWriter w(path, wires, start, outs, ins, 5 * kNsPerMs, 1 * kNsPerMs);
@@ -26,14 +26,12 @@ TEST(GpioTraceWriterThread, WritesEverythingPushedWhileRunningAndOnStop) {
   constexpr int kN = 2000;
   std::thread producer([&] {
     for (int i = 0; i < kN; ++i) {
-      const rt::TraceRecord r{start + 1000 + i * 1000, 0, 0, static_cast<std::uint8_t>(i % 2 == 0),
-                              0};
+      const TraceRecord r{start + 1000 + i * 1000, 0, 0, static_cast<std::uint8_t>(i % 2 == 0), 0};
       while (!outs.try_push(r)) std::this_thread::yield();
     }
   });
   for (int i = 0; i < 10; ++i) {
-    const rt::TraceRecord r{start + 1500 + i * 100'000, 0, 2, static_cast<std::uint8_t>(i % 2 == 0),
-                            1};
+    const TraceRecord r{start + 1500 + i * 100'000, 0, 2, static_cast<std::uint8_t>(i % 2 == 0), 1};
     while (!ins.try_push(r)) std::this_thread::yield();
   }
   producer.join();

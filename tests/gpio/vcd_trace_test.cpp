@@ -108,11 +108,11 @@ Parsed parse_vcd(const std::string& text) {
   return p;
 }
 
-rt::TraceRecord out_rec(Nanos t, unsigned axis, OutputLine l, bool level) {
+TraceRecord out_rec(Nanos t, unsigned axis, OutputLine l, bool level) {
   return {t, static_cast<std::uint8_t>(axis), static_cast<std::uint8_t>(l),
           static_cast<std::uint8_t>(level), 0};
 }
-rt::TraceRecord in_rec(Nanos t, unsigned axis, InputLine l, bool level) {
+TraceRecord in_rec(Nanos t, unsigned axis, InputLine l, bool level) {
   return {t, static_cast<std::uint8_t>(axis), static_cast<std::uint8_t>(l),
           static_cast<std::uint8_t>(level), 1};
 }
@@ -189,7 +189,7 @@ TEST(GpioTraceMerger, ReleasesOnlyRecordsOlderThanTheCutInTimeOrder) {
   m.add(in_rec(50, 0, InputLine::kHome, true));  // other ring, earlier
   m.add(in_rec(300, 0, InputLine::kHome, false));
   std::vector<Nanos> ts;
-  const auto sink = [&](const rt::TraceRecord& r) { ts.push_back(r.t); };
+  const auto sink = [&](const TraceRecord& r) { ts.push_back(r.t); };
   m.release(100, sink);
   EXPECT_EQ(ts, (std::vector<Nanos>{50}));
   EXPECT_EQ(m.held(), 3u);
@@ -204,13 +204,13 @@ TEST(GpioTraceMerger, EqualTimesKeepArrivalOrder) {
   m.add(out_rec(10, 0, OutputLine::kStep, false));
   m.add(out_rec(10, 0, OutputLine::kStep, true));
   std::vector<int> levels;
-  m.release_all([&](const rt::TraceRecord& r) { levels.push_back(r.level); });
+  m.release_all([&](const TraceRecord& r) { levels.push_back(r.level); });
   EXPECT_EQ(levels, (std::vector<int>{1, 0, 1}));
 }
 
 TEST(GpioTraceWriter, WindowMergesTwoRingsInTimeOrderAndParsesBack) {
   const std::string path = temp_path("merge.vcd");
-  rt::SpscRing<rt::TraceRecord> outs(64), ins(64);
+  SpscRing<TraceRecord> outs(64), ins(64);
   const Nanos start = 10 * kNsPerSec;
   const Nanos ms = kNsPerMs;
   {
@@ -245,7 +245,7 @@ TEST(GpioTraceWriter, WindowMergesTwoRingsInTimeOrderAndParsesBack) {
 
 TEST(GpioTraceWriter, DestructorFinishesTheFileWithZeroDropCounts) {
   const std::string path = temp_path("nodrop.vcd");
-  rt::SpscRing<rt::TraceRecord> outs(8), ins(8);
+  SpscRing<TraceRecord> outs(8), ins(8);
   {
     TraceWriter w(path, kWires, 0, outs, ins);
     outs.try_push(out_rec(5, 0, OutputLine::kDir, true));

@@ -101,7 +101,7 @@ TEST_F(Daemon3601Features, MC_01_BlendProgrammedWithTheHandshakeRunsItsLength) {
 TEST_F(Daemon3601Features, Registration_PanelExternalEdgeGivesExactlyTheCount) {
   ASSERT_TRUE(plc_->preset_position(0).ok);
   // Manual + with a registration count of 3,000 (>= the 1,200 steps needed to stop from 5,000).
-  module::ImageWords o{};
+  ImageWords o{};
   const auto count = ipc::codec::encode_3601(3'000);
   const auto speed = ipc::codec::encode_3601(5'000);
   o.w = {m::cmd_msw::kManualCw, 0, count.msw, count.lsw, speed.msw, speed.lsw, 10, 10};

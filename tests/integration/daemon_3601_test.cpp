@@ -49,8 +49,8 @@ class ShmPlc {
  public:
   explicit ShmPlc(const std::string& name) : client_(name) {}
 
-  module::ImageWords in() const {
-    module::ImageWords w;
+  ImageWords in() const {
+    ImageWords w;
     EXPECT_TRUE(client_.read_inputs(w));
     return w;
   }
@@ -67,7 +67,7 @@ class ShmPlc {
              std::int16_t w6, std::int16_t w7) {
     const auto a = ipc::codec::encode_3601(w23);
     const auto b = ipc::codec::encode_3601(w45);
-    module::ImageWords o{};
+    ImageWords o{};
     o.w = {static_cast<std::int16_t>(msw),
            static_cast<std::int16_t>(lsw),
            a.msw,

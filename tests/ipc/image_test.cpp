@@ -25,10 +25,6 @@ unsigned stepmod_c_panel_size(void);
 namespace stepmod::ipc {
 namespace {
 
-using module::ImageWords;
-using module::ModuleShape;
-using module::ModuleType;
-
 constexpr ModuleShape k3601{ModuleType::k3601, 1, 2, 8, 8};
 constexpr ModuleShape k3602{ModuleType::k3602, 2, 2, 16, 16};
 constexpr ModuleShape k3202{ModuleType::k3202, 2, 4, 16, 16};

@@ -15,10 +15,6 @@
 namespace stepmod::ipc {
 namespace {
 
-using module::ImageWords;
-using module::ModuleShape;
-using module::ModuleType;
-
 std::string test_name(const char* tag) {
   return std::string("s-") + tag + "-" + std::to_string(::getpid());
 }

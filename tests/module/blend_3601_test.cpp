@@ -13,7 +13,6 @@ namespace {
 
 using namespace m::status_msw;
 namespace cmd = m::cmd_msw;
-using gpio::InputLine;
 
 constexpr std::uint16_t kProgram = m::cmd_lsw::kProgramBlend;
 constexpr std::uint16_t kTransmit = m::cmd_lsw::kBlendTransmit;

@@ -429,10 +429,10 @@ TEST_F(Commands3601, IP_03_TheLongestMoveFitsTheRegisters) {
 TEST_F(Commands3601, MC_02_NoMoveCompleteAfterAnErrorOrAManualMove) {
   command(cmd::kRelativeMove, {.target = 50'000});
   vm_.run_for(300 * kNsPerMs);
-  force(gpio::InputLine::kEStop, true);
+  force(InputLine::kEStop, true);
   ASSERT_TRUE(wait_idle());
   EXPECT_FALSE(status(kMoveComplete));  // ended with an error
-  release(gpio::InputLine::kEStop);
+  release(InputLine::kEStop);
   set_words(cmd::kManualCw, 0, 0, 5'000, 10, 10);
   vm_.run_for(300 * kNsPerMs);
   word(0) = 0;

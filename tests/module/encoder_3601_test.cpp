@@ -11,7 +11,6 @@ namespace {
 using namespace m::status_msw;
 namespace cmd = m::cmd_msw;
 namespace lsw = m::cmd_lsw;
-using gpio::InputLine;
 
 constexpr Nanos kMs = kNsPerMs;
 constexpr std::uint16_t kNoEncoderConfig = m::cfg_msw::kHomeUsed | m::cfg_msw::kCwLimitUsed |

@@ -14,7 +14,6 @@ namespace {
 using namespace m::status_msw;
 namespace cmd = m::cmd_msw;
 namespace cfg = m::cfg_msw;
-using gpio::InputLine;
 
 // Where the machine's switches are and where the axis starts (default_3601: limits at
 // +-100,000, home switch 5,000..5,100, a marker every 4,000 encoder counts, 1 count per step).

@@ -7,7 +7,6 @@ namespace {
 
 using namespace m::status_msw;
 namespace cmd = m::cmd_msw;
-using gpio::InputLine;
 
 class Inputs3601 : public Plc3601 {
  protected:

@@ -11,7 +11,6 @@ namespace {
 
 using namespace m::status_msw;
 namespace cmd = m::cmd_msw;
-using gpio::InputLine;
 
 class Manual3601 : public Plc3601 {
  protected:

@@ -96,7 +96,7 @@ class Plc3601 : public ::testing::Test {
     return vm_.run_until_true([this] { return !moving(); }, limit);
   }
   // Panel: force an input's electrical level (INTERFACE.md section 4 bit order).
-  void force(gpio::InputLine l, bool level) {
+  void force(InputLine l, bool level) {
     forced_mask_ |= 1u << static_cast<unsigned>(l);
     if (level) {
       forced_levels_ |= 1u << static_cast<unsigned>(l);
@@ -105,7 +105,7 @@ class Plc3601 : public ::testing::Test {
     }
     vm_.sim().force(0, forced_mask_, forced_levels_, vm_.now());
   }
-  void release(gpio::InputLine l) {
+  void release(InputLine l) {
     forced_mask_ &= ~(1u << static_cast<unsigned>(l));
     vm_.sim().force(0, forced_mask_, forced_levels_, vm_.now());
   }

@@ -12,7 +12,6 @@ namespace stepmod::planner {
 namespace {
 
 using rt::Edge;
-using rt::OutputLine;
 using test::Harness;
 using test::move;
 namespace ef = rt::edge_flag;
@@ -470,7 +469,7 @@ TEST(Commands, NewMotionReplacesOneStillPlanned) {
 }
 
 TEST(Planner, RoutesCommandsByAxisAndAsksForRefills) {
-  rt::SpscRing<Edge> r0(1u << 14), r1(1u << 14);
+  SpscRing<Edge> r0(1u << 14), r1(1u << 14);
   rt::AxisControl c0, c1;
   std::array<PlannerAxis, 2> axes{PlannerAxis{&r0, &c0, {}}, PlannerAxis{&r1, &c1, {}}};
   Planner p(axes);

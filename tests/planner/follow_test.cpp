@@ -12,7 +12,6 @@ namespace stepmod::planner {
 namespace {
 
 using rt::Edge;
-using rt::OutputLine;
 using test::Harness;
 namespace ef = rt::edge_flag;
 

@@ -7,11 +7,11 @@
 #include <memory>
 #include <vector>
 
+#include "core/spsc_ring.hpp"
 #include "planner/planner.hpp"
 #include "planner/profile.hpp"
 #include "rt/axis_feedback.hpp"
 #include "rt/edge.hpp"
-#include "rt/spsc_ring.hpp"
 
 namespace stepmod::planner::test {
 
@@ -115,7 +115,7 @@ struct Harness {
     return out;
   }
 
-  rt::SpscRing<rt::Edge> ring;
+  SpscRing<rt::Edge> ring;
   rt::AxisControl control;
   PlannerOptions opt;
   std::unique_ptr<Planner> planner;

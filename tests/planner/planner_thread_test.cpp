@@ -25,7 +25,7 @@ bool eventually(Pred pred, std::chrono::milliseconds limit = std::chrono::millis
 
 TEST(PlannerThread, WakesOnSubmitAndStops) {
   static_assert(kIdleServiceInterval >= 10 * kNsPerSec, "the test relies on a long idle sleep");
-  rt::SpscRing<rt::Edge> ring(1u << 16);
+  SpscRing<rt::Edge> ring(1u << 16);
   rt::AxisControl control;
   PlannerAxis axis{&ring, &control, {}};
   Planner planner(std::span<const PlannerAxis>(&axis, 1));

@@ -172,7 +172,7 @@ TEST(StepTimes, SolverIsFastEnough) {
     h.now += 100 * kNsPerMs;
     rt::Edge e;
     while (h.ring.try_pop(e)) {
-      if (e.line == rt::OutputLine::kStep) ++edges;  // not a direction edge
+      if (e.line == OutputLine::kStep) ++edges;  // not a direction edge
       if (e.epoch == ep && (e.flags & rt::edge_flag::kLast) != 0) last = true;
     }
   }

@@ -7,9 +7,9 @@
 #include <span>
 #include <vector>
 
+#include "core/spsc_ring.hpp"
 #include "gpio/backend.hpp"
 #include "rt/pulse_engine.hpp"
-#include "rt/spsc_ring.hpp"
 
 namespace stepmod::rt::test {
 
@@ -35,9 +35,9 @@ class FakeBackend : public gpio::Backend {
       ++overflow_;
     }
   }
-  bool has_input(unsigned, gpio::InputLine) const noexcept override { return false; }
+  bool has_input(unsigned, InputLine) const noexcept override { return false; }
   bool has_output(unsigned, OutputLine) const noexcept override { return true; }
-  bool read(unsigned, gpio::InputLine) override { return false; }
+  bool read(unsigned, InputLine) override { return false; }
   std::size_t wait_events(std::span<gpio::InputEvent>, Nanos) override { return 0; }
   std::uint64_t lost_events() const noexcept override { return 0; }
   void idle_outputs() noexcept override {}

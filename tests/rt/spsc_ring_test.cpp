@@ -1,4 +1,4 @@
-#include "rt/spsc_ring.hpp"
+#include "core/spsc_ring.hpp"
 
 #include <gtest/gtest.h>
 

@@ -27,7 +27,7 @@ VirtualMachineOptions default_3601() {
   unsigned offset = 0;
   for (auto& line : a.lines.out) line = offset++;
   for (auto& line : a.lines.in) line = offset++;
-  a.lines.out[static_cast<unsigned>(gpio::OutputLine::kGpo)].reset();  // 3602 only
+  a.lines.out[static_cast<unsigned>(OutputLine::kGpo)].reset();  // 3602 only
   a.sim.cw_limit_at = 100'000;
   a.sim.ccw_limit_at = -100'000;
   a.sim.home_from = 5'000;

@@ -14,7 +14,7 @@
 namespace stepmod::testing {
 
 struct VirtualMachineOptions {
-  module::ModuleType type = module::ModuleType::k3601;
+  ModuleType type = ModuleType::k3601;
   std::vector<gpio::SimAxisSetup> axes;  // one per axis of the module
   Nanos scan_ns = kNsPerMs;
   planner::AxisTiming timing;
@@ -35,8 +35,8 @@ class VirtualMachine {
   // Runs until `done()` holds after a scan, at most `limit`; returns whether it held.
   bool run_until_true(const std::function<bool()>& done, Nanos limit);
 
-  module::ImageWords& plc_out() noexcept { return plc_out_; }
-  const module::ImageWords& plc_in() const noexcept { return plc_in_; }
+  ImageWords& plc_out() noexcept { return plc_out_; }
+  const ImageWords& plc_in() const noexcept { return plc_in_; }
   gpio::SimBackend& sim() noexcept { return *sim_; }
   tools::Stack& stack() noexcept { return *stack_; }
 
@@ -49,8 +49,8 @@ class VirtualMachine {
   VirtualMachineOptions options_;
   std::unique_ptr<gpio::SimBackend> sim_;
   std::unique_ptr<tools::Stack> stack_;
-  module::ImageWords plc_out_{};
-  module::ImageWords plc_in_{};
+  ImageWords plc_out_{};
+  ImageWords plc_in_{};
   Nanos now_;
   Nanos next_scan_;
   Nanos next_plan_;

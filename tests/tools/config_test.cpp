@@ -13,8 +13,6 @@
 namespace stepmod::tools {
 namespace {
 
-using module::ModuleType;
-
 constexpr const char* kMinimal3601 = R"(
 [module]
 type = "3601"
@@ -116,7 +114,7 @@ TEST(Config, FullValid3601File) {
   EXPECT_EQ(c.rt_cpu, 1);
   const AxisConfig& a = c.axes.at(0);
   const unsigned want_in[] = {5, 6, 13, 19, 26, 21, 20, 16, 12};
-  for (unsigned i = 0; i < gpio::kInputLinesPerAxis; ++i) EXPECT_EQ(a.in[i], want_in[i]) << i;
+  for (unsigned i = 0; i < kInputLinesPerAxis; ++i) EXPECT_EQ(a.in[i], want_in[i]) << i;
   EXPECT_EQ(a.step_pulse_ns, 2'500);
   EXPECT_EQ(a.dir_setup_ns, 6'000);
   EXPECT_EQ(a.sim.start_position, -5);
@@ -388,12 +386,12 @@ TEST(ConfigError, SimPositionsBounded) {
   EXPECT_CONFIG_ERROR(std::string(kMinimal3601) + "[axis.sim]\ncw_limit_at = 1000000000001\n",
                       "test.toml:9: key 'axis[1].sim.cw_limit_at': must be an integer "
                       "-1000000000000..1000000000000");
-  EXPECT_EQ(
-      parse_config(std::string(kMinimal3601) + "[axis.sim]\nhome_from = -1000000000000\n"
-                   "home_to = 1000000000000\n", "t")
-          .axes[0]
-          .sim.home_to,
-      1'000'000'000'000);
+  EXPECT_EQ(parse_config(std::string(kMinimal3601) + "[axis.sim]\nhome_from = -1000000000000\n"
+                                                     "home_to = 1000000000000\n",
+                         "t")
+                .axes[0]
+                .sim.home_to,
+            1'000'000'000'000);
 }
 
 TEST(ConfigError, TablesMustBeTables) {

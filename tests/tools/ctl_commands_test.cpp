@@ -19,9 +19,6 @@ namespace stepmod::tools::ctl {
 namespace {
 
 namespace m = module::m3601;
-using module::ImageWords;
-using module::ModuleShape;
-using module::ModuleType;
 using namespace std::chrono_literals;
 
 constexpr ModuleShape k3601{ModuleType::k3601, 1, 2, 8, 8};

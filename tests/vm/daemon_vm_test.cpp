@@ -16,9 +16,9 @@
 // Prints what it does; the last line is "ok: ..." (exit 0), "FAIL: ..." (exit 1) or
 // "skip: ..." (exit 77).
 #include <fcntl.h>
+#include <gpiod.h>
 #include <pthread.h>
 #include <sched.h>
-#include <gpiod.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/stat.h>
@@ -57,9 +57,9 @@ namespace m = stepmod::module::m3601;
 namespace st = m::status_msw;
 namespace cmd = m::cmd_msw;
 namespace cfg = m::cfg_msw;
+using std::chrono::milliseconds;
 using stepmod::testing::Vcd;
 using stepmod::testing::VcdChange;
-using std::chrono::milliseconds;
 
 // ---- reporting ------------------------------------------------------------------------------
 
@@ -79,8 +79,12 @@ std::string fmt(const char* f, ...) {
   va_end(ap);
   return buf;
 }
-void info(const std::string& s) { std::printf("%s\n", s.c_str()); }
-[[noreturn]] void fail(const std::string& s) { throw Failure(s); }
+void info(const std::string& s) {
+  std::printf("%s\n", s.c_str());
+}
+[[noreturn]] void fail(const std::string& s) {
+  throw Failure(s);
+}
 void check(bool cond, const std::string& what) {
   if (!cond) fail(what);
 }
@@ -90,7 +94,9 @@ std::int64_t now_ns() {
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return std::int64_t{ts.tv_sec} * 1'000'000'000 + ts.tv_nsec;
 }
-void sleep_ms(int ms) { std::this_thread::sleep_for(milliseconds(ms)); }
+void sleep_ms(int ms) {
+  std::this_thread::sleep_for(milliseconds(ms));
+}
 
 std::string read_text(const std::string& path) {
   std::ifstream in(path);
@@ -103,7 +109,8 @@ std::string read_text(const std::string& path) {
 
 std::string env(const char* name) {
   const char* v = std::getenv(name);
-  if (v == nullptr || *v == '\0') fail(fmt("%s not set (run inside the test VM, . /vm/lib.sh)", name));
+  if (v == nullptr || *v == '\0')
+    fail(fmt("%s not set (run inside the test VM, . /vm/lib.sh)", name));
   return v;
 }
 // Line offset of `key` of axis 1 on the board: AX1_STEP, ...
@@ -151,7 +158,7 @@ class SimLine {
 
 struct ConfigOptions {
   std::string name = "vm";
-  std::string chip;  // default: the board's
+  std::string chip;                   // default: the board's
   std::map<std::string, long> lines;  // key -> offset; default: every line of the board
   long step_pulse_ns = 1'000'000;
   long dir_setup_ns = 20'000;
@@ -232,14 +239,17 @@ class Daemon {
         try {
           stepmod::ipc::Client c(name_);
           if (c.wait_scans(3, milliseconds(5'000))) {
-            info(fmt("stepmodd up after %lld ms", static_cast<long long>((now_ns() - started_) / 1'000'000)));
+            info(fmt("stepmodd up after %lld ms",
+                     static_cast<long long>((now_ns() - started_) / 1'000'000)));
             return;
           }
         } catch (const std::exception&) {
           // created but not yet published (magic written last): try again
         }
       }
-      if (exited()) fail(fmt("stepmodd exited with status %d before it was ready: %s", status_, last_log_line().c_str()));
+      if (exited())
+        fail(fmt("stepmodd exited with status %d before it was ready: %s", status_,
+                 last_log_line().c_str()));
       sleep_ms(10);
     }
     fail("stepmodd not ready in time: " + last_log_line());
@@ -306,8 +316,8 @@ class Daemon {
 class Plc {
  public:
   explicit Plc(const std::string& name) : c_(name) {}
-  stepmod::module::ImageWords in() const {
-    stepmod::module::ImageWords w{};
+  stepmod::ImageWords in() const {
+    stepmod::ImageWords w{};
     // On one CPU the module can be preempted inside its seqlock write; a reader that only spins
     // never lets it finish. Let it run, then try again.
     for (int i = 0; i < 200; ++i) {
@@ -336,9 +346,15 @@ class Plc {
              std::int16_t w6, std::int16_t w7) {
     const auto a = stepmod::ipc::codec::encode_3601(w23);
     const auto b = stepmod::ipc::codec::encode_3601(w45);
-    stepmod::module::ImageWords o{};
-    o.w = {static_cast<std::int16_t>(msw), static_cast<std::int16_t>(lsw), a.msw, a.lsw, b.msw,
-           b.lsw, w6, w7};
+    stepmod::ImageWords o{};
+    o.w = {static_cast<std::int16_t>(msw),
+           static_cast<std::int16_t>(lsw),
+           a.msw,
+           a.lsw,
+           b.msw,
+           b.lsw,
+           w6,
+           w7};
     c_.write_outputs(o);
   }
   // An edge-triggered command: set until the module has scanned it, then cleared.
@@ -376,11 +392,11 @@ class Plc {
 };
 
 std::string status_names(std::uint16_t s) {
-  static const char* const names[16] = {"MovingCW", "MovingCCW", "Hold",  "Stopped",
-                                        "AtHome",   "Accel",     "Decel", "MoveComplete",
-                                        "HomeInvalid", "InvalidProfile", "PositionInvalid",
-                                        "InputError", "CommandError", "ConfigError", "ModuleOK",
-                                        "ConfigMode"};
+  static const char* const names[16] = {
+      "MovingCW",        "MovingCCW",  "Hold",         "Stopped",     "AtHome",
+      "Accel",           "Decel",      "MoveComplete", "HomeInvalid", "InvalidProfile",
+      "PositionInvalid", "InputError", "CommandError", "ConfigError", "ModuleOK",
+      "ConfigMode"};
   std::string r;
   for (int i = 0; i < 16; ++i) {
     if (s & (1u << i)) r += (r.empty() ? "" : ",") + std::string(names[i]);
@@ -388,7 +404,8 @@ std::string status_names(std::uint16_t s) {
   return r.empty() ? "-" : r;
 }
 
-// ---- sampling the outputs through sysfs ----------------------------------------------------------
+// ---- sampling the outputs through sysfs
+// ----------------------------------------------------------
 
 struct Sample {
   std::int64_t t0, t1;  // CLOCK_MONOTONIC before and after reading the values
@@ -399,8 +416,7 @@ class Sampler {
  public:
   // Samples every `period_ns` (sleeping in between, so that it does not take the one emulated
   // CPU away from the daemon's threads); period 0: as fast as it can.
-  Sampler(unsigned step, unsigned dir, std::int64_t period_ns = 100'000)
-      : step_(step), dir_(dir) {
+  Sampler(unsigned step, unsigned dir, std::int64_t period_ns = 100'000) : step_(step), dir_(dir) {
     samples_.reserve(2'000'000);
     th_ = std::thread([this, period_ns] {
       // Real-time, below the pulse thread (80): a woken sampler runs at once instead of waiting
@@ -478,10 +494,11 @@ PullMark pull_marked(const SimLine& l, bool up) {
   return p;
 }
 // Several marks: the origin lies in every bracket, so in their intersection.
-Alignment align_all(const Vcd& v, const std::string& wire_name, const std::vector<PullMark>& marks) {
+Alignment align_all(const Vcd& v, const std::string& wire_name,
+                    const std::vector<PullMark>& marks) {
   const auto w = wire(v, wire_name);
-  check(w.size() >= marks.size(), fmt("VCD: %s has %zu changes, drove %zu", wire_name.c_str(),
-                                      w.size(), marks.size()));
+  check(w.size() >= marks.size(),
+        fmt("VCD: %s has %zu changes, drove %zu", wire_name.c_str(), w.size(), marks.size()));
   Alignment a{INT64_MIN, INT64_MAX};
   for (std::size_t i = 0; i < marks.size(); ++i) {
     check(w[i].level == (marks[i].up ? 1 : 0), "VCD: mark edges of the wrong polarity");
@@ -489,13 +506,14 @@ Alignment align_all(const Vcd& v, const std::string& wire_name, const std::vecto
     a.hi = std::min(a.hi, marks[i].after - w[i].t);
   }
   check(a.lo <= a.hi, fmt("VCD: the %zu mark edges' times are not all inside their sysfs writes "
-                          "(not the kernel's timestamps?)", marks.size()));
+                          "(not the kernel's timestamps?)",
+                          marks.size()));
   return a;
 }
 Alignment align(const Vcd& v, const std::string& wire_name, const PullMark& p, std::size_t index) {
   const auto w = wire(v, wire_name);
-  check(index < w.size(), fmt("VCD: %s has %zu changes, no change #%zu to align with", wire_name.c_str(),
-                              w.size(), index));
+  check(index < w.size(), fmt("VCD: %s has %zu changes, no change #%zu to align with",
+                              wire_name.c_str(), w.size(), index));
   check(w[index].level == (p.up ? 1 : 0), "VCD: alignment edge of the wrong polarity");
   return {p.before - w[index].t, p.after - w[index].t};
 }
@@ -525,8 +543,8 @@ Agreement compare(const std::vector<Sample>& samples, const Vcd& v, const Alignm
     if (got != expect) {
       if (r.mismatched++ == 0) {
         r.first_mismatch = fmt("sample at vcd %lld..%lld ns reads %d, VCD says %d",
-                               static_cast<long long>(s.t0 - a.hi), static_cast<long long>(s.t1 - a.lo),
-                               got, expect);
+                               static_cast<long long>(s.t0 - a.hi),
+                               static_cast<long long>(s.t1 - a.lo), got, expect);
       }
     }
   }
@@ -595,7 +613,8 @@ long long lateness_max_ns(const std::string& log) {
   return std::atoll(log.c_str() + q + 4);
 }
 
-// ---- libgpiod: is a line free? -------------------------------------------------------------------
+// ---- libgpiod: is a line free?
+// -------------------------------------------------------------------
 
 std::string line_user(unsigned offset) {
   gpiod_chip* chip = gpiod_chip_open_lookup(env("BOARD_CHIP").c_str());
@@ -673,7 +692,9 @@ std::string case_errors() {
                        {chip, "line " + std::to_string(home), "axis1.home", "busy", "other-app"});
     // Nothing of ours is left requested: every other line of the config is free.
     for (const char* k : kLineKeys) {
-      if (line(k) != home) check(line_user(line(k)).empty(), fmt("line %u left requested after the failed start", line(k)));
+      if (line(k) != home)
+        check(line_user(line(k)).empty(),
+              fmt("line %u left requested after the failed start", line(k)));
     }
     gpiod_line_release(l);
     gpiod_chip_close(c);
@@ -685,8 +706,9 @@ std::string case_errors() {
     a.wait_ready();
     ConfigOptions second;
     second.name = "vm2";
-    expect_start_error("line in use by a running stepmodd", second,
-                       {chip, "line " + std::to_string(line("step")), "axis1.step", "busy", "stepmod"});
+    expect_start_error(
+        "line in use by a running stepmodd", second,
+        {chip, "line " + std::to_string(line("step")), "axis1.step", "busy", "stepmod"});
     const int rc = a.terminate();
     check(rc == 0, fmt("first stepmodd exit status %d", rc));
     // And once it has gone, the second one starts.
@@ -746,19 +768,22 @@ std::string case_move() {
   std::sort(highs.begin(), highs.end());
   info(fmt("move of %d steps at %d steps/s: position %lld, status %s", kSteps, kSpeed,
            static_cast<long long>(pos), status_names(s).c_str()));
-  info(fmt("VCD: %zu step pulses (high time min %lld us, median %lld us), %zu dir changes; VCD "
-           "origin known within %lld us from %d kernel-stamped marks",
-           rising.size(), static_cast<long long>(highs.empty() ? 0 : highs.front() / 1000),
-           static_cast<long long>(highs.empty() ? 0 : highs[highs.size() / 2] / 1000),
-           wire(v, "axis1.dir").size(), static_cast<long long>((a.hi - a.lo) / 1000), kMarks));
-  info(fmt("sysfs: %zu samples, longest gap %lld us; %zu rising edges of the step value; %zu "
-           "pulses could not be missed by the sampler",
-           samples.size(), static_cast<long long>(gap / 1000), sampled, observable));
+  info(
+      fmt("VCD: %zu step pulses (high time min %lld us, median %lld us), %zu dir changes; VCD "
+          "origin known within %lld us from %d kernel-stamped marks",
+          rising.size(), static_cast<long long>(highs.empty() ? 0 : highs.front() / 1000),
+          static_cast<long long>(highs.empty() ? 0 : highs[highs.size() / 2] / 1000),
+          wire(v, "axis1.dir").size(), static_cast<long long>((a.hi - a.lo) / 1000), kMarks));
+  info(
+      fmt("sysfs: %zu samples, longest gap %lld us; %zu rising edges of the step value; %zu "
+          "pulses could not be missed by the sampler",
+          samples.size(), static_cast<long long>(gap / 1000), sampled, observable));
   const Agreement step_ok = compare(samples, v, a, kSlack, false);
   const Agreement dir_ok = compare(samples, v, a, kSlack, true);
-  info(fmt("levels vs VCD: step %zu compared, %zu near an edge, %zu mismatched; dir %zu compared, "
-           "%zu mismatched",
-           step_ok.compared, step_ok.ambiguous, step_ok.mismatched, dir_ok.compared, dir_ok.mismatched));
+  info(fmt(
+      "levels vs VCD: step %zu compared, %zu near an edge, %zu mismatched; dir %zu compared, "
+      "%zu mismatched",
+      step_ok.compared, step_ok.ambiguous, step_ok.mismatched, dir_ok.compared, dir_ok.mismatched));
   info(lateness_line(d.log()));
 
   check(pos == kSteps, fmt("position %lld, commanded %d", static_cast<long long>(pos), kSteps));
@@ -782,10 +807,11 @@ std::string case_move() {
   for (const VcdChange& c : wire(v, "axis1.dir")) {
     check(c.t < rising.front() || c.t > rising.back(), "dir changed during the move");
   }
-  return fmt("%d steps: position %lld = VCD %zu pulses = sysfs %zu rising edges (%zu could not be "
-             "missed); %zu step / %zu dir samples match the VCD level, 0 mismatches",
-             kSteps, static_cast<long long>(pos), rising.size(), sampled, observable,
-             step_ok.compared, dir_ok.compared);
+  return fmt(
+      "%d steps: position %lld = VCD %zu pulses = sysfs %zu rising edges (%zu could not be "
+      "missed); %zu step / %zu dir samples match the VCD level, 0 mismatches",
+      kSteps, static_cast<long long>(pos), rising.size(), sampled, observable, step_ok.compared,
+      dir_ok.compared);
 }
 
 // =================================================================================================
@@ -824,7 +850,8 @@ std::string case_estop() {
   const std::int64_t after = static_cast<std::int64_t>(rising.size()) - count_until(rising, t_edge);
   const std::int64_t last_step_after = rising.empty() ? 0 : rising.back() - t_edge;
   info(fmt("VCD: %zu step pulses, %lld after the E-stop edge (last one %lld us after it)",
-           rising.size(), static_cast<long long>(after), static_cast<long long>(last_step_after / 1000)));
+           rising.size(), static_cast<long long>(after),
+           static_cast<long long>(last_step_after / 1000)));
   check((s & st::kInputError) != 0, "Input Error (IE) not set");
   check((s & st::kPositionInvalid) != 0, "Position Invalid (PI) not set");
   check((s & st::kStopped) != 0, "Stopped not set");
@@ -841,10 +868,11 @@ std::string case_estop() {
   check(after < kControlledStopSteps,
         fmt("%lld steps after the E-stop edge: no faster than a controlled stop (%lld)",
             static_cast<long long>(after), static_cast<long long>(kControlledStopSteps)));
-  return fmt("E-stop edge stopped the move: %s; %lld steps = position, last step %lld us after "
-             "the kernel's edge time",
-             status_names(s).c_str(), static_cast<long long>(-pos),
-             static_cast<long long>(last_step_after / 1000));
+  return fmt(
+      "E-stop edge stopped the move: %s; %lld steps = position, last step %lld us after "
+      "the kernel's edge time",
+      status_names(s).c_str(), static_cast<long long>(-pos),
+      static_cast<long long>(last_step_after / 1000));
 }
 
 // =================================================================================================
@@ -878,9 +906,11 @@ std::string case_capture() {
   const Vcd v = d.stop_and_trace();
   const auto rising = v.rising("axis1.step");
   const auto cw = wire(v, "axis1.capture");
-  check(cw.size() == 2 * kCaptures, fmt("VCD: %zu capture edges, drove %d", cw.size(), 2 * kCaptures));
+  check(cw.size() == 2 * kCaptures,
+        fmt("VCD: %zu capture edges, drove %d", cw.size(), 2 * kCaptures));
   check(pos == kSteps && rising.size() == static_cast<std::size_t>(kSteps),
-        fmt("position %lld, VCD %zu pulses, commanded %d", static_cast<long long>(pos), rising.size(), kSteps));
+        fmt("position %lld, VCD %zu pulses, commanded %d", static_cast<long long>(pos),
+            rising.size(), kSteps));
   // The kernel's stamps: each capture edge lies inside the bracket of its sysfs write (given
   // the origin from the first one, every other one must fall inside its own bracket too).
   const Alignment a = align(v, "axis1.capture", marks[0], 0);
@@ -902,9 +932,10 @@ std::string case_capture() {
               static_cast<long long>(captured[i]), static_cast<long long>(expect)));
     detail += (detail.empty() ? "" : " ") + std::to_string(captured[i]);
   }
-  return fmt("%d captures during a %d-step move equal the VCD's step count at each kernel-stamped "
-             "edge (%s)",
-             kCaptures, kSteps, detail.c_str());
+  return fmt(
+      "%d captures during a %d-step move equal the VCD's step count at each kernel-stamped "
+      "edge (%s)",
+      kCaptures, kSteps, detail.c_str());
 }
 
 // =================================================================================================
@@ -944,7 +975,8 @@ std::string case_burst() {
   const auto ew = wire(v, "axis1.external");
   std::string rates;
   for (const auto& [t0, t1] : bursts) {
-    rates += fmt(" %lld", static_cast<long long>(kEdges * 1'000'000'000LL / std::max<std::int64_t>(std::int64_t{1}, t1 - t0)));
+    rates += fmt(" %lld", static_cast<long long>(kEdges * 1'000'000'000LL /
+                                                 std::max<std::int64_t>(std::int64_t{1}, t1 - t0)));
   }
   info(fmt("%d bursts of %d edges (edges/s:%s): VCD capture %zu, external %zu edges", kBursts,
            kEdges, rates.c_str(), cw.size(), ew.size()));
@@ -975,7 +1007,8 @@ std::string case_burst() {
   info("steps during each burst / expected:" + in_window);
   std::int64_t worst = 0;
   for (std::size_t i = 1; i < rising.size(); ++i) {
-    worst = std::max<std::int64_t>(worst, std::abs(rising[i] - rising[i - 1] - std::int64_t{1'000'000'000} / kSpeed));
+    worst = std::max<std::int64_t>(
+        worst, std::abs(rising[i] - rising[i - 1] - std::int64_t{1'000'000'000} / kSpeed));
   }
   const long long late = lateness_max_ns(d.log());
   info(fmt("steps: %zu, position %lld; worst step-period error %lld us; %s", rising.size(),
@@ -985,12 +1018,15 @@ std::string case_burst() {
         fmt("edges lost: VCD has %zu capture and %zu external edges, drove %zu each", cw.size(),
             ew.size(), expect_each));
   check(alternating, "VCD: input edges not alternating (one lost or reordered)");
-  check(d.log().find("input events were lost") == std::string::npos, "stepmodd reports lost input events");
+  check(d.log().find("input events were lost") == std::string::npos,
+        "stepmodd reports lost input events");
   check(pos == kSteps && rising.size() == static_cast<std::size_t>(kSteps),
-        fmt("position %lld, VCD %zu pulses, commanded %d", static_cast<long long>(pos), rising.size(), kSteps));
-  return fmt("%zu input edges in %d bursts all in the VCD, %d pulses exact, worst step-period "
-             "error %lld us, lateness max %lld us",
-             cw.size() + ew.size(), kBursts, kSteps, static_cast<long long>(worst / 1000), late / 1000);
+        fmt("position %lld, VCD %zu pulses, commanded %d", static_cast<long long>(pos),
+            rising.size(), kSteps));
+  return fmt(
+      "%zu input edges in %d bursts all in the VCD, %d pulses exact, worst step-period "
+      "error %lld us, lateness max %lld us",
+      cw.size() + ew.size(), kBursts, kSteps, static_cast<long long>(worst / 1000), late / 1000);
 }
 
 // =================================================================================================
@@ -1028,7 +1064,8 @@ std::string case_sigterm() {
           "VCD: outputs not idle (0) at the end");
     check(v.rising("axis1.step").size() > 50, "the move had not really run");
     struct stat s {};
-    check(::stat(("/dev/shm/stepmod." + o.name).c_str(), &s) != 0, "shared-memory image left behind");
+    check(::stat(("/dev/shm/stepmod." + o.name).c_str(), &s) != 0,
+          "shared-memory image left behind");
   }
   // Before SIGTERM: moving CW, dir high. Between SIGTERM and the exit: both idle (0) at some
   // sample. After the exit: the pull (1) — the lines were released.
@@ -1044,26 +1081,33 @@ std::string case_sigterm() {
   const int step_now = SimLine(step_off).value(), dir_now = SimLine(dir_off).value();
   const std::string users = line_user(step_off) + line_user(dir_off) + line_user(line("estop")) +
                             line_user(line("capture"));
-  info(fmt("SIGTERM -> exit %lld ms; idle (step 0, dir 0) sampled %s; after exit step=%d dir=%d "
-           "(pull-up)",
-           static_cast<long long>((t_exit - t_term) / 1'000'000),
-           idle_seen ? fmt("%lld ms after SIGTERM", static_cast<long long>((idle_at - t_term) / 1'000'000)).c_str()
-                     : "never",
-           step_now, dir_now));
+  info(
+      fmt("SIGTERM -> exit %lld ms; idle (step 0, dir 0) sampled %s; after exit step=%d dir=%d "
+          "(pull-up)",
+          static_cast<long long>((t_exit - t_term) / 1'000'000),
+          idle_seen
+              ? fmt("%lld ms after SIGTERM", static_cast<long long>((idle_at - t_term) / 1'000'000))
+                    .c_str()
+              : "never",
+          step_now, dir_now));
   check(dir_high_before, "dir was not high (CW) during the move");
   check(idle_seen, "the outputs were never seen at their idle level (0) between SIGTERM and exit");
-  check(step_now == 1 && dir_now == 1, "outputs not back at their pull (1) after exit: not released");
+  check(step_now == 1 && dir_now == 1,
+        "outputs not back at their pull (1) after exit: not released");
   check(users.empty(), "lines still requested after exit: consumer " + users);
   // Pulled down again: released lines follow, and the same lines can be had again.
   SimLine(step_off).pull(false);
   SimLine(dir_off).pull(false);
-  check(SimLine(step_off).value() == 0 && SimLine(dir_off).value() == 0, "released lines do not follow the pull");
+  check(SimLine(step_off).value() == 0 && SimLine(dir_off).value() == 0,
+        "released lines do not follow the pull");
   Daemon again(o, "sigterm2");
   again.wait_ready();
   check(line_user(step_off) == "stepmod", "second stepmodd: step line not requested by 'stepmod'");
   check(again.terminate() == 0, "second stepmodd did not exit 0");
-  check(SimLine(step_off).value() == 0 && SimLine(dir_off).value() == 0, "outputs not 0 after the second exit");
-  return "SIGTERM mid-move: exit 0, outputs seen at idle (0) then released (follow the pull), lines "
+  check(SimLine(step_off).value() == 0 && SimLine(dir_off).value() == 0,
+        "outputs not 0 after the second exit");
+  return "SIGTERM mid-move: exit 0, outputs seen at idle (0) then released (follow the pull), "
+         "lines "
          "free (line info), a second stepmodd gets them";
 }
 
@@ -1075,9 +1119,13 @@ std::string case_sigterm() {
 
 class Machine {
  public:
-  static constexpr std::int64_t kHomeFrom = 400, kHomeTo = 460, kCwLimitAt = 800, kCcwLimitAt = -600;
+  static constexpr std::int64_t kHomeFrom = 400, kHomeTo = 460, kCwLimitAt = 800,
+                                kCcwLimitAt = -600;
   Machine()
-      : step_(line("step")), dir_(line("dir")), home_(line("home")), cw_(line("cw_limit")),
+      : step_(line("step")),
+        dir_(line("dir")),
+        home_(line("home")),
+        cw_(line("cw_limit")),
         ccw_(line("ccw_limit")) {
     th_ = std::thread([this] { run(); });
   }
@@ -1145,35 +1193,45 @@ std::string case_homing() {
   }
   check(plc.wait([&] { return plc.status(st::kMovingCw); }, 2'000),
         "Find Home CW did not start moving CW: " + status_names(plc.msw()));
-  check(plc.wait([&] { return plc.status(st::kAtHome) || plc.status(st::kHomeInvalid) ||
-                              plc.status(st::kInputError); }, 25'000),
+  check(plc.wait(
+            [&] {
+              return plc.status(st::kAtHome) || plc.status(st::kHomeInvalid) ||
+                     plc.status(st::kInputError);
+            },
+            25'000),
         fmt("Find Home CW did not finish: %s, machine at %lld", status_names(plc.msw()).c_str(),
             static_cast<long long>(machine.position())));
   check(plc.wait([&] { return !plc.moving(); }, 2'000), "still moving after At Home");
   plc.scans(3);
   const std::uint16_t s1 = plc.msw();
   const std::int64_t pos1 = plc.position(), m1 = machine.position();
-  info(fmt("Find Home CW (H-A): %s after %.1f s, position %lld, machine at %lld (switch %lld..%lld), "
-           "%u home edges",
-           status_names(s1).c_str(), (now_ns() - t0) * 1e-9, static_cast<long long>(pos1),
-           static_cast<long long>(m1), static_cast<long long>(Machine::kHomeFrom),
-           static_cast<long long>(Machine::kHomeTo), machine.home_edges()));
+  info(fmt(
+      "Find Home CW (H-A): %s after %.1f s, position %lld, machine at %lld (switch %lld..%lld), "
+      "%u home edges",
+      status_names(s1).c_str(), (now_ns() - t0) * 1e-9, static_cast<long long>(pos1),
+      static_cast<long long>(m1), static_cast<long long>(Machine::kHomeFrom),
+      static_cast<long long>(Machine::kHomeTo), machine.home_edges()));
   check((s1 & st::kAtHome) != 0, "At Home not set: " + status_names(s1));
   check((s1 & (st::kHomeInvalid | st::kInputError | st::kCommandError | st::kPositionInvalid)) == 0,
         "error bits after homing: " + status_names(s1));
   check(pos1 == 0, fmt("position after homing %lld, expected 0", static_cast<long long>(pos1)));
   check(m1 >= Machine::kHomeFrom && m1 <= Machine::kHomeFrom + 1,
-        fmt("homed at machine position %lld, the switch's CW-side edge is %lld", static_cast<long long>(m1),
-            static_cast<long long>(Machine::kHomeFrom)));
+        fmt("homed at machine position %lld, the switch's CW-side edge is %lld",
+            static_cast<long long>(m1), static_cast<long long>(Machine::kHomeFrom)));
 
   // H-C: past the switch (machine 560), Find Home CW meets the CW limit at 800: immediate stop,
   // 2 s, CCW across the whole switch, 2 s, creep CW onto it.
   plc.command(cmd::kRelativeMove, 160, kVp, 10, 10);
-  check(plc.wait([&] { return plc.status(st::kMoveComplete); }, 10'000), "move past home not complete");
+  check(plc.wait([&] { return plc.status(st::kMoveComplete); }, 10'000),
+        "move past home not complete");
   const std::int64_t t1 = now_ns();
   plc.command(cmd::kFindHomeCw, 0, kVp, 10, 10);
-  check(plc.wait([&] { return plc.status(st::kAtHome) || plc.status(st::kHomeInvalid) ||
-                              plc.status(st::kInputError); }, 30'000),
+  check(plc.wait(
+            [&] {
+              return plc.status(st::kAtHome) || plc.status(st::kHomeInvalid) ||
+                     plc.status(st::kInputError);
+            },
+            30'000),
         fmt("Find Home CW via the CW limit did not finish: %s, machine at %lld",
             status_names(plc.msw()).c_str(), static_cast<long long>(machine.position())));
   check(plc.wait([&] { return !plc.moving(); }, 2'000), "still moving after At Home");
@@ -1182,10 +1240,11 @@ std::string case_homing() {
   const std::int64_t pos2 = plc.position(), m2 = machine.position();
   const int rc = d.terminate();
   d.print_log();
-  info(fmt("Find Home CW via the CW limit (H-C): %s after %.1f s, position %lld, machine at %lld; "
-           "sampling gap max %lld us",
-           status_names(s2).c_str(), (now_ns() - t1) * 1e-9, static_cast<long long>(pos2),
-           static_cast<long long>(m2), static_cast<long long>(machine.max_gap_ns() / 1000)));
+  info(
+      fmt("Find Home CW via the CW limit (H-C): %s after %.1f s, position %lld, machine at %lld; "
+          "sampling gap max %lld us",
+          status_names(s2).c_str(), (now_ns() - t1) * 1e-9, static_cast<long long>(pos2),
+          static_cast<long long>(m2), static_cast<long long>(machine.max_gap_ns() / 1000)));
   check(rc == 0, fmt("stepmodd exit status %d", rc));
   check((s2 & st::kAtHome) != 0, "At Home not set: " + status_names(s2));
   check((s2 & (st::kHomeInvalid | st::kInputError | st::kCommandError)) == 0,
@@ -1205,9 +1264,10 @@ std::string case_homing() {
   // thread (tests/vm/cases/README.md) can slip past it, so it may lag the VCD by a few steps.
   info(fmt("VCD net steps %lld, machine model %lld", static_cast<long long>(net),
            static_cast<long long>(m2)));
-  return fmt("Find Home CW by the home switch (H-A) and via the CW limit (H-C): At Home, position "
-             "0, machine on the switch edge (%lld)",
-             static_cast<long long>(m2));
+  return fmt(
+      "Find Home CW by the home switch (H-A) and via the CW limit (H-C): At Home, position "
+      "0, machine on the switch edge (%lld)",
+      static_cast<long long>(m2));
 }
 
 }  // namespace
@@ -1215,8 +1275,8 @@ std::string case_homing() {
 int main(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   const std::map<std::string, std::string (*)()> cases{
-      {"errors", case_errors}, {"move", case_move},       {"estop", case_estop},
-      {"capture", case_capture}, {"burst", case_burst},   {"sigterm", case_sigterm},
+      {"errors", case_errors},   {"move", case_move},   {"estop", case_estop},
+      {"capture", case_capture}, {"burst", case_burst}, {"sigterm", case_sigterm},
       {"homing", case_homing}};
   const auto it = argc == 2 ? cases.find(argv[1]) : cases.end();
   if (it == cases.end()) {

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-namespace stepmod::rt {
+namespace stepmod {
 
 inline constexpr std::size_t kCacheLine = 64;
 
@@ -80,4 +80,4 @@ class SpscRing {
   std::size_t head_cache_{0};                             // consumer's view of head_
 };
 
-}  // namespace stepmod::rt
+}  // namespace stepmod
