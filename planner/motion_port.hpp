@@ -119,10 +119,20 @@ class MotionPort {
   bool steps_at(Nanos t, std::int64_t& out) const noexcept {
     return history_.steps_at(t, steps(), out);
   }
-  // Flags of the last executed edge of the current motion (phase, direction); 0 when idle.
-  std::uint8_t motion_flags() const noexcept {
-    if (!busy() || fb_.epoch.load(std::memory_order_acquire) != epoch_) return 0;
-    return fb_.flags.load(std::memory_order_acquire);
+  // Where the current motion is, from its last executed edge: what the status words' moving /
+  // accelerating / decelerating bits report. kIdle when no motion of ours is running.
+  enum class Phase : std::uint8_t { kIdle, kAccelerating, kCruising, kDecelerating };
+  Phase phase() const noexcept {
+    if (!busy() || fb_.epoch.load(std::memory_order_acquire) != epoch_) return Phase::kIdle;
+    switch (rt::Edge{.flags = fb_.flags.load(std::memory_order_acquire)}.phase()) {
+      case rt::Phase::kAccel:
+        return Phase::kAccelerating;
+      case rt::Phase::kDecel:
+        return Phase::kDecelerating;
+      case rt::Phase::kCruise:
+        break;
+    }
+    return Phase::kCruising;
   }
   unsigned axis() const noexcept { return axis_; }
 

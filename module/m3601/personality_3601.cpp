@@ -205,9 +205,9 @@ void Personality3601::compose_command_image(ImageWords& in) const {
     // 3601-DIR-01: direction of the pulses being output.
     msw |= dir_ == planner::Direction::kCw ? status_msw::kMovingCw : status_msw::kMovingCcw;
     // 3601-ACC-01: the phase of the edge the pulse thread last wrote.
-    const auto phase = static_cast<rt::Phase>(motion_.motion_flags() & rt::edge_flag::kPhaseMask);
-    if (phase == rt::Phase::kAccel) msw |= status_msw::kAccelerating;
-    if (phase == rt::Phase::kDecel) msw |= status_msw::kDecelerating;
+    const auto phase = motion_.phase();
+    if (phase == planner::MotionPort::Phase::kAccelerating) msw |= status_msw::kAccelerating;
+    if (phase == planner::MotionPort::Phase::kDecelerating) msw |= status_msw::kDecelerating;
   }
   msw |= manual_status_msw();  // 3601-DIR-01: a one-shot's direction while its bit is held
   if (status_.hold) msw |= status_msw::kHoldState;
