@@ -30,7 +30,14 @@ void Personality3601::scan(const ImageWords& out, ImageWords& in, Nanos now) {
     if (msw & cmd_msw::kConfigMode) {
       scan_configuration_mode(out);
     } else {
+      // Issue 12 item 3, digest 7.15/7.16: the image that leaves configuration mode is already a
+      // command image. Commands fire on a 0->1 edge of their bit, and the configuration words of
+      // the previous scans are not command words: the previous command set is empty, so a command
+      // bit written together with the mode bit's clearing is an edge and acts now (or gets the
+      // manual's Command Error: several bits, an invalid configuration). Dropping it would leave
+      // the PLC with no motion, no Move Complete and no error.
       enter_command_mode();
+      command_mode_scan(out, msw, now);
     }
   } else if (msw & cmd_msw::kConfigMode) {
     // 3601-CE-01: the mode bit while moving raises CE; the move finishes first, then the module
@@ -106,8 +113,10 @@ void Personality3601::scan_configuration_mode(const ImageWords& out) {
 // Leaving configuration mode (digest 7.15, 3601-CFG-13, 3601-PI-01).
 void Personality3601::enter_command_mode() {
   config_mode_ = false;
-  // Edges are detected against the command words from here on, not the configuration words.
+  // Edges are detected against the command words from here on, not the configuration words:
+  // the previous command set is empty (digest 7.16; see scan()).
   prev_msw_ = 0;
+  prev_lsw_ = 0;
   // 3601 Ch.4 "Registration Move": the minimum registration distance is reset by every
   // configuration (3601-LSW-01 then reads 0).
   min_registration_ = 0;

@@ -4,10 +4,10 @@
 #include <cstdint>
 
 #include "gpio/backend.hpp"
-#include "module/input_bank.hpp"
+#include "module/axis/input_bank.hpp"
 #include "module/m3601/config_3601.hpp"
 #include "module/personality.hpp"
-#include "module/quadrature_decoder.hpp"
+#include "module/axis/quadrature_decoder.hpp"
 #include "planner/motion_port.hpp"
 
 namespace stepmod::module::m3601 {
