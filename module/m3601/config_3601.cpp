@@ -80,4 +80,28 @@ ConfigCheck check_config(const ImageWords& out) noexcept {
   return r;
 }
 
+axis::AxisConfig to_axis_config(const Config3601& c) noexcept {
+  axis::AxisConfig a;
+  // Config MSW bits 0..5 ("used") and LSW bits 0..5 (active high) are in InputLine order
+  // (capture, external, home, E-stop, CW limit, CCW limit), digest 3.2 / 3.3.
+  a.inputs_used = c.msw & 0x3F;
+  a.inputs_active_high = c.lsw & 0x3F;
+  a.quadrature_encoder = c.has(cfg_msw::kQuadratureEncoder);
+  a.diagnostic_feedback = c.has(cfg_msw::kDiagnosticFeedback);
+  a.step_dir_output = c.has(cfg_msw::kStepDirOutput);
+  a.backplane_proximity = c.has(cfg_msw::kBackplaneProximity);
+  // Homing option (digest 3.2 table); CFG-10/11 guarantee exactly one proximity source with
+  // marker homing.
+  const bool marker = c.has(cfg_msw::kMarkerHoming);
+  if (marker) {
+    a.homing = a.backplane_proximity ? axis::HomingVariant::kMarkerWithBackplane
+                                     : axis::HomingVariant::kMarkerWithHome;
+  } else {
+    a.homing = a.backplane_proximity ? axis::HomingVariant::kSwitchWithBackplane
+                                     : axis::HomingVariant::kSwitch;
+  }
+  a.starting_speed = c.starting_speed;
+  return a;
+}
+
 }  // namespace stepmod::module::m3601
