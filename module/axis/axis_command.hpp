@@ -13,8 +13,7 @@
 namespace stepmod::module::axis {
 
 // Every command a module's command word can ask for. kUndefined stands for a command bit the
-// manual does not define (3601 MSW bit 14, A33): set with or without a command it is a Command
-// Error.
+// manual does not define (A33): set with or without a command it is a Command Error.
 enum class CommandKind : std::uint8_t {
   kAbsoluteMove,
   kRelativeMove,

@@ -8,7 +8,7 @@ namespace stepmod::module::axis {
 
 struct AxisStatus {
   bool configuration_mode = false;
-  // Motion (digest 3.10 bits 0, 1, 5, 6 on the 3601).
+  // Motion: direction of the pulses being output, ramp phase.
   bool moving_cw = false;
   bool moving_ccw = false;
   bool accelerating = false;

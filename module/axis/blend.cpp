@@ -1,7 +1,7 @@
 // Blend moves: the block-by-block programming handshake and Run Blend (3601 manual Ch.4 "Blend
 // Move", Ch.5 "Blend Move Programming"; digest 3.8, 7.10).
 //
-// Programming (digest 7.10 handshake; 3601 LSW bits 8/9, 3602 LSW bits 4/5): with no command set
+// Programming (digest 7.10 handshake, the flags decoded by the dialect): with no command set
 // the PLC holds the program flag for the whole cycle and raises the transmit flag once per block.
 // Each transmit rising edge reads one block (decoded by the dialect), checks it and sets the
 // acknowledge; the acknowledge follows transmit back to 0. Every check is made on the block that
@@ -91,7 +91,7 @@ void Blend::programming_scan(const AxisCommand& c, const AxisCommand& prev) {
     // A new profile replaces the stored one from its first block on (digest 7.10 rule 7).
     stored_ = false;
   }
-  // No command may be set in a block (3601: word 0, the command MSW, is 0; digest 3.8).
+  // No command may be set in a block (digest 3.8).
   const bool msw_ok = c.commands.empty();
   const bool ok = first ? first_block(c.blend_first) : segment_block(c.blend_segment);
   if (!ok || !msw_ok) {
@@ -125,11 +125,11 @@ bool Blend::first_block(const BlendFirstBlock& b) {
     ax_.status.command_error = true;
     ok = false;
   } else if (!ax_.rate_in_range(value)) {
-    ok = false;  // 3601-IP-02: outside 1..2000
+    ok = false;  // 3601-IP-02: outside the module's accel range
   } else {
     pending_.final_decel.rate = static_cast<double>(value);
   }
-  // The words the first block leaves empty are 0 (3601: words 6 and 7).
+  // The words the first block leaves empty are 0 (digest 3.8).
   if (!b.unused_words_zero) ok = false;
   return ok;
 }
@@ -162,13 +162,13 @@ bool Blend::segment_block(const BlendSegmentBlock& b) {
   } else {
     seg.speed = static_cast<double>(*speed);
   }
-  // The accel/decel that reaches this segment's speed (3601-IP-02: 1..2000).
+  // The accel/decel that reaches this segment's speed (3601-IP-02: the module's accel range).
   if (!ax_.rate_in_range(b.rate)) {
     ok = false;
   } else {
     seg.ramp.rate = static_cast<double>(b.rate);
   }
-  if (!b.unused_words_zero) ok = false;  // 3601: word 7 is 0
+  if (!b.unused_words_zero) ok = false;  // digest 3.8
   if (!ok) return false;
 
   // Digest 7.10 rules 3-5, checked as soon as the segment's data is here: segment 1 starts at

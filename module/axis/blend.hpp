@@ -24,7 +24,7 @@ class Blend {
   // A configuration erases the stored profile and any programming cycle (3601-CE-20).
   void erase();
 
-  // 3601-LSW-01: running for the whole blend (its deceleration included); the acknowledge.
+  // Running for the whole blend (its deceleration included); the acknowledge (3601-LSW-01).
   bool running() const noexcept { return ax_.activity == Activity::kBlend; }
   bool acknowledge() const noexcept { return ack_; }
 

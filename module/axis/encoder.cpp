@@ -95,7 +95,7 @@ void Encoder::preset(const AxisCommand& c) {
 // ---- Per scan --------------------------------------------------------------------------------
 
 void Encoder::scan() {
-  // Diagnostic feedback (config bit 9, step/direction only): the register counts the module's
+  // Diagnostic feedback (step/direction only): the register counts the module's
   // own pulses, one count per step with the direction line's sense. Counted incrementally, so a
   // preset, a configuration or a homing that writes the register just works.
   const std::int64_t steps = ax_.motion.steps();

@@ -45,11 +45,10 @@ void Follower::counted(Nanos t) {
 
 // ---- Encoder follower (firmware 4.1) ------------------------------------------------------------
 //
-// Follower mode is a level flag (3601: command LSW bit 7, shown in status LSW bit 7,
-// 3601-LSW-01). Manual + outputs steps in the encoder's sense, Manual - in the reverse sense,
-// neither nothing. The planner runs one
-// follow motion per direction session: it is told the pulse count to reach as the encoder counts
-// and closes the gap as fast as accel/decel allow (0 = at the master's own rate).
+// Follower mode is a level flag, shown in the status (3601-LSW-01). Manual + outputs steps in the
+// encoder's sense, Manual - in the reverse sense, neither nothing. The planner runs one follow
+// motion per direction session: it is told the pulse count to reach as the encoder counts and
+// closes the gap as fast as accel/decel allow (0 = at the master's own rate).
 
 void Follower::command(const AxisCommand& c, planner::Direction dir) {
   if (ax_.activity != Activity::kFollower && !enter(c)) return;
@@ -125,7 +124,7 @@ bool Follower::params(const AxisCommand& c) {
     ax_.reject();
     return false;
   }
-  // 3601-CE-04 / IP-02: accel or decel outside the follower's 0 ... maximum (3601: 2000).
+  // 3601-CE-04 / IP-02: accel or decel outside the follower's 0 ... maximum (rules.hpp).
   if (accel < 0 || accel > ax_.rules.accel_max || decel < 0 || decel > ax_.rules.accel_max) {
     ax_.reject_profile();
     return false;
@@ -206,8 +205,8 @@ void Follower::scan(const AxisCommand& c, const AxisCommand& prev) {
 
   if (ax_.activity != Activity::kFollower) {
     if (!lsw7 || was7 || ax_.status.command_error) return;
-    // LSW bit 7 rising: follower mode (a direction bit rising in the same scan then starts the
-    // output in command_follower).
+    // The follower flag rising: follower mode (a direction bit rising in the same scan then starts
+    // the output in command_follower).
     if (ax_.moving()) {
       ax_.reject();  // 3601-CE-35: the running motion completes
       return;
@@ -233,7 +232,7 @@ void Follower::scan(const AxisCommand& c, const AxisCommand& prev) {
   }
   if (!lsw7) {
     if (cw || ccw) {
-      ax_.reject();  // 3601-CE-40: LSW bit 7 cleared while a direction bit is still set
+      ax_.reject();  // 3601-CE-40: the flag cleared while a direction is still set
       cut();
       return;
     }

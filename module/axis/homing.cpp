@@ -291,7 +291,7 @@ void Homing::fail() {
 }
 
 void Homing::scan(const AxisCommand& c, Nanos now) {
-  // The backplane proximity bit is a level in the command LSW; its transitions are events
+  // The backplane proximity bit is a level of the command image; its transitions are events
   // (A44: only when configured and only while homing).
   if (ax_.cfg.backplane_proximity) {
     const bool p = c.backplane_proximity;

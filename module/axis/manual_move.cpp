@@ -46,8 +46,8 @@ void ManualMove::command(const AxisCommand& c, planner::Direction dir) {
   if (registration) {
     run_.kind = Kind::kRegistration;
     run_.count = *target;
-    // The distance in force when the move starts: a new one programmed meanwhile (MSW = 0 after
-    // the bit's release) applies to the next registration move.
+    // The distance in force when the move starts: a new one programmed meanwhile (no command set
+    // after the bit's release) applies to the next registration move.
     run_.dmin = min_registration_;
     run_.start_steps = ax_.motion.steps();
   } else if (profile->vp == 0) {
@@ -219,7 +219,7 @@ void ManualMove::runtime_checks(const AxisCommand& c) {
     return;
   }
   const auto& speed = c.speed;
-  // 3601-CE-19 / IP-10: the new speed (LSW outside 0..999 included) and both rates must be
+  // 3601-CE-19 / IP-10: the new speed (an unencodable one included) and both rates must be
   // valid; A13: a change to speed 0 counts as invalid.
   if (!ax_.speed_in_range(speed) || *speed == 0 || !ax_.rate_in_range(c.accel) ||
       !ax_.rate_in_range(c.decel)) {
@@ -311,7 +311,7 @@ void ManualMove::registration_check(Nanos now, Nanos present_since, StopCause ca
 // The store bit rising with no command bit set: Program Minimum Registration Move Distance (3601
 // manual Ch.4 "New Command Bit"; digest 3.8).
 void ManualMove::store_min_registration(const AxisCommand& c) {
-  // The dialect's word rules (3601: word 1 exactly bit 10, words 4..7 zero).
+  // The dialect's word rules (words that must be 0 with the store flag).
   if (c.words_invalid) {
     ax_.reject();
     return;
@@ -322,7 +322,7 @@ void ManualMove::store_min_registration(const AxisCommand& c) {
     ax_.reject();
     return;
   }
-  min_registration_ = *d;  // status LSW bit 10 = (distance != 0), 3601-LSW-01
+  min_registration_ = *d;  // shown as "distance set" (3601-LSW-01)
 }
 
 // Input edges during a manual move: a registration move takes the External input as its

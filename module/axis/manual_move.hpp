@@ -21,7 +21,7 @@ class ManualMove {
   // Every command-mode scan of a configured axis: runtime changes (3601-CE-17/19/30..33), the
   // release of a one-shot or registration move, the registration trigger at `now`.
   void scan(const AxisCommand& c, const CommandSet& rising, Nanos now);
-  // The store-minimum-distance edge with no command set (3601 command LSW bit 10).
+  // The store-minimum-distance flag rising with no command set (digest 3.8).
   void store_min_registration(const AxisCommand& c);
   // An input edge during a manual/registration move; true if it was fully handled here.
   bool on_input(const gpio::InputEvent& e, bool now_active);
