@@ -31,7 +31,10 @@ struct AxisConfig {
   bool backplane_proximity = false;      // the proximity bit of the command words is used
   HomingVariant homing = HomingVariant::kSwitch;
   std::int32_t starting_speed = 0;  // Vs, steps/s
-  Nanos homing_timeout = 0;         // 0 = none (3602 only)
+  // The 3602's and 3202's settings. The 3601 dialect leaves them at these values, which are the
+  // 3601's fixed behaviour; the shared axis does not act on other values yet (the 3602 and 3202
+  // issues add that behaviour together with their dialects).
+  Nanos homing_timeout = 0;  // 0 = none (3602: 0 ... 300 s, expiry -> Home Invalid, A16)
   LimitFunction cw_input = LimitFunction::kLimit;
   LimitFunction ccw_input = LimitFunction::kLimit;
   bool disabled = false;  // 3602 / 3202: the axis ignores commands
