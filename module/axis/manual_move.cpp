@@ -55,10 +55,12 @@ void ManualMove::command(const AxisCommand& c, planner::Direction dir) {
   }
   one_shot_held_ = run_.kind == Kind::kOneShot;
 
-  // One-shot (Vp = 0, digest 7.8; 3601-STP-N1: no Stopped on release) and a start with the
-  // External input active (digest 7.6: one step, then stop) both output a single pulse. A
-  // registration move never gets here with the External input active (3601-CE-27).
-  const bool external = ax_.inputs.active(InputLine::kExternal);
+  // One-shot (Vp = 0, digest 7.8; 3601-STP-N1: no Stopped on release) and a plain manual move
+  // started with the External input active (digest 7.6: one step, then stop) both output a
+  // single pulse. A registration move gets here with the External input active only where a
+  // minimum distance allows it (the 3602, digest 8.0; never on the 3601, 3601-CE-27): it runs,
+  // and the active input triggers it once the minimum distance is out (scan()).
+  const bool external = !registration && ax_.inputs.active(InputLine::kExternal);
   std::uint32_t epoch = 0;
   if (profile->vp == 0 || external) {
     planner::MoveSpec one;

@@ -246,6 +246,40 @@ TEST_P(AxisShared, CE_13_HomingPrerequisitePerModule) {
   }
 }
 
+// 3601-CE-27 / IP-12 vs the 3602: the External input active when a registration move starts is
+// always an error on the 3601, on the 3602 only with a minimum registration distance of 0. The
+// 3202 has no registration move.
+TEST_P(AxisShared, CE_27_RegistrationWithExternalActivePerModule) {
+  if (!rules().has_registration) GTEST_SKIP() << "no registration move on this module";
+  rig_.configure();
+  // Store a minimum registration distance of 500 (the store flag rising, no command set).
+  rig_.image().store_min_registration = true;
+  rig_.image().target = 500;
+  rig_.image().speed = 0;
+  rig_.image().accel = rig_.image().decel = 0;
+  rig_.scans(3);
+  rig_.image() = ax::AxisCommand{};
+  rig_.scans(1);
+  ASSERT_TRUE(rig_.status().min_registration_set);
+  ASSERT_FALSE(rig_.status().command_error);
+  rig_.force(InputLine::kExternal, true);
+  rig_.scans(1);
+  rig_.hold(CommandKind::kManualCw, {.target = 6'000});
+  rig_.scans(3);
+  if (rules().registration_external_always_error) {
+    EXPECT_TRUE(rig_.status().command_error);
+    EXPECT_TRUE(rig_.status().invalid_profile);
+    EXPECT_FALSE(rig_.moving());
+  } else {
+    EXPECT_FALSE(rig_.status().command_error);
+    EXPECT_TRUE(rig_.moving());
+    // The input, active from the start, is honoured at step Dmin + 1 (A42), then exactly R.
+    ASSERT_TRUE(rig_.wait_idle());
+    EXPECT_EQ(rig_.motor(), 500 + 1 + 6'000);
+    EXPECT_TRUE(rig_.status().stopped);
+  }
+}
+
 std::string module_name(const ::testing::TestParamInfo<const ax::ModuleRules*>& info) {
   return std::to_string(static_cast<unsigned>(info.param->type));
 }
