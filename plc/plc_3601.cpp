@@ -237,6 +237,22 @@ Outcome Plc3601::blend_run(bool cw) {
   return edge_command(w, bit, kCommandErrors);
 }
 
+Outcome Plc3601::follow(int sense, std::int16_t multiplier, std::int16_t divisor,
+                        std::int16_t accel, std::int16_t decel) {
+  if (!release_stale()) return finish(kCommandErrors, true, "release");
+  const std::uint16_t dir = sense > 0   ? m::cmd_msw::kManualCw
+                            : sense < 0 ? m::cmd_msw::kManualCcw
+                                        : std::uint16_t{0};
+  port_.write_outputs(
+      m3601::follower_words(dir, multiplier, divisor, accel, decel, m::cmd_lsw::kEncoderFollower));
+  return finish(kCommandErrors, !port_.wait_scans(seq_.hold_scans), "follow");
+}
+
+Outcome Plc3601::end_follow() {
+  port_.write_outputs(ImageWords{});
+  return finish(kCommandErrors, !port_.wait_scans(seq_.release_scans), "end follow");
+}
+
 Outcome Plc3601::wait_idle(std::chrono::nanoseconds timeout) {
   const bool idle = port_.wait_inputs(
       [](const ImageWords& in) {

@@ -57,6 +57,13 @@ class Plc3601 {
   // each acknowledged by the module.
   Outcome blend_program(const BlendProfile& b);
   Outcome blend_run(bool cw);
+  // Encoder follower mode (digest 7.12): the follower words stay written (the direction bit is a
+  // level) until end_follow(). `sense`: +1 same sense as the master, -1 reverse, 0 follower mode
+  // without motion. Multiplier and divisor 1..32767 each.
+  Outcome follow(int sense, std::int16_t multiplier, std::int16_t divisor, std::int16_t accel,
+                 std::int16_t decel);
+  // Leaves follower mode: follower bit and direction bit released (all words 0).
+  Outcome end_follow();
   // Waits until neither Moving CW/CCW nor Blend Running is set.
   Outcome wait_idle(std::chrono::nanoseconds timeout);
   // The input image now.

@@ -40,6 +40,18 @@ ImageWords configuration_words(std::uint16_t cfg_msw, std::uint16_t cfg_lsw,
   return w;
 }
 
+ImageWords follower_words(std::uint16_t msw, std::int16_t multiplier, std::int16_t divisor,
+                          std::int16_t accel, std::int16_t decel, std::uint16_t lsw) {
+  ImageWords w;
+  w.w[m::out_word::kMsw] = static_cast<std::int16_t>(msw);
+  w.w[m::out_word::kLsw] = static_cast<std::int16_t>(lsw);
+  w.w[m::out_word::kTargetMsw] = multiplier;
+  w.w[m::out_word::kTargetLsw] = divisor;
+  w.w[m::out_word::kAccel] = accel;
+  w.w[m::out_word::kDecel] = decel;
+  return w;
+}
+
 std::uint16_t accel_bits(AccelType t) {
   switch (t) {
     case AccelType::kConstant:

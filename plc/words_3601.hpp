@@ -21,6 +21,13 @@ void put_split(ImageWords& w, unsigned msw_index, std::int64_t value);
 // Speed (4/5), acceleration (6) and deceleration (7) of `p`.
 void put_profile(ImageWords& w, const Profile& p);
 
+// Encoder follower (digest 3.5, 7.12): `msw` the level-held direction bit (Manual CW = same
+// sense, Manual CCW = reverse, 0 = follower mode without motion), `lsw` normally just the
+// follower bit; multiplier and divisor are plain integers in words 2 and 3 (not split), words
+// 4/5 must be 0, accel/decel in 6/7.
+ImageWords follower_words(std::uint16_t msw, std::int16_t multiplier, std::int16_t divisor,
+                          std::int16_t accel, std::int16_t decel, std::uint16_t lsw);
+
 // Command LSW bits 0/1 for an acceleration type; the same code is a blend type pair.
 std::uint16_t accel_bits(AccelType t);
 
