@@ -319,6 +319,28 @@ int main(int argc, char** argv) {
   std::string blend_dir;
   blend_run->add_option("DIR", blend_dir, "+ (cw) or - (ccw)")->required();
 
+  auto* follow = app.add_subcommand(
+      "follow", "3601: encoder follower mode; its bits are levels: it stays on until 'follow off'");
+  std::string follow_sense;
+  std::int16_t follow_mul = 1;
+  std::int16_t follow_div = 1;
+  std::int16_t follow_accel = 0;
+  std::int16_t follow_decel = 0;
+  follow
+      ->add_option("SENSE", follow_sense,
+                   "+ (same sense as the master), - (reverse), 0 (follower mode, no motion), off")
+      ->required()
+      ->check(CLI::IsMember({"+", "-", "0", "off"}));
+  // Words 2 and 3 carry multiplier and divisor as plain 16-bit integers (digest 3.5).
+  follow->add_option("--multiplier,-m", follow_mul, "ratio multiplier, 1..32767 (1)")
+      ->check(CLI::Range(1, 32767));
+  follow->add_option("--divisor,-D", follow_div, "ratio divisor, 1..32767 (1)")
+      ->check(CLI::Range(1, 32767));
+  follow->add_option("--accel,-a", follow_accel, "acceleration, steps/ms/s (0..2000)")
+      ->check(CLI::Range(INT16_MIN, INT16_MAX));
+  follow->add_option("--decel,-d", follow_decel, "deceleration, steps/ms/s (0..2000)")
+      ->check(CLI::Range(INT16_MIN, INT16_MAX));
+
   auto* wait_idle = app.add_subcommand("wait-idle", "3601: wait until the axis is not moving");
   double wait_s = 60;
   wait_idle->add_option("--max", wait_s, "give up after this many seconds (60)")
@@ -508,6 +530,13 @@ int main(int argc, char** argv) {
       o = plc.blend_program(b);
     } else if (blend_run->parsed()) {
       o = plc.blend_run(parse_direction(blend_dir));
+    } else if (follow->parsed()) {
+      if (follow_sense == "off") {
+        o = plc.end_follow();
+      } else {
+        const int sense = follow_sense == "+" ? 1 : follow_sense == "-" ? -1 : 0;
+        o = plc.follow(sense, follow_mul, follow_div, follow_accel, follow_decel);
+      }
     } else if (wait_idle->parsed()) {
       o = plc.wait_idle(std::chrono::milliseconds(static_cast<long>(wait_s * 1000)));
     } else {

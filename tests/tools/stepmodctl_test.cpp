@@ -85,5 +85,13 @@ TEST(Stepmodctl, A3601TargetTheWordsCannotCarryIsAUsageErrorAndWritesNothing) {
   EXPECT_EQ(outputs_of(n), ImageWords{});
 }
 
+TEST(Stepmodctl, AFollowerRatioTheWordsCannotCarryIsAUsageErrorAndWritesNothing) {
+  const std::string n = image_name("follow");
+  ipc::ShmImage img(n, {ModuleType::k3601, 1, 2, 8, 8});
+  const CtlRun r = stepmodctl("-n " + n + " follow + --multiplier 40000");
+  EXPECT_EQ(r.exit_status, 2) << r.err;
+  EXPECT_EQ(outputs_of(n), ImageWords{});
+}
+
 }  // namespace
 }  // namespace stepmod::tools
