@@ -82,10 +82,13 @@ ConfigCheck check_config(const ImageWords& out) noexcept {
 
 axis::AxisConfig to_axis_config(const Config3601& c) noexcept {
   axis::AxisConfig a;
-  // Config MSW bits 0..5 ("used") and LSW bits 0..5 (active high) are in InputLine order
-  // (capture, external, home, E-stop, CW limit, CCW limit), digest 3.2 / 3.3.
-  a.inputs_used = c.msw & 0x3F;
-  a.inputs_active_high = c.lsw & 0x3F;
+  // The "used" bits of the MSW and the active-level bits of the LSW sit at the same positions,
+  // in InputLine order (capture, external, home, E-stop, CW limit, CCW limit), digest 3.2 / 3.3.
+  constexpr std::uint16_t kInputBits = cfg_msw::kCaptureUsed | cfg_msw::kExternalUsed |
+                                       cfg_msw::kHomeUsed | cfg_msw::kEStopUsed |
+                                       cfg_msw::kCwLimitUsed | cfg_msw::kCcwLimitUsed;
+  a.inputs_used = c.msw & kInputBits;
+  a.inputs_active_high = c.lsw & kInputBits;
   a.quadrature_encoder = c.has(cfg_msw::kQuadratureEncoder);
   a.diagnostic_feedback = c.has(cfg_msw::kDiagnosticFeedback);
   a.step_dir_output = c.has(cfg_msw::kStepDirOutput);
