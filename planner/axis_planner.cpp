@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
+#include <variant>
 
 namespace stepmod::planner {
 
@@ -96,35 +98,31 @@ void AxisPlanner::flush(Nanos horizon) noexcept {
 void AxisPlanner::apply(const Command& c, Nanos now) noexcept {
   check_abort();
   now_ = std::max(now_, now);
-  switch (c.kind) {
-    case CommandKind::kMove:
-    case CommandKind::kRun:
-    case CommandKind::kBlend:
-    case CommandKind::kFollow:
-      start_motion(c, now);
-      break;
-    case CommandKind::kFollowUpdate:
-      follow_update(c);
-      break;
-    case CommandKind::kChangeSpeed:
-      change_speed(c);
-      break;
-    case CommandKind::kStop:
-      stop(c);
-      break;
-    case CommandKind::kStopAfter:
-      stop_after(c);
-      break;
-    case CommandKind::kAbort:
-      if (c.epoch == last_motion_epoch_) abort_last_motion();
-      break;
-    case CommandKind::kSetGpo:
-      set_gpo(c.level, now);
-      break;
-    case CommandKind::kSetPulseFormat:
-      set_pulse_format(c.level, now);
-      break;
+  if (c.starts_motion()) {
+    if (prepare_start(c, now)) launch(earliest_origin(now));
+    return;
   }
+  const std::uint32_t epoch = c.epoch;
+  std::visit(
+      [&](const auto& p) {
+        using P = std::decay_t<decltype(p)>;
+        if constexpr (std::is_same_v<P, FollowUpdate>) {
+          follow_update(epoch, p.spec);
+        } else if constexpr (std::is_same_v<P, SpeedChange>) {
+          change_speed(epoch, p);
+        } else if constexpr (std::is_same_v<P, StopSpec>) {
+          stop(epoch, p);
+        } else if constexpr (std::is_same_v<P, StopAfterSpec>) {
+          stop_after(epoch, p);
+        } else if constexpr (std::is_same_v<P, AbortSpec>) {
+          if (epoch == last_motion_epoch_) abort_last_motion();
+        } else if constexpr (std::is_same_v<P, GpoSpec>) {
+          set_gpo(p.level, now);
+        } else if constexpr (std::is_same_v<P, PulseFormatSpec>) {
+          set_pulse_format(p.step_dir, now);
+        }
+      },
+      c.what);
 }
 
 void AxisPlanner::check_abort() noexcept {
@@ -156,87 +154,97 @@ void AxisPlanner::abort_last_motion() noexcept {
   last_pushed_t_ = std::min(last_pushed_t_, last_t_);
 }
 
-void AxisPlanner::start_motion(const Command& c, Nanos now) noexcept {
+bool AxisPlanner::prepare_start(const Command& c, Nanos now) noexcept {
+  check_abort();
+  now_ = std::max(now_, now);
   if (control_ != nullptr && c.epoch <= control_->abort_epoch.load(std::memory_order_acquire)) {
-    return;  // aborted before it started
+    return false;  // aborted before it started
   }
-  if (c.epoch <= last_motion_epoch_) return;  // stale or repeated
+  if (c.epoch <= last_motion_epoch_) return false;  // stale or repeated
   // A new motion replaces one that is still being planned: that one ends on its newest step.
   if (m_.active) finish_at_frontier();
   if (want_step_dir_ != step_dir_) step_dir_ = want_step_dir_;
 
   Motion m;
   m.active = true;
+  m.held = true;
   m.epoch = c.epoch;
-  switch (c.kind) {
-    case CommandKind::kMove:
-      m.dir = c.move.dir;
-      build_move(c.move, phases_);
-      m.end = c.move.steps;
-      m.constant_speed = c.move.vp <= c.move.vs;
-      m.vs = c.move.vs;
-      m.decel = c.move.decel;
-      break;
-    case CommandKind::kRun:
-      m.dir = c.run.dir;
-      build_run(c.run, phases_);
-      m.end = kEndless;
-      m.constant_speed = c.run.vp <= c.run.vs;
-      m.can_change_speed = true;
-      m.vs = c.run.vs;
-      m.decel = c.run.decel;
-      break;
-    case CommandKind::kFollow:
-      // Steps and their direction come from follow_step as the target moves.
-      m.dir = c.follow.target < 0 ? Direction::kCcw : Direction::kCw;
-      m.end = kEndless;
-      m.follow = true;
-      m.vs = c.follow.vs;
-      f_ = FollowState{};
-      f_.spec = c.follow;
-      break;
-    default:
-      m.dir = c.blend.dir;
-      build_blend(c.blend, phases_);
-      m.end = blend_length(c.blend);
-      m.vs = c.blend.vs;
-      m.decel = c.blend.final_decel;
-      break;
+  if (const auto* move = std::get_if<MoveSpec>(&c.what)) {
+    m.dir = move->dir;
+    build_move(*move, phases_);
+    m.end = move->steps;
+    m.constant_speed = move->vp <= move->vs;
+    m.vs = move->vs;
+    m.decel = move->decel;
+  } else if (const auto* run = std::get_if<RunSpec>(&c.what)) {
+    m.dir = run->dir;
+    build_run(*run, phases_);
+    m.end = kEndless;
+    m.constant_speed = run->vp <= run->vs;
+    m.can_change_speed = true;
+    m.vs = run->vs;
+    m.decel = run->decel;
+  } else if (const auto* follow = std::get_if<FollowStart>(&c.what)) {
+    // Steps and their direction come from follow_step as the target moves.
+    m.dir = follow->spec.target < 0 ? Direction::kCcw : Direction::kCw;
+    m.end = kEndless;
+    m.follow = true;
+    m.vs = follow->spec.vs;
+    f_ = FollowState{};
+    f_.spec = follow->spec;
+  } else {
+    m.dir = blend_.dir;
+    build_blend(blend_, phases_);
+    m.end = blend_length(blend_);
+    m.vs = blend_.vs;
+    m.decel = blend_.final_decel;
   }
   const bool ccw = m.dir == Direction::kCcw;
   m.line = (step_dir_ || !ccw) ? OutputLine::kStep : OutputLine::kDir;
   m.base_flags = rt::edge_flag::kMotion | (ccw ? rt::edge_flag::kCcw : 0);
-  m.origin = std::max(now + opt_.start_delay_ns, last_t_);
-  m.tk_ns = m.origin;
+
+  // Step/direction: the direction line must settle dir_setup_ns before the first step. CW/CCW:
+  // the CCW pulse line rests low. Only a change (or an unknown level) costs an edge. (A follow
+  // motion writes it with its first step: follow_step.)
+  const int target = step_dir_ ? (ccw ? kDirLevelCcw : kDirLevelCw) : 0;
+  if (!m.follow && m.end > 0 && dir_level_ != target) {
+    StepSolver probe;
+    probe.reset(&phases_);
+    const double t1 = m.end == 1 ? phases_.end_time() : probe.time_of(1.0);
+    const Nanos first = to_ns(t1);
+    m.dir_edge = true;
+    m.dir_shift = std::max<Nanos>(0, timing_.dir_setup_ns - first);
+  }
 
   last_motion_epoch_ = c.epoch;
   last_motion_aborted_ = false;
   motion_floor_t_ = last_t_;
   m_ = m;
   solver_.reset(&phases_);
+  return true;
+}
 
+Nanos AxisPlanner::earliest_origin(Nanos now) const noexcept {
+  return std::max(now + opt_.start_delay_ns, last_t_) + m_.dir_shift;
+}
+
+void AxisPlanner::launch(Nanos origin) noexcept {
+  if (!m_.active || !m_.held) return;  // aborted while it waited for its group
+  m_.held = false;
+  m_.origin = origin;
+  m_.tk_ns = origin;
   if (m_.end <= 0) {
     finish_at_frontier();  // nothing to move: one marker edge tells the pulse thread it ended
     return;
   }
-  if (m_.follow) return;  // the direction is written with the first step (follow_step)
-
-  // Step/direction: the direction line must settle dir_setup_ns before the first step. CW/CCW:
-  // the CCW pulse line rests low. Only a change (or an unknown level) costs an edge.
+  if (!m_.dir_edge) return;
+  const bool ccw = m_.dir == Direction::kCcw;
   const int target = step_dir_ ? (ccw ? kDirLevelCcw : kDirLevelCw) : 0;
-  if (dir_level_ != target) {
-    StepSolver probe;
-    probe.reset(&phases_);
-    const double t1 = m_.end == 1 ? phases_.end_time() : probe.time_of(1.0);
-    const Nanos first = to_ns(t1);
-    const rt::Phase ph = phases_.empty() ? rt::Phase::kCruise : phases_[0].phase;
-    stage(make_edge(m_.origin, OutputLine::kDir, static_cast<std::uint8_t>(target), 0,
-                    m_.base_flags | static_cast<std::uint8_t>(ph) | rt::edge_flag::kFirst));
-    m_.first_pending = false;
-    if (first < timing_.dir_setup_ns) m_.origin += timing_.dir_setup_ns - first;
-    m_.tk_ns = m_.origin;
-    dir_level_ = target;
-  }
+  const rt::Phase ph = phases_.empty() ? rt::Phase::kCruise : phases_[0].phase;
+  stage(make_edge(origin - m_.dir_shift, OutputLine::kDir, static_cast<std::uint8_t>(target), 0,
+                  m_.base_flags | static_cast<std::uint8_t>(ph) | rt::edge_flag::kFirst));
+  m_.first_pending = false;
+  dir_level_ = target;
 }
 
 void AxisPlanner::finish_at_frontier() noexcept {
@@ -284,21 +292,21 @@ void AxisPlanner::replan_to_end(std::int64_t end, const Ramp& ramp, bool exact_r
   solver_.reset(&phases_);
 }
 
-void AxisPlanner::change_speed(const Command& c) noexcept {
-  if (!m_.active || c.epoch != m_.epoch || !m_.can_change_speed) return;
-  if (!(c.run.vp > 0.0)) return;
+void AxisPlanner::change_speed(std::uint32_t epoch, const SpeedChange& c) noexcept {
+  if (!m_.active || m_.held || epoch != m_.epoch || !m_.can_change_speed) return;
+  if (!(c.vp > 0.0)) return;
   // Replanned from the newest planned step (at most the lookahead ahead of the pulse thread).
   const double v = phases_.velocity_at(m_.tk);
   phases_.reset(m_.tk, static_cast<double>(m_.k), v);
-  phases_.add_ramp(c.run.vp, c.run.vp > v ? c.run.accel : c.run.decel);
+  phases_.add_ramp(c.vp, c.vp > v ? c.accel : c.decel);
   phases_.add_cruise(kInf);
-  m_.decel = c.run.decel;
+  m_.decel = c.decel;
   m_.constant_speed = false;
   solver_.reset(&phases_);
 }
 
-void AxisPlanner::stop(const Command& c) noexcept {
-  if (!m_.active || c.epoch != m_.epoch) return;
+void AxisPlanner::stop(std::uint32_t epoch, const StopSpec& c) noexcept {
+  if (!m_.active || epoch != m_.epoch) return;
   if (m_.follow) {
     // A follow motion keeps its own (decel) law: it ends once at rest on its target.
     f_.finishing = true;
@@ -320,8 +328,8 @@ void AxisPlanner::stop(const Command& c) noexcept {
   replan_to_end(end, c.ramp, true);
 }
 
-void AxisPlanner::stop_after(const Command& c) noexcept {
-  if (!m_.active || c.epoch != m_.epoch || m_.follow) return;
+void AxisPlanner::stop_after(std::uint32_t epoch, const StopAfterSpec& c) noexcept {
+  if (!m_.active || epoch != m_.epoch || m_.follow) return;
   // Steps of this motion up to c.t, counting the ones already planned after it.
   const std::int64_t end = planned_steps_at(c.t) + std::max<std::int64_t>(c.steps, 0);
   if (end >= m_.end) return;  // already ends there or sooner
@@ -398,7 +406,7 @@ Nanos AxisPlanner::fill(Nanos now) noexcept {
   now_ = std::max(now_, now);
   const Nanos horizon = now + opt_.lookahead_ns;
   flush(horizon);
-  while (m_.active && staged_count_ == 0) {
+  while (m_.active && !m_.held && staged_count_ == 0) {
     if (m_.follow) {
       if (!follow_step()) break;  // at rest on the target: the next target wakes us
     } else {
@@ -416,9 +424,9 @@ Nanos AxisPlanner::fill(Nanos now) noexcept {
   return now + std::max<Nanos>(10 * kNsPerUs, (last_pushed_t_ - now) / 2);
 }
 
-void AxisPlanner::follow_update(const Command& c) noexcept {
-  if (!m_.active || !m_.follow || c.epoch != m_.epoch) return;
-  f_.spec = c.follow;
+void AxisPlanner::follow_update(std::uint32_t epoch, const FollowSpec& f) noexcept {
+  if (!m_.active || !m_.follow || epoch != m_.epoch) return;
+  f_.spec = f;
 }
 
 void AxisPlanner::follow_finish() noexcept {

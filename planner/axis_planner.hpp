@@ -26,8 +26,16 @@ class AxisPlanner {
   AxisPlanner(const AxisPlanner&) = delete;
   AxisPlanner& operator=(const AxisPlanner&) = delete;
 
-  // Applies one command for this axis at time `now`.
+  // Applies one command for this axis at time `now` (a start: prepare_start + launch at once).
   void apply(const Command& c, Nanos now) noexcept;
+  // A blend start's segment table, copied out of the planner's blend slot before apply().
+  void take_blend(const BlendSpec& b) noexcept { blend_ = b; }
+  // Group start, in two halves: prepare_start sets the motion up and holds it (no edge); false if
+  // the start is stale or aborted. earliest_origin is the soonest time 0 it could have at `now`;
+  // launch gives it its time 0 (>= earliest_origin) and lets it run.
+  bool prepare_start(const Command& c, Nanos now) noexcept;
+  Nanos earliest_origin(Nanos now) const noexcept;
+  void launch(Nanos origin) noexcept;
   // Pushes edges while the ring has room, up to now + lookahead. Returns the time by which it
   // must be called again.
   Nanos fill(Nanos now) noexcept;
@@ -65,6 +73,9 @@ class AxisPlanner {
     std::uint8_t base_flags = 0;  // kMotion | kCcw
     bool first_pending = true;    // kFirst not yet given to an edge
     bool follow = false;          // a follow motion (FollowSpec): steps come from follow_step
+    bool held = false;            // prepared, waiting for launch() (group start)
+    Nanos dir_shift = 0;          // launch: time 0 this long after the direction edge
+    bool dir_edge = false;        // launch: write the direction line first
   };
 
   // The servo state of a follow motion (encoder follower).
@@ -76,15 +87,14 @@ class AxisPlanner {
     bool finishing = false;  // kStop seen: end as soon as the axis rests on its target
   };
 
-  void start_motion(const Command& c, Nanos now) noexcept;
-  void change_speed(const Command& c) noexcept;
-  void stop(const Command& c) noexcept;
-  void stop_after(const Command& c) noexcept;
+  void change_speed(std::uint32_t epoch, const SpeedChange& s) noexcept;
+  void stop(std::uint32_t epoch, const StopSpec& s) noexcept;
+  void stop_after(std::uint32_t epoch, const StopAfterSpec& s) noexcept;
   void abort_last_motion() noexcept;
   void check_abort() noexcept;
   void set_gpo(bool level, Nanos now) noexcept;
   void set_pulse_format(bool step_dir, Nanos now) noexcept;
-  void follow_update(const Command& c) noexcept;
+  void follow_update(std::uint32_t epoch, const FollowSpec& f) noexcept;
   // Plans the next step of the follow motion (or ends it); false when there is nothing to do.
   bool follow_step() noexcept;
   // Ends the follow motion where it is (its steps' trailing edges are already staged).
@@ -121,7 +131,8 @@ class AxisPlanner {
 
   Motion m_;
   FollowState f_;
-  Nanos now_ = 0;  // time of the latest apply/fill (a follow step from rest starts after it)
+  BlendSpec blend_;  // the newest blend start's table (take_blend)
+  Nanos now_ = 0;    // time of the latest apply/fill (a follow step from rest starts after it)
   PhaseList phases_;
   StepSolver solver_;
 

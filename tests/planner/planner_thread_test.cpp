@@ -37,11 +37,12 @@ TEST(PlannerThread, WakesOnSubmitAndStops) {
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
   const std::uint64_t idle_loops = thread.loops();
 
+  MoveSpec m;
+  m.steps = 20;
+  m.vs = m.vp = 10'000;
   Command c;
-  c.kind = CommandKind::kMove;
   c.epoch = 1;
-  c.move.steps = 20;
-  c.move.vs = c.move.vp = 10'000;
+  c.what = m;
   ASSERT_TRUE(planner.submit(c));
   // Without the wake-up the thread would sleep for 10 s before seeing the command.
   std::uint64_t leading = 0;
