@@ -13,6 +13,17 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 Nanos to_ns(double seconds) noexcept {
   return std::llround(seconds * 1e9);
 }
+
+// While a cut request is open, the planner looks for the pulse thread's answer this often.
+constexpr Nanos kCutPollNs = 20 * kNsPerUs;
+
+// The phase of a motion at time t (s from its time 0): the status bits of a step planned there.
+rt::Phase phase_at(const PhaseList& l, double t) noexcept {
+  for (std::size_t i = 0; i < l.size(); ++i) {
+    if (t <= l[i].t0 + l[i].dur) return l[i].phase;
+  }
+  return l.empty() ? rt::Phase::kCruise : l[l.size() - 1].phase;
+}
 }  // namespace
 
 AxisPlanner::AxisPlanner(const PlannerAxis& axis, const PlannerOptions& options) noexcept
@@ -98,6 +109,7 @@ void AxisPlanner::flush(Nanos horizon) noexcept {
 void AxisPlanner::apply(const Command& c, Nanos now) noexcept {
   check_abort();
   now_ = std::max(now_, now);
+  resolve_cut(true);
   if (c.starts_motion()) {
     if (prepare_start(c, now)) launch(earliest_origin(now));
     return;
@@ -130,7 +142,10 @@ void AxisPlanner::check_abort() noexcept {
   const std::uint32_t a = control_->abort_epoch.load(std::memory_order_acquire);
   if (a == seen_abort_) return;
   seen_abort_ = a;
-  if (last_motion_epoch_ != 0 && last_motion_epoch_ <= a) abort_last_motion();
+  if (last_motion_epoch_ != 0 && last_motion_epoch_ <= a) {
+    resolve_cut(true);
+    abort_last_motion();
+  }
 }
 
 void AxisPlanner::abort_last_motion() noexcept {
@@ -157,6 +172,7 @@ void AxisPlanner::abort_last_motion() noexcept {
 bool AxisPlanner::prepare_start(const Command& c, Nanos now) noexcept {
   check_abort();
   now_ = std::max(now_, now);
+  resolve_cut(true);
   if (control_ != nullptr && c.epoch <= control_->abort_epoch.load(std::memory_order_acquire)) {
     return false;  // aborted before it started
   }
@@ -312,20 +328,103 @@ void AxisPlanner::stop(std::uint32_t epoch, const StopSpec& c) noexcept {
     f_.finishing = true;
     return;
   }
+  if (c.trigger_t != kNoTrigger && request_cut(c)) return;
+  stop_at_frontier(c.ramp);
+}
+
+void AxisPlanner::stop_at_frontier(const Ramp& ramp) noexcept {
+  if (!m_.active) return;
   const double v = phases_.velocity_at(m_.tk);
-  if (m_.constant_speed || v <= m_.vs * (1.0 + 1e-9) || c.ramp.rate <= 0.0) {
+  if (m_.constant_speed || v <= m_.vs * (1.0 + 1e-9) || ramp.rate <= 0.0) {
     // Nothing to ramp down: the step already planned is the last one (one step if none yet).
     if (m_.k == 0) {
-      if (m_.end > 1) replan_to_end(1, c.ramp, true);
+      if (m_.end > 1) replan_to_end(1, ramp, true);
     } else if (m_.end > m_.k) {
       finish_at_frontier();
     }
     return;
   }
-  const double d = ramp_distance(v, m_.vs, c.ramp);
+  const double d = ramp_distance(v, m_.vs, ramp);
   const std::int64_t end = m_.k + std::max<std::int64_t>(1, std::llround(d));
   if (end >= m_.end) return;  // the motion ends as soon anyway (e.g. already decelerating)
-  replan_to_end(end, c.ramp, true);
+  replan_to_end(end, ramp, true);
+}
+
+std::int64_t AxisPlanner::stop_end(std::int64_t k, double t, const Ramp& ramp) const noexcept {
+  // The same law as stop_at_frontier, from step k instead of the newest planned step.
+  const double v = phases_.velocity_at(t);
+  if (m_.constant_speed || v <= m_.vs * (1.0 + 1e-9) || ramp.rate <= 0.0) return k;
+  return k + std::max<std::int64_t>(1, std::llround(ramp_distance(v, m_.vs, ramp)));
+}
+
+bool AxisPlanner::request_cut(const StopSpec& c) noexcept {
+  if (control_ == nullptr || m_.held || cut_.open || cut_epoch_ == m_.epoch) return false;
+  const Nanos want = std::max(c.trigger_t, now_ + opt_.cut_margin_ns);
+  const std::int64_t k = planned_steps_at(want);
+  // Nothing planned after `want` (the frontier stop is as early), or no step before it yet.
+  if (k < 1 || k >= m_.k || m_.k - k >= static_cast<std::int64_t>(kHistory) - 1) return false;
+  const Nanos t_c = history_[static_cast<std::size_t>(k) & (kHistory - 1)];
+  // A GPO edge queued after t_c would hold the replacement edges behind it in the ring.
+  if (t_c < nonmotion_t_) return false;
+  const double t = static_cast<double>(t_c - m_.origin) * 1e-9;
+  // Replanned after step k (a speed change): the profile at k is gone.
+  if (t < phases_.start_time()) return false;
+  if (stop_end(k, t, c.ramp) >= m_.end) return false;  // it ends as soon anyway
+  if (!control_->cut.request(m_.epoch, t_c)) return false;
+  cut_ = PendingCut{true, c.ramp, k, t_c};
+  return true;
+}
+
+bool AxisPlanner::resolve_cut(bool now_or_never) noexcept {
+  if (!cut_.open) return true;
+  switch (control_->cut.poll()) {
+    case rt::EdgeCut::Outcome::kAccepted:
+      cut_.open = false;
+      apply_cut();
+      return true;
+    case rt::EdgeCut::Outcome::kPending:
+      if (!now_or_never) return false;
+      if (!control_->cut.withdraw()) return resolve_cut(true);  // decided meanwhile
+      break;
+    case rt::EdgeCut::Outcome::kRefused:  // an edge after the cut had already run
+    case rt::EdgeCut::Outcome::kNone:
+      break;
+  }
+  cut_.open = false;
+  stop_at_frontier(cut_.ramp);
+  return true;
+}
+
+void AxisPlanner::apply_cut() noexcept {
+  if (!m_.active) return;
+  cut_epoch_ = m_.epoch;
+  // The motion's edges after the cut that were still staged never reach the ring; the pulse
+  // thread drops the ones that did.
+  std::size_t kept = 0;
+  Nanos newest = std::max(cut_.t, nonmotion_t_);
+  for (std::size_t i = 0; i < staged_count_; ++i) {
+    const rt::Edge e = staged_[(staged_head_ + i) & (kStaged - 1)];
+    if ((e.flags & rt::edge_flag::kMotion) != 0 && e.epoch == m_.epoch && e.t > cut_.t) continue;
+    staged_[(staged_head_ + kept++) & (kStaged - 1)] = e;
+    newest = std::max(newest, e.t);
+  }
+  staged_count_ = kept;
+  last_t_ = newest;
+  last_pushed_t_ = std::min(last_pushed_t_, newest);
+  // Back to step k; its trailing edge is planned again with the next step.
+  const double t = static_cast<double>(cut_.t - m_.origin) * 1e-9;
+  m_.base_flags |= rt::edge_flag::kReplacement;
+  m_.k = cut_.k;
+  m_.tk = t;
+  m_.tk_ns = cut_.t;
+  m_.k_flags =
+      static_cast<std::uint8_t>(m_.base_flags | static_cast<std::uint8_t>(phase_at(phases_, t)));
+  const std::int64_t end = stop_end(cut_.k, t, cut_.ramp);
+  if (end <= m_.k) {
+    finish_at_frontier();
+    return;
+  }
+  replan_to_end(end, cut_.ramp, true);
 }
 
 void AxisPlanner::stop_after(std::uint32_t epoch, const StopAfterSpec& c) noexcept {
@@ -404,6 +503,7 @@ void AxisPlanner::step_once() noexcept {
 Nanos AxisPlanner::fill(Nanos now) noexcept {
   check_abort();
   now_ = std::max(now_, now);
+  if (!resolve_cut(false)) return now + kCutPollNs;  // which edges to push is not known yet
   const Nanos horizon = now + opt_.lookahead_ns;
   flush(horizon);
   while (m_.active && !m_.held && staged_count_ == 0) {

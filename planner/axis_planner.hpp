@@ -89,6 +89,17 @@ class AxisPlanner {
 
   void change_speed(std::uint32_t epoch, const SpeedChange& s) noexcept;
   void stop(std::uint32_t epoch, const StopSpec& s) noexcept;
+  void stop_at_frontier(const Ramp& ramp) noexcept;
+  // Stop at the trigger (StopSpec::trigger_t): asks the pulse thread for a cut at the step
+  // planned at max(trigger, now + margin); false if none is possible (then stop_at_frontier).
+  bool request_cut(const StopSpec& s) noexcept;
+  // Where a stop ramp from step k (at time t, s from time 0) ends.
+  std::int64_t stop_end(std::int64_t k, double t, const Ramp& ramp) const noexcept;
+  // The pulse thread's answer to a cut request; with `now_or_never` an undecided request is
+  // withdrawn (another command for this axis must not wait). True when no request is open.
+  bool resolve_cut(bool now_or_never) noexcept;
+  // Accepted: replans from the cut's step; the new edges carry edge_flag::kReplacement.
+  void apply_cut() noexcept;
   void stop_after(std::uint32_t epoch, const StopAfterSpec& s) noexcept;
   void abort_last_motion() noexcept;
   void check_abort() noexcept;
@@ -114,7 +125,7 @@ class AxisPlanner {
                      std::uint8_t flags) const noexcept;
 
   SpscRing<rt::Edge>* ring_;
-  const rt::AxisControl* control_;
+  rt::AxisControl* control_;
   AxisTiming timing_;
   PlannerOptions opt_;
 
@@ -128,6 +139,17 @@ class AxisPlanner {
   std::uint32_t last_motion_epoch_ = 0;
   bool last_motion_aborted_ = false;
   std::uint32_t seen_abort_ = 0;
+
+  // A cut requested from the pulse thread (request_cut) and not answered yet: this axis pushes
+  // nothing meanwhile.
+  struct PendingCut {
+    bool open = false;
+    Ramp ramp;
+    std::int64_t k = 0;  // the last step kept
+    Nanos t = 0;         // its leading edge: edges of the motion after it are replaced
+  };
+  PendingCut cut_;
+  std::uint32_t cut_epoch_ = 0;  // the newest motion that was cut (one cut per motion)
 
   Motion m_;
   FollowState f_;

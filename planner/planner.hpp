@@ -21,8 +21,8 @@ struct AxisTiming {
 };
 
 struct PlannerAxis {
-  SpscRing<rt::Edge>* edges = nullptr;       // producer side
-  const rt::AxisControl* control = nullptr;  // abort_epoch: skip aborted motions
+  SpscRing<rt::Edge>* edges = nullptr;  // producer side
+  rt::AxisControl* control = nullptr;   // abort_epoch: skip aborted motions; cut (stops)
   AxisTiming timing;
 };
 
@@ -30,6 +30,9 @@ struct PlannerOptions {
   Nanos lookahead_ns = 4 * kNsPerMs;      // keep each ring filled this far ahead of `now`
   Nanos start_delay_ns = 150 * kNsPerUs;  // a new motion's time 0 is at least this after `now`
   std::size_t command_queue = 64;
+  // A stop with a trigger time replaces queued edges from max(trigger, now + this) on: time for
+  // the pulse thread to see the cut before it runs the first edge it drops (rt/edge_cut.hpp).
+  Nanos cut_margin_ns = 100 * kNsPerUs;
 };
 
 class AxisPlanner;  // planner/axis_planner.hpp
