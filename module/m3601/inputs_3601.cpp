@@ -63,7 +63,7 @@ void Personality3601::on_input(const gpio::InputEvent& e) {
     // 3601-HLD-02: a controlled stop to the Hold state for absolute/relative moves; a
     // controlled stop (Stopped) for manual moves (digest 7.6).
     stop_cause_ = StopCause::kExternal;
-    motion_.stop(move_decel_);
+    motion_.stop(move_decel_, e.t);  // the ramp starts at the edge (issue 12 item 9)
   }
 }
 
