@@ -27,7 +27,7 @@ rt::Phase phase_at(const PhaseList& l, double t) noexcept {
 }  // namespace
 
 AxisPlanner::AxisPlanner(const PlannerAxis& axis, const PlannerOptions& options) noexcept
-    : ring_(axis.edges), control_(axis.control), timing_(axis.timing), opt_(options) {}
+    : control_(axis.control), timing_(axis.timing), opt_(options), out_(axis.edges, axis.timing) {}
 
 double AxisPlanner::frontier_speed() const noexcept {
   if (!m_.active) return 0.0;
@@ -36,74 +36,7 @@ double AxisPlanner::frontier_speed() const noexcept {
 }
 
 std::int64_t AxisPlanner::planned_steps_at(Nanos t) const noexcept {
-  std::int64_t hi = m_.k;
-  if (hi == 0) return 0;
-  constexpr std::size_t mask = kHistory - 1;
-  if (history_[static_cast<std::size_t>(hi) & mask] <= t) return hi;
-  std::int64_t lo = std::max<std::int64_t>(1, hi - static_cast<std::int64_t>(kHistory) + 1);
-  // Older than the history: the best we know is that it was before step lo.
-  if (history_[static_cast<std::size_t>(lo) & mask] > t) return lo - 1;
-  // Invariant: time(lo) <= t < time(hi).
-  while (hi - lo > 1) {
-    const std::int64_t mid = lo + (hi - lo) / 2;
-    if (history_[static_cast<std::size_t>(mid) & mask] <= t) {
-      lo = mid;
-    } else {
-      hi = mid;
-    }
-  }
-  return lo;
-}
-
-rt::Edge AxisPlanner::make_edge(Nanos t, OutputLine line, std::uint8_t level, std::int8_t dpos,
-                                std::uint8_t flags) const noexcept {
-  rt::Edge e;
-  e.t = t;
-  e.epoch = (flags & rt::edge_flag::kMotion) != 0 ? m_.epoch : 0;
-  e.line = line;
-  e.level = level;
-  e.dpos = dpos;
-  e.flags = flags;
-  return e;
-}
-
-void AxisPlanner::stage(const rt::Edge& e) noexcept {
-  if (staged_count_ == kStaged) {
-    // Only reachable with a ring far too small for the step rate: make room by pushing the
-    // oldest edge early rather than losing an edge of the motion.
-    if (!ring_->try_push(staged_[staged_head_])) return;
-    last_pushed_t_ = staged_[staged_head_].t;
-    staged_head_ = (staged_head_ + 1) & (kStaged - 1);
-    --staged_count_;
-  }
-  staged_[(staged_head_ + staged_count_) & (kStaged - 1)] = e;
-  ++staged_count_;
-  if (e.t > last_t_) last_t_ = e.t;
-}
-
-void AxisPlanner::stage_sorted(const rt::Edge& e) noexcept {
-  // Behind every staged edge at or before e.t, ahead of later ones (a GPO change must not wait
-  // for a step planned a second ahead).
-  stage(e);
-  std::size_t i = staged_count_ - 1;
-  while (i > 0) {
-    rt::Edge& prev = staged_[(staged_head_ + i - 1) & (kStaged - 1)];
-    rt::Edge& cur = staged_[(staged_head_ + i) & (kStaged - 1)];
-    if (prev.t <= cur.t) break;
-    std::swap(prev, cur);
-    --i;
-  }
-}
-
-void AxisPlanner::flush(Nanos horizon) noexcept {
-  while (staged_count_ != 0) {
-    const rt::Edge& e = staged_[staged_head_];
-    if (e.t > horizon) break;
-    if (!ring_->try_push(e)) break;
-    last_pushed_t_ = e.t;
-    staged_head_ = (staged_head_ + 1) & (kStaged - 1);
-    --staged_count_;
-  }
+  return out_.steps_at(t, m_.k);
 }
 
 void AxisPlanner::apply(const Command& c, Nanos now) noexcept {
@@ -129,9 +62,9 @@ void AxisPlanner::apply(const Command& c, Nanos now) noexcept {
         } else if constexpr (std::is_same_v<P, AbortSpec>) {
           if (epoch == last_motion_epoch_) abort_last_motion();
         } else if constexpr (std::is_same_v<P, GpoSpec>) {
-          set_gpo(p.level, now);
+          out_.gpo(p.level, now);
         } else if constexpr (std::is_same_v<P, PulseFormatSpec>) {
-          set_pulse_format(p.step_dir, now);
+          out_.pulse_format(p.step_dir, now, m_.active);
         }
       },
       c.what);
@@ -151,22 +84,8 @@ void AxisPlanner::check_abort() noexcept {
 void AxisPlanner::abort_last_motion() noexcept {
   if (last_motion_aborted_ || last_motion_epoch_ == 0) return;
   last_motion_aborted_ = true;
-  // The pulse thread drops this motion's edges; drop the ones it would never see as well.
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < staged_count_; ++i) {
-    const rt::Edge e = staged_[(staged_head_ + i) & (kStaged - 1)];
-    if ((e.flags & rt::edge_flag::kMotion) != 0 && e.epoch <= last_motion_epoch_) continue;
-    staged_[(staged_head_ + kept++) & (kStaged - 1)] = e;
-  }
-  staged_count_ = kept;
   m_.active = false;
-  // Its direction edge may have been dropped unexecuted: write the direction again next time.
-  dir_level_ = -1;
-  // The next motion (and a GPO change) may go right away: only edges that will really run bound
-  // them. Ring order matters only among those: the pulse thread drops the aborted edges ahead of
-  // them as soon as they reach the head (abort_epoch is set before the abort is submitted).
-  last_t_ = std::max(motion_floor_t_, nonmotion_t_);
-  last_pushed_t_ = std::min(last_pushed_t_, last_t_);
+  out_.abort(last_motion_epoch_);
 }
 
 bool AxisPlanner::prepare_start(const Command& c, Nanos now) noexcept {
@@ -179,7 +98,6 @@ bool AxisPlanner::prepare_start(const Command& c, Nanos now) noexcept {
   if (c.epoch <= last_motion_epoch_) return false;  // stale or repeated
   // A new motion replaces one that is still being planned: that one ends on its newest step.
   if (m_.active) finish_at_frontier();
-  if (want_step_dir_ != step_dir_) step_dir_ = want_step_dir_;
 
   Motion m;
   m.active = true;
@@ -215,15 +133,11 @@ bool AxisPlanner::prepare_start(const Command& c, Nanos now) noexcept {
     m.vs = blend_.vs;
     m.decel = blend_.final_decel;
   }
-  const bool ccw = m.dir == Direction::kCcw;
-  m.line = (step_dir_ || !ccw) ? OutputLine::kStep : OutputLine::kDir;
-  m.base_flags = rt::edge_flag::kMotion | (ccw ? rt::edge_flag::kCcw : 0);
-
+  out_.begin(c.epoch, m.dir);
   // Step/direction: the direction line must settle dir_setup_ns before the first step. CW/CCW:
   // the CCW pulse line rests low. Only a change (or an unknown level) costs an edge. (A follow
   // motion writes it with its first step: follow_step.)
-  const int target = step_dir_ ? (ccw ? kDirLevelCcw : kDirLevelCw) : 0;
-  if (!m.follow && m.end > 0 && dir_level_ != target) {
+  if (!m.follow && m.end > 0 && out_.direction_pending()) {
     StepSolver probe;
     probe.reset(&phases_);
     const double t1 = m.end == 1 ? phases_.end_time() : probe.time_of(1.0);
@@ -234,14 +148,13 @@ bool AxisPlanner::prepare_start(const Command& c, Nanos now) noexcept {
 
   last_motion_epoch_ = c.epoch;
   last_motion_aborted_ = false;
-  motion_floor_t_ = last_t_;
   m_ = m;
   solver_.reset(&phases_);
   return true;
 }
 
 Nanos AxisPlanner::earliest_origin(Nanos now) const noexcept {
-  return std::max(now + opt_.start_delay_ns, last_t_) + m_.dir_shift;
+  return std::max(now + opt_.start_delay_ns, out_.last_t()) + m_.dir_shift;
 }
 
 void AxisPlanner::launch(Nanos origin) noexcept {
@@ -254,13 +167,7 @@ void AxisPlanner::launch(Nanos origin) noexcept {
     return;
   }
   if (!m_.dir_edge) return;
-  const bool ccw = m_.dir == Direction::kCcw;
-  const int target = step_dir_ ? (ccw ? kDirLevelCcw : kDirLevelCw) : 0;
-  const rt::Phase ph = phases_.empty() ? rt::Phase::kCruise : phases_[0].phase;
-  stage(make_edge(origin - m_.dir_shift, OutputLine::kDir, static_cast<std::uint8_t>(target), 0,
-                  m_.base_flags | static_cast<std::uint8_t>(ph) | rt::edge_flag::kFirst));
-  m_.first_pending = false;
-  dir_level_ = target;
+  out_.direction(origin - m_.dir_shift, phases_.empty() ? rt::Phase::kCruise : phases_[0].phase);
 }
 
 void AxisPlanner::finish_at_frontier() noexcept {
@@ -270,19 +177,7 @@ void AxisPlanner::finish_at_frontier() noexcept {
     return;
   }
   m_.active = false;
-  if (m_.k > 0) {
-    stage(make_edge(m_.tk_ns + timing_.step_pulse_ns, m_.line, 0, 0,
-                    m_.k_flags | rt::edge_flag::kLast));
-    return;
-  }
-  // No step at all: rewrite the direction line at its present level, carrying kFirst/kLast so the
-  // pulse thread still reports the motion finished.
-  const int level = dir_level_ >= 0 ? dir_level_ : 0;
-  dir_level_ = level;
-  std::uint8_t flags = m_.base_flags | rt::edge_flag::kLast;
-  if (m_.first_pending) flags |= rt::edge_flag::kFirst;
-  stage(make_edge(std::max(m_.tk_ns, last_t_), OutputLine::kDir, static_cast<std::uint8_t>(level),
-                  0, flags));
+  out_.end(m_.tk_ns);
 }
 
 void AxisPlanner::replan_to_end(std::int64_t end, const Ramp& ramp, bool exact_ramp) noexcept {
@@ -362,10 +257,12 @@ bool AxisPlanner::request_cut(const StopSpec& c) noexcept {
   const Nanos want = std::max(c.trigger_t, now_ + opt_.cut_margin_ns);
   const std::int64_t k = planned_steps_at(want);
   // Nothing planned after `want` (the frontier stop is as early), or no step before it yet.
-  if (k < 1 || k >= m_.k || m_.k - k >= static_cast<std::int64_t>(kHistory) - 1) return false;
-  const Nanos t_c = history_[static_cast<std::size_t>(k) & (kHistory - 1)];
+  if (k < 1 || k >= m_.k || m_.k - k >= static_cast<std::int64_t>(EdgeEmitter::kHistory) - 1) {
+    return false;
+  }
+  const Nanos t_c = out_.step_time(k);
   // A GPO edge queued after t_c would hold the replacement edges behind it in the ring.
-  if (t_c < nonmotion_t_) return false;
+  if (t_c < out_.nonmotion_t()) return false;
   const double t = static_cast<double>(t_c - m_.origin) * 1e-9;
   // Replanned after step k (a speed change): the profile at k is gone.
   if (t < phases_.start_time()) return false;
@@ -398,27 +295,12 @@ bool AxisPlanner::resolve_cut(bool now_or_never) noexcept {
 void AxisPlanner::apply_cut() noexcept {
   if (!m_.active) return;
   cut_epoch_ = m_.epoch;
-  // The motion's edges after the cut that were still staged never reach the ring; the pulse
-  // thread drops the ones that did.
-  std::size_t kept = 0;
-  Nanos newest = std::max(cut_.t, nonmotion_t_);
-  for (std::size_t i = 0; i < staged_count_; ++i) {
-    const rt::Edge e = staged_[(staged_head_ + i) & (kStaged - 1)];
-    if ((e.flags & rt::edge_flag::kMotion) != 0 && e.epoch == m_.epoch && e.t > cut_.t) continue;
-    staged_[(staged_head_ + kept++) & (kStaged - 1)] = e;
-    newest = std::max(newest, e.t);
-  }
-  staged_count_ = kept;
-  last_t_ = newest;
-  last_pushed_t_ = std::min(last_pushed_t_, newest);
-  // Back to step k; its trailing edge is planned again with the next step.
+  // Back to step k: the edges after it are replaced.
   const double t = static_cast<double>(cut_.t - m_.origin) * 1e-9;
-  m_.base_flags |= rt::edge_flag::kReplacement;
+  out_.cut(cut_.t, phase_at(phases_, t));
   m_.k = cut_.k;
   m_.tk = t;
   m_.tk_ns = cut_.t;
-  m_.k_flags =
-      static_cast<std::uint8_t>(m_.base_flags | static_cast<std::uint8_t>(phase_at(phases_, t)));
   const std::int64_t end = stop_end(cut_.k, t, cut_.ramp);
   if (end <= m_.k) {
     finish_at_frontier();
@@ -440,27 +322,6 @@ void AxisPlanner::stop_after(std::uint32_t epoch, const StopAfterSpec& c) noexce
   replan_to_end(end, m_.decel, false);
 }
 
-void AxisPlanner::set_gpo(bool level, Nanos now) noexcept {
-  // Not part of any motion: as soon as the ring's order allows (behind edges already pushed).
-  const Nanos t = std::max(now, last_pushed_t_);
-  stage_sorted(make_edge(t, OutputLine::kGpo, level ? 1 : 0, 0, 0));
-  nonmotion_t_ = std::max(nonmotion_t_, t);
-}
-
-void AxisPlanner::set_pulse_format(bool step_dir, Nanos now) noexcept {
-  want_step_dir_ = step_dir;
-  // A motion in progress keeps its format; the next one starts with the new one.
-  if (m_.active || step_dir == step_dir_) return;
-  step_dir_ = step_dir;
-  if (dir_level_ != 0) {
-    // The direction line becomes the CCW pulse line (or back): leave it at its idle level.
-    const Nanos t = std::max(now, last_pushed_t_);
-    stage_sorted(make_edge(t, OutputLine::kDir, 0, 0, 0));
-    nonmotion_t_ = std::max(nonmotion_t_, t);
-    dir_level_ = 0;
-  }
-}
-
 void AxisPlanner::step_once() noexcept {
   Motion& m = m_;
   const std::int64_t k = m.k + 1;
@@ -477,25 +338,12 @@ void AxisPlanner::step_once() noexcept {
   if (t < m.tk) t = m.tk;
   Nanos ns = m.origin + to_ns(t);
   if (ns < m.tk_ns) ns = m.tk_ns;
-  const auto flags = static_cast<std::uint8_t>(m.base_flags | static_cast<std::uint8_t>(ph));
-  if (m.k > 0) {
-    // Trailing edge of the previous step: the configured width, or half the period if shorter.
-    const Nanos w = std::min(timing_.step_pulse_ns, (ns - m.tk_ns) / 2);
-    stage(make_edge(m.tk_ns + w, m.line, 0, 0, m.k_flags));
-  }
-  std::uint8_t lead = flags;
-  if (m.first_pending) {
-    lead |= rt::edge_flag::kFirst;
-    m.first_pending = false;
-  }
-  stage(make_edge(ns, m.line, 1, static_cast<std::int8_t>(sign(m.dir)), lead));
-  history_[static_cast<std::size_t>(k) & (kHistory - 1)] = ns;
+  out_.step(ns, ph, k);
   m.k = k;
   m.tk = t;
   m.tk_ns = ns;
-  m.k_flags = flags;
   if (k >= m.end) {
-    stage(make_edge(ns + timing_.step_pulse_ns, m.line, 0, 0, flags | rt::edge_flag::kLast));
+    out_.end(ns);
     m.active = false;
   }
 }
@@ -505,23 +353,23 @@ Nanos AxisPlanner::fill(Nanos now) noexcept {
   now_ = std::max(now_, now);
   if (!resolve_cut(false)) return now + kCutPollNs;  // which edges to push is not known yet
   const Nanos horizon = now + opt_.lookahead_ns;
-  flush(horizon);
-  while (m_.active && !m_.held && staged_count_ == 0) {
+  out_.flush(horizon);
+  while (m_.active && !m_.held && out_.staged_empty()) {
     if (m_.follow) {
       if (!follow_step()) break;  // at rest on the target: the next target wakes us
     } else {
       step_once();
     }
-    flush(horizon);
+    out_.flush(horizon);
   }
-  if (staged_count_ == 0) return now + kIdleServiceInterval;
-  const Nanos head = staged_[staged_head_].t;
+  if (out_.staged_empty()) return now + kIdleServiceInterval;
+  const Nanos head = out_.head_t();
   if (head > horizon) {
     // Come back when half the lookahead is left before it: refills happen in batches.
     return head - opt_.lookahead_ns / 2;
   }
   // Ring full: about half of what it holds has run by the midpoint to its newest edge.
-  return now + std::max<Nanos>(10 * kNsPerUs, (last_pushed_t_ - now) / 2);
+  return now + std::max<Nanos>(10 * kNsPerUs, (out_.last_pushed_t() - now) / 2);
 }
 
 void AxisPlanner::follow_update(std::uint32_t epoch, const FollowSpec& f) noexcept {
@@ -533,13 +381,7 @@ void AxisPlanner::follow_finish() noexcept {
   m_.active = false;
   // Every step's trailing edge is already staged: a marker edge (the direction line rewritten at
   // its present level) carries kLast so that the pulse thread reports the motion finished.
-  const int level = dir_level_ >= 0 ? dir_level_ : 0;
-  dir_level_ = level;
-  std::uint8_t flags = m_.base_flags | rt::edge_flag::kLast;
-  if (m_.first_pending) flags |= rt::edge_flag::kFirst;
-  m_.first_pending = false;
-  stage(make_edge(std::max(now_, last_t_), OutputLine::kDir, static_cast<std::uint8_t>(level), 0,
-                  flags));
+  out_.end(now_);
 }
 
 // The follow law (FollowSpec): the speed of the next step is the highest that
@@ -604,21 +446,14 @@ bool AxisPlanner::follow_step() noexcept {
     t = floor_t;
     if (m_.k > 0) t = std::max(t, m_.tk_ns + to_ns(1.0 / v));
   }
-  t = std::max(t, last_t_ + 1);
+  t = std::max(t, out_.last_t() + 1);
   if (from_rest || dir != sign(m_.dir) || m_.k == 0) {
-    const bool ccw = dir < 0;
-    m_.dir = ccw ? Direction::kCcw : Direction::kCw;
-    m_.line = (step_dir_ || !ccw) ? OutputLine::kStep : OutputLine::kDir;
-    m_.base_flags = rt::edge_flag::kMotion | (ccw ? rt::edge_flag::kCcw : 0);
-    const int level = step_dir_ ? (ccw ? kDirLevelCcw : kDirLevelCw) : 0;
-    if (dir_level_ != level) {
+    m_.dir = dir < 0 ? Direction::kCcw : Direction::kCw;
+    out_.turn(m_.dir);
+    if (out_.direction_pending()) {
       // Step/direction: the direction line settles dir_setup_ns before the step.
-      const Nanos td = std::max(last_t_, std::max(now_, t - timing_.dir_setup_ns));
-      std::uint8_t flags = m_.base_flags;
-      if (m_.first_pending) flags |= rt::edge_flag::kFirst;
-      m_.first_pending = false;
-      stage(make_edge(td, OutputLine::kDir, static_cast<std::uint8_t>(level), 0, flags));
-      dir_level_ = level;
+      const Nanos td = std::max(out_.last_t(), std::max(now_, t - timing_.dir_setup_ns));
+      out_.direction(td, rt::Phase::kCruise);
       t = std::max(t, td + timing_.dir_setup_ns);
     }
   }
@@ -627,23 +462,14 @@ bool AxisPlanner::follow_step() noexcept {
     if (v > f.v * (1.0 + 1e-9)) ph = rt::Phase::kAccel;
     if (v < f.v * (1.0 - 1e-9)) ph = rt::Phase::kDecel;
   }
-  const auto flags = static_cast<std::uint8_t>(m_.base_flags | static_cast<std::uint8_t>(ph));
-  std::uint8_t lead = flags;
-  if (m_.first_pending) {
-    lead |= rt::edge_flag::kFirst;
-    m_.first_pending = false;
-  }
-  stage(make_edge(t, m_.line, 1, static_cast<std::int8_t>(dir), lead));
   // The trailing edge goes with it (the next step is not known yet): the configured width, or
   // half the shortest period the next step can come at.
   const double v_up = s.accel > 0.0 ? std::sqrt(v * v + 2.0 * s.accel) : std::max(v, cap);
   const Nanos w = std::max<Nanos>(1, std::min(timing_.step_pulse_ns, to_ns(0.5 / v_up)));
-  stage(make_edge(t + w, m_.line, 0, 0, flags));
   const std::int64_t k = m_.k + 1;
-  history_[static_cast<std::size_t>(k) & (kHistory - 1)] = t;
+  out_.pulse(t, ph, dir, w, k);
   m_.k = k;
   m_.tk_ns = t;
-  m_.k_flags = flags;
   f.pos += dir;
   f.dir = dir;
   f.v = v;

@@ -5,17 +5,13 @@
 #include <cstdint>
 #include <limits>
 
+#include "planner/edge_emitter.hpp"
 #include "planner/motion_request.hpp"
 #include "planner/planner.hpp"
 #include "planner/profile.hpp"
 #include "rt/edge.hpp"
 
 namespace stepmod::planner {
-
-// Step/direction format: the direction line is high while the axis runs CW (position increasing)
-// and low for CCW, as the simulated drive reads it (gpio/sim_machine.cpp). Lines idle low.
-inline constexpr std::uint8_t kDirLevelCcw = 0;
-inline constexpr std::uint8_t kDirLevelCw = 1;
 
 // An axis with nothing to do asks to be serviced again this far ahead; a submit wakes it anyway.
 inline constexpr Nanos kIdleServiceInterval = 10 * kNsPerSec;
@@ -48,12 +44,10 @@ class AxisPlanner {
   double frontier_speed() const noexcept;
   // Steps of the newest motion planned at or before t (from the recent history).
   std::int64_t planned_steps_at(Nanos t) const noexcept;
-  bool step_dir_format() const noexcept { return step_dir_; }
+  bool step_dir_format() const noexcept { return out_.step_dir_format(); }
 
  private:
   static constexpr std::int64_t kEndless = std::numeric_limits<std::int64_t>::max();
-  static constexpr std::size_t kHistory = 1u << 14;  // step times kept for stop_after
-  static constexpr std::size_t kStaged = 64;
 
   struct Motion {
     bool active = false;
@@ -64,18 +58,14 @@ class AxisPlanner {
     std::int64_t end = kEndless;    // step count at which the motion ends
     double vs = 1.0;
     Ramp decel;
-    Nanos origin = 0;          // time 0 of the motion
-    std::int64_t k = 0;        // steps generated
-    double tk = 0.0;           // time of step k, s from origin
-    Nanos tk_ns = 0;           // the same, absolute
-    std::uint8_t k_flags = 0;  // flags of step k's edges (without kFirst)
-    OutputLine line = OutputLine::kStep;
-    std::uint8_t base_flags = 0;  // kMotion | kCcw
-    bool first_pending = true;    // kFirst not yet given to an edge
-    bool follow = false;          // a follow motion (FollowSpec): steps come from follow_step
-    bool held = false;            // prepared, waiting for launch() (group start)
-    Nanos dir_shift = 0;          // launch: time 0 this long after the direction edge
-    bool dir_edge = false;        // launch: write the direction line first
+    Nanos origin = 0;       // time 0 of the motion
+    std::int64_t k = 0;     // steps generated
+    double tk = 0.0;        // time of step k, s from origin
+    Nanos tk_ns = 0;        // the same, absolute
+    bool follow = false;    // a follow motion (FollowSpec): steps come from follow_step
+    bool held = false;      // prepared, waiting for launch() (group start)
+    Nanos dir_shift = 0;    // launch: time 0 this long after the direction edge
+    bool dir_edge = false;  // launch: write the direction line first
   };
 
   // The servo state of a follow motion (encoder follower).
@@ -103,8 +93,6 @@ class AxisPlanner {
   void stop_after(std::uint32_t epoch, const StopAfterSpec& s) noexcept;
   void abort_last_motion() noexcept;
   void check_abort() noexcept;
-  void set_gpo(bool level, Nanos now) noexcept;
-  void set_pulse_format(bool step_dir, Nanos now) noexcept;
   void follow_update(std::uint32_t epoch, const FollowSpec& f) noexcept;
   // Plans the next step of the follow motion (or ends it); false when there is nothing to do.
   bool follow_step() noexcept;
@@ -118,24 +106,12 @@ class AxisPlanner {
   // rate is always adjusted to cover the whole rest (no cruise).
   void replan_to_end(std::int64_t end, const Ramp& ramp, bool exact_ramp) noexcept;
   void step_once() noexcept;
-  void stage(const rt::Edge& e) noexcept;
-  void stage_sorted(const rt::Edge& e) noexcept;
-  void flush(Nanos horizon) noexcept;
-  rt::Edge make_edge(Nanos t, OutputLine line, std::uint8_t level, std::int8_t dpos,
-                     std::uint8_t flags) const noexcept;
 
-  SpscRing<rt::Edge>* ring_;
   rt::AxisControl* control_;
   AxisTiming timing_;
   PlannerOptions opt_;
+  EdgeEmitter out_;
 
-  bool step_dir_ = true;
-  bool want_step_dir_ = true;  // format asked for; applied when no motion is in progress
-  int dir_level_ = 0;  // -1: unknown (an aborted motion's direction edge may have been dropped)
-  Nanos last_t_ = std::numeric_limits<Nanos>::min();          // newest staged or pushed edge
-  Nanos last_pushed_t_ = std::numeric_limits<Nanos>::min();   // newest edge in the ring
-  Nanos motion_floor_t_ = std::numeric_limits<Nanos>::min();  // last_t_ before the newest motion
-  Nanos nonmotion_t_ = std::numeric_limits<Nanos>::min();     // newest GPO/format edge
   std::uint32_t last_motion_epoch_ = 0;
   bool last_motion_aborted_ = false;
   std::uint32_t seen_abort_ = 0;
@@ -157,12 +133,6 @@ class AxisPlanner {
   Nanos now_ = 0;    // time of the latest apply/fill (a follow step from rest starts after it)
   PhaseList phases_;
   StepSolver solver_;
-
-  std::array<rt::Edge, kStaged> staged_{};  // generated, not yet in the ring, in time order
-  std::size_t staged_head_ = 0;
-  std::size_t staged_count_ = 0;
-
-  std::array<Nanos, kHistory> history_{};  // history_[k % kHistory] = time of step k
 };
 
 }  // namespace stepmod::planner
