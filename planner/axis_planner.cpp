@@ -31,7 +31,7 @@ AxisPlanner::AxisPlanner(const PlannerAxis& axis, const PlannerOptions& options)
 
 double AxisPlanner::frontier_speed() const noexcept {
   if (!m_.active) return 0.0;
-  if (m_.follow) return f_.v;
+  if (m_.follow) return follow_.speed();
   return phases_.velocity_at(m_.tk);
 }
 
@@ -124,8 +124,7 @@ bool AxisPlanner::prepare_start(const Command& c, Nanos now) noexcept {
     m.end = kEndless;
     m.follow = true;
     m.vs = follow->spec.vs;
-    f_ = FollowState{};
-    f_.spec = follow->spec;
+    follow_.start(follow->spec);
   } else {
     m.dir = blend_.dir;
     build_blend(blend_, phases_);
@@ -220,7 +219,7 @@ void AxisPlanner::stop(std::uint32_t epoch, const StopSpec& c) noexcept {
   if (!m_.active || epoch != m_.epoch) return;
   if (m_.follow) {
     // A follow motion keeps its own (decel) law: it ends once at rest on its target.
-    f_.finishing = true;
+    follow_.finish();
     return;
   }
   if (c.trigger_t != kNoTrigger && request_cut(c)) return;
@@ -374,7 +373,7 @@ Nanos AxisPlanner::fill(Nanos now) noexcept {
 
 void AxisPlanner::follow_update(std::uint32_t epoch, const FollowSpec& f) noexcept {
   if (!m_.active || !m_.follow || epoch != m_.epoch) return;
-  f_.spec = f;
+  follow_.update(f);
 }
 
 void AxisPlanner::follow_finish() noexcept {
@@ -384,71 +383,21 @@ void AxisPlanner::follow_finish() noexcept {
   out_.end(now_);
 }
 
-// The follow law (FollowSpec): the speed of the next step is the highest that
-//   * the accel allows from the previous step's speed (v^2 + 2a per step; 0 = jump to `speed`),
-//   * still lets the axis stop on the target (vs^2 + 2d (n - 1) for n steps left; 0 = no limit),
-//   * stays within vmax (accel > 0) or the master's `speed` (accel = 0);
-// the step interval is 2 / (v_prev + v_next), exact for a constant rate. A target behind the axis
-// (it moved back) is handled by decelerating at d down to vs, stopping and reversing. Steps are
-// decided when planned, at most the lookahead ahead of their time, so they only ever use a known
-// target and the count stays exact.
+// A follow step: the servo decides it (planner/follow_servo.hpp), the emitter writes it.
 bool AxisPlanner::follow_step() noexcept {
-  FollowState& f = f_;
-  const FollowSpec& s = f.spec;
-  const double vs = std::max(s.vs, 1.0);
-  const double vmax = std::max(s.vmax, 1.0);
-  const double cap = s.accel > 0.0 ? vmax : std::clamp(s.speed, 1.0, vmax);
-  const Nanos floor_t = now_ + opt_.start_delay_ns;
-  // A step at the present speed would already be overdue: the axis has been waiting for its
-  // target, so it starts again from rest.
-  if (f.v > 0.0 && m_.tk_ns + to_ns(1.0 / f.v) < now_) f.v = 0.0;
-
-  const std::int64_t e = s.target - f.pos;
-  const int want = e > 0 ? 1 : (e < 0 ? -1 : 0);
-  int dir = want;
-  double v = 0.0;
-  if (f.v > 0.0 && want != f.dir) {
-    // On or past the target while moving: ramp down to vs at d, then stop.
-    const double v2 = f.v * f.v - 2.0 * s.decel;
-    if (s.decel > 0.0 && f.v > vs && v2 >= vs * vs) {
-      v = std::sqrt(v2);
-      dir = f.dir;
-    } else {
-      f.v = 0.0;
-    }
-  }
-  if (v == 0.0) {
-    if (want == 0) {
-      f.v = 0.0;
-      if (f.finishing) {
-        follow_finish();
-        return true;
-      }
+  FollowStep st;
+  switch (follow_.next(m_.tk_ns, m_.k == 0, now_, opt_.start_delay_ns, timing_.step_pulse_ns, st)) {
+    case FollowServo::Next::kWait:
       return false;
-    }
-    const double n = static_cast<double>(want > 0 ? e : -e);
-    v = cap;
-    if (s.accel > 0.0) v = std::min(v, f.v > 0.0 ? std::sqrt(f.v * f.v + 2.0 * s.accel) : vs);
-    if (s.decel > 0.0) {
-      v = std::min(v, std::sqrt(vs * vs + 2.0 * s.decel * (n - 1.0)));
-      // It cannot slow down faster than d either (the target came closer than planned for).
-      if (f.v > 0.0) v = std::max(v, std::sqrt(std::max(0.0, f.v * f.v - 2.0 * s.decel)));
-    }
-    v = std::max(v, 1.0);
+    case FollowServo::Next::kFinish:
+      follow_finish();
+      return true;
+    case FollowServo::Next::kStep:
+      break;
   }
-
-  // Time of the step.
-  const bool from_rest = f.v <= 0.0;
-  Nanos t;
-  if (!from_rest) {
-    t = m_.tk_ns + to_ns(2.0 / (f.v + v));
-  } else {
-    t = floor_t;
-    if (m_.k > 0) t = std::max(t, m_.tk_ns + to_ns(1.0 / v));
-  }
-  t = std::max(t, out_.last_t() + 1);
-  if (from_rest || dir != sign(m_.dir) || m_.k == 0) {
-    m_.dir = dir < 0 ? Direction::kCcw : Direction::kCw;
+  Nanos t = std::max(st.t, out_.last_t() + 1);
+  if (st.from_rest || st.dir != sign(m_.dir) || m_.k == 0) {
+    m_.dir = st.dir < 0 ? Direction::kCcw : Direction::kCw;
     out_.turn(m_.dir);
     if (out_.direction_pending()) {
       // Step/direction: the direction line settles dir_setup_ns before the step.
@@ -457,22 +406,11 @@ bool AxisPlanner::follow_step() noexcept {
       t = std::max(t, td + timing_.dir_setup_ns);
     }
   }
-  rt::Phase ph = rt::Phase::kCruise;
-  if (!from_rest && dir == f.dir) {
-    if (v > f.v * (1.0 + 1e-9)) ph = rt::Phase::kAccel;
-    if (v < f.v * (1.0 - 1e-9)) ph = rt::Phase::kDecel;
-  }
-  // The trailing edge goes with it (the next step is not known yet): the configured width, or
-  // half the shortest period the next step can come at.
-  const double v_up = s.accel > 0.0 ? std::sqrt(v * v + 2.0 * s.accel) : std::max(v, cap);
-  const Nanos w = std::max<Nanos>(1, std::min(timing_.step_pulse_ns, to_ns(0.5 / v_up)));
   const std::int64_t k = m_.k + 1;
-  out_.pulse(t, ph, dir, w, k);
+  out_.pulse(t, st.phase, st.dir, st.width, k);
   m_.k = k;
   m_.tk_ns = t;
-  f.pos += dir;
-  f.dir = dir;
-  f.v = v;
+  follow_.taken(st);
   return true;
 }
 

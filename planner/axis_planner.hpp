@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "planner/edge_emitter.hpp"
+#include "planner/follow_servo.hpp"
 #include "planner/motion_request.hpp"
 #include "planner/planner.hpp"
 #include "planner/profile.hpp"
@@ -68,15 +69,6 @@ class AxisPlanner {
     bool dir_edge = false;  // launch: write the direction line first
   };
 
-  // The servo state of a follow motion (encoder follower).
-  struct FollowState {
-    FollowSpec spec;         // latest target, speed and ramps
-    std::int64_t pos = 0;    // net steps planned (CW positive) since the motion's start
-    int dir = 0;             // sense of the newest step: +1 CW, -1 CCW, 0 before the first
-    double v = 0.0;          // speed of the newest step (steps/s); 0 = at rest
-    bool finishing = false;  // kStop seen: end as soon as the axis rests on its target
-  };
-
   void change_speed(std::uint32_t epoch, const SpeedChange& s) noexcept;
   void stop(std::uint32_t epoch, const StopSpec& s) noexcept;
   void stop_at_frontier(const Ramp& ramp) noexcept;
@@ -128,9 +120,9 @@ class AxisPlanner {
   std::uint32_t cut_epoch_ = 0;  // the newest motion that was cut (one cut per motion)
 
   Motion m_;
-  FollowState f_;
-  BlendSpec blend_;  // the newest blend start's table (take_blend)
-  Nanos now_ = 0;    // time of the latest apply/fill (a follow step from rest starts after it)
+  FollowServo follow_;  // the step source of a follow motion
+  BlendSpec blend_;     // the newest blend start's table (take_blend)
+  Nanos now_ = 0;       // time of the latest apply/fill (a follow step from rest starts after it)
   PhaseList phases_;
   StepSolver solver_;
 };
