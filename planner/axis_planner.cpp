@@ -8,7 +8,6 @@
 namespace stepmod::planner {
 
 namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 Nanos to_ns(double seconds) noexcept {
   return std::llround(seconds * 1e9);
@@ -17,13 +16,6 @@ Nanos to_ns(double seconds) noexcept {
 // While a cut request is open, the planner looks for the pulse thread's answer this often.
 constexpr Nanos kCutPollNs = 20 * kNsPerUs;
 
-// The phase of a motion at time t (s from its time 0): the status bits of a step planned there.
-rt::Phase phase_at(const PhaseList& l, double t) noexcept {
-  for (std::size_t i = 0; i < l.size(); ++i) {
-    if (t <= l[i].t0 + l[i].dur) return l[i].phase;
-  }
-  return l.empty() ? rt::Phase::kCruise : l[l.size() - 1].phase;
-}
 }  // namespace
 
 AxisPlanner::AxisPlanner(const PlannerAxis& axis, const PlannerOptions& options) noexcept
@@ -32,7 +24,7 @@ AxisPlanner::AxisPlanner(const PlannerAxis& axis, const PlannerOptions& options)
 double AxisPlanner::frontier_speed() const noexcept {
   if (!m_.active) return 0.0;
   if (m_.follow) return follow_.speed();
-  return phases_.velocity_at(m_.tk);
+  return profile_.velocity_at(m_.tk);
 }
 
 std::int64_t AxisPlanner::planned_steps_at(Nanos t) const noexcept {
@@ -103,44 +95,30 @@ bool AxisPlanner::prepare_start(const Command& c, Nanos now) noexcept {
   m.active = true;
   m.held = true;
   m.epoch = c.epoch;
-  if (const auto* move = std::get_if<MoveSpec>(&c.what)) {
-    m.dir = move->dir;
-    build_move(*move, phases_);
-    m.end = move->steps;
-    m.constant_speed = move->vp <= move->vs;
-    m.vs = move->vs;
-    m.decel = move->decel;
-  } else if (const auto* run = std::get_if<RunSpec>(&c.what)) {
-    m.dir = run->dir;
-    build_run(*run, phases_);
-    m.end = kEndless;
-    m.constant_speed = run->vp <= run->vs;
-    m.can_change_speed = true;
-    m.vs = run->vs;
-    m.decel = run->decel;
-  } else if (const auto* follow = std::get_if<FollowStart>(&c.what)) {
+  if (const auto* follow = std::get_if<FollowStart>(&c.what)) {
     // Steps and their direction come from follow_step as the target moves.
     m.dir = follow->spec.target < 0 ? Direction::kCcw : Direction::kCw;
     m.end = kEndless;
     m.follow = true;
-    m.vs = follow->spec.vs;
     follow_.start(follow->spec);
   } else {
-    m.dir = blend_.dir;
-    build_blend(blend_, phases_);
-    m.end = blend_length(blend_);
-    m.vs = blend_.vs;
-    m.decel = blend_.final_decel;
+    ProfileSource::Start st;
+    if (const auto* move = std::get_if<MoveSpec>(&c.what)) {
+      st = profile_.start(*move);
+    } else if (const auto* run = std::get_if<RunSpec>(&c.what)) {
+      st = profile_.start(*run);
+    } else {
+      st = profile_.start(blend_);
+    }
+    m.dir = st.dir;
+    m.end = st.end;
   }
   out_.begin(c.epoch, m.dir);
   // Step/direction: the direction line must settle dir_setup_ns before the first step. CW/CCW:
   // the CCW pulse line rests low. Only a change (or an unknown level) costs an edge. (A follow
   // motion writes it with its first step: follow_step.)
   if (!m.follow && m.end > 0 && out_.direction_pending()) {
-    StepSolver probe;
-    probe.reset(&phases_);
-    const double t1 = m.end == 1 ? phases_.end_time() : probe.time_of(1.0);
-    const Nanos first = to_ns(t1);
+    const Nanos first = to_ns(profile_.first_step_time(m.end));
     m.dir_edge = true;
     m.dir_shift = std::max<Nanos>(0, timing_.dir_setup_ns - first);
   }
@@ -148,7 +126,6 @@ bool AxisPlanner::prepare_start(const Command& c, Nanos now) noexcept {
   last_motion_epoch_ = c.epoch;
   last_motion_aborted_ = false;
   m_ = m;
-  solver_.reset(&phases_);
   return true;
 }
 
@@ -166,7 +143,7 @@ void AxisPlanner::launch(Nanos origin) noexcept {
     return;
   }
   if (!m_.dir_edge) return;
-  out_.direction(origin - m_.dir_shift, phases_.empty() ? rt::Phase::kCruise : phases_[0].phase);
+  out_.direction(origin - m_.dir_shift, profile_.first_phase());
 }
 
 void AxisPlanner::finish_at_frontier() noexcept {
@@ -180,39 +157,14 @@ void AxisPlanner::finish_at_frontier() noexcept {
 }
 
 void AxisPlanner::replan_to_end(std::int64_t end, const Ramp& ramp, bool exact_ramp) noexcept {
-  const double v = phases_.velocity_at(m_.tk);
-  const double remaining = static_cast<double>(end - m_.k);
-  phases_.reset(m_.tk, static_cast<double>(m_.k), v);
-  if (v <= m_.vs || ramp.rate <= 0.0) {
-    phases_.add_cruise(remaining);
-  } else {
-    const double d = ramp_distance(v, m_.vs, ramp);
-    if (!exact_ramp && d <= remaining) {
-      phases_.add_cruise(remaining - d);
-      phases_.add_ramp(m_.vs, ramp);
-    } else {
-      // The ramp alone covers the rest: its rate is adjusted so that it ends exactly on `end`
-      // (a little gentler or steeper than asked for a stop; steeper when a registration count
-      // leaves too few steps).
-      phases_.add_ramp_over(m_.vs, ramp.shape, remaining);
-    }
-  }
+  profile_.replan_to_end(m_.k, m_.tk, end, ramp, exact_ramp);
   m_.end = end;
-  m_.can_change_speed = false;
-  solver_.reset(&phases_);
 }
 
 void AxisPlanner::change_speed(std::uint32_t epoch, const SpeedChange& c) noexcept {
-  if (!m_.active || m_.held || epoch != m_.epoch || !m_.can_change_speed) return;
-  if (!(c.vp > 0.0)) return;
-  // Replanned from the newest planned step (at most the lookahead ahead of the pulse thread).
-  const double v = phases_.velocity_at(m_.tk);
-  phases_.reset(m_.tk, static_cast<double>(m_.k), v);
-  phases_.add_ramp(c.vp, c.vp > v ? c.accel : c.decel);
-  phases_.add_cruise(kInf);
-  m_.decel = c.decel;
-  m_.constant_speed = false;
-  solver_.reset(&phases_);
+  if (!m_.active || m_.held || m_.follow || epoch != m_.epoch) return;
+  if (!profile_.can_change_speed() || !(c.vp > 0.0)) return;
+  profile_.change_speed(m_.k, m_.tk, c);
 }
 
 void AxisPlanner::stop(std::uint32_t epoch, const StopSpec& c) noexcept {
@@ -228,8 +180,8 @@ void AxisPlanner::stop(std::uint32_t epoch, const StopSpec& c) noexcept {
 
 void AxisPlanner::stop_at_frontier(const Ramp& ramp) noexcept {
   if (!m_.active) return;
-  const double v = phases_.velocity_at(m_.tk);
-  if (m_.constant_speed || v <= m_.vs * (1.0 + 1e-9) || ramp.rate <= 0.0) {
+  const std::int64_t end = profile_.stop_end(m_.k, m_.tk, ramp);
+  if (end == m_.k) {
     // Nothing to ramp down: the step already planned is the last one (one step if none yet).
     if (m_.k == 0) {
       if (m_.end > 1) replan_to_end(1, ramp, true);
@@ -238,17 +190,8 @@ void AxisPlanner::stop_at_frontier(const Ramp& ramp) noexcept {
     }
     return;
   }
-  const double d = ramp_distance(v, m_.vs, ramp);
-  const std::int64_t end = m_.k + std::max<std::int64_t>(1, std::llround(d));
   if (end >= m_.end) return;  // the motion ends as soon anyway (e.g. already decelerating)
   replan_to_end(end, ramp, true);
-}
-
-std::int64_t AxisPlanner::stop_end(std::int64_t k, double t, const Ramp& ramp) const noexcept {
-  // The same law as stop_at_frontier, from step k instead of the newest planned step.
-  const double v = phases_.velocity_at(t);
-  if (m_.constant_speed || v <= m_.vs * (1.0 + 1e-9) || ramp.rate <= 0.0) return k;
-  return k + std::max<std::int64_t>(1, std::llround(ramp_distance(v, m_.vs, ramp)));
 }
 
 bool AxisPlanner::request_cut(const StopSpec& c) noexcept {
@@ -264,8 +207,8 @@ bool AxisPlanner::request_cut(const StopSpec& c) noexcept {
   if (t_c < out_.nonmotion_t()) return false;
   const double t = static_cast<double>(t_c - m_.origin) * 1e-9;
   // Replanned after step k (a speed change): the profile at k is gone.
-  if (t < phases_.start_time()) return false;
-  if (stop_end(k, t, c.ramp) >= m_.end) return false;  // it ends as soon anyway
+  if (t < profile_.start_time()) return false;
+  if (profile_.stop_end(k, t, c.ramp) >= m_.end) return false;  // it ends as soon anyway
   if (!control_->cut.request(m_.epoch, t_c)) return false;
   cut_ = PendingCut{true, c.ramp, k, t_c};
   return true;
@@ -296,11 +239,11 @@ void AxisPlanner::apply_cut() noexcept {
   cut_epoch_ = m_.epoch;
   // Back to step k: the edges after it are replaced.
   const double t = static_cast<double>(cut_.t - m_.origin) * 1e-9;
-  out_.cut(cut_.t, phase_at(phases_, t));
+  out_.cut(cut_.t, profile_.phase_at(t));
   m_.k = cut_.k;
   m_.tk = t;
   m_.tk_ns = cut_.t;
-  const std::int64_t end = stop_end(cut_.k, t, cut_.ramp);
+  const std::int64_t end = profile_.stop_end(cut_.k, t, cut_.ramp);
   if (end <= m_.k) {
     finish_at_frontier();
     return;
@@ -318,22 +261,13 @@ void AxisPlanner::stop_after(std::uint32_t epoch, const StopAfterSpec& c) noexce
     return;
   }
   // Digest 7.9 step 4: freeze the present speed, cruise, decelerate with the motion's decel.
-  replan_to_end(end, m_.decel, false);
+  replan_to_end(end, profile_.decel(), false);
 }
 
 void AxisPlanner::step_once() noexcept {
   Motion& m = m_;
   const std::int64_t k = m.k + 1;
-  double t;
-  rt::Phase ph;
-  if (k >= m.end) {
-    // The last step lands exactly at the profile's end (Tt), not at a rounded solve.
-    t = phases_.end_time();
-    ph = phases_.empty() ? rt::Phase::kCruise : phases_[phases_.size() - 1].phase;
-  } else {
-    t = solver_.time_of(static_cast<double>(k));
-    ph = phases_[solver_.phase_index()].phase;
-  }
+  auto [t, ph] = profile_.step(k, m.end);
   if (t < m.tk) t = m.tk;
   Nanos ns = m.origin + to_ns(t);
   if (ns < m.tk_ns) ns = m.tk_ns;

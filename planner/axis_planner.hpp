@@ -10,6 +10,7 @@
 #include "planner/motion_request.hpp"
 #include "planner/planner.hpp"
 #include "planner/profile.hpp"
+#include "planner/profile_source.hpp"
 #include "rt/edge.hpp"
 
 namespace stepmod::planner {
@@ -48,25 +49,19 @@ class AxisPlanner {
   bool step_dir_format() const noexcept { return out_.step_dir_format(); }
 
  private:
-  static constexpr std::int64_t kEndless = std::numeric_limits<std::int64_t>::max();
-
   struct Motion {
     bool active = false;
     std::uint32_t epoch = 0;
     Direction dir = Direction::kCw;
-    bool constant_speed = false;    // started with vp <= vs: stops end after the next step
-    bool can_change_speed = false;  // a Run that no stop has ended yet
-    std::int64_t end = kEndless;    // step count at which the motion ends
-    double vs = 1.0;
-    Ramp decel;
-    Nanos origin = 0;       // time 0 of the motion
-    std::int64_t k = 0;     // steps generated
-    double tk = 0.0;        // time of step k, s from origin
-    Nanos tk_ns = 0;        // the same, absolute
-    bool follow = false;    // a follow motion (FollowSpec): steps come from follow_step
-    bool held = false;      // prepared, waiting for launch() (group start)
-    Nanos dir_shift = 0;    // launch: time 0 this long after the direction edge
-    bool dir_edge = false;  // launch: write the direction line first
+    std::int64_t end = kEndless;  // step count at which the motion ends
+    Nanos origin = 0;             // time 0 of the motion
+    std::int64_t k = 0;           // steps generated
+    double tk = 0.0;              // time of step k, s from origin
+    Nanos tk_ns = 0;              // the same, absolute
+    bool follow = false;          // a follow motion (FollowSpec): steps come from follow_step
+    bool held = false;            // prepared, waiting for launch() (group start)
+    Nanos dir_shift = 0;          // launch: time 0 this long after the direction edge
+    bool dir_edge = false;        // launch: write the direction line first
   };
 
   void change_speed(std::uint32_t epoch, const SpeedChange& s) noexcept;
@@ -75,8 +70,6 @@ class AxisPlanner {
   // Stop at the trigger (StopSpec::trigger_t): asks the pulse thread for a cut at the step
   // planned at max(trigger, now + margin); false if none is possible (then stop_at_frontier).
   bool request_cut(const StopSpec& s) noexcept;
-  // Where a stop ramp from step k (at time t, s from time 0) ends.
-  std::int64_t stop_end(std::int64_t k, double t, const Ramp& ramp) const noexcept;
   // The pulse thread's answer to a cut request; with `now_or_never` an undecided request is
   // withdrawn (another command for this axis must not wait). True when no request is open.
   bool resolve_cut(bool now_or_never) noexcept;
@@ -93,9 +86,7 @@ class AxisPlanner {
 
   // Ends the motion on its newest planned step (kLast on that step's trailing edge).
   void finish_at_frontier() noexcept;
-  // Replans from the newest step: cruise at its speed, then ramp to vs so that the motion ends
-  // exactly on step `end`. A ramp that does not fit is made steeper; with `exact_ramp` the ramp's
-  // rate is always adjusted to cover the whole rest (no cruise).
+  // Replans the profile from the newest step to end on step `end` (ProfileSource::replan_to_end).
   void replan_to_end(std::int64_t end, const Ramp& ramp, bool exact_ramp) noexcept;
   void step_once() noexcept;
 
@@ -123,8 +114,7 @@ class AxisPlanner {
   FollowServo follow_;  // the step source of a follow motion
   BlendSpec blend_;     // the newest blend start's table (take_blend)
   Nanos now_ = 0;       // time of the latest apply/fill (a follow step from rest starts after it)
-  PhaseList phases_;
-  StepSolver solver_;
+  ProfileSource profile_;  // the step source of moves, runs and blends
 };
 
 }  // namespace stepmod::planner

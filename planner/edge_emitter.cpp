@@ -8,38 +8,6 @@ namespace stepmod::planner {
 EdgeEmitter::EdgeEmitter(SpscRing<rt::Edge>* ring, AxisTiming timing) noexcept
     : ring_(ring), timing_(timing) {}
 
-rt::Edge EdgeEmitter::make_edge(Nanos t, OutputLine line, std::uint8_t level, std::int8_t dpos,
-                                std::uint8_t flags) const noexcept {
-  rt::Edge e;
-  e.t = t;
-  e.epoch = (flags & rt::edge_flag::kMotion) != 0 ? epoch_ : 0;
-  e.line = line;
-  e.level = level;
-  e.dpos = dpos;
-  e.flags = flags;
-  return e;
-}
-
-std::uint8_t EdgeEmitter::take_first(std::uint8_t flags) noexcept {
-  if (!first_pending_) return flags;
-  first_pending_ = false;
-  return flags | rt::edge_flag::kFirst;
-}
-
-void EdgeEmitter::stage(const rt::Edge& e) noexcept {
-  if (staged_count_ == kStaged) {
-    // Only reachable with a ring far too small for the step rate: make room by pushing the
-    // oldest edge early rather than losing an edge of the motion.
-    if (!ring_->try_push(staged_[staged_head_])) return;
-    last_pushed_t_ = staged_[staged_head_].t;
-    staged_head_ = (staged_head_ + 1) & (kStaged - 1);
-    --staged_count_;
-  }
-  staged_[(staged_head_ + staged_count_) & (kStaged - 1)] = e;
-  ++staged_count_;
-  if (e.t > last_t_) last_t_ = e.t;
-}
-
 void EdgeEmitter::stage_sorted(const rt::Edge& e) noexcept {
   // Behind every staged edge at or before e.t, ahead of later ones (a GPO change must not wait
   // for a step planned a second ahead).
@@ -107,20 +75,6 @@ void EdgeEmitter::direction(Nanos t, rt::Phase phase) noexcept {
   stage(make_edge(t, OutputLine::kDir, level, 0,
                   take_first(base_flags_ | static_cast<std::uint8_t>(phase))));
   dir_level_ = level;
-}
-
-void EdgeEmitter::step(Nanos t, rt::Phase phase, std::int64_t k) noexcept {
-  const auto flags = static_cast<std::uint8_t>(base_flags_ | static_cast<std::uint8_t>(phase));
-  if (pulse_open_) {
-    // Trailing edge of the previous step: the configured width, or half the period if shorter.
-    const Nanos w = std::min(timing_.step_pulse_ns, (t - step_t_) / 2);
-    stage(make_edge(step_t_ + w, line_, 0, 0, step_flags_));
-  }
-  stage(make_edge(t, line_, 1, static_cast<std::int8_t>(sign(dir_)), take_first(flags)));
-  history_[static_cast<std::size_t>(k) & (kHistory - 1)] = t;
-  pulse_open_ = true;
-  step_t_ = t;
-  step_flags_ = flags;
 }
 
 void EdgeEmitter::pulse(Nanos t, rt::Phase phase, int dpos, Nanos width, std::int64_t k) noexcept {
