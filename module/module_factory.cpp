@@ -1,6 +1,6 @@
 #include <stdexcept>
 
-#include "module/m3601/personality_3601.hpp"
+#include "module/m3601/module_3601.hpp"
 #include "module/personality.hpp"
 
 namespace stepmod::module {
@@ -12,7 +12,7 @@ std::unique_ptr<Personality> make_personality(ModuleType type, gpio::Backend& ba
   }
   switch (type) {
     case ModuleType::k3601:
-      return std::make_unique<m3601::Personality3601>(backend, *axes[0]);
+      return std::make_unique<m3601::Module3601>(backend, *axes[0]);
     case ModuleType::k3602:
     case ModuleType::k3202:
       break;

@@ -1,6 +1,7 @@
 #pragma once
 // What the control thread asks of an emulated module. One implementation per module type
-// (module/m3601/, later 3602 and 3202); each does exactly what its manual says.
+// (module/m3601/module_3601.hpp; later 3602 and 3202): the module's dialect around the shared
+// axis of module/axis/ (docs/ARCHITECTURE.md "The module layer").
 #include <array>
 #include <cstdint>
 #include <memory>

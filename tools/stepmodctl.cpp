@@ -1,8 +1,10 @@
 // stepmodctl: inspect and drive a running stepmod module through the same shared memory a soft
-// PLC uses (INTERFACE.md 1). Every command behaves like a PLC program would (tools/ctl_commands).
+// PLC uses (INTERFACE.md 1). Every command is the PLC-side library's (plc/): the dialect is
+// chosen from the image header's module type.
 //
 // Exit status: 0 ok; 1 the module reported an error bit for the command; 2 usage error;
-// 3 the module cannot be reached (no image, wrong module type, no scan within --timeout).
+// 3 the module cannot be reached (no image, no scan within --timeout); 4 the module's command
+// dialect is not implemented yet (3602, 3202: status, watch and raw work).
 #include <CLI/CLI.hpp>
 
 #include <chrono>
@@ -19,21 +21,23 @@
 #include "ipc/codec.hpp"
 #include "ipc/sim_panel.hpp"
 #include "module/m3601/words_3601.hpp"
-#include "tools/ctl_commands.hpp"
+#include "plc/plc_3601.hpp"
+#include "plc/shm_port.hpp"
 #include "tools/ctl_status.hpp"
 
 namespace {
 
 using namespace stepmod;
-using tools::ctl::AccelType;
-using tools::ctl::Outcome;
-using tools::ctl::Plc3601;
-using tools::ctl::Profile;
+using plc::AccelType;
+using plc::Outcome;
+using plc::Plc3601;
+using plc::Profile;
 
 constexpr int kExitOk = 0;
 constexpr int kExitModuleError = 1;
 constexpr int kExitUsage = 2;
 constexpr int kExitUnreachable = 3;
+constexpr int kExitNoDialect = 4;
 
 volatile std::sig_atomic_t g_stop = 0;
 void on_signal(int) {
@@ -189,7 +193,9 @@ int main(int argc, char** argv) {
       "scan, release the bit, show the decoded status).\n\n"
       "Exit status: 0 ok, 1 the module reported an error bit (Command Error, Invalid Profile,\n"
       "Home Invalid, Configuration Error) for the command, 2 usage error, 3 module unreachable\n"
-      "(no image /dev/shm/stepmod.NAME, not a 3601 for 3601 commands, or no scan in time).\n"
+      "(no image /dev/shm/stepmod.NAME, or no scan in time), 4 the module's command dialect is\n"
+      "not implemented yet (the commands are the 3601's; a 3602 or 3202 image can be read with\n"
+      "status/watch/raw get and written with raw set).\n"
       "Numbers accept 0x.. and 16#.. hex. Negative targets: use '--' before them if needed,\n"
       "e.g. stepmodctl move rel -- -500 -s 1000 -a 10 -d 10.\n"
       "Commands that drive the module also bump the PLC heartbeat while they run."};
@@ -313,6 +319,28 @@ int main(int argc, char** argv) {
   std::string blend_dir;
   blend_run->add_option("DIR", blend_dir, "+ (cw) or - (ccw)")->required();
 
+  auto* follow = app.add_subcommand(
+      "follow", "3601: encoder follower mode; its bits are levels: it stays on until 'follow off'");
+  std::string follow_sense;
+  std::int16_t follow_mul = 1;
+  std::int16_t follow_div = 1;
+  std::int16_t follow_accel = 0;
+  std::int16_t follow_decel = 0;
+  follow
+      ->add_option("SENSE", follow_sense,
+                   "+ (same sense as the master), - (reverse), 0 (follower mode, no motion), off")
+      ->required()
+      ->check(CLI::IsMember({"+", "-", "0", "off"}));
+  // Words 2 and 3 carry multiplier and divisor as plain 16-bit integers (digest 3.5).
+  follow->add_option("--multiplier,-m", follow_mul, "ratio multiplier, 1..32767 (1)")
+      ->check(CLI::Range(1, 32767));
+  follow->add_option("--divisor,-D", follow_div, "ratio divisor, 1..32767 (1)")
+      ->check(CLI::Range(1, 32767));
+  follow->add_option("--accel,-a", follow_accel, "acceleration, steps/ms/s (0..2000)")
+      ->check(CLI::Range(INT16_MIN, INT16_MAX));
+  follow->add_option("--decel,-d", follow_decel, "deceleration, steps/ms/s (0..2000)")
+      ->check(CLI::Range(INT16_MIN, INT16_MAX));
+
   auto* wait_idle = app.add_subcommand("wait-idle", "3601: wait until the axis is not moving");
   double wait_s = 60;
   wait_idle->add_option("--max", wait_s, "give up after this many seconds (60)")
@@ -423,8 +451,20 @@ int main(int argc, char** argv) {
       return kExitOk;
     }
 
-    // Everything below is a 3601 command.
-    Plc3601 plc(client, timeout);
+    // Everything below is a command in the module's dialect, chosen by the image header.
+    switch (client.type()) {
+      case ModuleType::k3601:
+        break;
+      case ModuleType::k3602:
+      case ModuleType::k3202:
+        std::cerr << "stepmodctl: module '" << name << "' is a "
+                  << static_cast<unsigned>(client.type())
+                  << ": its command dialect is not implemented yet (status, watch, raw get and "
+                     "raw set work)\n";
+        return kExitNoDialect;
+    }
+    plc::ShmPort port(client, timeout);
+    Plc3601 plc(port, timeout);
     Outcome o;
     if (configure->parsed()) {
       namespace cm = module::m3601::cfg_msw;
@@ -469,7 +509,7 @@ int main(int argc, char** argv) {
     } else if (minreg->parsed()) {
       o = plc.set_min_registration(split_number(minreg_value, "DISTANCE"));
     } else if (blend_prog->parsed()) {
-      tools::ctl::BlendProfile b;
+      plc::BlendProfile b;
       for (const std::string& s : segs) {
         std::vector<std::string> f;
         std::size_t start = 0;
@@ -490,6 +530,13 @@ int main(int argc, char** argv) {
       o = plc.blend_program(b);
     } else if (blend_run->parsed()) {
       o = plc.blend_run(parse_direction(blend_dir));
+    } else if (follow->parsed()) {
+      if (follow_sense == "off") {
+        o = plc.end_follow();
+      } else {
+        const int sense = follow_sense == "+" ? 1 : follow_sense == "-" ? -1 : 0;
+        o = plc.follow(sense, follow_mul, follow_div, follow_accel, follow_decel);
+      }
     } else if (wait_idle->parsed()) {
       o = plc.wait_idle(std::chrono::milliseconds(static_cast<long>(wait_s * 1000)));
     } else {

@@ -80,4 +80,31 @@ ConfigCheck check_config(const ImageWords& out) noexcept {
   return r;
 }
 
+axis::AxisConfig to_axis_config(const Config3601& c) noexcept {
+  axis::AxisConfig a;
+  // The "used" bits of the MSW and the active-level bits of the LSW sit at the same positions,
+  // in InputLine order (capture, external, home, E-stop, CW limit, CCW limit), digest 3.2 / 3.3.
+  constexpr std::uint16_t kInputBits = cfg_msw::kCaptureUsed | cfg_msw::kExternalUsed |
+                                       cfg_msw::kHomeUsed | cfg_msw::kEStopUsed |
+                                       cfg_msw::kCwLimitUsed | cfg_msw::kCcwLimitUsed;
+  a.inputs_used = c.msw & kInputBits;
+  a.inputs_active_high = c.lsw & kInputBits;
+  a.quadrature_encoder = c.has(cfg_msw::kQuadratureEncoder);
+  a.diagnostic_feedback = c.has(cfg_msw::kDiagnosticFeedback);
+  a.step_dir_output = c.has(cfg_msw::kStepDirOutput);
+  a.backplane_proximity = c.has(cfg_msw::kBackplaneProximity);
+  // Homing option (digest 3.2 table); CFG-10/11 guarantee exactly one proximity source with
+  // marker homing.
+  const bool marker = c.has(cfg_msw::kMarkerHoming);
+  if (marker) {
+    a.homing = a.backplane_proximity ? axis::HomingVariant::kMarkerWithBackplane
+                                     : axis::HomingVariant::kMarkerWithHome;
+  } else {
+    a.homing = a.backplane_proximity ? axis::HomingVariant::kSwitchWithBackplane
+                                     : axis::HomingVariant::kSwitch;
+  }
+  a.starting_speed = c.starting_speed;
+  return a;
+}
+
 }  // namespace stepmod::module::m3601

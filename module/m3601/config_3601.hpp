@@ -1,12 +1,13 @@
 #pragma once
 // 3601 configuration words (configuration mode, output words 0..7): validation against the
 // manual's list of invalid configurations (Ch.3 "Invalid Configurations" #1..#11, digest 6.1
-// 3601-CFG-02..12) and the decoded configuration the command mode runs with.
+// 3601-CFG-02..12), and the translation of a valid one into the shared axis' AxisConfig.
 #include <cstdint>
 #include <optional>
 #include <string_view>
 
-#include "module/personality.hpp"
+#include "core/module_shape.hpp"
+#include "module/axis/axis_config.hpp"
 
 namespace stepmod::module::m3601 {
 
@@ -44,5 +45,8 @@ struct ConfigCheck {
 
 // Checks the eight configuration-mode output words.
 ConfigCheck check_config(const ImageWords& out) noexcept;
+
+// The decoded configuration of a valid 3601 configuration.
+axis::AxisConfig to_axis_config(const Config3601& c) noexcept;
 
 }  // namespace stepmod::module::m3601

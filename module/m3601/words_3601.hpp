@@ -1,132 +1,290 @@
 #pragma once
 // 3601 backplane words and bits, named as in the 3601 manual (shared/spec/manuals/001_...;
-// digest MODULES.md section 3). The only place these positions are written down: grep a bit's
-// name here to find where it is set.
+// digest MODULES.md section 3). The only place these positions are written down: each word's
+// bits are a constexpr table (bit, name), the constants below are looked up in the tables by
+// name, and stepmodctl shows the same names. Header-only, includes nothing but the ground layer:
+// the PLC side (plc/) includes it.
+#include <array>
 #include <cstdint>
+
+#include "core/bit_table.hpp"
 
 namespace stepmod::module::m3601 {
 
 inline constexpr unsigned kWords = 8;
-inline constexpr std::uint16_t bit(unsigned n) { return static_cast<std::uint16_t>(1u << n); }
+inline constexpr std::uint16_t bit(unsigned n) {
+  return static_cast<std::uint16_t>(1u << n);
+}
 
-// Output words (PLC -> module), both modes.
-namespace out_word {
-inline constexpr unsigned kMsw = 0;         // config bits MSW / command word MSW
-inline constexpr unsigned kLsw = 1;         // config bits LSW / command word LSW
-inline constexpr unsigned kTargetMsw = 2;   // config: starting speed MSW
-inline constexpr unsigned kTargetLsw = 3;   // config: starting speed LSW
-inline constexpr unsigned kSpeedMsw = 4;
-inline constexpr unsigned kSpeedLsw = 5;
-inline constexpr unsigned kAccel = 6;
-inline constexpr unsigned kDecel = 7;
-}  // namespace out_word
+// ---- the tables (digest 3.1-3.11) ------------------------------------------------------------
 
-// Input words (module -> PLC), command mode (digest 3.9).
-namespace in_word {
-inline constexpr unsigned kStatusMsw = 0;
-inline constexpr unsigned kStatusLsw = 1;
-inline constexpr unsigned kPositionMsw = 2;
-inline constexpr unsigned kPositionLsw = 3;
-inline constexpr unsigned kEncoderMsw = 4;
-inline constexpr unsigned kEncoderLsw = 5;
-inline constexpr unsigned kCaptureMsw = 6;
-inline constexpr unsigned kCaptureLsw = 7;
-// Configuration mode (digest 3.4): words 0..3 mirror the accepted configuration.
-inline constexpr unsigned kFirmwareMajor = 6;
-inline constexpr unsigned kFirmwareMinor = 7;
-}  // namespace in_word
+// Output words (PLC -> module), command mode (digest 3.5); configuration mode uses words 0..3 for
+// the configuration bits and the starting speed (digest 3.1).
+inline constexpr std::array<NamedWord, 8> kOutputWords = {{{0, "Command Word MSW"},
+                                                           {1, "Command Word LSW"},
+                                                           {2, "Target Position MSW"},
+                                                           {3, "Target Position LSW"},
+                                                           {4, "Programmed Speed MSW"},
+                                                           {5, "Programmed Speed LSW"},
+                                                           {6, "Acceleration"},
+                                                           {7, "Deceleration"}}};
 
-// Configuration bits MSW (output word 0 in configuration mode, digest 3.2).
-namespace cfg_msw {
-inline constexpr std::uint16_t kCaptureUsed = bit(0);
-inline constexpr std::uint16_t kExternalUsed = bit(1);
-inline constexpr std::uint16_t kHomeUsed = bit(2);
-inline constexpr std::uint16_t kEStopUsed = bit(3);
-inline constexpr std::uint16_t kCwLimitUsed = bit(4);
-inline constexpr std::uint16_t kCcwLimitUsed = bit(5);
-inline constexpr std::uint16_t kBackplaneProximity = bit(6);
-inline constexpr std::uint16_t kQuadratureEncoder = bit(8);
-inline constexpr std::uint16_t kDiagnosticFeedback = bit(9);
-inline constexpr std::uint16_t kStepDirOutput = bit(10);  // 0 = CW/CCW pulse outputs
-inline constexpr std::uint16_t kMarkerHoming = bit(12);   // 0 = home-switch homing
-inline constexpr std::uint16_t kConfigMode = bit(15);
-inline constexpr std::uint16_t kReserved = bit(7) | bit(11) | bit(13) | bit(14);
-}  // namespace cfg_msw
+// Input words (module -> PLC), command mode (digest 3.9) and configuration mode (digest 3.4:
+// words 0..3 mirror the accepted configuration, 6..7 the firmware revision).
+inline constexpr std::array<NamedWord, 12> kInputWords = {{{0, "Status Word MSW"},
+                                                           {1, "Status Word LSW"},
+                                                           {2, "Position MSW"},
+                                                           {3, "Position LSW"},
+                                                           {4, "Encoder MSW"},
+                                                           {5, "Encoder LSW"},
+                                                           {6, "Capture MSW"},
+                                                           {7, "Capture LSW"},
+                                                           {2, "Starting Speed MSW"},
+                                                           {3, "Starting Speed LSW"},
+                                                           {6, "Firmware Major Revision"},
+                                                           {7, "Firmware Minor Revision"}}};
+
+// Configuration bits MSW (output word 0 in configuration mode, digest 3.2). Bits 7, 11, 13 and
+// 14 are reserved.
+inline constexpr std::array<NamedBit, 12> kConfigMswBits = {{
+    {0, "Capture Input Used"},
+    {1, "External Input Used"},
+    {2, "Home Input Used"},
+    {3, "E-Stop Input Used"},
+    {4, "CW Limit Used"},
+    {5, "CCW Limit Used"},
+    {6, "Backplane Home Proximity"},
+    {8, "Quadrature Encoder"},
+    {9, "Diagnostic Feedback"},
+    {10, "Step+Direction Output (0 = CW/CCW)"},
+    {12, "Marker Homing (0 = home switch)"},
+    {15, "Configuration Mode"},
+}};
 
 // Configuration bits LSW: active level per input, 1 = active high (digest 3.3). Bit n belongs to
-// the input whose "used" bit is bit n of cfg_msw (capture, external, home, E-stop, CW, CCW).
-namespace cfg_lsw {
-inline constexpr std::uint16_t kReserved = 0xFFC0;  // bits 6..15
-}  // namespace cfg_lsw
+// the input whose "used" bit is bit n of the MSW. Bits 6..15 are reserved.
+inline constexpr std::array<NamedBit, 6> kConfigLswBits = {{
+    {0, "Capture Input Active High"},
+    {1, "External Input Active High"},
+    {2, "Home Input Active High"},
+    {3, "E-Stop Input Active High"},
+    {4, "CW Limit Active High"},
+    {5, "CCW Limit Active High"},
+}};
 
 // Command word MSW (output word 0 in command mode, digest 3.6). Bits 0..13 are commands; at most
-// one may be set.
-namespace cmd_msw {
-inline constexpr std::uint16_t kAbsoluteMove = bit(0);
-inline constexpr std::uint16_t kRelativeMove = bit(1);
-inline constexpr std::uint16_t kHold = bit(2);
-inline constexpr std::uint16_t kResume = bit(3);
-inline constexpr std::uint16_t kImmediateStop = bit(4);
-inline constexpr std::uint16_t kFindHomeCw = bit(5);
-inline constexpr std::uint16_t kFindHomeCcw = bit(6);
-inline constexpr std::uint16_t kManualCw = bit(7);   // level; also follower "same sense"
-inline constexpr std::uint16_t kManualCcw = bit(8);  // level; also follower "reverse"
-inline constexpr std::uint16_t kPresetPosition = bit(9);
-inline constexpr std::uint16_t kPresetEncoder = bit(10);
-inline constexpr std::uint16_t kResetErrors = bit(11);
-inline constexpr std::uint16_t kRunBlendCw = bit(12);
-inline constexpr std::uint16_t kRunBlendCcw = bit(13);
-inline constexpr std::uint16_t kReserved14 = bit(14);  // A33: set with a command -> CE
-inline constexpr std::uint16_t kConfigMode = bit(15);
-inline constexpr std::uint16_t kCommandMask = 0x3FFF;
-}  // namespace cmd_msw
+// one may be set. Bit 14 is reserved.
+inline constexpr std::array<NamedBit, 15> kCommandMswBits = {{
+    {0, "Absolute Move"},
+    {1, "Relative Move"},
+    {2, "Hold Move"},
+    {3, "Resume Move"},
+    {4, "Immediate Stop"},
+    {5, "Find Home CW"},
+    {6, "Find Home CCW"},
+    {7, "Manual Move CW"},   // level; also follower "same sense"
+    {8, "Manual Move CCW"},  // level; also follower "reverse"
+    {9, "Preset Position"},
+    {10, "Preset Encoder"},
+    {11, "Reset Errors"},
+    {12, "Run Blend Move CW"},
+    {13, "Run Blend Move CCW"},
+    {15, "Configuration Mode"},
+}};
 
 // Command word LSW (output word 1 in command mode, digest 3.7).
-namespace cmd_lsw {
-inline constexpr std::uint16_t kSCurve = bit(0);         // 0 = constant acceleration
-inline constexpr std::uint16_t kTrapezoidalS = bit(1);   // with kSCurve: 0 triangular, 1 trapezoidal
-inline constexpr std::uint16_t kEncoderMove = bit(2);
-inline constexpr std::uint16_t kEncoderFollower = bit(7);
-inline constexpr std::uint16_t kProgramBlend = bit(8);
-inline constexpr std::uint16_t kBlendTransmit = bit(9);
-inline constexpr std::uint16_t kStoreMinRegistration = bit(10);
-inline constexpr std::uint16_t kBackplaneProximity = bit(12);
-}  // namespace cmd_lsw
+inline constexpr std::array<NamedBit, 8> kCommandLswBits = {{
+    {0, "S-Curve Acceleration (0 = constant)"},
+    {1, "Trapezoidal S-Curve (0 = triangular)"},
+    {2, "Encoder Move"},
+    {7, "Encoder Follower"},
+    {8, "Program Blend Move"},
+    {9, "Blend Move Data Transmit"},
+    {10, "Store Minimum Registration Distance"},
+    {12, "Backplane Home Proximity"},
+}};
 
 // Status word MSW (input word 0, digest 3.10).
-namespace status_msw {
-inline constexpr std::uint16_t kMovingCw = bit(0);
-inline constexpr std::uint16_t kMovingCcw = bit(1);
-inline constexpr std::uint16_t kHoldState = bit(2);
-inline constexpr std::uint16_t kStopped = bit(3);
-inline constexpr std::uint16_t kAtHome = bit(4);
-inline constexpr std::uint16_t kAccelerating = bit(5);
-inline constexpr std::uint16_t kDecelerating = bit(6);
-inline constexpr std::uint16_t kMoveComplete = bit(7);
-inline constexpr std::uint16_t kHomeInvalid = bit(8);
-inline constexpr std::uint16_t kInvalidProfile = bit(9);
-inline constexpr std::uint16_t kPositionInvalid = bit(10);
-inline constexpr std::uint16_t kInputError = bit(11);
-inline constexpr std::uint16_t kCommandError = bit(12);
-inline constexpr std::uint16_t kConfigurationError = bit(13);
-inline constexpr std::uint16_t kModuleOk = bit(14);
-inline constexpr std::uint16_t kConfigMode = bit(15);
-}  // namespace status_msw
+inline constexpr std::array<NamedBit, 16> kStatusMswBits = {{
+    {0, "Moving CW"},
+    {1, "Moving CCW"},
+    {2, "Hold State"},
+    {3, "Stopped"},
+    {4, "At Home"},
+    {5, "Accelerating"},
+    {6, "Decelerating"},
+    {7, "Move Complete"},
+    {8, "Home Invalid"},
+    {9, "Invalid Profile"},
+    {10, "Position Invalid"},
+    {11, "Input Error"},
+    {12, "Command Error"},
+    {13, "Configuration Error"},
+    {14, "Module OK"},
+    {15, "Configuration Mode"},
+}};
 
 // Status word LSW (input word 1, digest 3.11). Bits 0..5: logical input states, in the order of
 // the configuration bits (capture, external, home, E-stop, CW limit, CCW limit).
+inline constexpr std::array<NamedBit, 11> kStatusLswBits = {{
+    {0, "Capture Input Active"},
+    {1, "External Input Active"},
+    {2, "Home Input Active"},
+    {3, "E-Stop Input Active"},
+    {4, "CW Limit Active"},
+    {5, "CCW Limit Active"},
+    {7, "Encoder Follower Mode"},
+    {8, "Blend Move Running"},
+    {9, "Blend Block Acknowledge"},
+    {10, "Min. Registration Distance Set"},
+    {12, "Backplane Home Proximity Echo"},
+}};
+
+// ---- the constants, looked up in the tables --------------------------------------------------
+
+namespace detail {
+template <typename Table>
+consteval std::uint16_t field(const Table& t, std::string_view name) {
+  return mask_of<std::uint16_t>(t, name);
+}
+// The bits of a 16-bit word that no field of `t` names: the manual's reserved bits.
+template <typename Table>
+consteval std::uint16_t unnamed(const Table& t) {
+  std::uint16_t named = 0;
+  for (const NamedBit& b : t)
+    named = static_cast<std::uint16_t>(named | ((1u << b.width) - 1) << b.bit);
+  return static_cast<std::uint16_t>(~named);
+}
+}  // namespace detail
+
+// Output words (PLC -> module), both modes.
+namespace out_word {
+inline constexpr unsigned kMsw = index_of(kOutputWords, "Command Word MSW");  // or config MSW
+inline constexpr unsigned kLsw = index_of(kOutputWords, "Command Word LSW");  // or config LSW
+inline constexpr unsigned kTargetMsw = index_of(kOutputWords, "Target Position MSW");  // config: Vs
+inline constexpr unsigned kTargetLsw = index_of(kOutputWords, "Target Position LSW");
+inline constexpr unsigned kSpeedMsw = index_of(kOutputWords, "Programmed Speed MSW");
+inline constexpr unsigned kSpeedLsw = index_of(kOutputWords, "Programmed Speed LSW");
+inline constexpr unsigned kAccel = index_of(kOutputWords, "Acceleration");
+inline constexpr unsigned kDecel = index_of(kOutputWords, "Deceleration");
+}  // namespace out_word
+
+// Input words (module -> PLC).
+namespace in_word {
+inline constexpr unsigned kStatusMsw = index_of(kInputWords, "Status Word MSW");
+inline constexpr unsigned kStatusLsw = index_of(kInputWords, "Status Word LSW");
+inline constexpr unsigned kPositionMsw = index_of(kInputWords, "Position MSW");
+inline constexpr unsigned kPositionLsw = index_of(kInputWords, "Position LSW");
+inline constexpr unsigned kEncoderMsw = index_of(kInputWords, "Encoder MSW");
+inline constexpr unsigned kEncoderLsw = index_of(kInputWords, "Encoder LSW");
+inline constexpr unsigned kCaptureMsw = index_of(kInputWords, "Capture MSW");
+inline constexpr unsigned kCaptureLsw = index_of(kInputWords, "Capture LSW");
+// Configuration mode.
+inline constexpr unsigned kStartingSpeedMsw = index_of(kInputWords, "Starting Speed MSW");
+inline constexpr unsigned kStartingSpeedLsw = index_of(kInputWords, "Starting Speed LSW");
+inline constexpr unsigned kFirmwareMajor = index_of(kInputWords, "Firmware Major Revision");
+inline constexpr unsigned kFirmwareMinor = index_of(kInputWords, "Firmware Minor Revision");
+}  // namespace in_word
+
+namespace cfg_msw {
+using detail::field;
+inline constexpr std::uint16_t kCaptureUsed = field(kConfigMswBits, "Capture Input Used");
+inline constexpr std::uint16_t kExternalUsed = field(kConfigMswBits, "External Input Used");
+inline constexpr std::uint16_t kHomeUsed = field(kConfigMswBits, "Home Input Used");
+inline constexpr std::uint16_t kEStopUsed = field(kConfigMswBits, "E-Stop Input Used");
+inline constexpr std::uint16_t kCwLimitUsed = field(kConfigMswBits, "CW Limit Used");
+inline constexpr std::uint16_t kCcwLimitUsed = field(kConfigMswBits, "CCW Limit Used");
+inline constexpr std::uint16_t kBackplaneProximity =
+    field(kConfigMswBits, "Backplane Home Proximity");
+inline constexpr std::uint16_t kQuadratureEncoder = field(kConfigMswBits, "Quadrature Encoder");
+inline constexpr std::uint16_t kDiagnosticFeedback = field(kConfigMswBits, "Diagnostic Feedback");
+inline constexpr std::uint16_t kStepDirOutput =  // 0 = CW/CCW pulse outputs
+    field(kConfigMswBits, "Step+Direction Output (0 = CW/CCW)");
+inline constexpr std::uint16_t kMarkerHoming =  // 0 = home-switch homing
+    field(kConfigMswBits, "Marker Homing (0 = home switch)");
+inline constexpr std::uint16_t kConfigMode = field(kConfigMswBits, "Configuration Mode");
+inline constexpr std::uint16_t kReserved = detail::unnamed(kConfigMswBits);
+}  // namespace cfg_msw
+
+namespace cfg_lsw {
+inline constexpr std::uint16_t kReserved = detail::unnamed(kConfigLswBits);
+}  // namespace cfg_lsw
+
+namespace cmd_msw {
+using detail::field;
+inline constexpr std::uint16_t kAbsoluteMove = field(kCommandMswBits, "Absolute Move");
+inline constexpr std::uint16_t kRelativeMove = field(kCommandMswBits, "Relative Move");
+inline constexpr std::uint16_t kHold = field(kCommandMswBits, "Hold Move");
+inline constexpr std::uint16_t kResume = field(kCommandMswBits, "Resume Move");
+inline constexpr std::uint16_t kImmediateStop = field(kCommandMswBits, "Immediate Stop");
+inline constexpr std::uint16_t kFindHomeCw = field(kCommandMswBits, "Find Home CW");
+inline constexpr std::uint16_t kFindHomeCcw = field(kCommandMswBits, "Find Home CCW");
+inline constexpr std::uint16_t kManualCw = field(kCommandMswBits, "Manual Move CW");
+inline constexpr std::uint16_t kManualCcw = field(kCommandMswBits, "Manual Move CCW");
+inline constexpr std::uint16_t kPresetPosition = field(kCommandMswBits, "Preset Position");
+inline constexpr std::uint16_t kPresetEncoder = field(kCommandMswBits, "Preset Encoder");
+inline constexpr std::uint16_t kResetErrors = field(kCommandMswBits, "Reset Errors");
+inline constexpr std::uint16_t kRunBlendCw = field(kCommandMswBits, "Run Blend Move CW");
+inline constexpr std::uint16_t kRunBlendCcw = field(kCommandMswBits, "Run Blend Move CCW");
+inline constexpr std::uint16_t kConfigMode = field(kCommandMswBits, "Configuration Mode");
+inline constexpr std::uint16_t kReserved14 = detail::unnamed(kCommandMswBits);  // A33: -> CE
+// Every command bit (0..13): all named bits but the mode bit.
+inline constexpr std::uint16_t kCommandMask =
+    static_cast<std::uint16_t>(~(kReserved14 | kConfigMode));
+}  // namespace cmd_msw
+
+namespace cmd_lsw {
+using detail::field;
+inline constexpr std::uint16_t kSCurve =
+    field(kCommandLswBits, "S-Curve Acceleration (0 = constant)");
+// With kSCurve: 0 triangular, 1 trapezoidal.
+inline constexpr std::uint16_t kTrapezoidalS =
+    field(kCommandLswBits, "Trapezoidal S-Curve (0 = triangular)");
+inline constexpr std::uint16_t kEncoderMove = field(kCommandLswBits, "Encoder Move");
+inline constexpr std::uint16_t kEncoderFollower = field(kCommandLswBits, "Encoder Follower");
+inline constexpr std::uint16_t kProgramBlend = field(kCommandLswBits, "Program Blend Move");
+inline constexpr std::uint16_t kBlendTransmit = field(kCommandLswBits, "Blend Move Data Transmit");
+inline constexpr std::uint16_t kStoreMinRegistration =
+    field(kCommandLswBits, "Store Minimum Registration Distance");
+inline constexpr std::uint16_t kBackplaneProximity =
+    field(kCommandLswBits, "Backplane Home Proximity");
+}  // namespace cmd_lsw
+
+namespace status_msw {
+using detail::field;
+inline constexpr std::uint16_t kMovingCw = field(kStatusMswBits, "Moving CW");
+inline constexpr std::uint16_t kMovingCcw = field(kStatusMswBits, "Moving CCW");
+inline constexpr std::uint16_t kHoldState = field(kStatusMswBits, "Hold State");
+inline constexpr std::uint16_t kStopped = field(kStatusMswBits, "Stopped");
+inline constexpr std::uint16_t kAtHome = field(kStatusMswBits, "At Home");
+inline constexpr std::uint16_t kAccelerating = field(kStatusMswBits, "Accelerating");
+inline constexpr std::uint16_t kDecelerating = field(kStatusMswBits, "Decelerating");
+inline constexpr std::uint16_t kMoveComplete = field(kStatusMswBits, "Move Complete");
+inline constexpr std::uint16_t kHomeInvalid = field(kStatusMswBits, "Home Invalid");
+inline constexpr std::uint16_t kInvalidProfile = field(kStatusMswBits, "Invalid Profile");
+inline constexpr std::uint16_t kPositionInvalid = field(kStatusMswBits, "Position Invalid");
+inline constexpr std::uint16_t kInputError = field(kStatusMswBits, "Input Error");
+inline constexpr std::uint16_t kCommandError = field(kStatusMswBits, "Command Error");
+inline constexpr std::uint16_t kConfigurationError = field(kStatusMswBits, "Configuration Error");
+inline constexpr std::uint16_t kModuleOk = field(kStatusMswBits, "Module OK");
+inline constexpr std::uint16_t kConfigMode = field(kStatusMswBits, "Configuration Mode");
+}  // namespace status_msw
+
 namespace status_lsw {
-inline constexpr std::uint16_t kCaptureActive = bit(0);
-inline constexpr std::uint16_t kExternalActive = bit(1);
-inline constexpr std::uint16_t kHomeActive = bit(2);
-inline constexpr std::uint16_t kEStopActive = bit(3);
-inline constexpr std::uint16_t kCwLimitActive = bit(4);
-inline constexpr std::uint16_t kCcwLimitActive = bit(5);
-inline constexpr std::uint16_t kFollowerMode = bit(7);
-inline constexpr std::uint16_t kBlendRunning = bit(8);
-inline constexpr std::uint16_t kBlendAcknowledge = bit(9);
-inline constexpr std::uint16_t kMinRegistrationSet = bit(10);
-inline constexpr std::uint16_t kProximityEcho = bit(12);
+using detail::field;
+inline constexpr std::uint16_t kCaptureActive = field(kStatusLswBits, "Capture Input Active");
+inline constexpr std::uint16_t kExternalActive = field(kStatusLswBits, "External Input Active");
+inline constexpr std::uint16_t kHomeActive = field(kStatusLswBits, "Home Input Active");
+inline constexpr std::uint16_t kEStopActive = field(kStatusLswBits, "E-Stop Input Active");
+inline constexpr std::uint16_t kCwLimitActive = field(kStatusLswBits, "CW Limit Active");
+inline constexpr std::uint16_t kCcwLimitActive = field(kStatusLswBits, "CCW Limit Active");
+inline constexpr std::uint16_t kFollowerMode = field(kStatusLswBits, "Encoder Follower Mode");
+inline constexpr std::uint16_t kBlendRunning = field(kStatusLswBits, "Blend Move Running");
+inline constexpr std::uint16_t kBlendAcknowledge = field(kStatusLswBits, "Blend Block Acknowledge");
+inline constexpr std::uint16_t kMinRegistrationSet =
+    field(kStatusLswBits, "Min. Registration Distance Set");
+inline constexpr std::uint16_t kProximityEcho =
+    field(kStatusLswBits, "Backplane Home Proximity Echo");
 }  // namespace status_lsw
 
 // Firmware revision reported in configuration mode (digest 3.4): the features emulated are those

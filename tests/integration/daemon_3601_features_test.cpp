@@ -1,27 +1,27 @@
 // End to end, the 3601 features of issue #3 on the real daemon: driven through shared memory
-// with the PLC sequencing stepmodctl uses (tools/ctl_commands.hpp) and through the simulator
+// with the PLC-side library stepmodctl uses (plc/plc_3601.hpp) and through the simulator
 // panel, checked through the status image, the panel's motor position and the VCD trace.
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <thread>
 
 #include "ipc/client.hpp"
-#include "ipc/codec.hpp"
 #include "ipc/sim_panel.hpp"
 #include "module/m3601/words_3601.hpp"
+#include "plc/plc_3601.hpp"
+#include "plc/shm_port.hpp"
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/sim_config.hpp"
 #include "tests/support/vcd_reader.hpp"
-#include "tools/ctl_commands.hpp"
 
 namespace stepmod::testing {
 namespace {
 
 namespace m = module::m3601;
 using namespace m::status_msw;
+using plc::Profile;
+using plc::m3601::decode_status;
 using std::chrono::milliseconds;
-using tools::ctl::Profile;
 
 constexpr const char* kSim = R"(start_position = -3000
 cw_limit_at = 200000
@@ -43,17 +43,20 @@ class Daemon3601Features : public ::testing::Test {
     daemon_ = std::make_unique<DaemonProcess>(sim_3601_config("", kSim));
     ASSERT_TRUE(daemon_->wait_ready()) << daemon_->log();
     client_ = std::make_unique<ipc::Client>(daemon_->name());
-    plc_ = std::make_unique<tools::ctl::Plc3601>(*client_, milliseconds(3000));
+    port_ = std::make_unique<plc::ShmPort>(*client_, milliseconds(3000));
+    plc_ = std::make_unique<plc::Plc3601>(*port_, milliseconds(3000));
     ASSERT_TRUE(plc_->configure(kConfigBits, 0x3F, 1'000).ok);
   }
-  std::uint16_t msw() { return static_cast<std::uint16_t>(plc_->status().in.w[0]); }
-  std::uint16_t lsw() { return static_cast<std::uint16_t>(plc_->status().in.w[1]); }
-  std::int64_t reported(unsigned msw_index) {
-    const auto w = plc_->status().in.w;
-    return ipc::codec::decode_3601_report(w[msw_index], w[msw_index + 1]);
+  std::uint16_t msw() { return decode_status(plc_->status().in).msw; }
+  std::uint16_t lsw() { return decode_status(plc_->status().in).lsw; }
+  // Waits (as the PLC, heartbeat included) until one of `msw_bits` is set, or not, at most 20 s.
+  void wait_msw(std::uint16_t msw_bits, bool set) {
+    port_->wait_inputs([&](const ImageWords& in) { return decode_status(in).has(msw_bits) == set; },
+                       std::chrono::seconds(20));
   }
   Vcd stop_and_read_trace() {
     plc_.reset();
+    port_.reset();
     client_.reset();
     EXPECT_EQ(daemon_->terminate(), 0) << daemon_->log();
     return read_vcd(daemon_->trace_path());
@@ -61,22 +64,20 @@ class Daemon3601Features : public ::testing::Test {
 
   std::unique_ptr<DaemonProcess> daemon_;
   std::unique_ptr<ipc::Client> client_;
-  std::unique_ptr<tools::ctl::Plc3601> plc_;
+  std::unique_ptr<plc::ShmPort> port_;
+  std::unique_ptr<plc::Plc3601> plc_;
 };
 
 TEST_F(Daemon3601Features, AH_01_FindHomeThroughSharedMemory) {
   // Home switch 5,000..5,100, motor at -3,000: search +, decelerate, 2 s, back off, 2 s, creep.
   ASSERT_TRUE(plc_->home(true, Profile{10'000, 50, 50}).ok);
   // As a PLC does: the moving bits are clear during the 2-s pauses, so wait for the outcome.
-  const Nanos deadline = monotonic_now() + 20 * kNsPerSec;
-  while (!(msw() & (kAtHome | kHomeInvalid | kInputError)) && monotonic_now() < deadline) {
-    std::this_thread::sleep_for(milliseconds(5));
-  }
+  wait_msw(kAtHome | kHomeInvalid | kInputError, true);
   EXPECT_TRUE(msw() & kAtHome);
   EXPECT_FALSE(msw() & kPositionInvalid);
   EXPECT_FALSE(msw() & kHomeInvalid);
-  EXPECT_EQ(reported(m::in_word::kPositionMsw), 0);
-  EXPECT_EQ(reported(m::in_word::kEncoderMsw), 0);
+  EXPECT_EQ(decode_status(plc_->status().in).position, 0);
+  EXPECT_EQ(decode_status(plc_->status().in).encoder, 0);
   ipc::SimPanelClient panel(daemon_->name());
   // The creep approaches the switch from below: the motor stops on its lower edge.
   EXPECT_EQ(panel.read(0).position, 5'000);
@@ -84,7 +85,7 @@ TEST_F(Daemon3601Features, AH_01_FindHomeThroughSharedMemory) {
 }
 
 TEST_F(Daemon3601Features, MC_01_BlendProgrammedWithTheHandshakeRunsItsLength) {
-  tools::ctl::BlendProfile b;
+  plc::BlendProfile b;
   b.segments = {{10'000, 5'000, 10}, {10'000, 8'000, 10}};  // digest 7.10 worked check
   b.final_decel = 10;
   ASSERT_TRUE(plc_->blend_program(b).ok);
@@ -93,7 +94,7 @@ TEST_F(Daemon3601Features, MC_01_BlendProgrammedWithTheHandshakeRunsItsLength) {
   EXPECT_TRUE(lsw() & m::status_lsw::kBlendRunning);
   ASSERT_TRUE(plc_->wait_idle(milliseconds(20'000)).ok);
   EXPECT_TRUE(msw() & kMoveComplete);
-  EXPECT_EQ(reported(m::in_word::kPositionMsw), -20'000);
+  EXPECT_EQ(decode_status(plc_->status().in).position, -20'000);
   const Vcd vcd = stop_and_read_trace();
   EXPECT_EQ(vcd.rising("axis1.step").size(), 20'000u);
 }
@@ -101,19 +102,13 @@ TEST_F(Daemon3601Features, MC_01_BlendProgrammedWithTheHandshakeRunsItsLength) {
 TEST_F(Daemon3601Features, Registration_PanelExternalEdgeGivesExactlyTheCount) {
   ASSERT_TRUE(plc_->preset_position(0).ok);
   // Manual + with a registration count of 3,000 (>= the 1,200 steps needed to stop from 5,000).
-  ImageWords o{};
-  const auto count = ipc::codec::encode_3601(3'000);
-  const auto speed = ipc::codec::encode_3601(5'000);
-  o.w = {m::cmd_msw::kManualCw, 0, count.msw, count.lsw, speed.msw, speed.lsw, 10, 10};
-  client_->write_outputs(o);
-  std::this_thread::sleep_for(milliseconds(700));
+  port_->write_outputs(plc::m3601::command_words(m::cmd_msw::kManualCw, 0, 3'000, 5'000, 10, 10));
+  port_->pass(milliseconds(700));
   ipc::SimPanelClient panel(daemon_->name());
   panel.force(0, 1, true);  // bit 1: External, active high
-  const Nanos deadline = monotonic_now() + 10 * kNsPerSec;
-  while ((msw() & (kMovingCw | kMovingCcw)) && monotonic_now() < deadline) {
-    std::this_thread::sleep_for(milliseconds(5));
-  }
-  client_->write_word(0, 0);
+  port_->wait_inputs([](const ImageWords& in) { return !decode_status(in).moving(); },
+                     std::chrono::seconds(10));
+  port_->update_outputs([](ImageWords& o) { o.w[m::out_word::kMsw] = 0; });
   EXPECT_TRUE(msw() & kStopped);
   EXPECT_FALSE(msw() & (kCommandError | kInvalidProfile | kPositionInvalid));
   panel.release(0, 1);

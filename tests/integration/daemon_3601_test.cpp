@@ -9,9 +9,10 @@
 #include <thread>
 
 #include "ipc/client.hpp"
-#include "ipc/codec.hpp"
 #include "ipc/sim_panel.hpp"
 #include "module/m3601/words_3601.hpp"
+#include "plc/plc_3601.hpp"
+#include "plc/shm_port.hpp"
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/sim_config.hpp"
 #include "tests/support/vcd_reader.hpp"
@@ -44,62 +45,44 @@ std::string config(const std::string& extra = "") {
   return sim_3601_config(extra, kSim);
 }
 
-// A PLC program's side of the image, over the real shared memory.
+// A PLC program's side of the image over the real shared memory: the PLC-side library
+// (plc/plc_3601.hpp) over the shared-memory port, at the scan counts these tests were written for
+// (a command's words held 3 scans, 2 after the release; 3 + 3 for a configuration).
 class ShmPlc {
  public:
-  explicit ShmPlc(const std::string& name) : client_(name) {}
+  explicit ShmPlc(const std::string& name)
+      : client_(name), port_(client_, milliseconds(2000)), plc_(port_, milliseconds(2000), kSeq) {}
 
-  ImageWords in() const {
+  plc::m3601::Status decoded() const {
     ImageWords w;
-    EXPECT_TRUE(client_.read_inputs(w));
-    return w;
+    EXPECT_TRUE(port_.read_inputs(w));
+    return plc::m3601::decode_status(w);
   }
-  std::uint16_t status_msw() const { return static_cast<std::uint16_t>(in().w[0]); }
-  bool status(std::uint16_t bit) const { return (status_msw() & bit) != 0; }
-  std::int64_t position() const {
-    const auto w = in();
-    return ipc::codec::decode_3601_report(w.w[m::in_word::kPositionMsw],
-                                          w.w[m::in_word::kPositionLsw]);
-  }
-  void scans(unsigned n) { ASSERT_TRUE(client_.wait_scans(n, milliseconds(2000))); }
+  bool status(std::uint16_t bit) const { return decoded().has(bit); }
+  std::int64_t position() const { return decoded().position; }
+  void scans(unsigned n) { ASSERT_TRUE(port_.wait_scans(n)); }
 
-  void write(std::uint16_t msw, std::uint16_t lsw, std::int32_t w23, std::int32_t w45,
-             std::int16_t w6, std::int16_t w7) {
-    const auto a = ipc::codec::encode_3601(w23);
-    const auto b = ipc::codec::encode_3601(w45);
-    ImageWords o{};
-    o.w = {static_cast<std::int16_t>(msw),
-           static_cast<std::int16_t>(lsw),
-           a.msw,
-           a.lsw,
-           b.msw,
-           b.lsw,
-           w6,
-           w7};
-    client_.write_outputs(o);
-  }
   // An edge-triggered command, set until the module has scanned it, then cleared.
   void command(std::uint16_t bit, std::int32_t target = 0, std::int32_t speed = 0,
                std::int16_t accel = 0, std::int16_t decel = 0) {
-    write(bit, 0, target, speed, accel, decel);
-    scans(3);
-    client_.write_word(0, 0);
-    scans(2);
+    const plc::Outcome o =
+        plc_.pulse(plc::m3601::command_words(bit, 0, target, speed, accel, decel), bit);
+    ASSERT_FALSE(o.timed_out) << o.message;
   }
   void configure(std::int32_t starting_speed = 1'000) {
     const std::uint16_t cfg = m::cfg_msw::kCaptureUsed | m::cfg_msw::kExternalUsed |
                               m::cfg_msw::kHomeUsed | m::cfg_msw::kEStopUsed |
                               m::cfg_msw::kCwLimitUsed | m::cfg_msw::kCcwLimitUsed |
                               m::cfg_msw::kQuadratureEncoder | m::cfg_msw::kStepDirOutput;
-    write(cfg | m::cfg_msw::kConfigMode, 0x3F, starting_speed, 0, 0, 0);
-    scans(3);
-    ASSERT_TRUE(status(kConfigMode));
-    ASSERT_FALSE(status(kConfigurationError));
-    write(0, 0, 0, 0, 0, 0);
-    scans(3);
+    ImageWords in_config;
+    const plc::Outcome o = plc_.configure(cfg, 0x3F, starting_speed, &in_config);
+    ASSERT_FALSE(o.timed_out) << o.message;
+    ASSERT_TRUE(plc::m3601::decode_status(in_config).has(kConfigMode));
+    ASSERT_FALSE(plc::m3601::decode_status(in_config).has(kConfigurationError));
     ASSERT_FALSE(status(kConfigMode));
   }
-  bool moving() const { return status(kMovingCw) || status(kMovingCcw); }
+  bool moving() const { return decoded().moving(); }
+  // Polls `cond` without touching the image (no heartbeat: the heartbeat test stops beating).
   bool wait(const std::function<bool()>& cond, milliseconds timeout) {
     const auto end = std::chrono::steady_clock::now() + timeout;
     while (std::chrono::steady_clock::now() < end) {
@@ -111,7 +94,11 @@ class ShmPlc {
   ipc::Client& client() { return client_; }
 
  private:
+  static constexpr plc::Sequencing kSeq{
+      .hold_scans = 3, .release_scans = 2, .config_scans = 3, .release_stale_bits = false};
   ipc::Client client_;
+  plc::ShmPort port_;
+  plc::Plc3601 plc_;
 };
 
 class Daemon3601 : public ::testing::Test {

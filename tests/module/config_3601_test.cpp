@@ -118,6 +118,38 @@ TEST_F(Config3601, CFG_13_PI_01_ValidConfigurationClearsErrorAndInvalidatesPosit
   EXPECT_TRUE(status(kPositionInvalid));
 }
 
+// Issue 12 item 3 (digest 7.15/7.16): a command written in the same image that leaves
+// configuration mode is a 0->1 edge of its bit (the configuration word is not a command word)
+// and acts, instead of being silently dropped.
+TEST_F(Config3601, CFG_13_CommandInTheImageThatLeavesConfigurationModeActs) {
+  write_config(kFullConfigMsw, kAllActiveHigh, 1'000);
+  vm_.scans(3);
+  ASSERT_TRUE(status(kConfigMode));
+  set_words(m::cmd_msw::kRelativeMove, 0, 2'000, 10'000, 10, 10);  // mode bit 0 + a command
+  vm_.scans(3);
+  EXPECT_FALSE(status(kConfigMode));
+  ASSERT_TRUE(
+      vm_.run_until_true([this] { return status(m::status_msw::kMoveComplete); }, 10 * kNsPerSec));
+  EXPECT_EQ(position(), 2'000);
+  EXPECT_EQ(motor(), 2'000);
+  EXPECT_FALSE(status(m::status_msw::kCommandError));
+}
+
+// The same rule, the other way round: a PLC that clears only the mode bit leaves its
+// configuration bits in word 0, which the command mode reads as several command bits at once:
+// the manual's Command Error (3601-CE-02), never a silent nothing, and no motion.
+TEST_F(Config3601, CE_02_ConfigurationBitsLeftInTheCommandWordAreSeveralCommands) {
+  write_config(kFullConfigMsw, kAllActiveHigh, 1'000);
+  vm_.scans(3);
+  word(0) = static_cast<std::int16_t>(kFullConfigMsw);  // only the mode bit cleared
+  vm_.scans(3);
+  EXPECT_FALSE(status(kConfigMode));
+  EXPECT_FALSE(status(kConfigurationError));
+  EXPECT_TRUE(status(m::status_msw::kCommandError));
+  vm_.run_for(100 * kNsPerMs);
+  EXPECT_EQ(motor(), 0);
+}
+
 TEST_F(Config3601, CFG_13_MirrorAndFirmwareRevisionInConfigurationMode) {
   write_config(kFullConfigMsw, kAllActiveHigh, 12'345);
   vm_.scans(3);

@@ -354,14 +354,7 @@ class Follower3601 : public Encoder3601 {
   void follower(std::uint16_t msw, std::int16_t mul = 1, std::int16_t div = 1,
                 std::int16_t accel = 0, std::int16_t decel = 0,
                 std::uint16_t l = lsw::kEncoderFollower) {
-    auto& o = vm_.plc_out().w;
-    o = {};
-    o[0] = static_cast<std::int16_t>(msw);
-    o[1] = static_cast<std::int16_t>(l);
-    o[2] = mul;
-    o[3] = div;
-    o[6] = accel;
-    o[7] = decel;
+    port_.write_outputs(plc::m3601::follower_words(msw, mul, div, accel, decel, l));
   }
   bool follower_mode() const { return lsw_status(m::status_lsw::kFollowerMode); }
   // Master counts then a settling time for the follower.

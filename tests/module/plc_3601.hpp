@@ -1,12 +1,16 @@
 #pragma once
 // A PLC program's view of a 3601 in virtual time: write words, let the module scan, read status.
+// The words and their sequencing are the PLC-side library's (plc/plc_3601.hpp) over the virtual
+// machine's port; this fixture only keeps the names the module tests are written in.
 #include <gtest/gtest.h>
 
 #include <cstdint>
 
 #include "ipc/codec.hpp"
 #include "module/m3601/words_3601.hpp"
+#include "plc/plc_3601.hpp"
 #include "tests/support/virtual_machine.hpp"
+#include "tests/support/virtual_port.hpp"
 
 namespace stepmod::testing {
 
@@ -19,6 +23,12 @@ inline constexpr std::uint16_t kFullConfigMsw =
     m::cfg_msw::kEStopUsed | m::cfg_msw::kCwLimitUsed | m::cfg_msw::kCcwLimitUsed |
     m::cfg_msw::kQuadratureEncoder | m::cfg_msw::kStepDirOutput;
 inline constexpr std::uint16_t kAllActiveHigh = 0x003F;
+
+// The scan counts the module tests' timing assertions were written for: a command's words for 3
+// scans, 1 scan after its release; 3 scans in configuration mode and 3 back in command mode. The
+// tests set bits on purpose, so nothing is released behind their back.
+inline constexpr plc::Sequencing kFixtureSequencing{
+    .hold_scans = 3, .release_scans = 1, .config_scans = 3, .release_stale_bits = false};
 
 struct Move {
   std::int32_t target = 0;
@@ -34,66 +44,45 @@ class Plc3601 : public ::testing::Test {
   explicit Plc3601(VirtualMachineOptions o) : vm_(std::move(o)) {}
 
   std::int32_t& word(unsigned i) { return vm_.plc_out().w[i]; }
-  std::uint16_t status_msw() const { return static_cast<std::uint16_t>(vm_.plc_in().w[0]); }
-  std::uint16_t status_lsw() const { return static_cast<std::uint16_t>(vm_.plc_in().w[1]); }
-  bool status(std::uint16_t msw_bit) const { return (status_msw() & msw_bit) != 0; }
-  bool lsw_status(std::uint16_t lsw_bit) const { return (status_lsw() & lsw_bit) != 0; }
+  plc::m3601::Status decoded() const { return plc::m3601::decode_status(vm_.plc_in()); }
+  std::uint16_t status_msw() const { return decoded().msw; }
+  std::uint16_t status_lsw() const { return decoded().lsw; }
+  bool status(std::uint16_t msw_bit) const { return decoded().has(msw_bit); }
+  bool lsw_status(std::uint16_t lsw_bit) const { return decoded().has_lsw(lsw_bit); }
   std::int64_t reported(unsigned msw_index) const {
     return ipc::codec::decode_3601_report(vm_.plc_in().w[msw_index], vm_.plc_in().w[msw_index + 1]);
   }
-  std::int64_t position() const { return reported(m::in_word::kPositionMsw); }
-  std::int64_t encoder() const { return reported(m::in_word::kEncoderMsw); }
-  std::int64_t capture() const { return reported(m::in_word::kCaptureMsw); }
+  std::int64_t position() const { return decoded().position; }
+  std::int64_t encoder() const { return decoded().encoder; }
+  std::int64_t capture() const { return decoded().capture; }
   std::int64_t motor() { return vm_.sim().position(0); }
 
   void set_words(std::uint16_t msw, std::uint16_t lsw, std::int32_t w23, std::int32_t w45,
                  std::int16_t w6, std::int16_t w7) {
-    auto a = ipc::codec::encode_3601(w23);
-    auto b = ipc::codec::encode_3601(w45);
-    auto& o = vm_.plc_out().w;
-    o = {};
-    o[0] = static_cast<std::int16_t>(msw);
-    o[1] = static_cast<std::int16_t>(lsw);
-    o[2] = a.msw;
-    o[3] = a.lsw;
-    o[4] = b.msw;
-    o[5] = b.lsw;
-    o[6] = w6;
-    o[7] = w7;
+    port_.write_outputs(plc::m3601::command_words(msw, lsw, w23, w45, w6, w7));
   }
 
   // Writes a configuration, lets the module take it, returns to command mode.
   void configure(std::uint16_t msw = kFullConfigMsw, std::uint16_t lsw = kAllActiveHigh,
                  std::int32_t starting_speed = 1'000) {
-    write_config(msw, lsw, starting_speed);
-    vm_.scans(3);
-    word(0) = 0;  // command mode
-    for (unsigned i = 1; i < 8; ++i) word(i) = 0;
-    vm_.scans(3);
+    plc_.configure(msw, lsw, starting_speed);  // then command mode, all words 0
   }
   void write_config(std::uint16_t msw, std::uint16_t lsw, std::int32_t starting_speed) {
-    set_words(static_cast<std::uint16_t>(msw | m::cfg_msw::kConfigMode), lsw, starting_speed, 0, 0,
-              0);
+    port_.write_outputs(plc::m3601::configuration_words(msw, lsw, starting_speed));
   }
   // Issues an edge-triggered command the way a PLC does: bit set for a few scans, then cleared.
   void command(std::uint16_t msw_bit, const Move& p = {}) {
-    set_words(msw_bit, p.lsw, p.target, p.speed, p.accel, p.decel);
-    vm_.scans(3);
-    word(0) = 0;
-    vm_.scans(1);
+    plc_.pulse(plc::m3601::command_words(msw_bit, p.lsw, p.target, p.speed, p.accel, p.decel),
+               msw_bit);
   }
-  void raw_command(std::uint16_t msw_bit) {
-    word(0) = static_cast<std::int16_t>(msw_bit);
-    vm_.scans(3);
-    word(0) = 0;
-    vm_.scans(1);
-  }
-  bool moving() const {
-    return status(m::status_msw::kMovingCw) || status(m::status_msw::kMovingCcw);
-  }
+  // Only word 0 changes: the other words stay as the test left them.
+  void raw_command(std::uint16_t msw_bit) { plc_.pulse_msw(msw_bit); }
+  bool moving() const { return decoded().moving(); }
   // Runs until the axis is at rest (not moving), at most `limit`.
   bool wait_idle(Nanos limit = 30 * kNsPerSec) {
-    return vm_.run_until_true([this] { return !moving(); }, limit);
+    return port_.wait_inputs(
+        [](const ImageWords& in) { return !plc::m3601::decode_status(in).moving(); },
+        std::chrono::nanoseconds(limit));
   }
   // Panel: force an input's electrical level (INTERFACE.md section 4 bit order).
   void force(InputLine l, bool level) {
@@ -111,6 +100,8 @@ class Plc3601 : public ::testing::Test {
   }
 
   VirtualMachine vm_;
+  VirtualPort port_{vm_};
+  plc::Plc3601 plc_{port_, std::chrono::milliseconds(2000), kFixtureSequencing};
   std::uint32_t forced_mask_ = 0;
   std::uint32_t forced_levels_ = 0;
 };

@@ -27,6 +27,7 @@ class VirtualMachine {
  public:
   explicit VirtualMachine(VirtualMachineOptions options);
 
+  ModuleType type() const noexcept { return options_.type; }
   Nanos now() const noexcept { return now_; }
   // Runs every event up to and including `t`.
   void run_until(Nanos t);

@@ -45,8 +45,10 @@
 #include <vector>
 
 #include "ipc/client.hpp"
-#include "ipc/codec.hpp"
 #include "module/m3601/words_3601.hpp"
+#include "plc/bit_names.hpp"
+#include "plc/plc_3601.hpp"
+#include "plc/shm_port.hpp"
 #include "tests/support/vcd_reader.hpp"
 
 extern char** environ;
@@ -313,69 +315,45 @@ class Daemon {
 
 // ---- the PLC side -----------------------------------------------------------------------------
 
+// The PLC-side library (plc/plc_3601.hpp) over the shared-memory port, at the scan counts these
+// cases were written for (a command's words held 3 scans, 2 after the release; 3 + 3 for a
+// configuration); a module that stops scanning fails the case.
 class Plc {
  public:
-  explicit Plc(const std::string& name) : c_(name) {}
-  stepmod::ImageWords in() const {
+  explicit Plc(const std::string& name)
+      : c_(name), port_(c_, milliseconds(5'000)), plc_(port_, milliseconds(5'000), kSeq) {}
+  stepmod::plc::m3601::Status decoded() const {
     stepmod::ImageWords w{};
-    // On one CPU the module can be preempted inside its seqlock write; a reader that only spins
-    // never lets it finish. Let it run, then try again.
-    for (int i = 0; i < 200; ++i) {
-      if (c_.read_inputs(w)) return w;
-      sleep_ms(1);
-    }
-    fail("reading the input image: its sequence stayed busy");
+    if (!port_.read_inputs(w)) fail("reading the input image: its sequence stayed busy");
+    return stepmod::plc::m3601::decode_status(w);
   }
-  std::uint16_t msw() const { return static_cast<std::uint16_t>(in().w[0]); }
-  bool status(std::uint16_t bit) const { return (msw() & bit) != 0; }
-  std::int64_t position() const {
-    const auto w = in();
-    return stepmod::ipc::codec::decode_3601_report(w.w[m::in_word::kPositionMsw],
-                                                   w.w[m::in_word::kPositionLsw]);
-  }
-  std::int64_t capture() const {
-    const auto w = in();
-    return stepmod::ipc::codec::decode_3601_report(w.w[m::in_word::kCaptureMsw],
-                                                   w.w[m::in_word::kCaptureLsw]);
-  }
-  bool moving() const { return (msw() & (st::kMovingCw | st::kMovingCcw)) != 0; }
+  std::uint16_t msw() const { return decoded().msw; }
+  bool status(std::uint16_t bit) const { return decoded().has(bit); }
+  std::int64_t position() const { return decoded().position; }
+  std::int64_t capture() const { return decoded().capture; }
+  bool moving() const { return decoded().moving(); }
   void scans(unsigned n) {
-    if (!c_.wait_scans(n, milliseconds(5'000))) fail("the module stopped scanning");
-  }
-  void write(std::uint16_t msw, std::uint16_t lsw, std::int32_t w23, std::int32_t w45,
-             std::int16_t w6, std::int16_t w7) {
-    const auto a = stepmod::ipc::codec::encode_3601(w23);
-    const auto b = stepmod::ipc::codec::encode_3601(w45);
-    stepmod::ImageWords o{};
-    o.w = {static_cast<std::int16_t>(msw),
-           static_cast<std::int16_t>(lsw),
-           a.msw,
-           a.lsw,
-           b.msw,
-           b.lsw,
-           w6,
-           w7};
-    c_.write_outputs(o);
+    if (!port_.wait_scans(n)) fail("the module stopped scanning");
   }
   // An edge-triggered command: set until the module has scanned it, then cleared.
   void command(std::uint16_t bit, std::int32_t target = 0, std::int32_t speed = 0,
                std::int16_t accel = 0, std::int16_t decel = 0) {
-    write(bit, 0, target, speed, accel, decel);
-    scans(3);
-    c_.write_word(0, 0);
-    scans(2);
+    const stepmod::plc::Outcome o =
+        plc_.pulse(stepmod::plc::m3601::command_words(bit, 0, target, speed, accel, decel), bit);
+    if (o.timed_out) fail("the module stopped scanning: " + o.message);
   }
   // Configuration mode with these "used" bits (all inputs active high), then command mode. The
   // home input and the end limits are always used: a 3601 accepts no configuration without the
   // home input (or marker homing) and at least one limit.
   void configure(std::uint16_t used, std::int32_t starting_speed) {
     used |= cfg::kHomeUsed | cfg::kCwLimitUsed | cfg::kCcwLimitUsed;
-    write(used | cfg::kStepDirOutput | cfg::kConfigMode, 0x3F, starting_speed, 0, 0, 0);
-    scans(3);
-    check(status(st::kConfigMode), "configuration mode not entered");
-    check(!status(st::kConfigurationError), fmt("configuration refused (status %04x)", msw()));
-    write(0, 0, 0, 0, 0, 0);
-    scans(3);
+    stepmod::ImageWords in_config{};
+    const stepmod::plc::Outcome o =
+        plc_.configure(used | cfg::kStepDirOutput, 0x3F, starting_speed, &in_config);
+    if (o.timed_out) fail("the module stopped scanning: " + o.message);
+    const auto echo = stepmod::plc::m3601::decode_status(in_config);
+    check(echo.has(st::kConfigMode), "configuration mode not entered");
+    check(!echo.has(st::kConfigurationError), fmt("configuration refused (status %04x)", echo.msw));
     check(!status(st::kConfigMode), "command mode not entered");
   }
   bool wait(const std::function<bool()>& cond, int timeout_ms) {
@@ -388,20 +366,16 @@ class Plc {
   }
 
  private:
+  static constexpr stepmod::plc::Sequencing kSeq{
+      .hold_scans = 3, .release_scans = 2, .config_scans = 3, .release_stale_bits = false};
   stepmod::ipc::Client c_;
+  stepmod::plc::ShmPort port_;
+  stepmod::plc::Plc3601 plc_;
 };
 
+// The status MSW's set bits by their names in the 3601's table.
 std::string status_names(std::uint16_t s) {
-  static const char* const names[16] = {
-      "MovingCW",        "MovingCCW",  "Hold",         "Stopped",     "AtHome",
-      "Accel",           "Decel",      "MoveComplete", "HomeInvalid", "InvalidProfile",
-      "PositionInvalid", "InputError", "CommandError", "ConfigError", "ModuleOK",
-      "ConfigMode"};
-  std::string r;
-  for (int i = 0; i < 16; ++i) {
-    if (s & (1u << i)) r += (r.empty() ? "" : ",") + std::string(names[i]);
-  }
-  return r.empty() ? "-" : r;
+  return stepmod::plc::set_bit_names(s, m::kStatusMswBits);
 }
 
 // ---- sampling the outputs through sysfs

@@ -1,7 +1,7 @@
 #pragma once
 // The discrete inputs of one axis as the module sees them: the electrical level of every line
 // (from the backend at start-up, then from each InputEvent) and, per the configuration, which
-// inputs are used and at which level they are active (3601 config LSW, 3202 bits 16..21, ...).
+// inputs are used and at which level they are active (decoded by each dialect into AxisConfig).
 #include <array>
 #include <cstdint>
 

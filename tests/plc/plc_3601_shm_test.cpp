@@ -1,6 +1,6 @@
-// stepmodctl's PLC-like sequencing (tools/ctl_commands) against a scripted fake 3601 that scans
-// the shared-memory image in its own thread: edges, releases, handshakes, error reporting.
-#include "tools/ctl_commands.hpp"
+// The PLC-side 3601 dialect (plc/plc_3601) over the shared-memory port, against a scripted fake
+// 3601 that scans the image in its own thread: edges, releases, handshakes, error reporting.
+#include "plc/plc_3601.hpp"
 
 #include <unistd.h>
 
@@ -13,9 +13,9 @@
 
 #include "ipc/shm_image.hpp"
 #include "module/m3601/words_3601.hpp"
-#include "tools/ctl_status.hpp"
+#include "plc/shm_port.hpp"
 
-namespace stepmod::tools::ctl {
+namespace stepmod::plc {
 namespace {
 
 namespace m = module::m3601;
@@ -145,7 +145,8 @@ TEST(CtlCommands, MoveWritesDecimalSplitWithEdgeThenReleases) {
   const std::string n = test_name("move");
   FakeModule fake(n);
   ipc::Client c(n);
-  Plc3601 plc(c);
+  ShmPort port(c);
+  Plc3601 plc(port);
   const Outcome o = plc.move(true, -12'345, {1'500, 10, 20, AccelType::kTrapezoidalS});
   EXPECT_TRUE(o.ok) << o.message;
   ASSERT_EQ(fake.edges().size(), 1u);
@@ -160,7 +161,8 @@ TEST(CtlCommands, RelativeEncoderMoveAndScurveBits) {
   const std::string n = test_name("rel");
   FakeModule fake(n);
   ipc::Client c(n);
-  Plc3601 plc(c);
+  ShmPort port(c);
+  Plc3601 plc(port);
   EXPECT_TRUE(plc.move(false, 500, {2'000, 1, 1, AccelType::kTriangularS}, true).ok);
   ASSERT_EQ(fake.edges().size(), 1u);
   EXPECT_EQ(fake.edges()[0], words({2, 1 | 4, 0, 500, 2, 0, 1, 1}));
@@ -170,7 +172,8 @@ TEST(CtlCommands, CommandErrorReportedAndResetClearsIt) {
   const std::string n = test_name("ce");
   FakeModule fake(n);
   ipc::Client c(n);
-  Plc3601 plc(c);
+  ShmPort port(c);
+  Plc3601 plc(port);
   const Outcome bad = plc.move(true, 100, {0, 10, 10});
   EXPECT_FALSE(bad.ok);
   EXPECT_FALSE(bad.timed_out);
@@ -189,7 +192,8 @@ TEST(CtlCommands, StaleCommandBitIsReleasedBeforeTheNewEdge) {
   c.write_outputs(words({m::cmd_msw::kAbsoluteMove, 0, 0, 0, 1, 0, 1, 1}));
   ASSERT_TRUE(c.wait_scans(3, 2s));
   const auto before = fake.edges().size();
-  Plc3601 plc(c);
+  ShmPort port(c);
+  Plc3601 plc(port);
   EXPECT_TRUE(plc.move(true, 1, {1'000, 1, 1}).ok);
   ASSERT_EQ(fake.edges().size(), before + 1) << "the module saw a new 0->1 edge";
 }
@@ -198,7 +202,8 @@ TEST(CtlCommands, PresetAndStopWordLayouts) {
   const std::string n = test_name("preset");
   FakeModule fake(n);
   ipc::Client c(n);
-  Plc3601 plc(c);
+  ShmPort port(c);
+  Plc3601 plc(port);
   EXPECT_TRUE(plc.move(true, 7, {3'000, 5, 6}).ok);
   EXPECT_TRUE(plc.preset_position(-1'000).ok);
   EXPECT_EQ(fake.edges().back(), words({m::cmd_msw::kPresetPosition, 0, -1, 0, 0, 0, 0, 0}))
@@ -223,7 +228,8 @@ TEST(CtlCommands, HomeKeepsProximityBitAndZeroTarget) {
   ipc::Client c(n);
   c.write_word(1, m::cmd_lsw::kBackplaneProximity | m::cmd_lsw::kSCurve);
   c.write_word(2, 5);
-  Plc3601 plc(c);
+  ShmPort port(c);
+  Plc3601 plc(port);
   EXPECT_TRUE(plc.home(false, {1'000, 2, 3}).ok);
   EXPECT_EQ(fake.edges().back(),
             words({m::cmd_msw::kFindHomeCcw, m::cmd_lsw::kBackplaneProximity, 0, 0, 1, 0, 2, 3}));
@@ -233,7 +239,8 @@ TEST(CtlCommands, ConfigureEntersConfigModeAndReturns) {
   const std::string n = test_name("cfg");
   FakeModule fake(n);
   ipc::Client c(n);
-  Plc3601 plc(c);
+  ShmPort port(c);
+  Plc3601 plc(port);
   const std::uint16_t cfg = m::cfg_msw::kHomeUsed | m::cfg_msw::kCwLimitUsed |
                             m::cfg_msw::kCcwLimitUsed | m::cfg_msw::kStepDirOutput;
   const Outcome o = plc.configure(cfg, 0x3F, 1'500);
@@ -251,7 +258,8 @@ TEST(CtlCommands, BlendProgramHandshakeOneBlockPerSegment) {
   const std::string n = test_name("blend");
   FakeModule fake(n);
   ipc::Client c(n);
-  Plc3601 plc(c);
+  ShmPort port(c);
+  Plc3601 plc(port);
   BlendProfile b;
   b.segments = {{10'000, 5'000, 10, AccelType::kConstant},
                 {12'345, 8'000, 20, AccelType::kTrapezoidalS}};
@@ -273,7 +281,8 @@ TEST(CtlCommands, JogHoldsLevelThenReleasesAndWaitsIdle) {
   const std::string n = test_name("jog");
   FakeModule fake(n);
   ipc::Client c(n);
-  Plc3601 plc(c);
+  ShmPort port(c);
+  Plc3601 plc(port);
   const auto t0 = std::chrono::steady_clock::now();
   const Outcome o = plc.jog(true, {500, 1, 1}, 50ms);
   EXPECT_GE(std::chrono::steady_clock::now() - t0, 50ms);
@@ -288,7 +297,8 @@ TEST(CtlCommands, TimeoutWithoutModuleScanning) {
   const std::string n = test_name("dead");
   ipc::ShmImage img(n, k3601);  // an image nobody scans
   ipc::Client c(n);
-  Plc3601 plc(c, 30ms);
+  ShmPort port(c, 30ms);
+  Plc3601 plc(port, 30ms);
   const Outcome o = plc.move(true, 1, {1'000, 1, 1});
   EXPECT_FALSE(o.ok);
   EXPECT_TRUE(o.timed_out);
@@ -299,58 +309,10 @@ TEST(CtlCommands, OnlyFor3601) {
   const std::string n = test_name("3202");
   ipc::ShmImage img(n, {ModuleType::k3202, 2, 4, 16, 16});
   ipc::Client c(n);
-  EXPECT_THROW(Plc3601{c}, ipc::IpcError);
-}
-
-TEST(CtlStatus, Decodes3601CommandModeBitsAndPositions) {
-  ImageWords in = words({m::status_msw::kModuleOk | m::status_msw::kMoveComplete,
-                         m::status_lsw::kHomeActive, -12, -345, 40, 0, 0, 7});
-  const std::string s = format_status(ModuleType::k3601, in);
-  EXPECT_NE(s.find("COMMAND mode"), std::string::npos);
-  EXPECT_NE(s.find("[Move Complete, Module OK]"), std::string::npos) << s;
-  EXPECT_NE(s.find("[Home Input Active]"), std::string::npos) << s;
-  EXPECT_NE(s.find("position = -12345"), std::string::npos) << s;
-  EXPECT_NE(s.find("encoder  = 40000"), std::string::npos) << s;
-  EXPECT_NE(s.find("capture  = 7"), std::string::npos) << s;
-}
-
-TEST(CtlStatus, Decodes3601ConfigMode) {
-  ImageWords in =
-      words({static_cast<std::int16_t>(0x8000 | 0x4000 | 0x0404), 0x3F, 1, 500, 0, 0, 4, 1});
-  const std::string s = format_status(ModuleType::k3601, in);
-  EXPECT_NE(s.find("CONFIGURATION mode"), std::string::npos) << s;
-  EXPECT_NE(s.find("starting speed = 1500"), std::string::npos) << s;
-  EXPECT_NE(s.find("firmware = 4.1"), std::string::npos) << s;
-}
-
-TEST(CtlStatus, Decodes3602BinarySplitPerAxis) {
-  ImageWords in;
-  in.w[0] = 0x4000 | 0x0008;  // axis 1: enabled, stopped
-  in.w[2] = 0x00FE;           // 16,702,650 = 16#00FE:DCBA
-  in.w[3] = static_cast<std::int16_t>(0xDCBA);
-  in.w[8] = static_cast<std::int16_t>(0x8000);  // axis 2 in configuration mode
-  const std::string s = format_status(ModuleType::k3602, in);
-  EXPECT_NE(s.find("3602 axis 1 in COMMAND mode"), std::string::npos) << s;
-  EXPECT_NE(s.find("[Axis Stopped, Axis Enabled]"), std::string::npos) << s;
-  EXPECT_NE(s.find("position = 16702650"), std::string::npos) << s;
-  EXPECT_NE(s.find("3602 axis 2 in CONFIGURATION mode"), std::string::npos) << s;
-}
-
-TEST(CtlStatus, Decodes3202NativeDints) {
-  ImageWords in;
-  in.w[8] = (1 << 14) | (1 << 30);  // channel 2: Home Invalid, Module OK
-  in.w[9] = -2'000'000'000;
-  const std::string s = format_status(ModuleType::k3202, in);
-  EXPECT_NE(s.find("[Home Invalid, Module OK]"), std::string::npos) << s;
-  EXPECT_NE(s.find("position = -2000000000"), std::string::npos) << s;
-}
-
-TEST(CtlStatus, RawWordsHexPerWordSize) {
-  ImageWords w;
-  w.w[0] = -1;
-  EXPECT_EQ(format_words(w, 1, 2), "  [ 0]          -1  16#FFFF\n");
-  EXPECT_EQ(format_words(w, 1, 4), "  [ 0]          -1  16#FFFFFFFF\n");
+  ShmPort port(c);
+  EXPECT_EQ(port.type(), ModuleType::k3202) << "the dialect is chosen from the image header";
+  EXPECT_THROW(Plc3601{port}, std::invalid_argument);
 }
 
 }  // namespace
-}  // namespace stepmod::tools::ctl
+}  // namespace stepmod::plc

@@ -1,0 +1,193 @@
+// One axis: configuration and command mode, the scan, the end of a motion, and the status.
+// Commands are in axis_commands.cpp, input edges in axis_inputs.cpp.
+#include "module/axis/axis.hpp"
+
+namespace stepmod::module::axis {
+
+Axis::Axis(const ModuleRules& rules, gpio::Backend& backend, planner::MotionPort& motion)
+    : st_(rules, backend, motion),
+      homing_(st_),
+      manual_(st_),
+      blend_(st_),
+      encoder_(st_),
+      follower_(st_) {
+  st_.inputs.init(backend, motion.axis());
+  quadrature_.reset(st_.inputs.level(InputLine::kEncA), st_.inputs.level(InputLine::kEncB));
+  // 3601-CFG-01: power-up in command mode with Configuration Error (the 3202: without).
+  st_.status.configuration_error = rules.powers_up_with_configuration_error;
+}
+
+void Axis::scan(const AxisCommand& c, const std::optional<AxisConfig>& configuration, Nanos now) {
+  poll_motion_end();
+  if (config_mode_) {
+    if (c.configuration_mode) {
+      take_configuration(configuration);
+    } else {
+      // Issue 12 item 3, digest 7.15/7.16: the image that leaves configuration mode is already a
+      // command image. Commands fire on a 0->1 edge, and the configuration words of the previous
+      // scans are not command words: the previous command set is empty (enter_command_mode), so
+      // a command written together with the mode bit's clearing is an edge and acts now (or gets
+      // the manual's Command Error: several command bits, no valid configuration). Dropping it
+      // would leave the PLC with no motion, no Move Complete and no error.
+      enter_command_mode();
+      command_mode_scan(c, now);
+    }
+  } else if (c.configuration_mode) {
+    // 3601-CE-01: the mode bit while moving raises CE; the move finishes first, then the axis
+    // enters configuration mode and CE clears (3601 Ch.3 "the stepper controller will finish its
+    // current operation").
+    if (st_.moving()) {
+      if (!config_after_motion_) st_.status.command_error = true;
+      config_after_motion_ = true;
+      if (st_.activity == Activity::kHoming) homing_.timers(now);  // its pauses go on meanwhile
+    } else {
+      if (config_after_motion_) st_.status.command_error = false;
+      config_after_motion_ = false;
+      config_mode_ = true;
+      take_configuration(configuration);
+    }
+  } else {
+    config_after_motion_ = false;
+    command_mode_scan(c, now);
+  }
+  prev_ = c;
+}
+
+// In configuration mode the words are evaluated every scan (the verdict of unchanged words is
+// the same): valid -> stored for the return to command mode and CfgE = 0; invalid -> CfgE = 1.
+void Axis::take_configuration(const std::optional<AxisConfig>& configuration) {
+  pending_ = configuration;
+  st_.status.configuration_error = !configuration.has_value();
+}
+
+// Leaving configuration mode (digest 7.15, 3601-CFG-13, 3601-PI-01).
+void Axis::enter_command_mode() {
+  config_mode_ = false;
+  // Edges are detected against command images from here on, not the configuration words: the
+  // previous command set is empty (digest 7.16; see scan()).
+  prev_ = AxisCommand{};
+  // 3601 Ch.4 "Registration Move": the minimum registration distance is reset by every
+  // configuration (3601-LSW-01 then reads 0).
+  manual_.reset_min_registration();
+  blend_.erase();  // 3601-CE-20: any configuration erases the stored blend profile
+  if (!pending_) {
+    st_.configured = false;  // CfgE stays set; commands are refused until a valid configuration
+    return;
+  }
+  st_.cfg = *pending_;
+  st_.configured = true;
+  st_.inputs.configure(st_.cfg.inputs_used, st_.cfg.inputs_active_high);
+  const bool step_dir = st_.cfg.step_dir_output;
+  st_.backend.set_pulse_format(st_.motion.axis(),
+                               step_dir ? gpio::PulseFormat::kStepDir : gpio::PulseFormat::kCwCcw);
+  st_.motion.set_pulse_format(step_dir);
+  st_.set_position(0);
+  // A18 (b): the encoder and capture registers are zeroed by a configuration too.
+  st_.encoder = 0;
+  st_.capture = 0;
+  st_.status = Latches{};
+  st_.status.position_invalid = true;
+  held_target_ = 0;
+}
+
+void Axis::poll_motion_end() {
+  if (st_.activity == Activity::kIdle || st_.activity == Activity::kFollower || st_.motion.busy()) {
+    return;
+  }
+  if (st_.activity == Activity::kHoming) {
+    // A homing sequence is several motions and pauses; it ends when Homing says.
+    const StopCause cause = st_.stop_cause;
+    st_.stop_cause = StopCause::kNone;
+    homing_.motion_ended(cause);
+    return;
+  }
+  const Activity ended = st_.activity;
+  st_.activity = Activity::kIdle;
+  const StopCause cause = st_.stop_cause;
+  st_.stop_cause = StopCause::kNone;
+  if (ended == Activity::kBlend) {
+    blend_.motion_ended(cause);  // MC / Stopped / CE-23 self-clear (blend.cpp)
+    return;
+  }
+  switch (cause) {
+    case StopCause::kNone:
+      // 3601-MC-01: an absolute/relative or encoder move that reached its target.
+      if (ended == Activity::kMove || ended == Activity::kEncoderMove) {
+        st_.status.move_complete = true;
+      }
+      // 3601-STP-N1: a one-shot manual move ends without Stopped.
+      break;
+    case StopCause::kHold:
+    case StopCause::kExternal:
+      if (ended == Activity::kMove) {
+        // 3601-HLD-01/02/03: a held move keeps its target for Resume.
+        st_.status.hold = true;
+        held_target_ = move_target_;
+      } else {
+        st_.status.stopped = true;  // 3601-STP-01: manual move stopped by the External input
+      }
+      break;
+    case StopCause::kRelease:    // 3601-STP-01
+    case StopCause::kImmediate:  // 3601-STP-03
+    case StopCause::kFault:      // 3601-STP-02/04
+      st_.status.stopped = true;
+      break;
+  }
+}
+
+void Axis::plc_stopped() {
+  // 3601-PI-07: the PLC left Run mode while moving: motion stops, position invalid.
+  if (st_.moving()) st_.immediate_stop(StopCause::kImmediate);
+}
+
+AxisStatus Axis::status() const noexcept {
+  AxisStatus s;
+  const Latches& l = st_.status;
+  s.configuration_mode = config_mode_;
+  if (st_.moving() && st_.motion.busy()) {
+    // 3601-DIR-01: direction of the pulses being output.
+    s.moving_cw = st_.dir == planner::Direction::kCw;
+    s.moving_ccw = !s.moving_cw;
+    // 3601-ACC-01: the phase of the edge the pulse thread last wrote.
+    const auto phase = st_.motion.phase();
+    s.accelerating = phase == planner::MotionPort::Phase::kAccelerating;
+    s.decelerating = phase == planner::MotionPort::Phase::kDecelerating;
+  }
+  // 3601-DIR-01: a one-shot's direction while its command is held (prev_: this scan's image).
+  if (const auto d = manual_.one_shot_direction(prev_.commands)) {
+    if (*d == planner::Direction::kCw) {
+      s.moving_cw = true;
+    } else {
+      s.moving_ccw = true;
+    }
+  }
+  s.hold = l.hold;
+  if (st_.rules.stopped_means_idle) {
+    s.stopped = !st_.moving();  // 3602-STP-01
+  } else {
+    // 3601-STP-N1: never together with MC, AH or Hld.
+    s.stopped = l.stopped && !l.move_complete && !l.at_home && !l.hold;
+  }
+  s.at_home = l.at_home;
+  s.move_complete = l.move_complete;
+  s.home_invalid = l.home_invalid;
+  s.invalid_profile = l.invalid_profile;
+  s.position_invalid = l.position_invalid;
+  s.input_error = l.input_error;
+  s.command_error = l.command_error;
+  s.configuration_error = l.configuration_error;
+  // Logical input states (A27: unused inputs read 0) and the proximity echo, which is live
+  // whether or not homing is configured (A44).
+  s.inputs_active = st_.inputs.active_bits();
+  s.proximity_echo = prev_.backplane_proximity;
+  s.blend_running = blend_.running();
+  s.blend_acknowledge = blend_.acknowledge();
+  s.follower_mode = st_.activity == Activity::kFollower;
+  s.min_registration_set = manual_.min_registration_set();
+  s.position = st_.position();
+  s.encoder = st_.encoder;
+  s.capture = st_.capture;
+  return s;
+}
+
+}  // namespace stepmod::module::axis

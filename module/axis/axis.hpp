@@ -1,0 +1,84 @@
+#pragma once
+// One axis (3601, 3602) or channel (3202): everything the manuals say an axis does, fed decoded
+// configuration and commands (axis_config.hpp, axis_command.hpp), input edges and time, and
+// producing a decoded status (axis_status.hpp). What differs between the modules comes from its
+// ModuleRules (rules.hpp); which word and bit carries what is the dialects' business
+// (module/m3601/...). The features are objects that own their state: Homing, ManualMove, Blend,
+// Encoder, Follower; they share the axis' AxisState.
+//
+// Files: axis.cpp (modes, the scan, the end of a motion, the status), axis_commands.cpp (command
+// edges and the plain commands), axis_inputs.cpp (input edges, capture).
+#include <optional>
+
+#include "gpio/backend.hpp"
+#include "module/axis/axis_command.hpp"
+#include "module/axis/axis_config.hpp"
+#include "module/axis/axis_state.hpp"
+#include "module/axis/axis_status.hpp"
+#include "module/axis/blend.hpp"
+#include "module/axis/encoder.hpp"
+#include "module/axis/follower.hpp"
+#include "module/axis/homing.hpp"
+#include "module/axis/manual_move.hpp"
+#include "module/axis/quadrature_decoder.hpp"
+#include "module/axis/rules.hpp"
+#include "planner/motion_port.hpp"
+
+namespace stepmod::module::axis {
+
+class Axis {
+ public:
+  Axis(const ModuleRules& rules, gpio::Backend& backend, planner::MotionPort& motion);
+  Axis(const Axis&) = delete;
+  Axis& operator=(const Axis&) = delete;
+
+  // One I/O scan. `configuration`: the dialect's verdict on this image read as configuration
+  // words (the decoded configuration, or nullopt for the manual's configuration error); it is
+  // looked at only while the axis is in configuration mode.
+  void scan(const AxisCommand& c, const std::optional<AxisConfig>& configuration, Nanos now);
+  // An input edge (electrical level, own timestamp), between scans.
+  void on_input(const gpio::InputEvent& e);
+  // The PLC left Run mode (3601-PI-07), or shutdown: immediate stop of a motion under way.
+  void plc_stopped();
+
+  // The status after the last scan (or input edge).
+  AxisStatus status() const noexcept;
+  bool in_configuration_mode() const noexcept { return config_mode_; }
+
+ private:
+  // Modes (digest 7.15).
+  void take_configuration(const std::optional<AxisConfig>& configuration);
+  void enter_command_mode();
+  // Command mode (axis_commands.cpp).
+  void command_mode_scan(const AxisCommand& c, Nanos now);
+  void command_edge(const AxisCommand& c, const CommandSet& rising);
+  void command_move(const AxisCommand& c, bool absolute);
+  void command_hold();
+  void command_resume(const AxisCommand& c);
+  void command_immediate_stop();
+  void command_preset_position(const AxisCommand& c);
+  void command_reset_errors();
+  // The pulse thread has ended the motion: its outcome in the status latches.
+  void poll_motion_end();
+  // An encoder count changed at `t` (X4 decoding).
+  void encoder_changed(Nanos t);
+
+  AxisState st_;
+  QuadratureDecoder quadrature_;
+  Homing homing_;
+  ManualMove manual_;
+  Blend blend_;
+  Encoder encoder_;
+  Follower follower_;
+
+  bool config_mode_ = false;
+  bool config_after_motion_ = false;   // CE-01: mode requested while moving
+  std::optional<AxisConfig> pending_;  // last configuration accepted in configuration mode
+  std::int64_t held_target_ = 0;       // Hold/Resume: the held move's absolute target
+  std::int64_t move_target_ = 0;       // absolute target of the running abs/rel move
+  // The previous scan's command image: edges are found against it (digest 7.16). After the scan
+  // it is this scan's image, which the status reads.
+  AxisCommand prev_;
+};
+
+}  // namespace stepmod::module::axis

@@ -1,0 +1,233 @@
+// Command mode: the scan's order, the command edges (digest 7.16) and the plain commands of the
+// 3601 manual Ch.4 (absolute/relative move, Hold, Resume, Immediate Stop, Preset Position, Reset
+// Errors). Every rejection names the checklist item of digest 6.1 it implements.
+#include "module/axis/axis.hpp"
+
+namespace stepmod::module::axis {
+
+// One command-mode scan: level commands and runtime monitors first (a released manual command
+// stops the axis even while CE is set), then the command edges.
+void Axis::command_mode_scan(const AxisCommand& c, Nanos now) {
+  manual_.levels(c);
+  const CommandSet rising = c.commands.rising_since(prev_.commands);
+  if (!st_.configured) {
+    if (!rising.empty()) command_edge(c, rising);
+    return;
+  }
+  manual_.scan(c, rising, now);
+  encoder_.scan();
+  follower_.scan(c, prev_);
+  if (st_.activity == Activity::kHoming) homing_.scan(c, now);
+  blend_.programming_scan(c, prev_);
+  if (!rising.empty()) {
+    command_edge(c, rising);
+  } else if (c.commands.empty() && c.store_min_registration && !prev_.store_min_registration &&
+             !st_.status.command_error) {
+    manual_.store_min_registration(c);  // no command set, the store flag rising (digest 3.8)
+  }
+}
+
+void Axis::command_edge(const AxisCommand& c, const CommandSet& rising) {
+  // 3601-CE-L1: while CE is set, only Reset Errors is looked at (Immediate Stop included).
+  if (st_.status.command_error && !rising.has(CommandKind::kResetErrors)) return;
+  // 3601-CE-02 / CE-12: more than one command at a time. A33: an undefined command bit counts as
+  // a command.
+  if (c.commands.count() > 1) {
+    st_.reject();
+    return;
+  }
+  if (rising.has(CommandKind::kUndefined)) {
+    st_.reject();  // A33
+    return;
+  }
+  // The manual: "The 3601 module has to be configured before starting any operations."
+  if (!st_.configured) {
+    st_.reject();
+    return;
+  }
+  // The dialect's word-level rules for this command (3601-CE-09, CE-15, CE-21: words or the
+  // command LSW that must be 0).
+  if (c.words_invalid) {
+    st_.reject();
+    return;
+  }
+  const auto kind = rising.single();
+  if (!kind) return;
+  switch (*kind) {
+    case CommandKind::kAbsoluteMove:
+      command_move(c, true);
+      break;
+    case CommandKind::kRelativeMove:
+      command_move(c, false);
+      break;
+    case CommandKind::kHold:
+      command_hold();
+      break;
+    case CommandKind::kResume:
+      command_resume(c);
+      break;
+    case CommandKind::kImmediateStop:
+      command_immediate_stop();
+      break;
+    case CommandKind::kFindHomeCw:
+      homing_.command(c, planner::Direction::kCw);
+      break;
+    case CommandKind::kFindHomeCcw:
+      homing_.command(c, planner::Direction::kCcw);
+      break;
+    case CommandKind::kManualCw:
+    case CommandKind::kManualCcw: {
+      const auto dir =
+          *kind == CommandKind::kManualCw ? planner::Direction::kCw : planner::Direction::kCcw;
+      if (c.follower) {
+        follower_.command(c, dir);
+      } else {
+        manual_.command(c, dir);
+      }
+      break;
+    }
+    case CommandKind::kPresetPosition:
+      command_preset_position(c);
+      break;
+    case CommandKind::kPresetEncoder:
+      encoder_.preset(c);
+      break;
+    case CommandKind::kResetErrors:
+      command_reset_errors();
+      break;
+    case CommandKind::kRunBlendCw:
+      blend_.run(planner::Direction::kCw);
+      break;
+    case CommandKind::kRunBlendCcw:
+      blend_.run(planner::Direction::kCcw);
+      break;
+    case CommandKind::kUndefined:
+    case CommandKind::kCount:
+      break;  // refused above
+  }
+}
+
+// Absolute and Relative moves: 3601 manual Ch.4 "Absolute & Relative Moves".
+void Axis::command_move(const AxisCommand& c, bool absolute) {
+  // 3601-CE-03: a move while another is in progress; the running move is unaffected.
+  if (st_.moving()) {
+    st_.reject();
+    return;
+  }
+  // 3601-CE-04 / IP-02: target outside the module's range (3601: -8,388,608..8,388,607) or not a
+  // valid number in the module's encoding.
+  if (!st_.target_in_range(c.target)) {
+    st_.reject_profile();
+    return;
+  }
+  const auto profile = st_.read_profile(c, true);
+  if (!profile) return;
+  // 3601-CE-14 / IP-11: an encoder move needs the quadrature encoder.
+  if (c.encoder_move && !st_.cfg.quadrature_encoder) {
+    st_.reject_profile();
+    return;
+  }
+  if (c.encoder_move) {
+    encoder_.move(c, absolute);
+    return;
+  }
+  // 3601-CE-06: an absolute move needs a valid position.
+  if (absolute && st_.status.position_invalid) {
+    st_.reject();
+    return;
+  }
+  const std::int64_t steps = absolute ? *c.target - st_.position() : *c.target;
+  const planner::Direction dir = steps < 0 ? planner::Direction::kCcw : planner::Direction::kCw;
+  if (st_.inputs_block_start(dir)) return;
+  st_.clear_move_outcome();
+  move_target_ = absolute ? *c.target : st_.position() + *c.target;
+  if (steps == 0) {
+    st_.status.move_complete = true;  // already at the target: nothing to output
+    return;
+  }
+  st_.start_abs_rel(steps, *profile);
+}
+
+// Hold: 3601 manual Ch.4 "Hold Move".
+void Axis::command_hold() {
+  if (st_.activity == Activity::kEncoderMove) return;  // A4: ignored, no CE (encoder.cpp)
+  if (st_.activity == Activity::kMove) {
+    // A hold already under way (or the External input's) needs nothing more.
+    if (st_.stop_cause == StopCause::kNone) {
+      st_.stop_cause = StopCause::kHold;  // 3601-HLD-01
+      st_.motion.stop(st_.move_decel);
+    }
+    return;
+  }
+  if (st_.activity == Activity::kBlend) {
+    blend_.hold();  // 3601-CE-23: CE, the blend continues, CE clears at its end
+    return;
+  }
+  // 3601-CE-07: Hold while no absolute/relative move is in progress. During a manual move the
+  // motion also stops, controlled (A43).
+  st_.reject();
+  if (st_.activity == Activity::kManual && st_.stop_cause == StopCause::kNone) {
+    st_.stop_cause = StopCause::kRelease;
+    st_.motion.stop(st_.move_decel);
+  }
+}
+
+// Resume: the remaining distance to the held move's target, with the speed, accel, decel and
+// S-curve selection given now (3601 manual Ch.4 "Resume Move").
+void Axis::command_resume(const AxisCommand& c) {
+  // 3601-CE-08: Resume when not in the Hold state.
+  if (!st_.status.hold || st_.moving()) {
+    st_.reject();
+    return;
+  }
+  const auto profile = st_.read_profile(c, true);
+  if (!profile) return;
+  const std::int64_t remaining = held_target_ - st_.position();
+  const planner::Direction dir = remaining < 0 ? planner::Direction::kCcw : planner::Direction::kCw;
+  if (st_.inputs_block_start(dir)) return;
+  st_.status.hold = false;
+  st_.status.input_error = false;
+  move_target_ = held_target_;
+  if (remaining == 0) {
+    st_.status.move_complete = true;
+    return;
+  }
+  // 7.5: if the External input is still active the move again yields one step and holds.
+  st_.start_abs_rel(remaining, *profile);
+}
+
+// Immediate Stop: no deceleration; position invalid. A6: at rest nothing changes.
+void Axis::command_immediate_stop() {
+  if (st_.moving()) st_.immediate_stop(StopCause::kImmediate);  // 3601-PI-02, STP-03
+}
+
+// Preset Position: 3601 manual Ch.4 "Preset Position". The dialect's word rules (3601-CE-09:
+// speed, accel and decel words 0; 3601-CE-15: command LSW 0) were checked at dispatch.
+void Axis::command_preset_position(const AxisCommand& c) {
+  // The position register cannot be rewritten under a moving axis.
+  if (st_.moving()) {
+    st_.reject();
+    return;
+  }
+  if (!st_.target_in_range(c.target)) {
+    st_.reject();  // 3601-CE-04
+    return;
+  }
+  st_.set_position(*c.target);
+  st_.status.position_invalid = false;  // 3601-PI-C1
+  // 3601-MC-03: MC is left as it is; the 3602 clears it (3602-MC-02, digest 8.0).
+  if (st_.rules.preset_clears_move_complete) st_.status.move_complete = false;
+  // Digest 7.12: with diagnostic feedback the encoder register (own pulse count) is preset too.
+  if (st_.cfg.diagnostic_feedback) st_.encoder = *c.target;
+}
+
+// Reset Errors: clears CE, IE, HI and IP, never PI or CfgE (A7). The dialect's word rule
+// (3601-CE-15: command LSW 0) was checked at dispatch.
+void Axis::command_reset_errors() {
+  st_.status.command_error = false;  // 3601-CE-L2
+  st_.status.input_error = false;    // 3601-IE-C1
+  st_.status.home_invalid = false;   // 3601-HI-C1
+  st_.status.invalid_profile = false;
+}
+
+}  // namespace stepmod::module::axis

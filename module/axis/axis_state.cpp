@@ -1,0 +1,77 @@
+// The rules every motion of an axis shares (digest 7.1, 7.5, 7.7; A15).
+#include "module/axis/axis_state.hpp"
+
+namespace stepmod::module::axis {
+
+std::optional<Profile> AxisState::read_profile(const AxisCommand& c, bool ramped) {
+  // 3601-CE-04 / IP-02: speed, accel or decel outside its range.
+  if (!speed_in_range(c.speed) || !rate_in_range(c.accel) || !rate_in_range(c.decel)) {
+    reject_profile();
+    return std::nullopt;
+  }
+  // 3601-CE-05 / IP-01: Vp < Vs where the move ramps from the starting speed.
+  if (ramped && *c.speed < cfg.starting_speed) {
+    reject_profile();
+    return std::nullopt;
+  }
+  return Profile{static_cast<double>(*c.speed),
+                 {static_cast<double>(c.accel), c.shape},
+                 {static_cast<double>(c.decel), c.shape}};
+}
+
+void AxisState::start_abs_rel(std::int64_t steps, const Profile& p) {
+  if (inputs.active(InputLine::kExternal)) {
+    if (start_move_steps(steps < 0 ? -1 : 1, p)) stop_cause = StopCause::kExternal;
+    return;
+  }
+  start_move_steps(steps, p);
+}
+
+bool AxisState::start_move_steps(std::int64_t steps, const Profile& p) {
+  planner::MoveSpec spec;
+  spec.steps = steps < 0 ? -steps : steps;
+  spec.dir = steps < 0 ? planner::Direction::kCcw : planner::Direction::kCw;
+  spec.vs = cfg.starting_speed;
+  spec.vp = p.vp;
+  spec.accel = p.accel;
+  spec.decel = p.decel;
+  if (motion.start_move(spec) == 0) {
+    reject();  // the planner queue is full: refuse rather than lose the command
+    return false;
+  }
+  activity = Activity::kMove;
+  dir = spec.dir;
+  move_decel = p.decel;
+  stop_cause = StopCause::kNone;
+  return true;
+}
+
+bool AxisState::inputs_block_start(planner::Direction d) {
+  const auto limit = d == planner::Direction::kCw ? InputLine::kCwLimit : InputLine::kCcwLimit;
+  if (!inputs.active(InputLine::kEStop) && !inputs.active(limit)) return false;
+  status.input_error = true;
+  return true;
+}
+
+void AxisState::clear_move_outcome() noexcept {
+  status.move_complete = false;
+  status.hold = false;
+  status.stopped = false;
+  status.at_home = false;
+  status.input_error = false;
+}
+
+void AxisState::immediate_stop(StopCause cause) {
+  motion.immediate_stop();
+  stop_cause = cause;
+  status.position_invalid = true;
+  status.move_complete = false;
+}
+
+void AxisState::fault_stop() {
+  // Digest 7.7: limit / E-stop trip during a move: immediate stop, IE, PI, Stopped.
+  immediate_stop(StopCause::kFault);
+  status.input_error = true;
+}
+
+}  // namespace stepmod::module::axis

@@ -1,0 +1,111 @@
+#pragma once
+// What every feature of one axis reads and writes: the decoded configuration, the status latches,
+// the motion under way and the registers, with the helpers the manuals' rules share (starting a
+// move, the start checks, the stops). Each feature (homing.hpp, manual_move.hpp, blend.hpp,
+// encoder.hpp, follower.hpp) owns its own state and gets this one by reference.
+#include <cstdint>
+#include <optional>
+
+#include "gpio/backend.hpp"
+#include "module/axis/axis_command.hpp"
+#include "module/axis/axis_config.hpp"
+#include "module/axis/input_bank.hpp"
+#include "module/axis/rules.hpp"
+#include "planner/motion_port.hpp"
+
+namespace stepmod::module::axis {
+
+// What the axis is doing; a motion is in progress from acceptance until the pulse thread reports
+// its end (digest 7.16).
+enum class Activity : std::uint8_t {
+  kIdle,
+  kMove,         // absolute / relative move (axis_commands.cpp)
+  kEncoderMove,  // absolute / relative move to an encoder count (encoder.cpp)
+  kManual,       // manual move, and registration move (manual_move.cpp)
+  kHoming,       // Find Home + / - (homing.cpp)
+  kBlend,        // blend move (blend.cpp)
+  kFollower,     // encoder follower (follower.cpp)
+};
+
+// Why a motion is ending early; decides the status bits when it has ended.
+enum class StopCause : std::uint8_t { kNone, kHold, kExternal, kRelease, kImmediate, kFault };
+
+// Status and error latches, named as in the manuals.
+struct Latches {
+  bool hold = false;
+  bool stopped = false;
+  bool at_home = false;
+  bool move_complete = false;
+  bool home_invalid = false;
+  bool invalid_profile = false;
+  bool position_invalid = false;
+  bool input_error = false;
+  bool command_error = false;
+  bool configuration_error = false;
+};
+
+// A programmed speed with its two ramps, read from a command.
+struct Profile {
+  double vp = 0;
+  planner::Ramp accel;
+  planner::Ramp decel;
+};
+
+struct AxisState {
+  AxisState(const ModuleRules& r, gpio::Backend& b, planner::MotionPort& m) noexcept
+      : rules(r), backend(b), motion(m) {}
+
+  const ModuleRules& rules;
+  gpio::Backend& backend;
+  planner::MotionPort& motion;
+  InputBank inputs;
+
+  AxisConfig cfg;
+  bool configured = false;  // a valid configuration is in force
+  Latches status;
+  Activity activity = Activity::kIdle;
+  StopCause stop_cause = StopCause::kNone;
+  planner::Direction dir = planner::Direction::kCw;
+  planner::Ramp move_decel;  // the running motion's decel (controlled stops)
+
+  std::int64_t origin = 0;   // pulse count at which the reported position is 0
+  std::int64_t encoder = 0;  // encoder register (X4 counts, or own steps with diagnostic feedback)
+  std::int64_t capture = 0;  // captured value
+
+  bool moving() const noexcept { return activity != Activity::kIdle; }
+  std::int64_t position() const noexcept { return motion.steps() - origin; }
+  void set_position(std::int64_t p) noexcept { origin = motion.steps() - p; }
+  void reject() noexcept { status.command_error = true; }
+  void reject_profile() noexcept {
+    status.command_error = true;
+    status.invalid_profile = true;
+  }
+
+  // Ranges of the module (rules.hpp).
+  bool speed_in_range(const std::optional<std::int32_t>& v) const noexcept {
+    return v && *v >= 0 && *v <= rules.speed_max;
+  }
+  bool rate_in_range(std::int64_t steps_per_s2) const noexcept {
+    return steps_per_s2 >= rules.accel_min && steps_per_s2 <= rules.accel_max;
+  }
+  bool target_in_range(const std::optional<std::int32_t>& v) const noexcept {
+    return v && *v >= rules.target_min && *v <= rules.target_max;
+  }
+
+  // Speed, accel, decel and the S-curve selection of a command; nullopt after raising CE + IP for
+  // an out-of-range value (3601-CE-04 / IP-02) or, when `ramped`, Vp < Vs (3601-CE-05 / IP-01).
+  std::optional<Profile> read_profile(const AxisCommand& c, bool ramped);
+  // Starts an absolute/relative move of `steps` (signed); false (with CE) if the planner refused.
+  bool start_move_steps(std::int64_t steps, const Profile& p);
+  // 3601-HLD-03: with the External input active a move outputs one step, then holds.
+  void start_abs_rel(std::int64_t steps, const Profile& p);
+  // A15: no move starts while the E-stop is active or toward an active end limit. True (with
+  // Input Error set) when the move must not start.
+  bool inputs_block_start(planner::Direction d);
+  // A new move clears the previous move's outcome (3601-MC-03, HLD-C1, IE-C1, STP-C1, AH-01).
+  void clear_move_outcome() noexcept;
+  void immediate_stop(StopCause cause);
+  void fault_stop();  // limit / E-stop: immediate stop, IE, PI (digest 7.7)
+};
+
+}  // namespace stepmod::module::axis

@@ -1,0 +1,263 @@
+// Blend moves: the block-by-block programming handshake and Run Blend (3601 manual Ch.4 "Blend
+// Move", Ch.5 "Blend Move Programming"; digest 3.8, 7.10).
+//
+// Programming (digest 7.10 handshake, the flags decoded by the dialect): with no command set
+// the PLC holds the program flag for the whole cycle and raises the transmit flag once per block.
+// Each transmit rising edge reads one block (decoded by the dialect), checks it and sets the
+// acknowledge; the acknowledge follows transmit back to 0. Every check is made on the block that
+// brings its data, so an error is reported with that block's acknowledge. Clearing the program bit
+// ends the cycle: the profile is stored only if the cycle had no error and brought exactly the
+// declared number of segment blocks (A21c).
+#include <cmath>
+
+#include "module/axis/blend.hpp"
+#include "planner/profile.hpp"
+
+namespace stepmod::module::axis {
+
+namespace {
+
+constexpr int kMinSegments = 2;
+constexpr int kMaxSegments = 16;
+
+// Distances are compared with a hair of tolerance: a transition that exactly fills its segment
+// (the "touch" case) is legal, and floating rounding must not turn it into an error.
+bool fits(double needed, double length) {
+  return needed <= length + 1e-6 * (1.0 + length);
+}
+
+}  // namespace
+
+void Blend::programming_scan(const AxisCommand& c, const AxisCommand& prev) {
+  // The Hold's CE (3601-CE-23) was cleared by Reset Errors: a CE raised later has another reason
+  // and must not clear itself at the blend's end.
+  if (!ax_.status.command_error) hold_error_ = false;
+
+  const bool program = c.blend_program;
+  const bool transmit = c.blend_transmit;
+  const bool transmit_rose = transmit && !prev.blend_transmit;
+  // Routine step 4: the acknowledge follows the transmit bit back to 0.
+  if (!transmit) ack_ = false;
+
+  if (!program) {
+    if (cycle_) {
+      // Routine step 6: the cycle ends. A21c: fewer segment blocks than declared = not
+      // programmed (Run Blend then raises CE-20); a block too many was already an IP error.
+      cycle_ = false;
+      if (!spoiled_ && blocks_ > 0 && blocks_ == 1u + static_cast<unsigned>(pending_.count)) {
+        profile_ = pending_;
+        stored_ = true;
+      }
+    }
+    return;
+  }
+  if (!cycle_) {
+    cycle_ = true;
+    spoiled_ = false;
+    blocks_ = 0;
+    total_ = 0;
+    pending_ = planner::BlendSpec{};
+  }
+  if (!transmit_rose) return;
+
+  // Routine step 2: every block is acknowledged, a rejected one too (A21d, 3601-IP-21), so that
+  // the PLC's handshake never waits forever; the error bits tell it the block was refused.
+  ack_ = true;
+  const bool first = blocks_ == 0;
+  ++blocks_;
+  if (spoiled_) return;  // the cycle already failed: the rest is read and ignored
+
+  if (first && ax_.activity == Activity::kBlend) {
+    // 3601-CE-22: programming started while a blend runs. The cycle is refused (the stored
+    // profile, which the running blend came from, is kept) and the blend is brought down with
+    // its final-segment deceleration.
+    spoiled_ = true;
+    ax_.reject();
+    hold_error_ = false;  // this CE does not clear itself
+    if (ax_.stop_cause == StopCause::kNone) {
+      ax_.stop_cause = StopCause::kHold;  // a controlled stop; motion_ended gives its outcome
+      ax_.motion.stop(ax_.move_decel);
+    }
+    return;
+  }
+  if (ax_.status.command_error) {
+    // 3601-CE-L1: while CE is set the module takes no new operation; a block is not stored and
+    // the profile is reported invalid (3601-IP-21) so that a PLC checking only IP sees it too.
+    spoiled_ = true;
+    ax_.status.invalid_profile = true;
+    return;
+  }
+  if (first) {
+    // A new profile replaces the stored one from its first block on (digest 7.10 rule 7).
+    stored_ = false;
+  }
+  // No command may be set in a block (digest 3.8).
+  const bool msw_ok = c.commands.empty();
+  const bool ok = first ? first_block(c.blend_first) : segment_block(c.blend_segment);
+  if (!ok || !msw_ok) {
+    spoiled_ = true;
+    ax_.status.invalid_profile = true;  // 3601-IP-21: any error in a block
+  }
+}
+
+bool Blend::first_block(const BlendFirstBlock& b) {
+  bool ok = true;
+  // 3601-IP-04: 2..16 segments.
+  const std::int32_t count = b.segments;
+  if (count < kMinSegments || count > kMaxSegments) {
+    ok = false;
+  } else {
+    pending_.count = static_cast<std::uint8_t>(count);
+    for (int n = 1; n <= count; ++n) {
+      pending_.segments[static_cast<std::size_t>(n - 1)].ramp.shape =
+          b.shapes[static_cast<std::size_t>(n - 1)];
+    }
+  }
+  // The final deceleration's type: 3601-IP-19, A22 (type 10 is invalid for the final decel).
+  if (b.final_shape) {
+    pending_.final_decel.shape = *b.final_shape;
+  } else {
+    ok = false;
+  }
+  const std::int64_t value = b.final_decel;
+  if (value == 0) {
+    // 3601-CE-24 / IP-07, A21a: no final deceleration value -> CE (Ch.5) and IP (Ch.6 #7).
+    ax_.status.command_error = true;
+    ok = false;
+  } else if (!ax_.rate_in_range(value)) {
+    ok = false;  // 3601-IP-02: outside the module's accel range
+  } else {
+    pending_.final_decel.rate = static_cast<double>(value);
+  }
+  // The words the first block leaves empty are 0 (digest 3.8).
+  if (!b.unused_words_zero) ok = false;
+  return ok;
+}
+
+bool Blend::segment_block(const BlendSegmentBlock& b) {
+  const int n = static_cast<int>(blocks_) - 1;  // this block's segment, 1-based
+  // A21c: a segment block beyond the declared count is an error.
+  if (n > pending_.count) return false;
+  bool ok = true;
+  planner::BlendSegment& seg = pending_.segments[static_cast<std::size_t>(n - 1)];
+
+  // 3601-IP-20: the length is positive and encodable, and the lengths add up to at most the
+  // module's maximum (3601: 8,388,607; Ch.5 "Segment Length Restrictions").
+  const auto& length = b.length;
+  if (!length || *length <= 0 || *length > ax_.rules.blend_segment_max) {
+    ok = false;
+  } else {
+    seg.length = *length;
+    total_ += *length;
+    if (total_ > ax_.rules.blend_length_max) ok = false;
+  }
+  // Target speed Vs..1,000,000 (3601-IP-02 range; below Vs: 3601-CE-05 / IP-01, which name blend
+  // moves among the moves that may not run below the starting speed).
+  const auto& speed = b.speed;
+  if (!ax_.speed_in_range(speed)) {
+    ok = false;
+  } else if (*speed < ax_.cfg.starting_speed) {
+    ax_.status.command_error = true;
+    ok = false;
+  } else {
+    seg.speed = static_cast<double>(*speed);
+  }
+  // The accel/decel that reaches this segment's speed (3601-IP-02: the module's accel range).
+  if (!ax_.rate_in_range(b.rate)) {
+    ok = false;
+  } else {
+    seg.ramp.rate = static_cast<double>(b.rate);
+  }
+  if (!b.unused_words_zero) ok = false;  // digest 3.8
+  if (!ok) return false;
+
+  // Digest 7.10 rules 3-5, checked as soon as the segment's data is here: segment 1 starts at
+  // Vs, segment i at V(i-1).
+  const double vs = ax_.cfg.starting_speed;
+  const double v_prev = n == 1 ? vs : pending_.segments[static_cast<std::size_t>(n - 2)].speed;
+  // 3601-IP-06: two consecutive segments with the same speed.
+  if (n > 1 && seg.speed == v_prev) return false;
+  // 3601-IP-05: the segment must reach its speed inside its length (k |Vi^2 - Vi-1^2| / 2Ai).
+  double needed = planner::ramp_distance(v_prev, seg.speed, seg.ramp);
+  // A21b: the last segment also holds the final deceleration to Vs, which ends exactly at the
+  // sum of the lengths.
+  if (n == pending_.count) {
+    needed += planner::ramp_distance(seg.speed, vs, pending_.final_decel);
+  }
+  return fits(needed, static_cast<double>(seg.length));
+}
+
+// Run Blend + / -: 3601 manual Ch.4 "Blend Move". The dialect's word rules (3601-CE-21: target,
+// speed, accel and decel words 0; 3601-CE-15: command LSW 0) were checked at dispatch.
+void Blend::run(planner::Direction dir) {
+  // 3601-CE-03: a move while another is in progress; the running move is unaffected.
+  if (ax_.moving()) {
+    ax_.reject();
+    return;
+  }
+  // 3601-CE-20: no profile stored (never programmed, an incomplete or failed cycle, or erased by
+  // a configuration).
+  if (!stored_) {
+    ax_.reject();
+    return;
+  }
+  if (ax_.inputs_block_start(dir)) return;  // A15
+  planner::BlendSpec spec = profile_;
+  spec.dir = dir;  // + = CW, - = CCW; a profile never reverses (digest 7.10 rule 6)
+  spec.vs = ax_.cfg.starting_speed;
+  if (ax_.motion.start_blend(spec) == 0) {
+    ax_.reject();  // the planner queue is full: refuse rather than lose the command
+    return;
+  }
+  // A new move clears the previous move's outcome (3601-MC-03, HLD-C1, IE-C1, STP-C1). The
+  // position need not be valid: PI is left as it is (digest 7.10 rule 6).
+  ax_.clear_move_outcome();
+  ax_.activity = Activity::kBlend;
+  ax_.dir = dir;
+  ax_.move_decel = spec.final_decel;  // CE-22 brings the blend down with it
+  ax_.stop_cause = StopCause::kNone;
+  hold_error_ = false;
+}
+
+void Blend::hold() {
+  // 3601-CE-23: a blend cannot be held. CE is set, the blend runs on to its end and CE then
+  // clears by itself. Only a CE set here clears itself: Hold reaches this point only with CE = 0
+  // (3601-CE-L1), and a CE raised later for another reason cancels the self-clear (see
+  // programming_scan and the CE-22 branch).
+  ax_.reject();
+  hold_error_ = true;
+}
+
+void Blend::motion_ended(StopCause cause) {
+  switch (cause) {
+    case StopCause::kNone:
+      ax_.status.move_complete = true;  // 3601-MC-01
+      break;
+    case StopCause::kImmediate:
+    case StopCause::kFault:
+      ax_.status.stopped = true;  // 3601-STP-02/03/04: E-stop, Immediate Stop, limit
+      break;
+    default:
+      // Brought down by programming (3601-CE-22): neither MC (the move did not complete,
+      // 3601-MC-02) nor Stopped (3601-STP-N1: not after blends); CE says why.
+      break;
+  }
+  // 3601-CE-23 / CE-L3: the Hold's CE clears when the blend ends. Decision: at any end of the
+  // blend (completed, or stopped by a limit or the E-stop, which report through IE), since the
+  // error concerned only this blend; a CE raised for another reason is left set.
+  if (hold_error_) ax_.status.command_error = false;
+  hold_error_ = false;
+}
+
+void Blend::erase() {
+  // Digest 7.10 rule 7: a configuration erases the profile (3601-CE-20) and ends any cycle.
+  stored_ = false;
+  cycle_ = false;
+  spoiled_ = false;
+  blocks_ = 0;
+  total_ = 0;
+  ack_ = false;
+  hold_error_ = false;
+}
+
+}  // namespace stepmod::module::axis

@@ -1,0 +1,167 @@
+#pragma once
+// What differs between the modules is data: one ModuleRules value per module type, read by the
+// shared axis code (module/axis/) wherever the manuals disagree. The values are the digest's
+// (MODULES.md section 1 feature table, 8.0 "Genuine differences between the modules — do not
+// harmonise them", and the 6.x checklists they come from). Only numbers and yes/no facts live
+// here; how a module writes them into its words is its dialect's business (module/m3601/...).
+//
+// Shared by all three (so no field here): commands fire on a 0->1 edge (7.16); while Command
+// Error is set every command but Reset Errors is ignored, Immediate Stop included (3601-CE-L1,
+// the 3602 and 3202 lists say "as 3601"); a configuration request while moving is CE, the move
+// finishes, then the mode changes (7.15); 2..16 blend segments; homing pauses of 2 s.
+#include <cstdint>
+
+#include "core/clock.hpp"
+#include "core/module_shape.hpp"
+
+namespace stepmod::module::axis {
+
+struct ModuleRules {
+  ModuleType type;
+
+  // ---- Ranges (digest section 1 table) ---------------------------------------------------------
+  std::int32_t target_min;  // absolute/relative target, preset values, registration counts
+  std::int32_t target_max;
+  std::int32_t speed_max;  // programmed speed Vp (steps/s)
+  std::int32_t starting_speed_min;
+  std::int32_t starting_speed_max;
+  // Accel/decel in steps/s^2 (the shared code never sees a module's own unit).
+  std::int64_t accel_min;
+  std::int64_t accel_max;
+  // One unit of the module's accel/decel words in steps/s^2: 1,000 where the words are in
+  // steps/ms/s (3601, 3602), 1 where they are in steps/s^2 (3202). Used by the dialects only.
+  std::int64_t accel_word_unit;
+  std::int64_t blend_length_max;   // sum of the segment lengths
+  std::int64_t blend_segment_max;  // one segment's length (3602: 1 ... 1,073,741,822)
+  std::int64_t registration_max;   // registration count and minimum registration distance
+
+  // ---- Features that exist on some modules only -----------------------------------------------
+  bool has_encoder;         // quadrature encoder input, encoder move, Preset Encoder
+  bool has_follower;        // encoder follower (3601 firmware >= 4.1)
+  bool has_registration;    // manual/jog move with a registration count
+  bool has_marker_homing;   // homing options 3 and 4 (marker pulse)
+  bool has_homing_timeout;  // 3602: 0 ... 300 s, expiry -> Home Invalid (A16)
+  std::int32_t homing_timeout_max_s;
+  bool has_estop_input;             // a separate E-stop terminal (3601, 3202)
+  bool cw_ccw_inputs_configurable;  // 3602: CW/CCW inputs are unused, limits or E-stops
+  bool has_disable;                 // axis/channel disable bit (3602 inferred, 3202 bit 28)
+
+  // ---- Genuine differences of behaviour (digest 8.0) ------------------------------------------
+  // Preset Position clears Move Complete on the 3602 only (3602-MC-02 vs 3601-MC-03).
+  bool preset_clears_move_complete;
+  // Stopped: an event bit set after certain stops (3601, 3202) or "idle in command mode" (3602,
+  // 3602-STP-01).
+  bool stopped_means_idle;
+  // A home command needs the end limit in its own direction configured (3601/3202, 3601-CE-13);
+  // the 3602 needs only the home input.
+  bool homing_needs_limit_ahead;
+  // External input active when a registration move starts: always an error on the 3601, only
+  // with a minimum registration distance of 0 on the 3602 (3601-CE-27).
+  bool registration_external_always_error;
+  // Power-up: 3601/3602 in command mode with Configuration Error; 3202 disabled without it.
+  bool powers_up_with_configuration_error;
+};
+
+inline constexpr ModuleRules kRules3601{
+    .type = ModuleType::k3601,
+    .target_min = -8'388'608,
+    .target_max = 8'388'607,
+    .speed_max = 1'000'000,
+    .starting_speed_min = 1,
+    .starting_speed_max = 1'000'000,
+    .accel_min = 1'000,  // 1 ... 2000 steps/ms/s
+    .accel_max = 2'000'000,
+    .accel_word_unit = 1'000,
+    .blend_length_max = 8'388'607,  // digest 7.10 rule 2 (3601-IP-20)
+    .blend_segment_max = 8'388'607,
+    .registration_max = 8'388'607,
+    .has_encoder = true,
+    .has_follower = true,
+    .has_registration = true,
+    .has_marker_homing = true,
+    .has_homing_timeout = false,
+    .homing_timeout_max_s = 0,
+    .has_estop_input = true,
+    .cw_ccw_inputs_configurable = false,
+    .has_disable = false,
+    .preset_clears_move_complete = false,
+    .stopped_means_idle = false,
+    .homing_needs_limit_ahead = true,
+    .registration_external_always_error = true,
+    .powers_up_with_configuration_error = true,
+};
+
+inline constexpr ModuleRules kRules3602{
+    .type = ModuleType::k3602,
+    .target_min = -1'073'741'823,  // 16#C000:0001 ... 16#3FFF:FFFF
+    .target_max = 1'073'741'823,
+    .speed_max = 1'000'000,
+    .starting_speed_min = 1,
+    .starting_speed_max = 1'000'000,
+    .accel_min = 1'000,  // 1 ... 2000 steps/ms/s
+    .accel_max = 2'000'000,
+    .accel_word_unit = 1'000,
+    .blend_length_max = 1'073'741'823,
+    .blend_segment_max = 1'073'741'822,
+    .registration_max = 1'073'741'823,
+    .has_encoder = false,  // A20: no encoder register exists
+    .has_follower = false,
+    .has_registration = true,
+    .has_marker_homing = false,
+    .has_homing_timeout = true,
+    .homing_timeout_max_s = 300,
+    .has_estop_input = false,  // CW/CCW inputs may be E-stops instead
+    .cw_ccw_inputs_configurable = true,
+    .has_disable = true,
+    .preset_clears_move_complete = true,
+    .stopped_means_idle = true,
+    .homing_needs_limit_ahead = false,
+    .registration_external_always_error = false,
+    .powers_up_with_configuration_error = true,
+};
+
+inline constexpr ModuleRules kRules3202{
+    .type = ModuleType::k3202,
+    .target_min = -8'388'608,
+    .target_max = 8'388'607,
+    .speed_max = 1'000'000,
+    .starting_speed_min = 1,
+    .starting_speed_max = 1'000'000,
+    .accel_min = 1'000,  // steps/s^2 (A31 on the upper bound)
+    .accel_max = 2'000'000,
+    .accel_word_unit = 1,
+    .blend_length_max = 8'388'607,
+    .blend_segment_max = 8'388'607,
+    .registration_max = 0,  // no registration move (target must be 0 in manual moves)
+    .has_encoder = true,
+    .has_follower = false,
+    .has_registration = false,
+    .has_marker_homing = true,
+    .has_homing_timeout = false,
+    .homing_timeout_max_s = 0,
+    .has_estop_input = true,
+    .cw_ccw_inputs_configurable = false,
+    .has_disable = true,
+    .preset_clears_move_complete = false,
+    .stopped_means_idle = false,
+    .homing_needs_limit_ahead = true,
+    .registration_external_always_error = true,  // no registration at all
+    .powers_up_with_configuration_error = false,
+};
+
+constexpr const ModuleRules& rules_of(ModuleType t) noexcept {
+  switch (t) {
+    case ModuleType::k3602:
+      return kRules3602;
+    case ModuleType::k3202:
+      return kRules3202;
+    case ModuleType::k3601:
+      break;
+  }
+  return kRules3601;
+}
+
+// Homing pauses (digest 7.11: every pause of the homing sequences is 2 s, on every module).
+inline constexpr Nanos kHomingPause = 2 * kNsPerSec;
+
+}  // namespace stepmod::module::axis

@@ -1,0 +1,55 @@
+#include "module/m3601/module_3601.hpp"
+
+#include "module/m3601/config_3601.hpp"
+#include "module/m3601/words_3601.hpp"
+
+namespace stepmod::module::m3601 {
+
+namespace {
+constexpr ModuleShape kShape = shape_of(ModuleType::k3601);
+}  // namespace
+
+Module3601::Module3601(gpio::Backend& backend, planner::MotionPort& motion)
+    : axis_(axis::kRules3601, backend, motion) {}
+
+const ModuleShape& Module3601::shape() const noexcept {
+  return kShape;
+}
+
+void Module3601::on_input(const gpio::InputEvent& e) {
+  axis_.on_input(e);
+}
+
+void Module3601::scan(const ImageWords& out, ImageWords& in, Nanos now) {
+  // The image read as configuration words matters only with the mode bit set.
+  ConfigCheck check;
+  std::optional<axis::AxisConfig> configuration;
+  if (out.w[out_word::kMsw] & cfg_msw::kConfigMode) {
+    check = check_config(out);
+    if (check.fault == ConfigFault::kNone) configuration = to_axis_config(check.config);
+  }
+  axis_.scan(command_from_words(out), configuration, now);
+
+  if (axis_.in_configuration_mode()) {
+    // The axis took this image's configuration. A26: the mirror shows the accepted
+    // configuration; a rejected one leaves the last mirror.
+    if (configuration) {
+      mirror_ = {check.config.msw, check.config.lsw,
+                 static_cast<std::uint16_t>(check.config.vs_msw),
+                 static_cast<std::uint16_t>(check.config.vs_lsw)};
+    }
+    configuration_image_to_words(mirror_, axis_.status().configuration_error, in);
+  } else {
+    status_to_words(axis_.status(), in);
+  }
+}
+
+void Module3601::plc_stopped(Nanos /*now*/) {
+  axis_.plc_stopped();
+}
+
+void Module3601::shutdown() {
+  axis_.plc_stopped();  // immediate stop of a motion under way
+}
+
+}  // namespace stepmod::module::m3601

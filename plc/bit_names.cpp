@@ -1,0 +1,16 @@
+#include "plc/bit_names.hpp"
+
+namespace stepmod::plc {
+
+std::string set_bit_names(std::uint32_t word, BitTable table) {
+  std::string s;
+  for (const NamedBit& b : table) {
+    const std::uint32_t v = field_value(word, b);
+    if (v == 0) continue;
+    s += (s.empty() ? "" : ", ") + std::string(b.name);
+    if (b.width > 1) s += "=" + std::to_string(v);
+  }
+  return s.empty() ? "-" : s;
+}
+
+}  // namespace stepmod::plc

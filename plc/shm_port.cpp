@@ -1,0 +1,64 @@
+#include "plc/shm_port.hpp"
+
+#include <thread>
+
+namespace stepmod::plc {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+// How often a wait looks at the inputs and bumps the heartbeat.
+constexpr auto kPoll = std::chrono::microseconds(500);
+constexpr auto kHeartbeatSlice = std::chrono::milliseconds(10);
+}  // namespace
+
+ShmPort::ShmPort(ipc::Client& client, std::chrono::milliseconds scan_timeout)
+    : client_(client), scan_timeout_(scan_timeout) {}
+
+ImageWords ShmPort::outputs() const {
+  ImageWords w;
+  client_.read_outputs(w);
+  return w;
+}
+
+bool ShmPort::read_inputs(ImageWords& in) const {
+  // On one CPU the module can be preempted inside its seqlock write; a reader that only spins
+  // never lets it finish. Let it run, then try again.
+  for (int i = 0; i < 200; ++i) {
+    if (client_.read_inputs(in)) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return false;
+}
+
+bool ShmPort::wait_scans(unsigned n) {
+  client_.heartbeat();
+  const std::uint64_t target = client_.scan_counter() + n;
+  const auto deadline = Clock::now() + scan_timeout_;
+  while (!client_.wait_scan_counter(target, std::chrono::milliseconds(50))) {
+    client_.heartbeat();
+    if (Clock::now() >= deadline) return false;
+  }
+  return true;
+}
+
+void ShmPort::pass(std::chrono::nanoseconds d) {
+  const auto end = Clock::now() + d;
+  for (auto now = Clock::now(); now < end; now = Clock::now()) {
+    client_.heartbeat();
+    std::this_thread::sleep_for(std::min<std::chrono::nanoseconds>(kHeartbeatSlice, end - now));
+  }
+}
+
+bool ShmPort::wait_inputs(const std::function<bool(const ImageWords&)>& done,
+                          std::chrono::nanoseconds limit) {
+  const auto deadline = Clock::now() + limit;
+  for (;;) {
+    ImageWords in;
+    if (client_.read_inputs(in) && done(in)) return true;
+    if (Clock::now() >= deadline) return false;
+    client_.heartbeat();
+    std::this_thread::sleep_for(kPoll);
+  }
+}
+
+}  // namespace stepmod::plc

@@ -1,0 +1,36 @@
+#pragma once
+// The PLC port over a running module's shared-memory image (ipc::Client). While it waits it is
+// the PLC's heartbeat (INTERFACE 3.2): stepmodctl and the daemon tests drive the module as a PLC.
+#include <chrono>
+
+#include "ipc/client.hpp"
+#include "plc/port.hpp"
+
+namespace stepmod::plc {
+
+class ShmPort final : public Port {
+ public:
+  // `scan_timeout` bounds each wait_scans.
+  explicit ShmPort(ipc::Client& client,
+                   std::chrono::milliseconds scan_timeout = std::chrono::milliseconds(2000));
+
+  ModuleType type() const override { return client_.type(); }
+  ImageWords outputs() const override;
+  void write_outputs(const ImageWords& out) override { client_.write_outputs(out); }
+  void update_outputs(const std::function<void(ImageWords&)>& edit) override {
+    client_.update_outputs(edit);
+  }
+  bool read_inputs(ImageWords& in) const override;
+  bool wait_scans(unsigned n) override;
+  void pass(std::chrono::nanoseconds d) override;
+  bool wait_inputs(const std::function<bool(const ImageWords&)>& done,
+                   std::chrono::nanoseconds limit) override;
+
+  ipc::Client& client() noexcept { return client_; }
+
+ private:
+  ipc::Client& client_;
+  std::chrono::milliseconds scan_timeout_;
+};
+
+}  // namespace stepmod::plc

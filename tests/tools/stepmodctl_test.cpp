@@ -1,0 +1,97 @@
+// The stepmodctl program against images nobody scans: the command dialect is chosen from the
+// image header (3602/3202: exit 4, not implemented yet), and bad input never writes a word.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "ipc/client.hpp"
+#include "ipc/shm_image.hpp"
+
+namespace stepmod::tools {
+namespace {
+
+struct CtlRun {
+  int exit_status = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream f(path);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+CtlRun stepmodctl(const std::string& args) {
+  const std::string base = "/tmp/stepmodctl-test-" + std::to_string(::getpid());
+  const std::string cmd =
+      std::string(STEPMODCTL_PATH) + " " + args + " >" + base + ".out 2>" + base + ".err";
+  CtlRun r;
+  const int rc = std::system(cmd.c_str());
+  r.exit_status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  r.out = slurp(base + ".out");
+  r.err = slurp(base + ".err");
+  std::remove((base + ".out").c_str());
+  std::remove((base + ".err").c_str());
+  return r;
+}
+
+std::string image_name(const char* tag) {
+  return std::string("ctl-") + tag + "-" + std::to_string(::getpid());
+}
+
+ImageWords outputs_of(const std::string& name) {
+  ipc::Client c(name);
+  ImageWords w;
+  c.read_outputs(w);
+  return w;
+}
+
+TEST(Stepmodctl, CommandsOnA3202SayTheDialectIsNotImplementedAndWriteNothing) {
+  const std::string n = image_name("3202");
+  ipc::ShmImage img(n, {ModuleType::k3202, 2, 4, 16, 16});
+  const CtlRun r = stepmodctl("-n " + n + " move abs 100 -s 1000 -a 10 -d 10");
+  EXPECT_EQ(r.exit_status, 4) << r.err;
+  EXPECT_NE(r.err.find("3202"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("not implemented yet"), std::string::npos) << r.err;
+  EXPECT_EQ(outputs_of(n), ImageWords{});
+}
+
+TEST(Stepmodctl, CommandsOnA3602SayTheDialectIsNotImplementedStatusDecodes) {
+  const std::string n = image_name("3602");
+  ipc::ShmImage img(n, {ModuleType::k3602, 2, 2, 16, 16});
+  const CtlRun stop = stepmodctl("-n " + n + " stop");
+  EXPECT_EQ(stop.exit_status, 4) << stop.err;
+  EXPECT_NE(stop.err.find("3602"), std::string::npos) << stop.err;
+  EXPECT_EQ(outputs_of(n), ImageWords{});
+  const CtlRun status = stepmodctl("-n " + n + " status");
+  EXPECT_EQ(status.exit_status, 0) << status.err;
+  EXPECT_NE(status.out.find("3602 axis 2 in COMMAND mode"), std::string::npos) << status.out;
+}
+
+TEST(Stepmodctl, A3601TargetTheWordsCannotCarryIsAUsageErrorAndWritesNothing) {
+  const std::string n = image_name("3601");
+  ipc::ShmImage img(n, {ModuleType::k3601, 1, 2, 8, 8});
+  const CtlRun r = stepmodctl("-n " + n + " move abs 65537000 -s 1000 -a 10 -d 10");
+  EXPECT_EQ(r.exit_status, 2) << r.err;
+  EXPECT_NE(r.err.find("does not fit"), std::string::npos) << r.err;
+  EXPECT_EQ(outputs_of(n), ImageWords{});
+}
+
+TEST(Stepmodctl, AFollowerRatioTheWordsCannotCarryIsAUsageErrorAndWritesNothing) {
+  const std::string n = image_name("follow");
+  ipc::ShmImage img(n, {ModuleType::k3601, 1, 2, 8, 8});
+  const CtlRun r = stepmodctl("-n " + n + " follow + --multiplier 40000");
+  EXPECT_EQ(r.exit_status, 2) << r.err;
+  EXPECT_EQ(outputs_of(n), ImageWords{});
+}
+
+}  // namespace
+}  // namespace stepmod::tools
