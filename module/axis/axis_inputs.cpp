@@ -73,7 +73,7 @@ void Axis::on_input(const gpio::InputEvent& e) {
 
 void Axis::encoder_changed(Nanos t) {
   if (st_.activity == Activity::kEncoderMove) {
-    encoder_.watch(prev_);  // prev_: the command image in force (the last scan's)
+    encoder_.watch(prev_, t);  // prev_: the command image in force (the last scan's)
     return;
   }
   follower_.counted(t);
