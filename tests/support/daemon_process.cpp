@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -75,7 +76,12 @@ DaemonProcess::DaemonProcess(const std::string& toml, bool trace) {
   char tmpl[] = "/tmp/stepmod-test-XXXXXX";
   if (mkdtemp(tmpl) == nullptr) throw std::runtime_error("mkdtemp failed");
   dir_ = tmpl;
-  name_ = "t" + std::to_string(getpid()) + "-" + std::to_string(counter++);
+  // Formatted with snprintf: building it with std::string operator+ / += of std::to_string
+  // trips GCC 12's -O3 -Wrestrict false positive inside libstdc++ (a Release build with
+  // -Werror failed on it).
+  char name[64];
+  std::snprintf(name, sizeof name, "t%ld-%d", static_cast<long>(getpid()), counter++);
+  name_ = name;
   config_ = dir_ + "/module.toml";
   trace_ = dir_ + "/trace.vcd";
   log_ = dir_ + "/stepmodd.log";
