@@ -18,8 +18,8 @@ class CommandSink {
 
 class MotionPort {
  public:
-  MotionPort(unsigned axis, CommandSink& sink, rt::AxisFeedback& feedback,
-             rt::AxisControl& control, const rt::StepHistory& history) noexcept
+  MotionPort(unsigned axis, CommandSink& sink, rt::AxisFeedback& feedback, rt::AxisControl& control,
+             const rt::StepHistory& history) noexcept
       : axis_(static_cast<std::uint8_t>(axis)),
         sink_(sink),
         fb_(feedback),
@@ -111,9 +111,7 @@ class MotionPort {
 
   // Feedback, as last published by the pulse thread.
   std::uint32_t epoch() const noexcept { return epoch_; }
-  bool busy() const noexcept {
-    return fb_.finished_epoch.load(std::memory_order_acquire) < epoch_;
-  }
+  bool busy() const noexcept { return fb_.finished_epoch.load(std::memory_order_acquire) < epoch_; }
   std::int64_t steps() const noexcept { return fb_.steps.load(std::memory_order_acquire); }
   // Step count at a past time t (capture, registration): exact while t is within the history.
   bool steps_at(Nanos t, std::int64_t& out) const noexcept {
@@ -135,6 +133,30 @@ class MotionPort {
     return Phase::kCruising;
   }
   unsigned axis() const noexcept { return axis_; }
+
+  // Late-edge guard (rt::PulseEngine::set_late_limit), decoded from the pulse thread's feedback.
+  struct LateFault {
+    std::uint32_t count = 0;  // faults of this axis since start
+    std::uint32_t epoch = 0;  // the motion last cut (0: none yet)
+    std::int64_t step = 0;    // the axis step count when it was cut
+    Nanos late_ns = 0;        // how late its next edge would have been written
+    Nanos worst_late_ns = 0;  // the largest late_ns so far
+  };
+  LateFault late_fault() const noexcept {
+    LateFault f;
+    f.count = fb_.late_faults.load(std::memory_order_acquire);  // first: the details follow it
+    f.epoch = fb_.fault_epoch.load(std::memory_order_relaxed);
+    f.step = fb_.fault_step.load(std::memory_order_relaxed);
+    f.late_ns = fb_.fault_late_ns.load(std::memory_order_relaxed);
+    f.worst_late_ns = fb_.worst_fault_late_ns.load(std::memory_order_relaxed);
+    return f;
+  }
+  // The motion last started was cut by the late-edge guard: the module ends it as an immediate
+  // stop (the pulse thread has already dropped its edges).
+  bool late_faulted() const noexcept {
+    return epoch_ != 0 && fb_.late_faults.load(std::memory_order_acquire) != 0 &&
+           fb_.fault_epoch.load(std::memory_order_relaxed) == epoch_;
+  }
 
  private:
   std::uint32_t start(Command& c) noexcept {

@@ -134,6 +134,14 @@ void Personality3601::enter_command_mode() {
 }
 
 void Personality3601::poll_motion_end() {
+  // Late-edge guard (issue 12; rt::PulseEngine::set_late_limit): the pulse thread cut the motion
+  // rather than burst its late steps out. The PLC sees what an Immediate Stop gives (3601-STP-03,
+  // PI-02: Stopped, Position Invalid), so its program re-homes; immediate_stop() also ends the
+  // planner's side of the motion. Once: afterwards the cause is kImmediate or the axis is idle.
+  if (moving() && stop_cause_ != StopCause::kImmediate && stop_cause_ != StopCause::kFault &&
+      motion_.late_faulted()) {
+    immediate_stop(StopCause::kImmediate);
+  }
   if (activity_ == Activity::kIdle || activity_ == Activity::kFollower || motion_.busy()) return;
   if (activity_ == Activity::kHoming) {
     // A homing sequence is several motions and pauses; it ends when homing_motion_ended says.
