@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ipc/health.hpp"
 #include "module/personality.hpp"
 
 namespace stepmod::tools::ctl {
@@ -28,6 +29,10 @@ std::string set_bit_names(std::uint32_t word, const std::vector<BitName>& names)
 
 // The whole decoded input image, multi-line, for `type`.
 std::string format_status(ModuleType type, const ImageWords& in);
+
+// The daemon health words (INTERFACE.md 3.3): flags by name, late-edge fault count and the
+// worst lateness.
+std::string format_health(const ipc::Health& h);
 
 // One line per word: index, decimal, hex (word-size digits).
 std::string format_words(const ImageWords& w, unsigned count, unsigned word_bytes);

@@ -8,11 +8,13 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <limits>
 #include <thread>
 #include <vector>
 
 #include "gpio/sim_backend.hpp"
 #include "gpio/vcd_trace.hpp"
+#include "ipc/plc_supervisor.hpp"
 #include "ipc/shm_image.hpp"
 #include "ipc/sim_panel.hpp"
 #include "planner/planner_thread.hpp"
@@ -40,9 +42,11 @@ struct Daemon::Impl {
   std::unique_ptr<Stack> stack;
   std::unique_ptr<ipc::ShmImage> image;
   std::unique_ptr<ipc::SimPanelServer> panel;
-  std::uint64_t input_trace_dropped = 0;
-  rt::PulseThread* pulse = nullptr;  // while run() runs
-  std::uint32_t planner_wakes = 0;   // the planner's wake counter as last seen by kick()
+  std::atomic<std::uint64_t> input_trace_dropped{0};  // control thread writes, trace reads
+  rt::PulseThread* pulse = nullptr;                   // while run() runs
+  std::uint32_t planner_wakes = 0;              // the planner's wake counter as last seen by kick()
+  std::vector<std::uint32_t> late_faults_seen;  // per axis: faults already logged
+  bool trace_loss_logged = false;
 
   // After the control thread may have submitted commands (or set an immediate stop, which is
   // also submitted): ring the pulse thread's doorbell so that it polls for the new edges. It
@@ -61,6 +65,12 @@ struct Daemon::Impl {
   }
 
   void control_loop(const std::atomic<bool>& stop);
+  // The daemon health words (INTERFACE.md 3.3) for this scan, logging new late-edge faults.
+  ipc::Health health(std::uint32_t supervisor_flags);
+  void log_supervision(const ipc::PlcSupervisor& sup, Nanos now);
+  std::uint64_t trace_dropped() const noexcept {
+    return stack->engine().trace_dropped() + input_trace_dropped.load(std::memory_order_relaxed);
+  }
   void sync_panel();
   void shutdown_motion();
   void idle_outputs();
@@ -82,12 +92,19 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
   // rung when the command is submitted (kick()), polls every max_sleep_ns (50 us) and wakes
   // ~15-20 us late: 100 us covers it and is 50 us off the command latency (issue 5).
   so.planner.start_delay_ns = 100 * kNsPerUs;
+  so.late_limit_ns = config.late_limit_ns;
   if (trace_path) {
     d.output_trace = std::make_unique<SpscRing<TraceRecord>>(kTraceRing);
     d.input_trace = std::make_unique<SpscRing<TraceRecord>>(kTraceRing);
   }
   d.stack = std::make_unique<Stack>(so, *d.backend, d.output_trace.get());
   d.image = std::make_unique<ipc::ShmImage>(config.name, d.stack->shape());
+  // A crashed daemon's image is replaced silently by ShmImage; say what was there (a PLC still
+  // attached to it would have been talking to nobody).
+  if (const std::string old = d.image->replaced_description(); !old.empty()) {
+    spdlog::warn("replaced {}", old);
+  }
+  d.late_faults_seen.assign(d.stack->shape().axes, 0);
   if (d.sim != nullptr) {
     d.panel = std::make_unique<ipc::SimPanelServer>(config.name, d.stack->shape().axes);
   }
@@ -170,10 +187,10 @@ void Daemon::run(const std::atomic<bool>& stop) {
   spdlog::info("pulse thread: {} edges written, lateness p50 {} ns, p99.9 {} ns, max {} ns",
                stats.count, stats.percentile(0.5), stats.percentile(0.999), stats.max);
   if (d.trace) {
-    d.trace->stop(d.stack->engine().trace_dropped(), d.input_trace_dropped);
-    if (d.stack->engine().trace_dropped() + d.input_trace_dropped > 0) {
+    d.trace->stop(d.stack->engine().trace_dropped(), d.input_trace_dropped.load());
+    if (d.trace_dropped() > 0) {
       spdlog::warn("trace: {} output and {} input records dropped (ring full)",
-                   d.stack->engine().trace_dropped(), d.input_trace_dropped);
+                   d.stack->engine().trace_dropped(), d.input_trace_dropped.load());
     }
   }
   if (d.backend->lost_events() > 0) {
@@ -185,12 +202,9 @@ void Daemon::run(const std::atomic<bool>& stop) {
 void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
   module::Personality& personality = stack->personality();
   std::array<gpio::InputEvent, 64> events{};
-  ImageWords out{};
   ImageWords in{};
   Nanos next_scan = monotonic_now();
-  std::uint64_t last_heartbeat = image->heartbeat();
-  Nanos heartbeat_changed = next_scan;
-  bool plc_stopped = false;
+  ipc::PlcSupervisor supervisor(config.plc_timeout_ns);
 
   while (!stop.load(std::memory_order_acquire)) {
     std::size_t n = 0;
@@ -207,8 +221,11 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
       const gpio::InputEvent& e = events[i];
       if (input_trace) {
         const TraceRecord r{e.t, e.axis, static_cast<std::uint8_t>(e.line),
-                            static_cast<std::uint8_t>(e.level), 1};
-        if (!input_trace->try_push(r)) ++input_trace_dropped;
+                                static_cast<std::uint8_t>(e.level), 1};
+        if (!input_trace->try_push(r)) {
+          input_trace_dropped.store(input_trace_dropped.load(std::memory_order_relaxed) + 1,
+                                    std::memory_order_relaxed);
+        }
       }
       personality.on_input(e);
     }
@@ -218,25 +235,94 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     if (now < next_scan) continue;
 
     // One consistent snapshot per scan; a PLC caught mid-write keeps the previous snapshot.
-    image->read_outputs(out);
-    if (config.plc_timeout_ns > 0) {
-      const std::uint64_t hb = image->heartbeat();
-      if (hb != last_heartbeat) {
-        last_heartbeat = hb;
-        heartbeat_changed = now;
-        plc_stopped = false;
-      } else if (!plc_stopped && now - heartbeat_changed >= config.plc_timeout_ns) {
-        spdlog::warn("PLC heartbeat unchanged for {} ms: treating the PLC as out of Run mode",
-                     config.plc_timeout_ns / kNsPerMs);
-        personality.plc_stopped(now);
-        plc_stopped = true;
-      }
-    }
+    // The supervisor (ipc/plc_supervisor.hpp) decides what the module gets: the live words, or
+    // while the PLC is lost (heartbeat stale, sequence stuck odd) the frozen last good ones.
+    ipc::PlcSupervisor::Sample sample;
+    sample.now = now;
+    sample.heartbeat = image->heartbeat();
+    sample.seq = image->output_seq();
+    sample.snapshot_ok = image->read_outputs(sample.words, sample.snapshot_seq);
+    const ImageWords& out = supervisor.scan(sample);
+    log_supervision(supervisor, now);
+    // As a PLC leaving Run mode (INTERFACE 3.2): every move stops, position invalid. Once per
+    // loss; the frozen words keep anything new from starting until the PLC is back.
+    if (supervisor.tripped()) personality.plc_stopped(now);
     personality.scan(out, in, now);
     kick();
-    image->publish_inputs(in);
+    image->publish_inputs(in, health(supervisor.flags()));
     next_scan += config.scan_ns;
     if (next_scan <= now) next_scan = now + config.scan_ns;  // overrun: skip, never burst
+  }
+}
+
+ipc::Health Daemon::Impl::health(std::uint32_t supervisor_flags) {
+  ipc::Health h;
+  h.flags = supervisor_flags;
+  Nanos worst = 0;
+  for (unsigned a = 0; a < stack->shape().axes; ++a) {
+    const planner::MotionPort& m = stack->motion(a);
+    const planner::MotionPort::LateFault f = m.late_fault();
+    if (f.count != late_faults_seen[a]) {
+      late_faults_seen[a] = f.count;
+      spdlog::error(
+          "axis {}: late-edge fault: the edge after step {} would have been written {} us late "
+          "(limit {} us); motion cut, no burst: the axis is stopped with position invalid "
+          "(re-home). {} fault(s) on this axis so far",
+          a + 1, f.step, f.late_ns / kNsPerUs, config.late_limit_ns / kNsPerUs, f.count);
+    }
+    h.late_faults += f.count;
+    worst = std::max(worst, f.worst_late_ns);
+    // Bit 0 from the fault until the axis' next motion (the PLC's next accepted command).
+    if (f.count != 0 && f.epoch == m.epoch()) h.flags |= STEPMOD_HEALTH_LATE_EDGE;
+  }
+  h.worst_late_us = static_cast<std::uint32_t>(
+      std::min<Nanos>(worst / kNsPerUs, std::numeric_limits<std::uint32_t>::max()));
+  // Bit 4 from the first lost record on: the trace stays incomplete (the VCD says so too).
+  if (output_trace && trace_dropped() > 0) {
+    h.flags |= STEPMOD_HEALTH_TRACE_LOST;
+    if (!trace_loss_logged) {
+      trace_loss_logged = true;
+      spdlog::error("trace: records lost (the trace ring was full): the VCD will be incomplete");
+    }
+  }
+  return h;
+}
+
+void Daemon::Impl::log_supervision(const ipc::PlcSupervisor& sup, Nanos now) {
+  const std::uint32_t on = sup.started();
+  const std::uint32_t off = sup.ended();
+  if ((on | off) == 0) return;
+  if (on & STEPMOD_HEALTH_PLC_STALE) {
+    spdlog::warn(
+        "PLC heartbeat unchanged for {} ms: the PLC is treated as out of Run mode (every axis "
+        "stopped, position invalid; the output words are frozen and not acted on until the "
+        "heartbeat moves again)",
+        sup.heartbeat_age(now) / kNsPerMs);
+  }
+  if (off & STEPMOD_HEALTH_PLC_STALE) {
+    spdlog::info(
+        "PLC heartbeat moves again: output words acted on again (a command bit held "
+        "through the outage needs a new 0->1 edge)");
+  }
+  if (on & STEPMOD_HEALTH_SEQ_STUCK) {
+    spdlog::warn(
+        "output sequence left odd ({}) for {} ms: a PLC died in the middle of a write; treated "
+        "as the PLC out of Run mode (every axis stopped, position invalid, words frozen)",
+        sup.stuck_seq(), sup.odd_timeout() / kNsPerMs);
+  }
+  if (off & STEPMOD_HEALTH_SEQ_STUCK) {
+    spdlog::info(
+        "output sequence moves again: output words acted on again (a command bit held "
+        "through the outage needs a new 0->1 edge)");
+  }
+  if (on & STEPMOD_HEALTH_SEQ_BYPASS) {
+    spdlog::warn(
+        "output words changed while the output sequence did not: a writer bypasses the seqlock "
+        "(INTERFACE 3.1); the module may act on torn words (an old MSW with a new LSW)");
+  }
+  if (off & STEPMOD_HEALTH_SEQ_BYPASS) {
+    spdlog::info("no seqlock bypass for {} ms ({} bypassing change(s) seen in all)",
+                 ipc::PlcSupervisor::kBypassQuiet / kNsPerMs, sup.bypass_changes());
   }
 }
 
