@@ -66,9 +66,12 @@ class Daemon {
     config_ = dir_ + "/3601.toml";
     log_ = dir_ + "/stepmodd.log";
     if (trace) trace_ = dir_ + "/trace.vcd";
-    std::ofstream(config_) << "[module]\ntype = \"3601\"\nname = \"" << name_
-                           << "\"\nscan_us = " << scan_us
+    std::ofstream(config_) << "[module]\ntype = \"3601\"\nname = \"" << name_ << "\"\nscan_us = "
+                           << scan_us
+                           // Late-edge guard at its maximum: a fault would end the measured
+                           // move early (the guard has its own benchmark, scripts/bench).
                            << "\n[gpio]\nbackend = \"sim\"\n[rt]\npriority = 80\n"
+                              "late_limit_us = 1000000\n"
                               "[[axis]]\nstep = 1\ndir = 2\nhome = 3\ncw_limit = 4\nccw_limit = 5\n"
                               "[axis.sim]\ncw_limit_at = 100000000\nccw_limit_at = -100000000\n"
                               "home_from = -200\nhome_to = -100\n";

@@ -172,7 +172,10 @@ std::string write_config(const ConfigOptions& o, const std::string& path) {
   std::ostringstream c;
   c << "[module]\ntype = \"3601\"\nname = \"" << o.name << "\"\nscan_us = 1000\n\n"
     << "[gpio]\nbackend = \"gpiod\"\nchip = \"" << (o.chip.empty() ? env("BOARD_CHIP") : o.chip)
-    << "\"\n\n[rt]\npriority = " << o.priority << "\n\n[[axis]]\n";
+    << "\"\n\n[rt]\npriority = "
+    << o.priority
+    // qemu (TCG) stalls for milliseconds: relaxed late-edge guard, as in board.toml.
+    << "\nlate_limit_us = 200000\n\n[[axis]]\n";
   for (const char* k : kLineKeys) {
     const auto it = o.lines.find(k);
     if (it == o.lines.end()) {
