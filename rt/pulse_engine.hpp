@@ -50,6 +50,10 @@ class PulseEngine {
   std::uint64_t trace_dropped() const noexcept {
     return trace_dropped_.load(std::memory_order_relaxed);
   }
+  // The same counter, for the trace thread to watch (gpio::TraceWriter::watch_losses).
+  const std::atomic<std::uint64_t>& trace_dropped_counter() const noexcept {
+    return trace_dropped_;
+  }
 
   // Late-edge guard (issue 12): a motion edge whose write would come more than `limit` after
   // the time it is due (PulseEngine::due) is a fault of its axis, never a burst of catch-up

@@ -26,7 +26,12 @@
 namespace stepmod::tools {
 
 namespace {
-constexpr std::size_t kTraceRing = 1u << 18;  // records: ~130 ms of two axes at 1 MHz
+// Records per trace ring. The trace thread spools them as fast as memcpy (gpio/trace_spool.hpp);
+// what the ring must cover is the thread not being scheduled at all on a loaded machine: the
+// output ring holds 0.5 s of two axes at 500 kHz (2 M records/s), 16 MB, allocated only with
+// --trace. Inputs come at most at encoder rates.
+constexpr std::size_t kOutputTraceRing = 1u << 20;
+constexpr std::size_t kInputTraceRing = 1u << 18;
 // How long the shutdown waits for the pulse thread to acknowledge the immediate stops.
 constexpr Nanos kStopAckTimeout = 200 * kNsPerMs;
 }  // namespace
@@ -94,8 +99,8 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
   so.planner.start_delay_ns = 100 * kNsPerUs;
   so.late_limit_ns = config.late_limit_ns;
   if (trace_path) {
-    d.output_trace = std::make_unique<SpscRing<TraceRecord>>(kTraceRing);
-    d.input_trace = std::make_unique<SpscRing<TraceRecord>>(kTraceRing);
+    d.output_trace = std::make_unique<SpscRing<TraceRecord>>(kOutputTraceRing);
+    d.input_trace = std::make_unique<SpscRing<TraceRecord>>(kInputTraceRing);
   }
   d.stack = std::make_unique<Stack>(so, *d.backend, d.output_trace.get());
   d.image = std::make_unique<ipc::ShmImage>(config.name, d.stack->shape());
@@ -112,12 +117,13 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
     const auto wires = gpio::trace_wires(*d.backend);
     d.trace = std::make_unique<gpio::TraceWriter>(*trace_path, wires, d.start, *d.output_trace,
                                                   *d.input_trace);
+    d.trace->watch_losses(&d.stack->engine().trace_dropped_counter(), &d.input_trace_dropped);
   }
 }
 
 Daemon::~Daemon() = default;
 
-void Daemon::run(const std::atomic<bool>& stop) {
+bool Daemon::run(const std::atomic<bool>& stop) {
   Impl& d = *impl_;
   rt::PulseThread::Options po;
   po.priority = d.config.rt_priority;
@@ -189,13 +195,16 @@ void Daemon::run(const std::atomic<bool>& stop) {
   if (d.trace) {
     d.trace->stop(d.stack->engine().trace_dropped(), d.input_trace_dropped.load());
     if (d.trace_dropped() > 0) {
-      spdlog::warn("trace: {} output and {} input records dropped (ring full)",
-                   d.stack->engine().trace_dropped(), d.input_trace_dropped.load());
+      spdlog::error(
+          "trace: {} output and {} input records lost (ring full): the VCD is "
+          "incomplete (it says so, and marks where)",
+          d.stack->engine().trace_dropped(), d.input_trace_dropped.load());
     }
   }
   if (d.backend->lost_events() > 0) {
     spdlog::warn("{} input events were lost", d.backend->lost_events());
   }
+  return !d.trace || d.trace_dropped() == 0;
 }
 
 // The control thread: input events as they come, the PLC image once per scan.
@@ -221,7 +230,7 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
       const gpio::InputEvent& e = events[i];
       if (input_trace) {
         const TraceRecord r{e.t, e.axis, static_cast<std::uint8_t>(e.line),
-                                static_cast<std::uint8_t>(e.level), 1};
+                            static_cast<std::uint8_t>(e.level), 1};
         if (!input_trace->try_push(r)) {
           input_trace_dropped.store(input_trace_dropped.load(std::memory_order_relaxed) + 1,
                                     std::memory_order_relaxed);
