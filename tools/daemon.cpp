@@ -62,12 +62,6 @@ struct Daemon::Impl {
     planner_wakes = w;
     if (pulse != nullptr) pulse->ring();
   }
-  bool axes_at_rest() noexcept {
-    for (unsigned a = 0; a < stack->shape().axes; ++a) {
-      if (stack->motion(a).busy()) return false;
-    }
-    return true;
-  }
 
   void control_loop(const std::atomic<bool>& stop);
   // The daemon health words (INTERFACE.md 3.3) for this scan, logging new late-edge faults.
@@ -216,16 +210,9 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
   ipc::PlcSupervisor supervisor(config.plc_timeout_ns);
 
   while (!stop.load(std::memory_order_acquire)) {
-    std::size_t n = 0;
-    if (sim != nullptr && axes_at_rest()) {
-      // The simulated machine has no file descriptor to block on: its wait_events polls in
-      // 50 us steps. With every axis at rest only the panel, applied by this thread, changes an
-      // input: sleep to the scan in one go, then drain (issue 5: idle CPU).
-      if (monotonic_now() < next_scan) sleep_until(next_scan);
-      n = backend->wait_events(events, 0);
-    } else {
-      n = backend->wait_events(events, next_scan);
-    }
+    // Both backends block until an input edge or the scan (the sim on a futex its writes end,
+    // gpiod on its event file descriptors): no polling, moving or not.
+    const std::size_t n = backend->wait_events(events, next_scan);
     for (std::size_t i = 0; i < n; ++i) {
       const gpio::InputEvent& e = events[i];
       if (input_trace) {
