@@ -62,9 +62,19 @@ std::size_t SimBackend::wait_events(std::span<InputEvent> out, Nanos deadline) {
       n += machines_[(next_axis_ + k) % n_axes]->poll(out.subspan(n));
     }
     if (n_axes > 0) next_axis_ = (next_axis_ + 1) % n_axes;
-    if (n > 0 || out.empty()) return n;
+    if (n > 0 || out.empty()) {
+      if (n > 0) last_events_ = monotonic_now();
+      return n;
+    }
     const Nanos now = monotonic_now();
     if (now >= deadline) return 0;
+    if (now - last_events_ < kPollChunk) {
+      // Events come faster than one per kPollChunk (a fast move with an encoder: up to 2 M/s):
+      // a wake-up per event would make the pulse thread pay a system call per step. Poll in
+      // kPollChunk steps instead, without asking for a wake-up, until they slow down.
+      sleep_until(std::min(now + kPollChunk, deadline));
+      continue;
+    }
     const std::uint32_t seen = event_seq_.load(std::memory_order_seq_cst);
     waiting_.store(true, std::memory_order_seq_cst);
     // Events that came between the drain above and `seen`: take them without sleeping.

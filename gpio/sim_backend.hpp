@@ -49,6 +49,10 @@ class SimBackend final : public Backend {
   }
   SimMachine& machine(unsigned axis) noexcept { return *machines_[axis]; }
 
+  // Events closer together than this are polled for at this period instead of each waking the
+  // waiter (see wait_events).
+  static constexpr Nanos kPollChunk = 50 * kNsPerUs;
+
   // Wakes a thread sleeping in wait_events (what a GPIO event fd does for the gpiod backend).
   void notify_events() noexcept;
 
@@ -59,6 +63,7 @@ class SimBackend final : public Backend {
   // of them sees the other, so a wake-up is never lost (the futex compares the sequence).
   std::atomic<std::uint32_t> event_seq_{0};
   std::atomic<bool> waiting_{false};
+  Nanos last_events_ = 0;  // consumer: when wait_events last returned events
   std::vector<std::unique_ptr<SimMachine>> machines_;
   std::vector<AxisLines> lines_;
   unsigned next_axis_ = 0;  // round-robin start of wait_events, so no axis starves another

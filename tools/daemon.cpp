@@ -29,9 +29,9 @@ namespace {
 // Records per trace ring. The trace thread spools them as fast as memcpy (gpio/trace_spool.hpp);
 // what the ring must cover is the thread not being scheduled at all on a loaded machine: the
 // output ring holds 0.5 s of two axes at 500 kHz (2 M records/s), 16 MB, allocated only with
-// --trace. Inputs come at most at encoder rates.
+// --trace. Inputs as many: a simulated encoder makes an input edge per step.
 constexpr std::size_t kOutputTraceRing = 1u << 20;
-constexpr std::size_t kInputTraceRing = 1u << 18;
+constexpr std::size_t kInputTraceRing = 1u << 20;
 // How long the shutdown waits for the pulse thread to acknowledge the immediate stops.
 constexpr Nanos kStopAckTimeout = 200 * kNsPerMs;
 }  // namespace
@@ -51,6 +51,11 @@ struct Daemon::Impl {
   rt::PulseThread* pulse = nullptr;                   // while run() runs
   std::uint32_t planner_wakes = 0;              // the planner's wake counter as last seen by kick()
   std::vector<std::uint32_t> late_faults_seen;  // per axis: faults already logged
+  // Per axis, for the "needs a CPU of its own" notice: the step count at the last scan and the
+  // motion it was last given for.
+  std::vector<std::int64_t> steps_at_scan;
+  std::vector<std::uint32_t> cpu_notice_epoch;
+  Nanos last_scan = 0;
   bool trace_loss_logged = false;
 
   // After the control thread may have submitted commands (or set an immediate stop, which is
@@ -67,6 +72,7 @@ struct Daemon::Impl {
   // The daemon health words (INTERFACE.md 3.3) for this scan, logging new late-edge faults.
   ipc::Health health(std::uint32_t supervisor_flags);
   void log_supervision(const ipc::PlcSupervisor& sup, Nanos now);
+  void notice_cpu_need(Nanos now);
   std::uint64_t trace_dropped() const noexcept {
     return stack->engine().trace_dropped() + input_trace_dropped.load(std::memory_order_relaxed);
   }
@@ -104,6 +110,8 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
     spdlog::warn("replaced {}", old);
   }
   d.late_faults_seen.assign(d.stack->shape().axes, 0);
+  d.steps_at_scan.assign(d.stack->shape().axes, 0);
+  d.cpu_notice_epoch.assign(d.stack->shape().axes, 0);
   if (d.sim != nullptr) {
     d.panel = std::make_unique<ipc::SimPanelServer>(config.name, d.stack->shape().axes);
   }
@@ -245,6 +253,7 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     if (supervisor.tripped()) personality.plc_stopped(now);
     personality.scan(out, in, now);
     kick();
+    notice_cpu_need(now);
     image->publish_inputs(in, health(supervisor.flags()));
     next_scan += config.scan_ns;
     if (next_scan <= now) next_scan = now + config.scan_ns;  // overrun: skip, never burst
@@ -282,6 +291,42 @@ ipc::Health Daemon::Impl::health(std::uint32_t supervisor_flags) {
     }
   }
   return h;
+}
+
+// Issue 12 item 5: a motion whose edges come closer together than the pulse thread's early
+// wake-up keeps that thread on its CPU for the whole move. On a CPU shared with other threads the
+// kernel then takes it away now and then (RT throttling, the fair server: tens of ms), which the
+// late-edge guard turns into a fault. Said once per motion, from here (never the pulse thread),
+// as soon as the axis runs that fast.
+void Daemon::Impl::notice_cpu_need(Nanos now) {
+  const Nanos dt = now - last_scan;
+  last_scan = now;
+  for (unsigned a = 0; a < stack->shape().axes; ++a) {
+    planner::MotionPort& m = stack->motion(a);
+    const std::int64_t steps = m.steps();
+    const std::int64_t moved =
+        steps > steps_at_scan[a] ? steps - steps_at_scan[a] : steps_at_scan[a] - steps;
+    steps_at_scan[a] = steps;
+    if (pulse == nullptr || dt <= 0 || moved < 2 || !m.busy() || cpu_notice_epoch[a] == m.epoch()) {
+      continue;
+    }
+    const Nanos edge_gap = dt / (2 * moved);  // two edges per step
+    // Only once the thread has measured its wake-ups (before, its spin is a placeholder).
+    if (pulse->wake_p99() == 0 || edge_gap >= pulse->stay_on_cpu_gap()) continue;
+    cpu_notice_epoch[a] = m.epoch();
+    spdlog::warn(
+        "axis {}: ~{} steps/s, an edge every {} us: closer than the pulse thread's wake-up "
+        "({} us early; measured p99 wake-up lateness {} us), so the thread stays on its CPU for "
+        "this move. {}; a stall beyond [rt] late_limit_us ({} us) stops the axis (README: "
+        "'A CPU of its own')",
+        a + 1, moved * kNsPerSec / dt, edge_gap / 1000.0, pulse->spin_now() / kNsPerUs,
+        pulse->wake_p99() / kNsPerUs,
+        config.rt_cpu >= 0
+            ? "Make sure no other thread runs on CPU " + std::to_string(config.rt_cpu)
+            : std::string("This axis needs a CPU of its own ([rt] cpu + isolcpus= "
+                          "or a cpuset)"),
+        config.late_limit_ns / kNsPerUs);
+  }
 }
 
 void Daemon::Impl::log_supervision(const ipc::PlcSupervisor& sup, Nanos now) {
