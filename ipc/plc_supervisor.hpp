@@ -25,9 +25,9 @@
 // configuration-mode bit dropped, which leaves configuration mode) -- things the PLC never wrote.
 #include <cstdint>
 
-#include "ipc/stepmod_image.h"  // STEPMOD_HEALTH_* flags
-#include "core/module_shape.hpp"
 #include "core/clock.hpp"
+#include "core/module_shape.hpp"
+#include "ipc/stepmod_image.h"  // STEPMOD_HEALTH_* flags
 
 namespace stepmod::ipc {
 
@@ -46,7 +46,7 @@ class PlcSupervisor {
     std::uint32_t seq = 0;           // the output sequence as read at the scan (odd = mid-write)
     bool snapshot_ok = false;        // a consistent snapshot was taken ...
     std::uint32_t snapshot_seq = 0;  // ... under this (even) sequence value
-    ImageWords words{};      // ... of these words
+    ImageWords words{};              // ... of these words
   };
 
   // One scan. Returns the words the module is to scan this time (the live snapshot, the last
