@@ -402,7 +402,11 @@ std::string status_names(std::uint16_t s) {
       "ConfigMode"};
   std::string r;
   for (int i = 0; i < 16; ++i) {
-    if (s & (1u << i)) r += (r.empty() ? "" : ",") + std::string(names[i]);
+    if ((s & (1u << i)) == 0) continue;
+    // Appended in two steps: `"," + std::string(...)` trips GCC 12's -O3 -Wrestrict false
+    // positive (Release builds with STEPMOD_WERROR).
+    if (!r.empty()) r += ',';
+    r += names[i];
   }
   return r.empty() ? "-" : r;
 }
