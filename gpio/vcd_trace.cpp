@@ -1,5 +1,8 @@
 #include "gpio/vcd_trace.hpp"
 
+#include <pthread.h>
+#include <sched.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cinttypes>
@@ -186,9 +189,18 @@ TraceWriter::~TraceWriter() {
   }
 }
 
-void TraceWriter::start() {
+void TraceWriter::start(int fifo_priority) {
   if (running_.exchange(true)) return;
-  thread_ = std::thread([this] { run(); });
+  thread_ = std::thread([this, fifo_priority] {
+    if (fifo_priority > 0) {
+      sched_param sp{};
+      sp.sched_priority = fifo_priority;
+      fifo_.store(pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp) == 0,
+                  std::memory_order_release);
+    }
+    run();
+  });
+  pthread_setname_np(thread_.native_handle(), "stepmod-trace");
 }
 
 void TraceWriter::drain(SpscRing<TraceRecord>& ring, TraceSpool& spool,

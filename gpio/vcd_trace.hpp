@@ -110,7 +110,13 @@ class TraceWriter {
     lost_inputs_ = inputs;
   }
 
-  void start();
+  // Starts the thread. `fifo_priority` > 0: the thread asks for SCHED_FIFO at that priority
+  // (the daemon: 1, below every other real-time thread but above all normal ones), so that a
+  // loaded machine cannot starve it for the seconds it takes to fill a ring at 2 M records/s;
+  // its work is a copy every `period`. Refused (no privilege): it runs as a normal thread, and
+  // fifo() says so.
+  void start(int fifo_priority = 0);
+  bool fifo() const noexcept { return fifo_.load(std::memory_order_acquire); }
   // Stops the thread (after the producers have stopped), spools what is left in the rings and
   // writes the VCD: every record in time order, a $comment with the producers' dropped-record
   // counts, and with any loss the marker wire. Throws std::runtime_error if a file could not be
@@ -151,6 +157,7 @@ class TraceWriter {
   std::unique_ptr<VcdTrace> vcd_;
   std::thread thread_;
   std::atomic<bool> running_{false};
+  std::atomic<bool> fifo_{false};
   bool closed_ = false;
 };
 

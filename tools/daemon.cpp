@@ -139,7 +139,8 @@ bool Daemon::run(const std::atomic<bool>& stop) {
   rt::PulseThread pulse(d.stack->engine(), po);
   d.pulse = &pulse;
   d.planner_wakes = d.stack->planner().wake_counter().load();
-  if (d.trace) d.trace->start();
+  // SCHED_FIFO 1: above every normal thread, below the pulse and control threads (gpio/vcd_trace).
+  if (d.trace) d.trace->start(1);
   if (!pulse.start()) throw std::runtime_error("cannot start the pulse thread");
   const auto& st = pulse.status();
   if (!st.fifo) {

@@ -24,8 +24,11 @@ using namespace m::status_msw;
 namespace cmd = m::cmd_msw;
 using std::chrono::milliseconds;
 
+// No simulated encoder: its input edge per step is a load of the simulation (a million events
+// a second into the control thread at 1 MHz), not of the trace this file tests.
 constexpr const char* kSim = R"(cw_limit_at = 10000000
 ccw_limit_at = -10000000
+encoder_ratio = 0.0
 )";
 
 class DaemonSafety : public ::testing::Test {
