@@ -157,13 +157,23 @@ void PulseThread::setup() noexcept {
       status_.affinity_errno = rc;
     }
   }
+  // On a machine with one CPU the thread may use (and not pinned to a CPU of its own), every
+  // microsecond it spins before an edge is taken from the threads that feed it (the planner, the
+  // control thread, the PLC): there the early wake-up stays within kSharedSingleCpuSpin.
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  if (options_.cpu < 0 && sched_getaffinity(0, sizeof allowed, &allowed) == 0 &&
+      CPU_COUNT(&allowed) <= 1) {
+    single_shared_cpu_ = true;
+  }
   prefault_stack(options_.prefault_stack_bytes);
 }
 
 // No allocation, lock, logging or system call in here but the engine's line writes, the clock
 // (vDSO) and the sleep (a futex wait with a deadline: clock_nanosleep that ring() can end).
 void PulseThread::loop() noexcept {
-  const Nanos max_spin = options_.spin_ns;
+  const Nanos max_spin =
+      single_shared_cpu_ ? std::min(options_.spin_ns, kSharedSingleCpuSpin) : options_.spin_ns;
   const Nanos min_spin = std::min(options_.min_spin_ns, max_spin);
   const Nanos max_sleep_ns = options_.max_sleep_ns;
   const Nanos quiet_sleep_ns = std::max(options_.quiet_sleep_ns, max_sleep_ns);

@@ -119,8 +119,12 @@ class PulseThread {
   void setup() noexcept;
   void loop() noexcept;
 
+  // The early wake-up's cap when the thread shares the machine's only CPU (see setup()).
+  static constexpr Nanos kSharedSingleCpuSpin = 30 * kNsPerUs;
+
   PulseEngine& engine_;
   const Options options_;
+  bool single_shared_cpu_ = false;  // set by setup(), read by loop() (same thread)
   Status status_;
   pthread_t thread_{};
   bool joinable_ = false;
