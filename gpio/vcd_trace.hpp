@@ -97,7 +97,7 @@ class TraceWriter {
   // Both rings must outlive the writer. `period`: how often the thread drains the rings.
   TraceWriter(const std::string& path, std::span<const TraceWire> wires, Nanos start,
               SpscRing<TraceRecord>& outputs, SpscRing<TraceRecord>& inputs,
-              Nanos period = 2 * kNsPerMs);
+              Nanos period = 5 * kNsPerMs);
   ~TraceWriter();  // stop() if still running (without dropped counts)
   TraceWriter(const TraceWriter&) = delete;
   TraceWriter& operator=(const TraceWriter&) = delete;

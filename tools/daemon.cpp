@@ -26,12 +26,12 @@
 namespace stepmod::tools {
 
 namespace {
-// Records per trace ring. The trace thread spools them as fast as memcpy (gpio/trace_spool.hpp);
-// what the ring must cover is the thread not being scheduled at all on a loaded machine: the
-// output ring holds 0.5 s of two axes at 500 kHz (2 M records/s), 16 MB, allocated only with
-// --trace. Inputs as many: a simulated encoder makes an input edge per step.
-constexpr std::size_t kOutputTraceRing = 1u << 20;
-constexpr std::size_t kInputTraceRing = 1u << 20;
+// Records per trace ring: 4 MB each, ~130 ms of 2 M records/s. The trace thread spools them as
+// fast as a copy (gpio/trace_spool.hpp) and runs at SCHED_FIFO 1 where there is a second CPU,
+// so it is not starved for that long; bigger rings cost memory that a small board (or the
+// 256 MB VM test) does not have to spare, since they are touched (and locked) up front.
+constexpr std::size_t kOutputTraceRing = 1u << 18;
+constexpr std::size_t kInputTraceRing = 1u << 18;
 // How long the shutdown waits for the pulse thread to acknowledge the immediate stops.
 constexpr Nanos kStopAckTimeout = 200 * kNsPerMs;
 }  // namespace
@@ -139,8 +139,15 @@ bool Daemon::run(const std::atomic<bool>& stop) {
   rt::PulseThread pulse(d.stack->engine(), po);
   d.pulse = &pulse;
   d.planner_wakes = d.stack->planner().wake_counter().load();
-  // SCHED_FIFO 1: above every normal thread, below the pulse and control threads (gpio/vcd_trace).
-  if (d.trace) d.trace->start(1);
+  // SCHED_FIFO 1: above every normal thread, below the pulse and control threads (gpio/vcd_trace),
+  // where there is a second CPU for it. On a single CPU it stays a normal thread: its wake-ups
+  // would otherwise come before everything else there (the PLC, a test's machine model).
+  if (d.trace) {
+    cpu_set_t cpus;
+    CPU_ZERO(&cpus);
+    const bool several = sched_getaffinity(0, sizeof cpus, &cpus) == 0 && CPU_COUNT(&cpus) >= 2;
+    d.trace->start(several ? 1 : 0);
+  }
   if (!pulse.start()) throw std::runtime_error("cannot start the pulse thread");
   const auto& st = pulse.status();
   if (!st.fifo) {
