@@ -11,6 +11,13 @@
 //   daemon_bench cpu       --stepmodd PATH --rate STEPS_PER_S [--seconds 5]
 //       Benchmark 2 (CPU part): CPU of the daemon while its axis runs a long move at --rate.
 //
+//   daemon_bench grid  --stepmodd PATH --rate STEPS_PER_S [--steps N]
+//       Issue 12: edge timing from the outside (VCD edges against the ideal grid).
+//   daemon_bench guard --stepmodd PATH --rate STEPS_PER_S [--steps N] [--runs 10]
+//       Issue 12: the late-edge guard (1 ms) over --runs moves: complete / faulted, no burst.
+//   daemon_bench trace --stepmodd PATH --rate STEPS_PER_S [--steps N]
+//       Issue 12: every step edge of a traced move in the VCD, nothing lost.
+//
 // Output: human-readable lines plus "RESULT key=value ..." lines for scripts/bench.
 #include <dirent.h>
 #include <signal.h>
@@ -59,7 +66,9 @@ std::string slurp(const std::string& path) {
 // A stepmodd child process on a private config; SIGTERM on destruction.
 class Daemon {
  public:
-  Daemon(const std::string& exe, unsigned scan_us, bool trace) {
+  // `late_limit_us`: the late-edge guard; the default is its maximum so that a fault does not
+  // end a measured move early (the guard has its own benchmark: `guard`).
+  Daemon(const std::string& exe, unsigned scan_us, bool trace, long late_limit_us = 1'000'000) {
     char tmpl[] = "/tmp/stepmod-bench-XXXXXX";
     dir_ = mkdtemp(tmpl);
     name_ = "bench" + std::to_string(getpid());
@@ -69,7 +78,8 @@ class Daemon {
     std::ofstream(config_) << "[module]\ntype = \"3601\"\nname = \"" << name_
                            << "\"\nscan_us = " << scan_us
                            << "\n[gpio]\nbackend = \"sim\"\n[rt]\npriority = 80\n"
-                              "[[axis]]\nstep = 1\ndir = 2\nhome = 3\ncw_limit = 4\nccw_limit = 5\n"
+                           << "late_limit_us = " << late_limit_us << "\n"
+                           << "[[axis]]\nstep = 1\ndir = 2\nhome = 3\ncw_limit = 4\nccw_limit = 5\n"
                               "[axis.sim]\ncw_limit_at = 100000000\nccw_limit_at = -100000000\n"
                               "home_from = -200\nhome_to = -100\n";
     pid_ = fork();
@@ -359,6 +369,171 @@ int cpu(int argc, char** argv) {
   return moving ? 0 : 1;
 }
 
+bool moving(Plc& plc) {
+  return (plc.status() & (m::status_msw::kMovingCw | m::status_msw::kMovingCcw)) != 0;
+}
+
+// Waits until the axis is at rest (at most `limit`).
+void wait_rest(Plc& plc, milliseconds limit) {
+  const auto end = std::chrono::steady_clock::now() + limit;
+  std::this_thread::sleep_for(milliseconds(20));
+  while (moving(plc) && std::chrono::steady_clock::now() < end) {
+    std::this_thread::sleep_for(milliseconds(5));
+  }
+}
+
+// A constant-speed move (Vs = Vp = rate) of `steps`, to its end.
+void constant_move(Plc& plc, int rate, std::int32_t steps) {
+  plc.configure(rate);
+  plc.relative_move(steps, rate);
+  plc.scans(3);
+  plc.release();
+  wait_rest(plc, milliseconds(static_cast<long>(steps) * 1000 / rate + 10'000));
+}
+
+// Issue 12: edge timing from the outside. Each rising step edge of a constant-speed move in the
+// VCD against the ideal grid t0 + k/rate, t0 the earliest (t_k - k/rate): how late each edge is
+// relative to where a perfect controller puts it. Beside it, run cyclictest at the same priority.
+int grid(int argc, char** argv) {
+  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
+  const int rate = std::atoi(arg(argc, argv, "--rate", "20000"));
+  const auto steps = static_cast<std::int32_t>(std::atoi(arg(argc, argv, "--steps", "200000")));
+  std::vector<Nanos> rising;
+  {
+    Daemon d(exe, 1000, true);
+    Plc plc(d.name());
+    constant_move(plc, rate, steps);
+    d.stop();
+    rising = vcd_rising(d.trace(), "axis1.step");
+  }
+  if (rising.size() < 2) {
+    std::printf("grid: no steps traced\n");
+    return 1;
+  }
+  const double period = 1e9 / rate;
+  double t0 = 1e300;
+  for (std::size_t k = 0; k < rising.size(); ++k) {
+    t0 = std::min(t0, static_cast<double>(rising[k]) - static_cast<double>(k) * period);
+  }
+  std::vector<double> err;
+  for (std::size_t k = 0; k < rising.size(); ++k) {
+    err.push_back((static_cast<double>(rising[k]) - static_cast<double>(k) * period - t0) / 1000.0);
+  }
+  const double mx = *std::max_element(err.begin(), err.end());
+  std::printf(
+      "edge timing from the VCD, %d steps/s: %zu of %d steps, error vs ideal grid p50 %.3f "
+      "/ p99 %.3f / p99.9 %.3f / max %.3f us\n",
+      rate, rising.size(), steps, pct(err, 0.5), pct(err, 0.99), pct(err, 0.999), mx);
+  std::printf("RESULT bench=grid rate=%d n=%zu p50_us=%.3f p99_us=%.3f p999_us=%.3f max_us=%.3f\n",
+              rate, rising.size(), pct(err, 0.5), pct(err, 0.99), pct(err, 0.999), mx);
+  return 0;
+}
+
+// Most steps in any window of `window` ns.
+std::size_t densest(const std::vector<Nanos>& t, Nanos window) {
+  std::size_t best = 0, lo = 0;
+  for (std::size_t hi = 0; hi < t.size(); ++hi) {
+    while (t[hi] - t[lo] >= window) ++lo;
+    best = std::max(best, hi - lo + 1);
+  }
+  return best;
+}
+
+// Issue 12: the late-edge guard under load (scripts/bench loads the machine). --runs moves at
+// --rate with the default 1 ms limit: each completes (Move Complete) or faults (Stopped +
+// Position Invalid, a late-edge fault counted); and never a burst: the most steps in any 1 ms of
+// the VCD against the commanded rate (catching up within 1 ms of lateness may double it).
+int guard(int argc, char** argv) {
+  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
+  const int rate = std::atoi(arg(argc, argv, "--rate", "50000"));
+  const auto steps = static_cast<std::int32_t>(std::atoi(arg(argc, argv, "--steps", "150000")));
+  const int runs = std::atoi(arg(argc, argv, "--runs", "10"));
+  int clean = 0, faulted = 0, other = 0;
+  std::uint32_t faults = 0, worst_us = 0;
+  std::vector<Nanos> rising;
+  {
+    Daemon d(exe, 1000, true, 1000);
+    Plc plc(d.name());
+    plc.configure(rate);
+    for (int r = 0; r < runs; ++r) {
+      const std::uint32_t before = plc.c.read_health().late_faults;
+      plc.relative_move(steps, rate);
+      plc.scans(3);
+      plc.release();
+      wait_rest(plc, milliseconds(static_cast<long>(steps) * 1000 / rate + 10'000));
+      plc.scans(2);
+      const std::uint16_t st = plc.status();
+      const ipc::Health h = plc.c.read_health();
+      if ((st & m::status_msw::kMoveComplete) && h.late_faults == before) {
+        ++clean;
+      } else if ((st & m::status_msw::kPositionInvalid) && h.late_faults > before) {
+        ++faulted;
+      } else {
+        ++other;
+      }
+      faults = h.late_faults;
+      worst_us = h.worst_late_us;
+      std::printf("guard run %d: %s\n", r + 1,
+                  (st & m::status_msw::kMoveComplete) ? "complete" : "faulted");
+    }
+    d.stop();
+    rising = vcd_rising(d.trace(), "axis1.step");
+  }
+  const std::size_t dense = densest(rising, kNsPerMs);
+  const double nominal = rate / 1000.0;
+  const bool burst = static_cast<double>(dense) > 2.0 * nominal + 2;
+  std::printf(
+      "guard at %d steps/s, %d runs: %d complete, %d faulted (%u faults, worst %u us "
+      "late), %d other; densest 1 ms of the trace %zu steps (nominal %.0f): %s\n",
+      rate, runs, clean, faulted, faults, worst_us, other, dense, nominal,
+      burst ? "BURST" : "no burst");
+  std::printf(
+      "RESULT bench=guard rate=%d runs=%d clean=%d faulted=%d other=%d densest_1ms=%zu "
+      "nominal_1ms=%.0f burst=%d\n",
+      rate, runs, clean, faulted, other, dense, nominal, burst ? 1 : 0);
+  return 0;
+}
+
+// Issue 12: trace completeness at a step rate: a constant-speed move traced; the daemon's exit
+// status (3 = records lost) and the rising edges in the VCD against the steps.
+int trace(int argc, char** argv) {
+  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
+  const int rate = std::atoi(arg(argc, argv, "--rate", "1000000"));
+  const auto steps = static_cast<std::int32_t>(std::atoi(arg(argc, argv, "--steps", "2000000")));
+  std::size_t n = 0;
+  int status = 0;
+  std::int64_t position = 0;
+  double seconds = 0;
+  {
+    Daemon d(exe, 1000, true);
+    Plc plc(d.name());
+    plc.configure(1000);
+    const Nanos t0 = monotonic_now();
+    plc.relative_move(steps, rate);
+    plc.scans(3);
+    plc.release();
+    wait_rest(plc, milliseconds(static_cast<long>(steps) * 1000 / rate + 20'000));
+    seconds = static_cast<double>(monotonic_now() - t0) / 1e9;
+    ImageWords w;
+    plc.c.read_inputs(w);
+    position = ipc::codec::decode_3601_report(w.w[2], w.w[3]);
+    status = d.stop();
+    n = vcd_rising(d.trace(), "axis1.step").size();
+  }
+  const bool complete =
+      WIFEXITED(status) && WEXITSTATUS(status) == 0 && n == static_cast<std::size_t>(position);
+  std::printf(
+      "trace at %d steps/s (%.1f M records/s): %lld steps moved, %zu rising edges in the "
+      "VCD, exit status %d: %s\n",
+      rate, 2.0 * rate / 1e6, static_cast<long long>(position), n,
+      WIFEXITED(status) ? WEXITSTATUS(status) : -1, complete ? "complete" : "INCOMPLETE");
+  std::printf(
+      "RESULT bench=trace rate=%d records_per_s=%d steps=%lld rising=%zu complete=%d "
+      "move_s=%.2f\n",
+      rate, 2 * rate, static_cast<long long>(position), n, complete ? 1 : 0, seconds);
+  return complete ? 0 : 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -368,12 +543,16 @@ int main(int argc, char** argv) {
     if (cmd == "latency") return latency(argc, argv);
     if (cmd == "footprint") return footprint(argc, argv);
     if (cmd == "cpu") return cpu(argc, argv);
+    if (cmd == "grid") return grid(argc, argv);
+    if (cmd == "guard") return guard(argc, argv);
+    if (cmd == "trace") return trace(argc, argv);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "daemon_bench: %s\n", e.what());
     return 1;
   }
   std::fprintf(stderr,
-               "usage: daemon_bench latency|footprint|cpu --stepmodd PATH [--scan-us US] "
+               "usage: daemon_bench latency|footprint|cpu|grid|guard|trace --stepmodd PATH "
+               "[--scan-us US] [--steps N] [--runs N] "
                "[--commands N] [--seconds S] [--rate STEPS_PER_S]\n");
   return 2;
 }

@@ -1,5 +1,9 @@
 #include "gpio/sim_backend.hpp"
 
+#include <linux/futex.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include <algorithm>
 
 namespace stepmod::gpio {
@@ -21,7 +25,21 @@ void SimBackend::write(unsigned axis, OutputLine line, bool level, Nanos t) noex
   // An unwired output (GPO on a module without one) drives nothing; the drive only sees wired
   // step/dir lines, which the config requires anyway.
   if (!lines_[axis].has_output(line)) return;
-  machines_[axis]->write(line, level, t);
+  SimMachine& m = *machines_[axis];
+  const std::uint64_t before = m.events_pushed();
+  m.write(line, level, t);
+  if (m.events_pushed() != before) notify_events();
+}
+
+void SimBackend::notify_events() noexcept {
+  // The single producer of the sequence is the writing (pulse) thread: a load + store, no RMW.
+  event_seq_.store(event_seq_.load(std::memory_order_relaxed) + 1, std::memory_order_seq_cst);
+  // A system call only when someone sleeps, at most once per sleep: the simulated hardware's
+  // edge interrupt, the sim's counterpart of the kernel waking a gpiod reader.
+  if (waiting_.load(std::memory_order_seq_cst) && waiting_.exchange(false)) {
+    syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&event_seq_), FUTEX_WAKE_PRIVATE, 1,
+            nullptr, nullptr, 0);
+  }
 }
 
 bool SimBackend::has_input(unsigned axis, InputLine line) const noexcept {
@@ -44,10 +62,32 @@ std::size_t SimBackend::wait_events(std::span<InputEvent> out, Nanos deadline) {
       n += machines_[(next_axis_ + k) % n_axes]->poll(out.subspan(n));
     }
     if (n_axes > 0) next_axis_ = (next_axis_ + 1) % n_axes;
-    if (n > 0 || out.empty()) return n;
+    if (n > 0 || out.empty()) {
+      if (n > 0) last_events_ = monotonic_now();
+      return n;
+    }
     const Nanos now = monotonic_now();
     if (now >= deadline) return 0;
-    sleep_until(std::min(now + kPollChunk, deadline));
+    if (now - last_events_ < kPollChunk) {
+      // Events come faster than one per kPollChunk (a fast move with an encoder: up to 2 M/s):
+      // a wake-up per event would make the pulse thread pay a system call per step. Poll in
+      // kPollChunk steps instead, without asking for a wake-up, until they slow down.
+      sleep_until(std::min(now + kPollChunk, deadline));
+      continue;
+    }
+    const std::uint32_t seen = event_seq_.load(std::memory_order_seq_cst);
+    waiting_.store(true, std::memory_order_seq_cst);
+    // Events that came between the drain above and `seen`: take them without sleeping.
+    bool pending = false;
+    for (const auto& m : machines_) pending = pending || m->has_events();
+    if (!pending) {
+      const timespec ts = to_timespec(deadline);
+      // Returns at the deadline, on a wake, at once if the sequence moved since `seen`, or on a
+      // signal: the loop drains and decides again.
+      syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&event_seq_), FUTEX_WAIT_BITSET_PRIVATE,
+              seen, &ts, nullptr, FUTEX_BITSET_MATCH_ANY);
+    }
+    waiting_.store(false, std::memory_order_relaxed);
   }
 }
 

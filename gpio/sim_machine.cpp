@@ -130,6 +130,7 @@ void SimMachine::set_sim_input(InputLine line, bool level, Nanos t) noexcept {
   if (((sim_in_ & bit) != 0) == level) return;
   sim_in_ = level ? static_cast<std::uint16_t>(sim_in_ | bit)
                   : static_cast<std::uint16_t>(sim_in_ & ~bit);
+  ++pushed_;
   if (!ring_.try_push(InputEvent{t, axis_, line, level})) {
     // Single writer: a load + store is enough and avoids a locked instruction.
     ring_lost_.store(ring_lost_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);

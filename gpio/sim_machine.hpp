@@ -62,12 +62,16 @@ class SimMachine {
   // Moves up to out.size() events into `out` (forced changes and simulated changes, with forced
   // lines filtered); returns the count.
   std::size_t poll(std::span<InputEvent> out) noexcept;
+  // Consumer: something is waiting for poll() (a simulated or a forced event).
+  bool has_events() const noexcept { return !ring_.empty() || pending_size_ > 0; }
   // Panel forcing (INTERFACE.md section 4): bit i of `mask` forces panel input i (0 capture ..
   // 5 CCW limit) to bit i of `levels`; a cleared bit gives the line back to the simulation.
   // `now` stamps the events this causes. Must be called on the consumer's thread.
   void force(std::uint32_t mask, std::uint32_t levels, Nanos now) noexcept;
   // Present electrical level: forced level, else the simulated level now; false when unwired.
   bool read(InputLine line) const noexcept;
+  // Producer side (the writing thread): events pushed so far, to tell whether a write() made any.
+  std::uint64_t events_pushed() const noexcept { return pushed_; }
   // Events lost: ring full (producer) plus forced events that found the pending queue full.
   std::uint64_t lost_events() const noexcept {
     return ring_lost_.load(std::memory_order_relaxed) + pending_lost_;
@@ -110,6 +114,7 @@ class SimMachine {
   std::int64_t count_ = 0;    // encoder count
   std::uint16_t sim_in_ = 0;  // simulated input levels (wired lines only)
   SpscRing<InputEvent> ring_;
+  std::uint64_t pushed_ = 0;
 
   // consumer-owned
   static constexpr std::size_t kPendingCapacity = 256;

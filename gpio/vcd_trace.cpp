@@ -1,5 +1,9 @@
 #include "gpio/vcd_trace.hpp"
 
+#include <pthread.h>
+#include <sched.h>
+
+#include <algorithm>
 #include <cerrno>
 #include <cinttypes>
 #include <cstring>
@@ -50,7 +54,8 @@ std::vector<TraceWire> trace_wires(Backend& backend) {
 
 // ---- VcdTrace -----------------------------------------------------------------------------------
 
-VcdTrace::VcdTrace(const std::string& path, std::span<const TraceWire> wires, Nanos start)
+VcdTrace::VcdTrace(const std::string& path, std::span<const TraceWire> wires, Nanos start,
+                   bool loss_marker)
     : path_(path), start_(start), wires_(wires.begin(), wires.end()) {
   f_ = std::fopen(path.c_str(), "w");
   if (f_ == nullptr) {
@@ -78,8 +83,14 @@ VcdTrace::VcdTrace(const std::string& path, std::span<const TraceWire> wires, Na
   for (std::size_t i = 0; i < wires_.size(); ++i) {
     std::fprintf(f_, "$var wire 1 %s %s $end\n", ids_[i].c_str(), wire_name(wires_[i]).c_str());
   }
+  if (loss_marker) {
+    marker_ = static_cast<int>(ids_.size());
+    ids_.push_back(vcd_id(ids_.size()));
+    levels_.push_back(0);
+    std::fprintf(f_, "$var wire 1 %s %s $end\n", ids_.back().c_str(), kLossMarkerWire);
+  }
   std::fprintf(f_, "$upscope $end\n$enddefinitions $end\n#0\n$dumpvars\n");
-  for (std::size_t i = 0; i < wires_.size(); ++i) {
+  for (std::size_t i = 0; i < ids_.size(); ++i) {
     std::fprintf(f_, "%c%s\n", levels_[i] ? '1' : '0', ids_[i].c_str());
   }
   std::fprintf(f_, "$end\n");
@@ -90,6 +101,7 @@ VcdTrace::~VcdTrace() {
 }
 
 int VcdTrace::wire_index(const TraceRecord& r) const noexcept {
+  if (r.is_input == kLossMarker) return marker_;
   if (r.line >= kLineSlots) return -1;
   const std::size_t k = (r.axis * 2u + (r.is_input ? 1u : 0u)) * kLineSlots + r.line;
   return k < index_.size() ? index_[k] : -1;
@@ -145,14 +157,29 @@ void VcdTrace::close(Nanos end) {
 
 // ---- TraceWriter --------------------------------------------------------------------------------
 
+namespace {
+std::string writable_path(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (f == nullptr) {
+    throw std::runtime_error("trace file '" + path +
+                             "': cannot open for writing: " + std::strerror(errno));
+  }
+  std::fclose(f);
+  return path;
+}
+}  // namespace
+
 TraceWriter::TraceWriter(const std::string& path, std::span<const TraceWire> wires, Nanos start,
                          SpscRing<TraceRecord>& outputs, SpscRing<TraceRecord>& inputs,
-                         Nanos window, Nanos period)
-    : vcd_(path, wires, start),
+                         Nanos period)
+    : path_(writable_path(path)),
+      wires_(wires.begin(), wires.end()),
+      start_(start),
       outputs_(outputs),
       inputs_(inputs),
-      window_(window),
-      period_(period) {}
+      period_(period),
+      out_spool_(path + ".out.spool"),
+      in_spool_(path + ".in.spool") {}
 
 TraceWriter::~TraceWriter() {
   try {
@@ -162,32 +189,52 @@ TraceWriter::~TraceWriter() {
   }
 }
 
-void TraceWriter::start() {
+void TraceWriter::start(int fifo_priority) {
   if (running_.exchange(true)) return;
-  thread_ = std::thread([this] { run(); });
+  thread_ = std::thread([this, fifo_priority] {
+    if (fifo_priority > 0) {
+      sched_param sp{};
+      sp.sched_priority = fifo_priority;
+      fifo_.store(pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp) == 0,
+                  std::memory_order_release);
+    }
+    run();
+  });
+  pthread_setname_np(thread_.native_handle(), "stepmod-trace");
 }
 
-void TraceWriter::drain() {
+void TraceWriter::drain(SpscRing<TraceRecord>& ring, TraceSpool& spool,
+                        const std::atomic<std::uint64_t>* lost, std::uint64_t& lost_seen,
+                        Nanos& last_t) {
+  // The loss counter first: records lost before this read were lost after everything now in
+  // the ring was pushed, so the marker goes after the last record drained below.
+  const std::uint64_t lost_now = lost != nullptr ? lost->load(std::memory_order_acquire) : 0;
   TraceRecord r;
-  while (outputs_.try_pop(r)) merger_.add(r);
-  while (inputs_.try_pop(r)) merger_.add(r);
+  std::uint64_t n = 0;
+  while (ring.try_pop(r)) {
+    spool.append(r);
+    last_t = r.t;
+    ++n;
+  }
+  if (lost_now != lost_seen) {
+    lost_seen = lost_now;
+    // A pulse on the marker wire, 1 ns long, right after the last record kept.
+    spool.append(TraceRecord{last_t + 1, 0, 0, 1, kLossMarker});
+    spool.append(TraceRecord{last_t + 2, 0, 0, 0, kLossMarker});
+    ++markers_;
+  }
+  spooled_.store(spooled_.load(std::memory_order_relaxed) + n, std::memory_order_relaxed);
 }
 
-void TraceWriter::step(Nanos now) {
-  drain();
-  merger_.release(now - window_, [this](const TraceRecord& r) { vcd_.record(r); });
-  // Flush about once a second: a crashed daemon leaves at most that much unwritten, and the
-  // pulse thread never waits for the disk anyway.
-  if (now - last_flush_ >= kNsPerSec) {
-    vcd_.flush();
-    last_flush_ = now;
-  }
+void TraceWriter::step() {
+  drain(outputs_, out_spool_, lost_outputs_, lost_outputs_seen_, last_output_t_);
+  drain(inputs_, in_spool_, lost_inputs_, lost_inputs_seen_, last_input_t_);
 }
 
 void TraceWriter::run() {
   while (running_.load(std::memory_order_acquire)) {
     const Nanos now = monotonic_now();
-    step(now);
+    step();
     sleep_until(now + period_);
   }
 }
@@ -197,14 +244,52 @@ void TraceWriter::stop(std::uint64_t dropped_outputs, std::uint64_t dropped_inpu
   running_.store(false, std::memory_order_release);
   if (thread_.joinable()) thread_.join();
   closed_ = true;
-  drain();
-  merger_.release_all([this](const TraceRecord& r) { vcd_.record(r); });
+  step();
+  write_vcd(dropped_outputs, dropped_inputs);
+}
+
+void TraceWriter::write_vcd(std::uint64_t dropped_outputs, std::uint64_t dropped_inputs) {
+  const bool spooled_ok = out_spool_.finish() && in_spool_.finish();
+  const bool lost = dropped_outputs + dropped_inputs > 0 || markers_ > 0;
+  vcd_ = std::make_unique<VcdTrace>(path_, wires_, start_, lost);
+  if (lost && markers_ == 0) {
+    // Counted by a producer but never seen by the thread (the counts came from stop()'s caller
+    // only): mark the end, so the wire still shows it.
+    const Nanos t = std::max(last_output_t_, last_input_t_);
+    out_spool_.append(TraceRecord{t + 1, 0, 0, 1, kLossMarker});
+    out_spool_.append(TraceRecord{t + 2, 0, 0, 0, kLossMarker});
+    out_spool_.finish();
+  }
+  // Two streams, each in time order: merge them (outputs first on equal times).
+  TraceSpool::Reader outs(out_spool_.path());
+  TraceSpool::Reader ins(in_spool_.path());
+  const TraceRecord* o = outs.next();
+  const TraceRecord* i = ins.next();
+  while (o != nullptr || i != nullptr) {
+    if (i == nullptr || (o != nullptr && o->t <= i->t)) {
+      vcd_->record(*o);
+      o = outs.next();
+    } else {
+      vcd_->record(*i);
+      i = ins.next();
+    }
+  }
   // Always written, zeros included, so that a script can tell a complete trace from one whose
   // rings overflowed without guessing.
-  vcd_.comment("stepmod: dropped records: outputs " + std::to_string(dropped_outputs) +
-               ", inputs " + std::to_string(dropped_inputs) + "; late records " +
-               std::to_string(vcd_.late()) + "; unknown lines " + std::to_string(vcd_.unknown()));
-  vcd_.close(monotonic_now());
+  vcd_->comment("stepmod: dropped records: outputs " + std::to_string(dropped_outputs) +
+                ", inputs " + std::to_string(dropped_inputs) + "; late records " +
+                std::to_string(vcd_->late()) + "; unknown lines " +
+                std::to_string(vcd_->unknown()));
+  if (lost) {
+    vcd_->comment("stepmod: TRACE INCOMPLETE: " + std::to_string(dropped_outputs + dropped_inputs) +
+                  " records were lost (a trace ring was full); the wire " + kLossMarkerWire +
+                  " pulses where");
+  }
+  vcd_->close(monotonic_now());
+  if (!spooled_ok) {
+    throw std::runtime_error("trace file '" + path_ +
+                             "': the spool could not be written (disk full?): trace incomplete");
+  }
 }
 
 }  // namespace stepmod::gpio

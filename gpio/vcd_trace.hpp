@@ -3,15 +3,13 @@
 //
 //   VcdTrace    - the file: header, one 1-bit wire per configured line named axis<N>.<key>,
 //                 initial values at #0, value changes in ns relative to the daemon's start.
-//   TraceMerger - the time-ordering window, without any thread (unit-testable): records from the
-//                 two rings are each in time order but may interleave late by a few ms, so they
-//                 are held until they are older than `window` and then emitted sorted.
 //   TraceWriter - the trace thread: drains the pulse thread's ring (outputs) and the control
-//                 thread's ring (inputs) through a TraceMerger into a VcdTrace.
+//                 thread's ring (inputs) into binary spools, and writes the VcdTrace from them
+//                 when it stops.
 #include <atomic>
 #include <cstdint>
 #include <cstdio>
-#include <queue>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -21,6 +19,7 @@
 #include "core/spsc_ring.hpp"
 #include "core/trace_record.hpp"
 #include "gpio/backend.hpp"
+#include "gpio/trace_spool.hpp"
 
 namespace stepmod::gpio {
 
@@ -43,7 +42,9 @@ class VcdTrace {
  public:
   // Opens (truncates) `path` and writes the header and the #0 values; throws std::runtime_error
   // naming the file if it cannot be opened. `start`: CLOCK_MONOTONIC time that is #0.
-  VcdTrace(const std::string& path, std::span<const TraceWire> wires, Nanos start);
+  // `loss_marker`: also declare the wire kLossMarkerWire, driven by kLossMarker records.
+  VcdTrace(const std::string& path, std::span<const TraceWire> wires, Nanos start,
+           bool loss_marker = false);
   ~VcdTrace();  // closes, ignoring errors (call close() to see them)
   VcdTrace(const VcdTrace&) = delete;
   VcdTrace& operator=(const VcdTrace&) = delete;
@@ -74,81 +75,90 @@ class VcdTrace {
   std::vector<std::string> ids_;
   std::vector<std::uint8_t> levels_;
   std::vector<int> index_;  // (axis * 2 + is_input) * 16 + line -> wire, -1 if absent
+  int marker_ = -1;         // wire of the loss marker, -1 if not declared
   std::uint64_t late_ = 0, unknown_ = 0, changes_ = 0;
 };
 
-// The merge window. add() in any order; release() hands out, in (time, arrival) order, every
-// record with t < cut. Not thread-safe: used by the trace thread only.
-class TraceMerger {
- public:
-  void add(const TraceRecord& r) { heap_.push(Held{r, seq_++}); }
-  template <typename Sink>
-  void release(Nanos cut, Sink&& sink) {
-    while (!heap_.empty() && heap_.top().r.t < cut) {
-      sink(heap_.top().r);
-      heap_.pop();
-    }
-  }
-  template <typename Sink>
-  void release_all(Sink&& sink) {
-    while (!heap_.empty()) {
-      sink(heap_.top().r);
-      heap_.pop();
-    }
-  }
-  std::size_t held() const noexcept { return heap_.size(); }
+// TraceRecord::is_input value of a loss marker (not a line): records were lost just after `t`.
+inline constexpr std::uint8_t kLossMarker = 2;
+inline constexpr const char* kLossMarkerWire = "trace.records_lost";
 
- private:
-  struct Held {
-    TraceRecord r;
-    std::uint64_t seq;
-    // priority_queue is a max-heap: "less" means later.
-    bool operator<(const Held& o) const noexcept {
-      return r.t != o.r.t ? r.t > o.r.t : seq > o.seq;
-    }
-  };
-  std::priority_queue<Held> heap_;
-  std::uint64_t seq_ = 0;
-};
-
+// The trace thread. While the daemon runs it only moves records from the two rings (outputs of
+// the pulse thread, inputs of the control thread) into two binary spools (gpio/trace_spool.hpp),
+// which keeps up with 2 M records/s with CPU to spare; stop() writes the VCD from them, merging
+// the two time-ordered streams. Records the producers could not push (ring full) are counted by
+// them; the thread watches those counters and puts a loss marker where records went missing, and
+// the VCD then declares the marker wire `trace.records_lost` (a pulse at each loss) and says so
+// in a comment.
 class TraceWriter {
  public:
-  // Opens the VCD (see VcdTrace). `outputs`: the pulse thread's trace ring; `inputs`: the control
-  // thread's. Both must outlive the writer. `window`: how late a record may arrive relative to
-  // the other ring and still be sorted in; `period`: how often the thread drains the rings.
+  // Checks that `path` can be written (truncating it) and creates the spools beside it
+  // (`path`.out.spool / .in.spool, removed by stop()); throws std::runtime_error naming the file.
+  // Both rings must outlive the writer. `period`: how often the thread drains the rings.
   TraceWriter(const std::string& path, std::span<const TraceWire> wires, Nanos start,
               SpscRing<TraceRecord>& outputs, SpscRing<TraceRecord>& inputs,
-              Nanos window = 50 * kNsPerMs, Nanos period = 5 * kNsPerMs);
+              Nanos period = 5 * kNsPerMs);
   ~TraceWriter();  // stop() if still running (without dropped counts)
   TraceWriter(const TraceWriter&) = delete;
   TraceWriter& operator=(const TraceWriter&) = delete;
 
-  void start();
-  // Stops the thread (after the producers have stopped), writes every record still in the rings
-  // or the window, a $comment with the producers' dropped-record counts, and closes the file.
-  // Throws std::runtime_error if the file could not be written.
+  // The producers' counters of records lost because a ring was full (either may be null).
+  // Call before start().
+  void watch_losses(const std::atomic<std::uint64_t>* outputs,
+                    const std::atomic<std::uint64_t>* inputs) noexcept {
+    lost_outputs_ = outputs;
+    lost_inputs_ = inputs;
+  }
+
+  // Starts the thread. `fifo_priority` > 0: the thread asks for SCHED_FIFO at that priority
+  // (the daemon: 1, below every other real-time thread but above all normal ones), so that a
+  // loaded machine cannot starve it for the seconds it takes to fill a ring at 2 M records/s;
+  // its work is a copy every `period`. Refused (no privilege): it runs as a normal thread, and
+  // fifo() says so.
+  void start(int fifo_priority = 0);
+  bool fifo() const noexcept { return fifo_.load(std::memory_order_acquire); }
+  // Stops the thread (after the producers have stopped), spools what is left in the rings and
+  // writes the VCD: every record in time order, a $comment with the producers' dropped-record
+  // counts, and with any loss the marker wire. Throws std::runtime_error if a file could not be
+  // written.
   void stop(std::uint64_t dropped_outputs = 0, std::uint64_t dropped_inputs = 0);
 
-  // One round of the thread's work at time `now` (tests call it without the thread).
-  void step(Nanos now);
+  // One round of the thread's work: drain both rings into the spools (tests call it without
+  // the thread).
+  void step();
 
-  VcdTrace& vcd() noexcept { return vcd_; }
-  const TraceMerger& merger() const noexcept { return merger_; }
+  // Records spooled so far (any thread: for diagnostics and the trace benchmark).
+  std::uint64_t spooled() const noexcept { return spooled_.load(std::memory_order_relaxed); }
+  // The written file's statistics; valid after stop().
+  const VcdTrace& vcd() const { return *vcd_; }
 
  private:
   void run();
-  void drain();
+  void drain(SpscRing<TraceRecord>& ring, TraceSpool& spool, const std::atomic<std::uint64_t>* lost,
+             std::uint64_t& lost_seen, Nanos& last_t);
+  void write_vcd(std::uint64_t dropped_outputs, std::uint64_t dropped_inputs);
 
-  VcdTrace vcd_;
+  std::string path_;
+  std::vector<TraceWire> wires_;
+  Nanos start_;
   SpscRing<TraceRecord>& outputs_;
   SpscRing<TraceRecord>& inputs_;
-  const Nanos window_;
   const Nanos period_;
-  TraceMerger merger_;
+  TraceSpool out_spool_;
+  TraceSpool in_spool_;
+  const std::atomic<std::uint64_t>* lost_outputs_ = nullptr;
+  const std::atomic<std::uint64_t>* lost_inputs_ = nullptr;
+  std::uint64_t lost_outputs_seen_ = 0;
+  std::uint64_t lost_inputs_seen_ = 0;
+  Nanos last_output_t_ = 0;
+  Nanos last_input_t_ = 0;
+  std::uint64_t markers_ = 0;
+  std::atomic<std::uint64_t> spooled_{0};
+  std::unique_ptr<VcdTrace> vcd_;
   std::thread thread_;
   std::atomic<bool> running_{false};
+  std::atomic<bool> fifo_{false};
   bool closed_ = false;
-  Nanos last_flush_ = 0;
 };
 
 }  // namespace stepmod::gpio

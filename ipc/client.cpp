@@ -1,5 +1,7 @@
 #include "ipc/client.hpp"
 
+#include <sched.h>
+
 #include <cstring>
 #include <thread>
 
@@ -38,6 +40,20 @@ Client::Client(const std::string& name) : name_(name) {
 bool Client::read_inputs(ImageWords& in) const noexcept {
   return read_snapshot(&img_->input_seq, &img_->input_image, shape_.word_bytes, shape_.input_words,
                        kReadTries, in);
+}
+
+Health Client::read_health() const noexcept {
+  Health h;
+  for (unsigned t = 0; t < kReadTries; ++t) {
+    if (t > 0 && t % 32u == 0) sched_yield();
+    const std::uint32_t s0 = __atomic_load_n(&img_->input_seq, __ATOMIC_ACQUIRE);
+    if ((s0 & 1u) != 0) continue;
+    h.flags = __atomic_load_n(&img_->health_flags, __ATOMIC_ACQUIRE);
+    h.late_faults = __atomic_load_n(&img_->late_faults, __ATOMIC_ACQUIRE);
+    h.worst_late_us = __atomic_load_n(&img_->worst_late_us, __ATOMIC_ACQUIRE);
+    if (__atomic_load_n(&img_->input_seq, __ATOMIC_RELAXED) == s0) break;
+  }
+  return h;
 }
 
 bool Client::read_outputs(ImageWords& out) const noexcept {

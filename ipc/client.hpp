@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/module_shape.hpp"
+#include "ipc/health.hpp"
 #include "ipc/shm_object.hpp"
 #include "ipc/stepmod_image.h"
 
@@ -33,6 +34,8 @@ class Client {
   // sequence busy for kReadTries attempts.
   bool read_inputs(ImageWords& in) const noexcept;
   bool read_outputs(ImageWords& out) const noexcept;
+  // The daemon health words (INTERFACE.md 3.3), consistent with one input publication.
+  Health read_health() const noexcept;
 
   // Writes the first output_words words under the output seqlock (truncated to the word size).
   void write_outputs(const ImageWords& out);

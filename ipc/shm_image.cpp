@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstring>
 
 #include "ipc/snapshot.hpp"
@@ -32,15 +33,64 @@ bool ShmImage::read_outputs(ImageWords& out) const noexcept {
                        shape_.output_words, kReadTries, out);
 }
 
-void ShmImage::publish_inputs(const ImageWords& in) noexcept {
+bool ShmImage::read_outputs(ImageWords& out, std::uint32_t& seq) const noexcept {
+  for (unsigned t = 0; t < kReadTries; ++t) {
+    const std::uint32_t s0 = __atomic_load_n(&img_->output_seq, __ATOMIC_ACQUIRE);
+    if ((s0 & 1u) != 0) continue;
+    ImageWords tmp;
+    for (unsigned i = 0; i < shape_.output_words; ++i) {
+      tmp.w[i] = stepmod_word_load(&img_->output_image, shape_.word_bytes, i);
+    }
+    if (__atomic_load_n(&img_->output_seq, __ATOMIC_RELAXED) == s0) {
+      out = tmp;
+      seq = s0;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::uint32_t ShmImage::output_seq() const noexcept {
+  return __atomic_load_n(&img_->output_seq, __ATOMIC_ACQUIRE);
+}
+
+void ShmImage::publish_inputs(const ImageWords& in, const Health& health) noexcept {
   // Only the module writes the input image, so the lock is always free (stale_ns 0 never waits;
   // the pulse/control threads must not block on a foreign process).
   const std::uint32_t odd = stepmod_seq_write_begin(&img_->input_seq, 0);
   for (unsigned i = 0; i < shape_.input_words; ++i) {
     stepmod_word_store(&img_->input_image, shape_.word_bytes, i, in.w[i]);
   }
+  __atomic_store_n(&img_->health_flags, health.flags, __ATOMIC_RELAXED);
+  __atomic_store_n(&img_->late_faults, health.late_faults, __ATOMIC_RELAXED);
+  __atomic_store_n(&img_->worst_late_us, health.worst_late_us, __ATOMIC_RELAXED);
+  health_ = health;
   stepmod_seq_write_end(&img_->input_seq, odd);
   __atomic_fetch_add(&img_->scan_counter, 1u, __ATOMIC_RELEASE);
+}
+
+std::string ShmImage::replaced_description() const {
+  if (map_.replaced_pid() == 0) return {};
+  std::string d = "a stale /dev/shm" + image_object(name_) + " of stepmodd pid " +
+                  std::to_string(map_.replaced_pid()) + " (no longer running)";
+  const auto& c = map_.replaced_content();
+  if (c.size() >= sizeof(stepmod_image_t)) {
+    stepmod_image_t old;
+    std::memcpy(&old, c.data(), sizeof old);
+    const bool odd = (old.output_seq & 1u) != 0;
+    d += ": module " + std::to_string(old.module_type) + ", " + std::to_string(old.scan_counter) +
+         " scans, PLC heartbeat " + std::to_string(old.plc_heartbeat) + ", output sequence " +
+         std::to_string(old.output_seq) + (odd ? " (odd: a PLC was mid-write)" : "") +
+         ", health flags 0x" +
+         [&] {
+           char b[16];
+           std::snprintf(b, sizeof b, "%x", old.health_flags);
+           return std::string(b);
+         }() +
+         " (" + health_flag_names(old.health_flags) + "), " + std::to_string(old.late_faults) +
+         " late-edge faults";
+  }
+  return d;
 }
 
 std::uint64_t ShmImage::scan_counter() const noexcept {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/module_shape.hpp"
+#include "ipc/health.hpp"
 #include "ipc/shm_object.hpp"
 #include "ipc/stepmod_image.h"
 
@@ -38,10 +39,21 @@ class ShmImage {
   // false if the PLC was mid-write on every try: `out` is untouched and the caller keeps its
   // previous snapshot, as a real module keeps the last good backplane frame.
   bool read_outputs(ImageWords& out) const noexcept;
+  // The same, also giving the (even) sequence value the snapshot was taken under (the PLC
+  // supervisor compares it across scans to see writes that bypass the seqlock).
+  bool read_outputs(ImageWords& out, std::uint32_t& seq) const noexcept;
+  // The output sequence now (odd: a PLC is writing, or died writing).
+  std::uint32_t output_seq() const noexcept;
 
   // Writes the input words under the input seqlock (each truncated to the word size), then
   // increments the scan counter: one call per completed scan.
-  void publish_inputs(const ImageWords& in) noexcept;
+  void publish_inputs(const ImageWords& in) noexcept { publish_inputs(in, health_); }
+  // The same with the daemon health words (INTERFACE.md 3.3), under the same seqlock.
+  void publish_inputs(const ImageWords& in, const Health& health) noexcept;
+
+  // "stale image of stepmodd pid N (module 3601, scan counter ..., ...)" if creating the image
+  // replaced a crashed daemon's leftover, else empty.
+  std::string replaced_description() const;
 
   std::uint64_t scan_counter() const noexcept;
   // The PLC heartbeat value (INTERFACE.md 3.2); the caller watches it for changes.
@@ -60,6 +72,7 @@ class ShmImage {
   ModuleShape shape_;
   ShmMapping map_;
   stepmod_image_t* img_ = nullptr;
+  Health health_;  // as last published
 };
 
 }  // namespace stepmod::ipc

@@ -33,7 +33,8 @@ enum class Existing { kStale, kAlive, kUnknown };
 
 // What occupies `object` now. Reads it without changing it.
 Existing classify_existing(const std::string& object, std::size_t size, std::string_view magic,
-                           std::size_t pid_offset, std::uint64_t& pid) {
+                           std::size_t pid_offset, std::uint64_t& pid,
+                           std::vector<std::uint8_t>& content) {
   pid = 0;
   Fd f{::shm_open(object.c_str(), O_RDONLY, 0)};
   if (f.fd < 0) return errno == ENOENT ? Existing::kStale : Existing::kUnknown;
@@ -46,6 +47,7 @@ Existing classify_existing(const std::string& object, std::size_t size, std::str
   const auto* bytes = static_cast<const unsigned char*>(p);
   const bool magic_ok = std::memcmp(bytes, magic.data(), magic.size()) == 0;
   std::memcpy(&pid, bytes + pid_offset, sizeof pid);
+  content.assign(bytes, bytes + size);
   ::munmap(p, size);
   if (!magic_ok || pid == 0 || pid > static_cast<std::uint64_t>(INT32_MAX)) {
     return Existing::kUnknown;
@@ -89,6 +91,8 @@ ShmMapping& ShmMapping::operator=(ShmMapping&& o) noexcept {
     object_ = std::move(o.object_);
     owner_ = std::exchange(o.owner_, false);
     writable_ = std::exchange(o.writable_, false);
+    replaced_pid_ = std::exchange(o.replaced_pid_, 0);
+    replaced_ = std::move(o.replaced_);
   }
   return *this;
 }
@@ -105,6 +109,8 @@ void ShmMapping::reset() noexcept {
 ShmMapping ShmMapping::create(const std::string& object, std::size_t size, std::string_view magic,
                               std::size_t pid_offset) {
   Fd f;
+  std::uint64_t stale_pid = 0;
+  std::vector<std::uint8_t> stale;
   // Two attempts: the second one after removing a stale leftover.
   for (int attempt = 0; attempt < 2 && f.fd < 0; ++attempt) {
     f.fd = ::shm_open(object.c_str(), O_RDWR | O_CREAT | O_EXCL, 0660);
@@ -113,9 +119,10 @@ ShmMapping ShmMapping::create(const std::string& object, std::size_t size, std::
       throw IpcError("cannot create " + dev_shm_path(object) + ": " + errno_text(errno));
     }
     std::uint64_t pid = 0;
-    switch (classify_existing(object, size, magic, pid_offset, pid)) {
+    switch (classify_existing(object, size, magic, pid_offset, pid, stale)) {
       case Existing::kStale:
         ::shm_unlink(object.c_str());  // may race another creator; O_EXCL settles it
+        stale_pid = pid;
         continue;
       case Existing::kAlive:
         throw IpcError(dev_shm_path(object) + " is in use by process " + std::to_string(pid) +
@@ -145,6 +152,10 @@ ShmMapping ShmMapping::create(const std::string& object, std::size_t size, std::
   m.addr_ = p;
   m.size_ = size;
   m.writable_ = true;
+  if (stale_pid != 0) {
+    m.replaced_pid_ = stale_pid;
+    m.replaced_ = std::move(stale);
+  }
   return m;
 }
 

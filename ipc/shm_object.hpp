@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace stepmod::ipc {
 
@@ -52,6 +53,10 @@ class ShmMapping {
   std::size_t size() const noexcept { return size_; }
   bool writable() const noexcept { return writable_; }
   const std::string& object() const noexcept { return object_; }
+  // create() only: the owner pid and the content of a stale leftover it replaced (pid 0 and
+  // empty if there was none), so that the caller can tell what it replaced.
+  std::uint64_t replaced_pid() const noexcept { return replaced_pid_; }
+  const std::vector<std::uint8_t>& replaced_content() const noexcept { return replaced_; }
   // Unmaps (and unlinks, if created here) now.
   void reset() noexcept;
 
@@ -61,6 +66,8 @@ class ShmMapping {
   std::string object_;
   bool owner_ = false;
   bool writable_ = false;
+  std::uint64_t replaced_pid_ = 0;
+  std::vector<std::uint8_t> replaced_;
 };
 
 }  // namespace stepmod::ipc

@@ -12,6 +12,8 @@
  *   image offset 56 (u64): process id of the stepmodd that owns the image (0 = unknown). Lets a
  *                          new daemon tell a stale image left by a crashed one from a live one.
  *   panel offset 16 (u64): same for the simulator panel.
+ *   image offset 424 (u32): the largest lateness of a late-edge fault so far, in microseconds
+ *                           (saturating), beside the fault count of offset 420 (section 3.3).
  */
 #ifndef STEPMOD_IMAGE_H
 #define STEPMOD_IMAGE_H
@@ -63,8 +65,18 @@ enum stepmod_image_offset {
   STEPMOD_OFF_MSG_RESULT = 200,
   STEPMOD_OFF_RESERVED204 = 204,
   STEPMOD_OFF_MSG_DATA = 208,
-  STEPMOD_OFF_END_OF_FIELDS = 416
+  STEPMOD_OFF_HEALTH_FLAGS = 416,  /* section 3.3, under the input seqlock */
+  STEPMOD_OFF_LATE_FAULTS = 420,   /* section 3.3, under the input seqlock */
+  STEPMOD_OFF_WORST_LATE_US = 424, /* extension, see above; under the input seqlock */
+  STEPMOD_OFF_END_OF_FIELDS = 428
 };
+
+/* Daemon health flags (offset 416, INTERFACE.md 3.3): a bit each, set while the condition lasts. */
+#define STEPMOD_HEALTH_LATE_EDGE (1u << 0)  /* a late-edge fault stopped an axis */
+#define STEPMOD_HEALTH_PLC_STALE (1u << 1)  /* PLC heartbeat stale: as in Program mode */
+#define STEPMOD_HEALTH_SEQ_STUCK (1u << 2)  /* output sequence left odd (PLC died mid-write) */
+#define STEPMOD_HEALTH_SEQ_BYPASS (1u << 3) /* output words changed, sequence did not */
+#define STEPMOD_HEALTH_TRACE_LOST (1u << 4) /* trace records lost (the VCD says so too) */
 
 /* 64 bytes of backplane words: 16-bit words (3601/3602) sit at 2*i, 32-bit words (3202) at 4*i. */
 typedef union stepmod_words {
@@ -96,6 +108,9 @@ typedef struct stepmod_image {
   int32_t msg_result;       /* 0 accepted, otherwise see the module's status bits */
   uint32_t reserved204;
   int32_t msg_data[STEPMOD_MSG_DINTS];
+  uint32_t health_flags;  /* section 3.3: STEPMOD_HEALTH_* bits */
+  uint32_t late_faults;   /* section 3.3: late-edge faults since the daemon started */
+  uint32_t worst_late_us; /* extension: largest late-edge fault lateness, us */
   uint8_t unused[STEPMOD_IMAGE_SIZE - STEPMOD_OFF_END_OF_FIELDS];
 } stepmod_image_t;
 
@@ -121,6 +136,9 @@ STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, msg_done_seq) == STEPMOD_OFF_MSG
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, msg_result) == STEPMOD_OFF_MSG_RESULT, "msg res");
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, reserved204) == STEPMOD_OFF_RESERVED204, "r204");
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, msg_data) == STEPMOD_OFF_MSG_DATA, "msg data");
+STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, health_flags) == STEPMOD_OFF_HEALTH_FLAGS, "hf");
+STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, late_faults) == STEPMOD_OFF_LATE_FAULTS, "lf");
+STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, worst_late_us) == STEPMOD_OFF_WORST_LATE_US, "wl");
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, unused) == STEPMOD_OFF_END_OF_FIELDS, "end");
 
 /* ---------------------------------------------------------------------------------------------

@@ -102,6 +102,30 @@ class MotionPort {
   }
   unsigned axis() const noexcept { return axis_; }
 
+  // Late-edge guard (rt::PulseEngine::set_late_limit), decoded from the pulse thread's feedback.
+  struct LateFault {
+    std::uint32_t count = 0;  // faults of this axis since start
+    std::uint32_t epoch = 0;  // the motion last cut (0: none yet)
+    std::int64_t step = 0;    // the axis step count when it was cut
+    Nanos late_ns = 0;        // how late its next edge would have been written
+    Nanos worst_late_ns = 0;  // the largest late_ns so far
+  };
+  LateFault late_fault() const noexcept {
+    LateFault f;
+    f.count = fb_.late_faults.load(std::memory_order_acquire);  // first: the details follow it
+    f.epoch = fb_.fault_epoch.load(std::memory_order_relaxed);
+    f.step = fb_.fault_step.load(std::memory_order_relaxed);
+    f.late_ns = fb_.fault_late_ns.load(std::memory_order_relaxed);
+    f.worst_late_ns = fb_.worst_fault_late_ns.load(std::memory_order_relaxed);
+    return f;
+  }
+  // The motion last started was cut by the late-edge guard: the module ends it as an immediate
+  // stop (the pulse thread has already dropped its edges).
+  bool late_faulted() const noexcept {
+    return epoch_ != 0 && fb_.late_faults.load(std::memory_order_acquire) != 0 &&
+           fb_.fault_epoch.load(std::memory_order_relaxed) == epoch_;
+  }
+
  private:
   Command prepare_start(CommandPayload what, GroupTag group) const noexcept {
     Command c;

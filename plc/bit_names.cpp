@@ -7,8 +7,14 @@ std::string set_bit_names(std::uint32_t word, BitTable table) {
   for (const NamedBit& b : table) {
     const std::uint32_t v = field_value(word, b);
     if (v == 0) continue;
-    s += (s.empty() ? "" : ", ") + std::string(b.name);
-    if (b.width > 1) s += "=" + std::to_string(v);
+    // Appended piece by piece: `"x" + std::string(...)` trips GCC 12's -O3 -Wrestrict false
+    // positive (Release builds with STEPMOD_WERROR).
+    if (!s.empty()) s += ", ";
+    s += b.name;
+    if (b.width > 1) {
+      s += '=';
+      s += std::to_string(v);
+    }
   }
   return s.empty() ? "-" : s;
 }

@@ -21,6 +21,18 @@ struct AxisFeedback {
   std::atomic<std::uint8_t> flags{0};  // edge_flag bits of the last executed motion edge
   std::atomic<std::uint8_t> output_levels{0};  // bit per OutputLine: what the lines are driven to
   std::atomic<Nanos> last_step_t{0};           // time of the last step's leading edge
+
+  // Late-edge guard (PulseEngine::set_late_limit): a motion edge that could only be written more
+  // than the limit after its time is not written; the rest of its motion is dropped (as by an
+  // immediate stop) and the fault is published here. Written in this order: the details, then
+  // late_faults (release), then finished_epoch: a reader that sees the motion finished and
+  // late_faults changed (acquire) sees the details of that fault. Two faults within one reader
+  // pass may mix their details; the count never misses one.
+  std::atomic<std::int64_t> fault_step{0};    // step count when the motion was cut
+  std::atomic<Nanos> fault_late_ns{0};        // how late the dropped edge would have been
+  std::atomic<std::uint32_t> fault_epoch{0};  // the motion that was cut
+  std::atomic<std::uint32_t> late_faults{0};  // faults since start
+  std::atomic<Nanos> worst_fault_late_ns{0};  // the largest fault_late_ns so far
 };
 
 struct AxisControl {

@@ -124,6 +124,29 @@ void PulseEngine::apply_abort(unsigned axis) noexcept {
   if (link.feedback != nullptr) store_max(link.feedback->finished_epoch, a);
 }
 
+void PulseEngine::late_fault(unsigned axis, const Edge& e, Nanos late) noexcept {
+  // As an immediate stop of this motion that the module did not ask for: its edges (this one
+  // included, still at the head of the ring) and any the planner still pushes are dropped by
+  // drop_stale. The module learns of it from the feedback and stops the motion the same way.
+  abort_seen_[axis] = std::max(abort_seen_[axis], e.epoch);
+  drop_stale(axis);
+  in_motion_[axis] = 0;
+  // Edges of one axis are in time order, so a pulse's trailing edge precedes the next motion
+  // edge and no pulse can be high here; should one be (a foreign order), end it rather than
+  // leave the line high.
+  const std::uint8_t line = pulse_high_[axis];
+  if (line != kNoPulse) write(axis, static_cast<OutputLine>(line), false, clock_());
+  if (AxisFeedback* fb = axes_[axis].feedback) {
+    fb->fault_step.store(fb->steps.load(std::memory_order_relaxed), std::memory_order_relaxed);
+    fb->fault_late_ns.store(late, std::memory_order_relaxed);
+    fb->fault_epoch.store(e.epoch, std::memory_order_relaxed);
+    store_max(fb->worst_fault_late_ns, late);
+    fb->late_faults.store(fb->late_faults.load(std::memory_order_relaxed) + 1,
+                          std::memory_order_release);
+    store_max(fb->finished_epoch, e.epoch);
+  }
+}
+
 void PulseEngine::write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept {
   backend_.write(axis, line, level, t);
   const auto bit = static_cast<std::uint8_t>(1u << static_cast<unsigned>(line));
@@ -156,6 +179,16 @@ void PulseEngine::execute_one(Nanos write_time) noexcept {
   const Edge* p = link.edges->peek();
   if (p == nullptr) return;  // cannot happen: we are the only consumer and next_due() saw it
   const Edge e = *p;
+  // The late-edge guard looks at every motion edge but the end of a pulse under way: that one
+  // is always written (a drive needs the whole pulse, and due() already gave it its width).
+  if ((e.flags & edge_flag::kMotion) != 0 &&
+      !(e.level == 0 && pulse_high_[axis] == static_cast<std::uint8_t>(e.line))) {
+    const Nanos late = write_time - due(axis, e);
+    if (late > late_limit_) {
+      late_fault(axis, e, late);
+      return;
+    }
+  }
   link.edges->pop();
   if (link.control != nullptr) link.control->cut.executed(e);
 

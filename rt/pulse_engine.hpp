@@ -50,6 +50,19 @@ class PulseEngine {
   std::uint64_t trace_dropped() const noexcept {
     return trace_dropped_.load(std::memory_order_relaxed);
   }
+  // The same counter, for the trace thread to watch (gpio::TraceWriter::watch_losses).
+  const std::atomic<std::uint64_t>& trace_dropped_counter() const noexcept {
+    return trace_dropped_;
+  }
+
+  // Late-edge guard (issue 12): a motion edge whose write would come more than `limit` after
+  // the time it is due (PulseEngine::due) is a fault of its axis, never a burst of catch-up
+  // steps: the edge is not written, the rest of its motion is dropped (a step pulse under way
+  // has already been completed: trailing edges are never cut), and the fault is published in
+  // AxisFeedback. Within the limit, late edges are written (catching up). 0 = off (default:
+  // the engine alone measures; stepmodd sets [rt] late_limit_us). Set before use.
+  void set_late_limit(Nanos limit) noexcept { late_limit_ = limit > 0 ? limit : kNever; }
+  Nanos late_limit() const noexcept { return late_limit_ == kNever ? 0 : late_limit_; }
 
   // The clock an immediate stop stamps its line write with (next_due() has no time argument).
   // Default monotonic_now; tests running in virtual time substitute theirs. Set before use.
@@ -61,6 +74,8 @@ class PulseEngine {
   void write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept;
   void drop_stale(unsigned axis) noexcept;
   void drop_beyond_limit(unsigned axis) noexcept;
+  // The late-edge guard's cut: drops motion `e.epoch` of `axis` and publishes the fault.
+  void late_fault(unsigned axis, const Edge& e, Nanos late) noexcept;
   // When the head edge of `axis` may be written: its time, pushed back so that a late leading
   // edge still gets its full pulse width and a late direction edge its full set-up time.
   Nanos due(unsigned axis, const Edge& e) const noexcept;
@@ -84,6 +99,7 @@ class PulseEngine {
   std::vector<Nanos> dir_late_;
   std::vector<std::uint32_t> truncated_epoch_;  // per axis: motion cut at its step-count cap
   ClockFn clock_ = &monotonic_now;
+  Nanos late_limit_ = kNever;
 };
 
 }  // namespace stepmod::rt

@@ -1,5 +1,7 @@
 #include "rt/pulse_thread.hpp"
 
+#include "rt/wake_latency.hpp"
+
 #include <linux/futex.h>
 #include <pthread.h>
 #include <sched.h>
@@ -39,8 +41,8 @@ void futex_sleep_until(std::atomic<std::uint32_t>& word, std::uint32_t seen,
                        Nanos deadline) noexcept {
   static_assert(sizeof(std::atomic<std::uint32_t>) == sizeof(std::uint32_t));
   const timespec ts = to_timespec(deadline);
-  syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&word), FUTEX_WAIT_BITSET_PRIVATE, seen,
-          &ts, nullptr, FUTEX_BITSET_MATCH_ANY);
+  syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&word), FUTEX_WAIT_BITSET_PRIVATE, seen, &ts,
+          nullptr, FUTEX_BITSET_MATCH_ANY);
 }
 
 // CPU time of the calling thread (a system call: read once per 20 ms window only).
@@ -75,8 +77,8 @@ bool PulseThread::start() {
   pthread_attr_t attr;
   if (pthread_attr_init(&attr) != 0) return false;
   if (options_.stack_bytes > 0) {
-    pthread_attr_setstacksize(&attr, std::max<std::size_t>(options_.stack_bytes,
-                                                           options_.prefault_stack_bytes + 65536));
+    pthread_attr_setstacksize(
+        &attr, std::max<std::size_t>(options_.stack_bytes, options_.prefault_stack_bytes + 65536));
   }
   const int rc = pthread_create(
       &thread_, &attr,
@@ -155,29 +157,40 @@ void PulseThread::setup() noexcept {
       status_.affinity_errno = rc;
     }
   }
+  // On a machine with one CPU the thread may use (and not pinned to a CPU of its own), every
+  // microsecond it spins before an edge is taken from the threads that feed it (the planner, the
+  // control thread, the PLC): there the early wake-up stays within kSharedSingleCpuSpin.
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  if (options_.cpu < 0 && sched_getaffinity(0, sizeof allowed, &allowed) == 0 &&
+      CPU_COUNT(&allowed) <= 1) {
+    single_shared_cpu_ = true;
+  }
   prefault_stack(options_.prefault_stack_bytes);
 }
 
 // No allocation, lock, logging or system call in here but the engine's line writes, the clock
 // (vDSO) and the sleep (a futex wait with a deadline: clock_nanosleep that ring() can end).
 void PulseThread::loop() noexcept {
-  const Nanos max_spin = options_.spin_ns;
+  const Nanos max_spin =
+      single_shared_cpu_ ? std::min(options_.spin_ns, kSharedSingleCpuSpin) : options_.spin_ns;
   const Nanos min_spin = std::min(options_.min_spin_ns, max_spin);
   const Nanos max_sleep_ns = options_.max_sleep_ns;
   const Nanos quiet_sleep_ns = std::max(options_.quiet_sleep_ns, max_sleep_ns);
-  // Adaptive spin: `late` estimates a high percentile of how late a sleep's wake-up is (it
-  // rises by 1/8 of an excess, decays by 1/64 of a shortfall, and slowly while the thread
-  // spins through gaps without sleeping, so one long stall does not keep it spinning for
-  // good). The thread wakes late + 2 us before an edge, within [min_spin, max_spin].
+  // Adaptive spin (rt/wake_latency.hpp): the thread wakes the 99th percentile of its last 1,024
+  // wake-ups' lateness + 2 us before an edge, within [min_spin, max_spin]; until it has
+  // measured a few, max_spin.
   constexpr Nanos kMargin = 2 * kNsPerUs;
-  Nanos late = max_spin;
+  constexpr unsigned kPercentile = 990;  // per mille
+  constexpr unsigned kRecompute = 16;    // sleeps between two percentile computations
+  WakeLatencyWindow wake_late;
+  unsigned since_recompute = 0;
   Nanos spin_ns = max_spin;
   std::uint64_t loops = 0;
   std::uint64_t edges = 0;
   std::uint64_t sleeps = 0;
   std::uint32_t bell = doorbell_.load(std::memory_order_acquire);
   Nanos awake_until = 0;
-  bool spinning = false;  // this gap is being spun through (counted once for the decay)
   // Off-CPU budget (see pulse_thread.hpp): once per window, the thread's CPU time (a clock
   // read, like the others) updates `debt`, the CPU time used beyond the allowed share; while
   // there is debt the spin is capped at min_spin (an economy window), else it is not.
@@ -198,7 +211,6 @@ void PulseThread::loop() noexcept {
       // overhead, which is what a drive sees.
       engine_.execute_one(now);
       edges_.store(++edges, std::memory_order_relaxed);
-      spinning = false;
       continue;
     }
     const std::uint32_t b = doorbell_.load(std::memory_order_acquire);
@@ -226,18 +238,16 @@ void PulseThread::loop() noexcept {
       sleeps_.store(++sleeps, std::memory_order_relaxed);
       const Nanos woke = monotonic_now();
       if (for_edge && min_spin < max_spin) {
-        const Nanos over = std::clamp<Nanos>(woke - wake, 0, 2 * max_spin);
-        late += over > late ? (over - late) / 8 : -((late - over) / 64);
-        spin_ns = std::clamp(late + kMargin, min_spin, max_spin);
+        wake_late.add(woke - wake);
+        if (++since_recompute >= kRecompute) {
+          since_recompute = 0;
+          const Nanos p = wake_late.percentile(kPercentile);
+          spin_ns = std::clamp(p + kMargin, min_spin, max_spin);
+          wake_p99_.store(p, std::memory_order_relaxed);
+        }
         spin_now_.store(std::min(spin_ns, spin_cap), std::memory_order_relaxed);
       }
-      spinning = false;
       continue;
-    }
-    if (!spinning && min_spin < max_spin) {
-      spinning = true;
-      late -= late / 256;
-      spin_ns = std::clamp(late + kMargin, min_spin, max_spin);
     }
     // Within spin_ns of the edge: spin. Each turn goes back through next_due(), so an immediate
     // stop or an earlier edge of another axis is still seen while spinning.

@@ -201,9 +201,13 @@ class Parser {
   void parse_rt(const toml::table* r, Config& c) const {
     const std::string p = "rt";
     if (r == nullptr) return;
-    check_keys(*r, p, {"priority", "cpu"});
+    check_keys(*r, p, {"priority", "cpu", "late_limit_us"});
     c.rt_priority = static_cast<int>(get_int(r, p, "priority", 80, 1, 99));
     c.rt_cpu = static_cast<int>(get_int(r, p, "cpu", -1, -1, 1023));
+    // Below a wake-up's latency (tens of us on a VM) every move would fault; above a second a
+    // stall would let a second's worth of steps out at once. No "off": a burst of late steps
+    // is what a motor loses steps on.
+    c.late_limit_ns = get_int(r, p, "late_limit_us", 1'000, 20, 1'000'000) * kNsPerUs;
   }
 
   void parse_axes(const toml::table& root, const toml::table* module, Config& c) const {

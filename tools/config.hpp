@@ -36,6 +36,9 @@ struct Config {
   std::string chip = "gpiochip0";
   int rt_priority = 80;
   int rt_cpu = -1;
+  // Late-edge guard: an edge that would be written later than this after its time faults its
+  // axis (rt::PulseEngine::set_late_limit).
+  Nanos late_limit_ns = 1'000 * kNsPerUs;
   std::vector<AxisConfig> axes;
 };
 

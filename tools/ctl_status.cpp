@@ -172,6 +172,16 @@ std::string format_status(ModuleType type, const ImageWords& in) {
   return o.str();
 }
 
+std::string format_health(const ipc::Health& h) {
+  std::ostringstream o;
+  o << "daemon health = 16#" << hex(h.flags, 4) << "  [" << ipc::health_flag_names(h.flags)
+    << "]\n";
+  o << "  late-edge faults = " << h.late_faults;
+  if (h.late_faults > 0) o << ", worst " << h.worst_late_us << " us late";
+  o << "\n";
+  return o.str();
+}
+
 std::string format_words(const ImageWords& w, unsigned count, unsigned word_bytes) {
   std::ostringstream o;
   for (unsigned i = 0; i < count; ++i) {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/module_shape.hpp"
+#include "ipc/health.hpp"
 #include "plc/bit_names.hpp"
 
 namespace stepmod::tools::ctl {
@@ -14,6 +15,10 @@ using plc::set_bit_names;
 
 // The whole decoded input image, multi-line, for `type`.
 std::string format_status(ModuleType type, const ImageWords& in);
+
+// The daemon health words (INTERFACE.md 3.3): flags by name, late-edge fault count and the
+// worst lateness.
+std::string format_health(const ipc::Health& h);
 
 // One line per word: index, decimal, hex (word-size digits).
 std::string format_words(const ImageWords& w, unsigned count, unsigned word_bytes);

@@ -8,11 +8,13 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <limits>
 #include <thread>
 #include <vector>
 
 #include "gpio/sim_backend.hpp"
 #include "gpio/vcd_trace.hpp"
+#include "ipc/plc_supervisor.hpp"
 #include "ipc/shm_image.hpp"
 #include "ipc/sim_panel.hpp"
 #include "planner/planner_thread.hpp"
@@ -24,7 +26,12 @@
 namespace stepmod::tools {
 
 namespace {
-constexpr std::size_t kTraceRing = 1u << 18;  // records: ~130 ms of two axes at 1 MHz
+// Records per trace ring: 4 MB each, ~130 ms of 2 M records/s. The trace thread spools them as
+// fast as a copy (gpio/trace_spool.hpp) and runs at SCHED_FIFO 1 where there is a second CPU,
+// so it is not starved for that long; bigger rings cost memory that a small board (or the
+// 256 MB VM test) does not have to spare, since they are touched (and locked) up front.
+constexpr std::size_t kOutputTraceRing = 1u << 18;
+constexpr std::size_t kInputTraceRing = 1u << 18;
 // How long the shutdown waits for the pulse thread to acknowledge the immediate stops.
 constexpr Nanos kStopAckTimeout = 200 * kNsPerMs;
 }  // namespace
@@ -40,9 +47,16 @@ struct Daemon::Impl {
   std::unique_ptr<Stack> stack;
   std::unique_ptr<ipc::ShmImage> image;
   std::unique_ptr<ipc::SimPanelServer> panel;
-  std::uint64_t input_trace_dropped = 0;
-  rt::PulseThread* pulse = nullptr;  // while run() runs
-  std::uint32_t planner_wakes = 0;   // the planner's wake counter as last seen by kick()
+  std::atomic<std::uint64_t> input_trace_dropped{0};  // control thread writes, trace reads
+  rt::PulseThread* pulse = nullptr;                   // while run() runs
+  std::uint32_t planner_wakes = 0;              // the planner's wake counter as last seen by kick()
+  std::vector<std::uint32_t> late_faults_seen;  // per axis: faults already logged
+  // Per axis, for the "needs a CPU of its own" notice: the step count at the last scan and the
+  // motion it was last given for.
+  std::vector<std::int64_t> steps_at_scan;
+  std::vector<std::uint32_t> cpu_notice_epoch;
+  Nanos last_scan = 0;
+  bool trace_loss_logged = false;
 
   // After the control thread may have submitted commands (or set an immediate stop, which is
   // also submitted): ring the pulse thread's doorbell so that it polls for the new edges. It
@@ -53,14 +67,15 @@ struct Daemon::Impl {
     planner_wakes = w;
     if (pulse != nullptr) pulse->ring();
   }
-  bool axes_at_rest() noexcept {
-    for (unsigned a = 0; a < stack->shape().axes; ++a) {
-      if (stack->motion(a).busy()) return false;
-    }
-    return true;
-  }
 
   void control_loop(const std::atomic<bool>& stop);
+  // The daemon health words (INTERFACE.md 3.3) for this scan, logging new late-edge faults.
+  ipc::Health health(std::uint32_t supervisor_flags);
+  void log_supervision(const ipc::PlcSupervisor& sup, Nanos now);
+  void notice_cpu_need(Nanos now);
+  std::uint64_t trace_dropped() const noexcept {
+    return stack->engine().trace_dropped() + input_trace_dropped.load(std::memory_order_relaxed);
+  }
   void sync_panel();
   void shutdown_motion();
   void idle_outputs();
@@ -82,12 +97,21 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
   // rung when the command is submitted (kick()), polls every max_sleep_ns (50 us) and wakes
   // ~15-20 us late: 100 us covers it and is 50 us off the command latency (issue 5).
   so.planner.start_delay_ns = 100 * kNsPerUs;
+  so.late_limit_ns = config.late_limit_ns;
   if (trace_path) {
-    d.output_trace = std::make_unique<SpscRing<TraceRecord>>(kTraceRing);
-    d.input_trace = std::make_unique<SpscRing<TraceRecord>>(kTraceRing);
+    d.output_trace = std::make_unique<SpscRing<TraceRecord>>(kOutputTraceRing);
+    d.input_trace = std::make_unique<SpscRing<TraceRecord>>(kInputTraceRing);
   }
   d.stack = std::make_unique<Stack>(so, *d.backend, d.output_trace.get());
   d.image = std::make_unique<ipc::ShmImage>(config.name, d.stack->shape());
+  // A crashed daemon's image is replaced silently by ShmImage; say what was there (a PLC still
+  // attached to it would have been talking to nobody).
+  if (const std::string old = d.image->replaced_description(); !old.empty()) {
+    spdlog::warn("replaced {}", old);
+  }
+  d.late_faults_seen.assign(d.stack->shape().axes, 0);
+  d.steps_at_scan.assign(d.stack->shape().axes, 0);
+  d.cpu_notice_epoch.assign(d.stack->shape().axes, 0);
   if (d.sim != nullptr) {
     d.panel = std::make_unique<ipc::SimPanelServer>(config.name, d.stack->shape().axes);
   }
@@ -95,12 +119,13 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
     const auto wires = gpio::trace_wires(*d.backend);
     d.trace = std::make_unique<gpio::TraceWriter>(*trace_path, wires, d.start, *d.output_trace,
                                                   *d.input_trace);
+    d.trace->watch_losses(&d.stack->engine().trace_dropped_counter(), &d.input_trace_dropped);
   }
 }
 
 Daemon::~Daemon() = default;
 
-void Daemon::run(const std::atomic<bool>& stop) {
+bool Daemon::run(const std::atomic<bool>& stop) {
   Impl& d = *impl_;
   rt::PulseThread::Options po;
   po.priority = d.config.rt_priority;
@@ -114,7 +139,15 @@ void Daemon::run(const std::atomic<bool>& stop) {
   rt::PulseThread pulse(d.stack->engine(), po);
   d.pulse = &pulse;
   d.planner_wakes = d.stack->planner().wake_counter().load();
-  if (d.trace) d.trace->start();
+  // SCHED_FIFO 1: above every normal thread, below the pulse and control threads (gpio/vcd_trace),
+  // where there is a second CPU for it. On a single CPU it stays a normal thread: its wake-ups
+  // would otherwise come before everything else there (the PLC, a test's machine model).
+  if (d.trace) {
+    cpu_set_t cpus;
+    CPU_ZERO(&cpus);
+    const bool several = sched_getaffinity(0, sizeof cpus, &cpus) == 0 && CPU_COUNT(&cpus) >= 2;
+    d.trace->start(several ? 1 : 0);
+  }
   if (!pulse.start()) throw std::runtime_error("cannot start the pulse thread");
   const auto& st = pulse.status();
   if (!st.fifo) {
@@ -170,45 +203,41 @@ void Daemon::run(const std::atomic<bool>& stop) {
   spdlog::info("pulse thread: {} edges written, lateness p50 {} ns, p99.9 {} ns, max {} ns",
                stats.count, stats.percentile(0.5), stats.percentile(0.999), stats.max);
   if (d.trace) {
-    d.trace->stop(d.stack->engine().trace_dropped(), d.input_trace_dropped);
-    if (d.stack->engine().trace_dropped() + d.input_trace_dropped > 0) {
-      spdlog::warn("trace: {} output and {} input records dropped (ring full)",
-                   d.stack->engine().trace_dropped(), d.input_trace_dropped);
+    d.trace->stop(d.stack->engine().trace_dropped(), d.input_trace_dropped.load());
+    if (d.trace_dropped() > 0) {
+      spdlog::error(
+          "trace: {} output and {} input records lost (ring full): the VCD is "
+          "incomplete (it says so, and marks where)",
+          d.stack->engine().trace_dropped(), d.input_trace_dropped.load());
     }
   }
   if (d.backend->lost_events() > 0) {
     spdlog::warn("{} input events were lost", d.backend->lost_events());
   }
+  return !d.trace || d.trace_dropped() == 0;
 }
 
 // The control thread: input events as they come, the PLC image once per scan.
 void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
   module::Personality& personality = stack->personality();
   std::array<gpio::InputEvent, 64> events{};
-  ImageWords out{};
   ImageWords in{};
   Nanos next_scan = monotonic_now();
-  std::uint64_t last_heartbeat = image->heartbeat();
-  Nanos heartbeat_changed = next_scan;
-  bool plc_stopped = false;
+  ipc::PlcSupervisor supervisor(config.plc_timeout_ns);
 
   while (!stop.load(std::memory_order_acquire)) {
-    std::size_t n = 0;
-    if (sim != nullptr && axes_at_rest()) {
-      // The simulated machine has no file descriptor to block on: its wait_events polls in
-      // 50 us steps. With every axis at rest only the panel, applied by this thread, changes an
-      // input: sleep to the scan in one go, then drain (issue 5: idle CPU).
-      if (monotonic_now() < next_scan) sleep_until(next_scan);
-      n = backend->wait_events(events, 0);
-    } else {
-      n = backend->wait_events(events, next_scan);
-    }
+    // Both backends block until an input edge or the scan (the sim on a futex its writes end,
+    // gpiod on its event file descriptors): no polling, moving or not.
+    const std::size_t n = backend->wait_events(events, next_scan);
     for (std::size_t i = 0; i < n; ++i) {
       const gpio::InputEvent& e = events[i];
       if (input_trace) {
         const TraceRecord r{e.t, e.axis, static_cast<std::uint8_t>(e.line),
                             static_cast<std::uint8_t>(e.level), 1};
-        if (!input_trace->try_push(r)) ++input_trace_dropped;
+        if (!input_trace->try_push(r)) {
+          input_trace_dropped.store(input_trace_dropped.load(std::memory_order_relaxed) + 1,
+                                    std::memory_order_relaxed);
+        }
       }
       personality.on_input(e);
     }
@@ -218,25 +247,131 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     if (now < next_scan) continue;
 
     // One consistent snapshot per scan; a PLC caught mid-write keeps the previous snapshot.
-    image->read_outputs(out);
-    if (config.plc_timeout_ns > 0) {
-      const std::uint64_t hb = image->heartbeat();
-      if (hb != last_heartbeat) {
-        last_heartbeat = hb;
-        heartbeat_changed = now;
-        plc_stopped = false;
-      } else if (!plc_stopped && now - heartbeat_changed >= config.plc_timeout_ns) {
-        spdlog::warn("PLC heartbeat unchanged for {} ms: treating the PLC as out of Run mode",
-                     config.plc_timeout_ns / kNsPerMs);
-        personality.plc_stopped(now);
-        plc_stopped = true;
-      }
-    }
+    // The supervisor (ipc/plc_supervisor.hpp) decides what the module gets: the live words, or
+    // while the PLC is lost (heartbeat stale, sequence stuck odd) the frozen last good ones.
+    ipc::PlcSupervisor::Sample sample;
+    sample.now = now;
+    sample.heartbeat = image->heartbeat();
+    sample.seq = image->output_seq();
+    sample.snapshot_ok = image->read_outputs(sample.words, sample.snapshot_seq);
+    const ImageWords& out = supervisor.scan(sample);
+    log_supervision(supervisor, now);
+    // As a PLC leaving Run mode (INTERFACE 3.2): every move stops, position invalid. Once per
+    // loss; the frozen words keep anything new from starting until the PLC is back.
+    if (supervisor.tripped()) personality.plc_stopped(now);
     personality.scan(out, in, now);
     kick();
-    image->publish_inputs(in);
+    notice_cpu_need(now);
+    image->publish_inputs(in, health(supervisor.flags()));
     next_scan += config.scan_ns;
     if (next_scan <= now) next_scan = now + config.scan_ns;  // overrun: skip, never burst
+  }
+}
+
+ipc::Health Daemon::Impl::health(std::uint32_t supervisor_flags) {
+  ipc::Health h;
+  h.flags = supervisor_flags;
+  Nanos worst = 0;
+  for (unsigned a = 0; a < stack->shape().axes; ++a) {
+    const planner::MotionPort& m = stack->motion(a);
+    const planner::MotionPort::LateFault f = m.late_fault();
+    if (f.count != late_faults_seen[a]) {
+      late_faults_seen[a] = f.count;
+      spdlog::error(
+          "axis {}: late-edge fault: the edge after step {} would have been written {} us late "
+          "(limit {} us); motion cut, no burst: the axis is stopped with position invalid "
+          "(re-home). {} fault(s) on this axis so far",
+          a + 1, f.step, f.late_ns / kNsPerUs, config.late_limit_ns / kNsPerUs, f.count);
+    }
+    h.late_faults += f.count;
+    worst = std::max(worst, f.worst_late_ns);
+    // Bit 0 from the fault until the axis' next motion (the PLC's next accepted command).
+    if (f.count != 0 && f.epoch == m.epoch()) h.flags |= STEPMOD_HEALTH_LATE_EDGE;
+  }
+  h.worst_late_us = static_cast<std::uint32_t>(
+      std::min<Nanos>(worst / kNsPerUs, std::numeric_limits<std::uint32_t>::max()));
+  // Bit 4 from the first lost record on: the trace stays incomplete (the VCD says so too).
+  if (output_trace && trace_dropped() > 0) {
+    h.flags |= STEPMOD_HEALTH_TRACE_LOST;
+    if (!trace_loss_logged) {
+      trace_loss_logged = true;
+      spdlog::error("trace: records lost (the trace ring was full): the VCD will be incomplete");
+    }
+  }
+  return h;
+}
+
+// Issue 12 item 5: a motion whose edges come closer together than the pulse thread's early
+// wake-up keeps that thread on its CPU for the whole move. On a CPU shared with other threads the
+// kernel then takes it away now and then (RT throttling, the fair server: tens of ms), which the
+// late-edge guard turns into a fault. Said once per motion, from here (never the pulse thread),
+// as soon as the axis runs that fast.
+void Daemon::Impl::notice_cpu_need(Nanos now) {
+  const Nanos dt = now - last_scan;
+  last_scan = now;
+  for (unsigned a = 0; a < stack->shape().axes; ++a) {
+    planner::MotionPort& m = stack->motion(a);
+    const std::int64_t steps = m.steps();
+    const std::int64_t moved =
+        steps > steps_at_scan[a] ? steps - steps_at_scan[a] : steps_at_scan[a] - steps;
+    steps_at_scan[a] = steps;
+    if (pulse == nullptr || dt <= 0 || moved < 2 || !m.busy() || cpu_notice_epoch[a] == m.epoch()) {
+      continue;
+    }
+    const Nanos edge_gap = dt / (2 * moved);  // two edges per step
+    // Only once the thread has measured its wake-ups (before, its spin is a placeholder).
+    if (pulse->wake_p99() == 0 || edge_gap >= pulse->stay_on_cpu_gap()) continue;
+    cpu_notice_epoch[a] = m.epoch();
+    spdlog::warn(
+        "axis {}: ~{} steps/s, an edge every {} us: closer than the pulse thread's wake-up "
+        "({} us early; measured p99 wake-up lateness {} us), so the thread stays on its CPU for "
+        "this move. {}; a stall beyond [rt] late_limit_us ({} us) stops the axis (README: "
+        "'A CPU of its own')",
+        a + 1, moved * kNsPerSec / dt, edge_gap / 1000.0, pulse->spin_now() / kNsPerUs,
+        pulse->wake_p99() / kNsPerUs,
+        config.rt_cpu >= 0
+            ? "Make sure no other thread runs on CPU " + std::to_string(config.rt_cpu)
+            : std::string("This axis needs a CPU of its own ([rt] cpu + isolcpus= "
+                          "or a cpuset)"),
+        config.late_limit_ns / kNsPerUs);
+  }
+}
+
+void Daemon::Impl::log_supervision(const ipc::PlcSupervisor& sup, Nanos now) {
+  const std::uint32_t on = sup.started();
+  const std::uint32_t off = sup.ended();
+  if ((on | off) == 0) return;
+  if (on & STEPMOD_HEALTH_PLC_STALE) {
+    spdlog::warn(
+        "PLC heartbeat unchanged for {} ms: the PLC is treated as out of Run mode (every axis "
+        "stopped, position invalid; the output words are frozen and not acted on until the "
+        "heartbeat moves again)",
+        sup.heartbeat_age(now) / kNsPerMs);
+  }
+  if (off & STEPMOD_HEALTH_PLC_STALE) {
+    spdlog::info(
+        "PLC heartbeat moves again: output words acted on again (a command bit held "
+        "through the outage needs a new 0->1 edge)");
+  }
+  if (on & STEPMOD_HEALTH_SEQ_STUCK) {
+    spdlog::warn(
+        "output sequence left odd ({}) for {} ms: a PLC died in the middle of a write; treated "
+        "as the PLC out of Run mode (every axis stopped, position invalid, words frozen)",
+        sup.stuck_seq(), sup.odd_timeout() / kNsPerMs);
+  }
+  if (off & STEPMOD_HEALTH_SEQ_STUCK) {
+    spdlog::info(
+        "output sequence moves again: output words acted on again (a command bit held "
+        "through the outage needs a new 0->1 edge)");
+  }
+  if (on & STEPMOD_HEALTH_SEQ_BYPASS) {
+    spdlog::warn(
+        "output words changed while the output sequence did not: a writer bypasses the seqlock "
+        "(INTERFACE 3.1); the module may act on torn words (an old MSW with a new LSW)");
+  }
+  if (off & STEPMOD_HEALTH_SEQ_BYPASS) {
+    spdlog::info("no seqlock bypass for {} ms ({} bypassing change(s) seen in all)",
+                 ipc::PlcSupervisor::kBypassQuiet / kNsPerMs, sup.bypass_changes());
   }
 }
 

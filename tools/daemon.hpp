@@ -20,8 +20,9 @@ class Daemon {
   Daemon& operator=(const Daemon&) = delete;
 
   // Starts the threads and returns when `stop` becomes true, after the orderly shutdown:
-  // immediate stop of every axis, outputs idle, trace complete.
-  void run(const std::atomic<bool>& stop);
+  // immediate stop of every axis, outputs idle, trace written. false if the trace lost records
+  // (the VCD says so; stepmodd then exits with status 3).
+  bool run(const std::atomic<bool>& stop);
 
  private:
   struct Impl;

@@ -18,6 +18,7 @@ Stack::Stack(const StackOptions& options, gpio::Backend& backend, SpscRing<Trace
   }
   planner_ = std::make_unique<planner::Planner>(planner_axes, options.planner);
   engine_ = std::make_unique<rt::PulseEngine>(backend_, links, trace);
+  engine_->set_late_limit(options.late_limit_ns);
   std::vector<planner::MotionPort*> ports;
   for (unsigned i = 0; i < shape_.axes; ++i) {
     Axis& a = *axes_[i];

@@ -22,6 +22,7 @@ struct StackOptions {
   std::vector<planner::AxisTiming> timing;  // one per axis
   planner::PlannerOptions planner;
   std::size_t edge_ring = 1u << 15;  // edges per axis: > lookahead x max edge rate (2 MHz x 4 ms)
+  Nanos late_limit_ns = 0;           // late-edge guard (rt::PulseEngine::set_late_limit); 0 = off
 };
 
 class Stack {

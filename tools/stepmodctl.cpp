@@ -400,7 +400,8 @@ int main(int argc, char** argv) {
       ImageWords in;
       client.read_inputs(in);
       std::cout << "module '" << name << "' scan " << client.scan_counter() << "\n"
-                << tools::ctl::format_status(client.type(), in);
+                << tools::ctl::format_status(client.type(), in)
+                << tools::ctl::format_health(client.read_health());
       return kExitOk;
     }
     if (watch->parsed()) {
@@ -412,7 +413,8 @@ int main(int argc, char** argv) {
         // Home the cursor and clear: a steady display instead of a scrolling log.
         std::cout << "\x1b[H\x1b[2J"
                   << "module '" << name << "' scan " << client.scan_counter() << "\n"
-                  << tools::ctl::format_status(client.type(), in) << std::flush;
+                  << tools::ctl::format_status(client.type(), in)
+                  << tools::ctl::format_health(client.read_health()) << std::flush;
         std::this_thread::sleep_for(std::chrono::milliseconds(interval_ms));
       }
       return kExitOk;

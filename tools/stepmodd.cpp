@@ -1,7 +1,8 @@
 // stepmodd: one emulated stepper-controller module per process (INTERFACE.md section 1).
 //   stepmodd --config FILE [--trace FILE.vcd] [--log-level LEVEL]
 // Exit status: 0 after SIGINT/SIGTERM, 2 for a bad command line or config file, 1 when the
-// module cannot be started (GPIO lines, shared memory, trace file).
+// module cannot be started (GPIO lines, shared memory, trace file), 3 after SIGINT/SIGTERM when
+// the trace lost records (the VCD says so too).
 #include <spdlog/sinks/stdout_color_sinks.h>  // declares stderr_color_mt too
 #include <spdlog/spdlog.h>
 
@@ -59,9 +60,10 @@ int run(int argc, char** argv) {
     std::atomic<bool> stop{false};
     std::atomic<bool> finished{false};
     std::exception_ptr failure;
+    bool trace_complete = true;
     std::thread runner([&] {
       try {
-        daemon.run(stop);
+        trace_complete = daemon.run(stop);
       } catch (...) {
         failure = std::current_exception();
       }
@@ -79,6 +81,10 @@ int run(int argc, char** argv) {
     }
     runner.join();
     if (failure) std::rethrow_exception(failure);
+    if (!trace_complete) {
+      spdlog::error("stopped; the trace is incomplete (exit status 3)");
+      return 3;
+    }
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;

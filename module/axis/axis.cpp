@@ -91,6 +91,14 @@ void Axis::enter_command_mode() {
 }
 
 void Axis::poll_motion_end() {
+  // Late-edge guard (issue 12; rt::PulseEngine::set_late_limit): the pulse thread cut the motion
+  // rather than burst its late steps out. The PLC sees what an Immediate Stop gives (3601-STP-03,
+  // PI-02: Stopped, Position Invalid), so its program re-homes; immediate_stop() also ends the
+  // planner's side of the motion. Once: afterwards the cause is kImmediate or the axis is idle.
+  if (st_.moving() && st_.stop_cause != StopCause::kImmediate &&
+      st_.stop_cause != StopCause::kFault && st_.motion.late_faulted()) {
+    st_.immediate_stop(StopCause::kImmediate);
+  }
   if (st_.activity == Activity::kIdle || st_.activity == Activity::kFollower || st_.motion.busy()) {
     return;
   }

@@ -21,7 +21,7 @@ TEST(GpioTraceWriterThread, WritesEverythingPushedWhileRunningAndOnStop) {
   SpscRing<TraceRecord> outs(1024), ins(1024);
   const std::vector<TraceWire> wires = {{0, false, 0, false}, {0, true, 2, false}};
   const Nanos start = monotonic_now();
-  TraceWriter w(path, wires, start, outs, ins, 5 * kNsPerMs, 1 * kNsPerMs);
+  TraceWriter w(path, wires, start, outs, ins, 1 * kNsPerMs);
   w.start();
   constexpr int kN = 2000;
   std::thread producer([&] {

@@ -1,9 +1,11 @@
-// The VCD trace (INTERFACE.md section 5): file format, merge window, parse-back.
+// The VCD trace (INTERFACE.md section 5): file format, spooled merge, loss marker, parse-back.
 #include "gpio/vcd_trace.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -182,51 +184,23 @@ TEST(GpioVcdTrace, ChangesRelativeToStartSkippingNoChangeAndUnknownLines) {
   std::filesystem::remove(path);
 }
 
-TEST(GpioTraceMerger, ReleasesOnlyRecordsOlderThanTheCutInTimeOrder) {
-  TraceMerger m;
-  m.add(out_rec(100, 0, OutputLine::kStep, true));
-  m.add(out_rec(300, 0, OutputLine::kStep, false));
-  m.add(in_rec(50, 0, InputLine::kHome, true));  // other ring, earlier
-  m.add(in_rec(300, 0, InputLine::kHome, false));
-  std::vector<Nanos> ts;
-  const auto sink = [&](const TraceRecord& r) { ts.push_back(r.t); };
-  m.release(100, sink);
-  EXPECT_EQ(ts, (std::vector<Nanos>{50}));
-  EXPECT_EQ(m.held(), 3u);
-  m.release(301, sink);
-  EXPECT_EQ(ts, (std::vector<Nanos>{50, 100, 300, 300}));
-  EXPECT_EQ(m.held(), 0u);
-}
-
-TEST(GpioTraceMerger, EqualTimesKeepArrivalOrder) {
-  TraceMerger m;
-  m.add(out_rec(10, 0, OutputLine::kStep, true));
-  m.add(out_rec(10, 0, OutputLine::kStep, false));
-  m.add(out_rec(10, 0, OutputLine::kStep, true));
-  std::vector<int> levels;
-  m.release_all([&](const TraceRecord& r) { levels.push_back(r.level); });
-  EXPECT_EQ(levels, (std::vector<int>{1, 0, 1}));
-}
-
-TEST(GpioTraceWriter, WindowMergesTwoRingsInTimeOrderAndParsesBack) {
+TEST(GpioTraceWriter, MergesTheTwoRingsInTimeOrderAndParsesBack) {
   const std::string path = temp_path("merge.vcd");
   SpscRing<TraceRecord> outs(64), ins(64);
   const Nanos start = 10 * kNsPerSec;
   const Nanos ms = kNsPerMs;
   {
-    TraceWriter w(path, kWires, start, outs, ins, 50 * ms, 5 * ms);
+    TraceWriter w(path, kWires, start, outs, ins);
     outs.try_push(out_rec(start + 1 * ms, 0, OutputLine::kStep, true));
     outs.try_push(out_rec(start + 3 * ms, 0, OutputLine::kStep, false));
     outs.try_push(out_rec(start + 70 * ms, 0, OutputLine::kStep, true));
-    w.step(start + 40 * ms);  // nothing is 50 ms old yet
-    EXPECT_EQ(w.vcd().changes(), 0u);
-    EXPECT_EQ(w.merger().held(), 3u);
-    // The input ring is behind: its edge at 2 ms arrives only now, still inside the window.
+    w.step();
+    EXPECT_EQ(w.spooled(), 3u);
+    EXPECT_TRUE(outs.empty());
+    // The input ring is behind: its edge at 2 ms arrives after outputs up to 70 ms were spooled.
     ins.try_push(in_rec(start + 2 * ms, 0, InputLine::kHome, false));
     ins.try_push(in_rec(start + 60 * ms, 1, InputLine::kCwLimit, true));
-    w.step(start + 55 * ms);  // releases < 5 ms
-    EXPECT_EQ(w.vcd().changes(), 3u);
-    w.stop(2, 3);  // the rest, in order, then the dropped counts
+    w.stop(0, 0);
   }
   const std::string text = slurp(path);
   const Parsed p = parse_vcd(text);
@@ -238,9 +212,57 @@ TEST(GpioTraceWriter, WindowMergesTwoRingsInTimeOrderAndParsesBack) {
   EXPECT_EQ(p.changes, want);
   EXPECT_TRUE(p.monotonic);
   ASSERT_EQ(p.comments.size(), 1u);
-  EXPECT_NE(p.comments[0].find("outputs 2"), std::string::npos);
-  EXPECT_NE(p.comments[0].find("inputs 3"), std::string::npos);
+  EXPECT_NE(p.comments[0].find("outputs 0, inputs 0"), std::string::npos);
+  // A complete trace has no loss marker wire, and its spools are gone.
+  EXPECT_EQ(std::count(p.names.begin(), p.names.end(), kLossMarkerWire), 0);
+  EXPECT_FALSE(std::filesystem::exists(path + ".out.spool"));
+  EXPECT_FALSE(std::filesystem::exists(path + ".in.spool"));
   std::filesystem::remove(path);
+}
+
+TEST(GpioTraceWriter, LostRecordsAreMarkedWhereTheyWentMissingAndInAComment) {
+  const std::string path = temp_path("loss.vcd");
+  SpscRing<TraceRecord> outs(4), ins(4);
+  std::atomic<std::uint64_t> lost_outputs{0};
+  const Nanos start = 0;
+  {
+    TraceWriter w(path, kWires, start, outs, ins);
+    w.watch_losses(&lost_outputs, nullptr);
+    // The producer fills the ring and loses two records (as the pulse thread counts them).
+    std::uint64_t lost = 0;
+    for (int i = 0; i < 6; ++i) {
+      if (!outs.try_push(out_rec(1'000 * (i + 1), 0, OutputLine::kStep, i % 2 == 0))) ++lost;
+    }
+    lost_outputs.store(lost);
+    ASSERT_EQ(lost, 2u);
+    w.step();
+    outs.try_push(out_rec(100'000, 0, OutputLine::kStep, true));
+    w.stop(lost, 0);
+  }
+  const Parsed p = parse_vcd(slurp(path));
+  ASSERT_EQ(std::count(p.names.begin(), p.names.end(), kLossMarkerWire), 1);
+  // The marker pulses right after the last record kept before the loss (4 us).
+  std::vector<Change> marker;
+  for (const Change& c : p.changes) {
+    if (c.name == kLossMarkerWire) marker.push_back(c);
+  }
+  ASSERT_EQ(marker.size(), 2u);
+  EXPECT_EQ(marker[0], (Change{4'001, kLossMarkerWire, 1}));
+  EXPECT_EQ(marker[1], (Change{4'002, kLossMarkerWire, 0}));
+  ASSERT_EQ(p.comments.size(), 2u);
+  EXPECT_NE(p.comments[0].find("outputs 2, inputs 0"), std::string::npos) << p.comments[0];
+  EXPECT_NE(p.comments[1].find("TRACE INCOMPLETE"), std::string::npos) << p.comments[1];
+  std::filesystem::remove(path);
+}
+
+TEST(GpioTraceWriter, UnwritablePathFailsAtConstructionNamingTheFile) {
+  SpscRing<TraceRecord> outs(4), ins(4);
+  try {
+    TraceWriter w("/nonexistent-dir/x.vcd", kWires, 0, outs, ins);
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent-dir/x.vcd"), std::string::npos);
+  }
 }
 
 TEST(GpioTraceWriter, DestructorFinishesTheFileWithZeroDropCounts) {

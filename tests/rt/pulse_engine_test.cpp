@@ -353,5 +353,107 @@ TEST(PulseEngine, StepCountCapCountsDownForACcwMotion) {
   EXPECT_EQ(rig.fb(0).finished_epoch.load(), 2u);
 }
 
+// ---- Late-edge guard (issue 12): a fault of the axis, never a burst --------------------------
+
+constexpr Nanos kLimit = 1'000'000;  // 1 ms, stepmodd's default
+
+TEST(PulseEngineLateGuard, EdgeBeyondTheLimitCutsTheMotionAndPublishesTheFault) {
+  Rig rig(1);
+  rig.engine->set_late_limit(kLimit);
+  auto& ring = rig.ring(0);
+  for (int i = 0; i < 10; ++i) push_step(ring, 100'000 + i * 50'000, kWidth, 7, +1, 0, i == 9);
+  // Three whole pulses on time.
+  for (int i = 0; i < 6; ++i) rig.engine->execute_one(rig.engine->next_due());
+  ASSERT_EQ(rig.fb(0).steps.load(), 3);
+  // Then the thread is stalled for 5 ms: the 4th leading edge would be 4.8 ms late.
+  const Nanos t = rig.engine->next_due();
+  ASSERT_EQ(t, 250'000);
+  rig.engine->execute_one(t + 4'800'000);
+  EXPECT_EQ(rig.backend.writes().size(), 6u);  // nothing written at the stall's end
+  EXPECT_EQ(rig.engine->next_due(), kNever);   // the rest of the motion dropped
+  const AxisFeedback& fb = rig.fb(0);
+  EXPECT_EQ(fb.steps.load(), 3);
+  EXPECT_EQ(fb.late_faults.load(), 1u);
+  EXPECT_EQ(fb.fault_epoch.load(), 7u);
+  EXPECT_EQ(fb.fault_step.load(), 3);
+  EXPECT_EQ(fb.fault_late_ns.load(), 4'800'000);
+  EXPECT_EQ(fb.worst_fault_late_ns.load(), 4'800'000);
+  EXPECT_EQ(fb.finished_epoch.load(), 7u);  // the module sees the motion ended
+  EXPECT_EQ(fb.output_levels.load(), 0u);
+  EXPECT_FALSE(rig.engine->starved());
+  // Edges of that motion the planner pushes afterwards are dropped too; the next motion runs.
+  push_step(ring, 700'000, kWidth, 7);
+  for (int i = 0; i < 3; ++i) push_step(ring, 800'000 + i * 50'000, kWidth, 8, +1, 0, i == 2);
+  EXPECT_EQ(rig.run_all(), 6u);
+  EXPECT_EQ(fb.steps.load(), 6);
+  EXPECT_EQ(fb.finished_epoch.load(), 8u);
+  EXPECT_EQ(fb.late_faults.load(), 1u);
+}
+
+TEST(PulseEngineLateGuard, PulseUnderWayIsCompletedToItsFullWidthThenTheMotionIsCut) {
+  Rig rig(1);
+  rig.engine->set_late_limit(kLimit);
+  for (int i = 0; i < 5; ++i)
+    push_step(rig.ring(0), 100'000 + i * 50'000, kWidth, 1, +1, 0, i == 4);
+  rig.engine->execute_one(rig.engine->next_due());  // leading edge on time
+  // Stalled before the trailing edge: it is still written (a drive needs the whole pulse)...
+  const Nanos trailing = rig.engine->next_due();
+  ASSERT_EQ(trailing, 100'000 + kWidth);
+  rig.engine->execute_one(trailing + 3'000'000);
+  ASSERT_EQ(rig.backend.writes().size(), 2u);
+  EXPECT_FALSE(rig.backend.writes().back().level);
+  EXPECT_EQ(rig.fb(0).late_faults.load(), 0u);
+  // ... and the next leading edge, late by more than the limit too, is the cut.
+  const Nanos next = rig.engine->next_due();
+  rig.engine->execute_one(std::max(next, trailing + 3'000'000) + 100);
+  EXPECT_EQ(rig.backend.writes().size(), 2u);
+  EXPECT_EQ(rig.fb(0).late_faults.load(), 1u);
+  EXPECT_EQ(rig.fb(0).steps.load(), 1);
+}
+
+TEST(PulseEngineLateGuard, LateWithinTheLimitIsWrittenAndCaughtUp) {
+  Rig rig(1);
+  rig.engine->set_late_limit(kLimit);
+  for (int i = 0; i < 20; ++i)
+    push_step(rig.ring(0), 100'000 + i * 50'000, kWidth, 1, +1, 0, i == 19);
+  EXPECT_EQ(rig.run_all(/*lateness=*/900'000), 40u);
+  EXPECT_EQ(rig.fb(0).steps.load(), 20);
+  EXPECT_EQ(rig.fb(0).late_faults.load(), 0u);
+}
+
+TEST(PulseEngineLateGuard, OffByDefault) {
+  Rig rig(1);
+  EXPECT_EQ(rig.engine->late_limit(), 0);
+  for (int i = 0; i < 5; ++i)
+    push_step(rig.ring(0), 100'000 + i * 50'000, kWidth, 1, +1, 0, i == 4);
+  EXPECT_EQ(rig.run_all(/*lateness=*/50'000'000), 10u);
+  EXPECT_EQ(rig.fb(0).late_faults.load(), 0u);
+}
+
+TEST(PulseEngineLateGuard, GpoEdgesAreNeverFaulted) {
+  Rig rig(1);
+  rig.engine->set_late_limit(kLimit);
+  rig.ring(0).try_push(make_edge(1'000, 0, OutputLine::kGpo, true, 0, 0));
+  EXPECT_EQ(rig.run_all(/*lateness=*/10'000'000), 1u);
+  EXPECT_EQ(rig.fb(0).late_faults.load(), 0u);
+}
+
+TEST(PulseEngineLateGuard, OneAxisFaultLeavesTheOtherAxisRunning) {
+  Rig rig(2);
+  rig.engine->set_late_limit(kLimit);
+  for (int i = 0; i < 5; ++i) {
+    push_step(rig.ring(0), 100'000 + i * 50'000, kWidth, 1, +1, 0, i == 4);
+    push_step(rig.ring(1), 10'000'000 + i * 50'000, kWidth, 1, +1, 0, i == 4);
+  }
+  // Axis 0's first edge is written 2 ms late; axis 1's edges on time afterwards.
+  rig.engine->execute_one(rig.engine->next_due() + 2'000'000);
+  EXPECT_EQ(rig.fb(0).late_faults.load(), 1u);
+  EXPECT_EQ(rig.fb(0).fault_step.load(), 0);
+  EXPECT_EQ(rig.run_all(), 10u);
+  EXPECT_EQ(rig.fb(1).steps.load(), 5);
+  EXPECT_EQ(rig.fb(1).late_faults.load(), 0u);
+  EXPECT_EQ(rig.fb(0).steps.load(), 0);
+}
+
 }  // namespace
 }  // namespace stepmod::rt

@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -70,12 +71,17 @@ std::string DaemonProcess::daemon_path() {
   return STEPMOD_DAEMON_PATH;
 }
 
-DaemonProcess::DaemonProcess(const std::string& toml, bool trace) {
+DaemonProcess::DaemonProcess(const std::string& toml, bool trace, const std::string& name) {
   static std::atomic<int> counter{0};
   char tmpl[] = "/tmp/stepmod-test-XXXXXX";
   if (mkdtemp(tmpl) == nullptr) throw std::runtime_error("mkdtemp failed");
   dir_ = tmpl;
-  name_ = "t" + std::to_string(getpid()) + "-" + std::to_string(counter++);
+  // Formatted with snprintf: building it with std::string operator+ / += of std::to_string
+  // trips GCC 12's -O3 -Wrestrict false positive inside libstdc++ (a Release build with
+  // -Werror failed on it).
+  char unique[64];
+  std::snprintf(unique, sizeof unique, "t%ld-%d", static_cast<long>(getpid()), counter++);
+  name_ = name.empty() ? std::string(unique) : name;
   config_ = dir_ + "/module.toml";
   trace_ = dir_ + "/trace.vcd";
   log_ = dir_ + "/stepmodd.log";
@@ -123,7 +129,18 @@ bool DaemonProcess::wait_ready(int timeout_ms) {
 int DaemonProcess::terminate(int timeout_ms) {
   if (pid_ <= 0) return -1;
   kill(pid_, SIGTERM);
-  const int rc = wait_exit(pid_, timeout_ms);
+  const int rc = stepmod::testing::wait_exit(pid_, timeout_ms);
+  if (rc >= 0) pid_ = -1;
+  return rc;
+}
+
+void DaemonProcess::signal(int sig) {
+  if (pid_ > 0) kill(pid_, sig);
+}
+
+int DaemonProcess::wait_exit(int timeout_ms) {
+  if (pid_ <= 0) return -1;
+  const int rc = stepmod::testing::wait_exit(pid_, timeout_ms);
   if (rc >= 0) pid_ = -1;
   return rc;
 }
@@ -140,7 +157,7 @@ int DaemonProcess::run_to_exit(const std::string& args, std::string* stderr_text
   std::istringstream ss(args);
   for (std::string a; ss >> a;) argv.push_back(a);
   const pid_t pid = spawn(argv, log);
-  const int rc = wait_exit(pid, 10'000);
+  const int rc = stepmod::testing::wait_exit(pid, 10'000);
   if (rc < 0) {
     kill(pid, SIGKILL);
     waitpid(pid, nullptr, 0);

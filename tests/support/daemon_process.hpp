@@ -11,7 +11,10 @@ class DaemonProcess {
  public:
   // `config_body`: the TOML after the [module] table's name line is inserted; use "{NAME}" where
   // the module name goes.
-  explicit DaemonProcess(const std::string& config_toml_with_name_placeholder, bool trace = true);
+  // `name`: the module name to use instead of a fresh unique one (a test of what a daemon finds
+  // left behind by another of the same name).
+  explicit DaemonProcess(const std::string& config_toml_with_name_placeholder, bool trace = true,
+                         const std::string& name = "");
   ~DaemonProcess();  // kills the daemon if still running and removes the temporary directory
   DaemonProcess(const DaemonProcess&) = delete;
   DaemonProcess& operator=(const DaemonProcess&) = delete;
@@ -23,6 +26,11 @@ class DaemonProcess {
   bool wait_ready(int timeout_ms = 10'000);
   // SIGTERM and wait; returns the exit status (or -1 if it did not exit in time).
   int terminate(int timeout_ms = 10'000);
+  // Sends `sig` to the daemon (SIGSTOP/SIGCONT: a stalled machine; SIGKILL: a crash).
+  void signal(int sig);
+  // Waits for the daemon to exit; its exit status, or -1 on timeout.
+  int wait_exit(int timeout_ms = 10'000);
+  pid_t pid() const { return pid_; }
   // The daemon's stderr so far (for failure messages).
   std::string log() const;
 

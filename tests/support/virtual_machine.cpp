@@ -44,6 +44,7 @@ VirtualMachine::VirtualMachine(VirtualMachineOptions options)
   tools::StackOptions so;
   so.type = options_.type;
   so.timing.assign(options_.axes.size(), options_.timing);
+  so.late_limit_ns = options_.late_limit_ns;
   stack_ = std::make_unique<tools::Stack>(so, *sim_, nullptr);
   stack_->engine().set_clock(&virtual_clock);
   step_times_.resize(options_.axes.size());
@@ -63,7 +64,9 @@ void VirtualMachine::deliver_inputs() {
 void VirtualMachine::run_until(Nanos t) {
   rt::PulseEngine& engine = stack_->engine();
   for (;;) {
-    const Nanos edge = engine.next_due();
+    Nanos edge = engine.next_due();
+    // A stalled pulse thread writes what fell due in the stall when the stall ends.
+    if (edge != rt::kNever && edge >= stall_from_ && edge < stall_to_) edge = stall_to_;
     const Nanos next = std::min({edge, next_scan_, next_plan_});
     if (next > t) break;
     now_ = next;

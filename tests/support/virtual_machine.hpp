@@ -18,6 +18,7 @@ struct VirtualMachineOptions {
   std::vector<gpio::SimAxisSetup> axes;  // one per axis of the module
   Nanos scan_ns = kNsPerMs;
   planner::AxisTiming timing;
+  Nanos late_limit_ns = kNsPerMs;  // the late-edge guard, at stepmodd's default
 };
 
 // A typical machine for one 3601 axis: every input wired, limits at +-100,000, home 5,000..5,100.
@@ -41,6 +42,13 @@ class VirtualMachine {
   gpio::SimBackend& sim() noexcept { return *sim_; }
   tools::Stack& stack() noexcept { return *stack_; }
 
+  // From `from` on, for `length`, the pulse thread is stalled (a vCPU stolen, SIGSTOP): edges due
+  // in that window are executed when it ends, late (the late-edge guard's test).
+  void stall_pulse_thread(Nanos from, Nanos length) {
+    stall_from_ = from;
+    stall_to_ = from + length;
+  }
+
   // Step (leading) edges written so far, per axis, and their times.
   const std::vector<Nanos>& step_times(unsigned axis) const { return step_times_[axis]; }
 
@@ -58,6 +66,8 @@ class VirtualMachine {
   std::uint32_t planner_wakes_ = 0;  // Planner::wake_counter() as of the last service
   std::vector<std::vector<Nanos>> step_times_;
   std::vector<std::int64_t> last_steps_;
+  Nanos stall_from_ = 0;
+  Nanos stall_to_ = 0;
 };
 
 }  // namespace stepmod::testing

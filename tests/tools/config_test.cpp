@@ -35,6 +35,7 @@ chip = "/dev/gpiochip1"
 [rt]
 priority = 70
 cpu = 1
+late_limit_us = 250
 
 [[axis]]
 step = 17
@@ -85,6 +86,7 @@ TEST(Config, MinimalFileGetsEveryDefault) {
   EXPECT_EQ(c.chip, "gpiochip0");
   EXPECT_EQ(c.rt_priority, 80);
   EXPECT_EQ(c.rt_cpu, -1);
+  EXPECT_EQ(c.late_limit_ns, 1'000'000);  // [rt] late_limit_us = 1000 (INTERFACE 2)
   ASSERT_EQ(c.axes.size(), 1u);
   const AxisConfig& a = c.axes[0];
   EXPECT_EQ(a.out[0], 17u);
@@ -112,6 +114,7 @@ TEST(Config, FullValid3601File) {
   EXPECT_EQ(c.chip, "/dev/gpiochip1");
   EXPECT_EQ(c.rt_priority, 70);
   EXPECT_EQ(c.rt_cpu, 1);
+  EXPECT_EQ(c.late_limit_ns, 250'000);
   const AxisConfig& a = c.axes.at(0);
   const unsigned want_in[] = {5, 6, 13, 19, 26, 21, 20, 16, 12};
   for (unsigned i = 0; i < kInputLinesPerAxis; ++i) EXPECT_EQ(a.in[i], want_in[i]) << i;
@@ -254,6 +257,10 @@ TEST(ConfigError, PriorityAndCpu) {
                       "test.toml:9: key 'rt.priority': must be an integer 1..99");
   EXPECT_CONFIG_ERROR(std::string(kMinimal3601) + "[rt]\ncpu = -2\n",
                       "test.toml:9: key 'rt.cpu': must be an integer -1..1023");
+  EXPECT_CONFIG_ERROR(std::string(kMinimal3601) + "[rt]\nlate_limit_us = 10\n",
+                      "test.toml:9: key 'rt.late_limit_us': must be an integer 20..1000000");
+  EXPECT_CONFIG_ERROR(std::string(kMinimal3601) + "[rt]\nlate_limit_us = 0\n",
+                      "test.toml:9: key 'rt.late_limit_us': must be an integer 20..1000000");
 }
 
 TEST(ConfigError, AxisCountMustMatchModule) {

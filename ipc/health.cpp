@@ -1,0 +1,23 @@
+#include "ipc/health.hpp"
+
+namespace stepmod::ipc {
+
+std::string health_flag_names(std::uint32_t flags) {
+  static constexpr struct {
+    std::uint32_t bit;
+    const char* name;
+  } kNames[] = {
+      {STEPMOD_HEALTH_LATE_EDGE, "late-edge fault"},
+      {STEPMOD_HEALTH_PLC_STALE, "PLC heartbeat stale"},
+      {STEPMOD_HEALTH_SEQ_STUCK, "output sequence left odd"},
+      {STEPMOD_HEALTH_SEQ_BYPASS, "seqlock bypassed"},
+      {STEPMOD_HEALTH_TRACE_LOST, "trace records lost"},
+  };
+  std::string s;
+  for (const auto& n : kNames) {
+    if (flags & n.bit) s += (s.empty() ? "" : ", ") + std::string(n.name);
+  }
+  return s.empty() ? "ok" : s;
+}
+
+}  // namespace stepmod::ipc

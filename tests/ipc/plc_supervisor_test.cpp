@@ -1,0 +1,180 @@
+// The PLC supervisor (issue 12 item 2), scan by scan: heartbeat stale, sequence stuck odd and
+// seqlock bypass are flagged while they last, a lost PLC trips once and freezes the words the
+// module sees until it is back.
+#include "ipc/plc_supervisor.hpp"
+
+#include <gtest/gtest.h>
+
+namespace stepmod::ipc {
+namespace {
+
+constexpr Nanos kScan = kNsPerMs;
+
+class Supervisor : public ::testing::Test {
+ protected:
+  explicit Supervisor(Nanos timeout = 50 * kNsPerMs) : sup_(timeout) {}
+  // One scan `kScan` after the last, with a consistent snapshot of `words_` under `seq_`.
+  const ImageWords& scan() {
+    now_ += kScan;
+    PlcSupervisor::Sample s;
+    s.now = now_;
+    s.heartbeat = heartbeat_;
+    s.seq = seq_;
+    s.snapshot_ok = (seq_ & 1u) == 0;
+    s.snapshot_seq = seq_;
+    s.words = words_;
+    return sup_.scan(s);
+  }
+  void scans(int n) {
+    for (int i = 0; i < n; ++i) scan();
+  }
+  // A PLC write through the seqlock (sequence +2) and a heartbeat.
+  void plc_write(int word, std::int32_t v) {
+    words_.w[word] = v;
+    seq_ += 2;
+  }
+
+  PlcSupervisor sup_;
+  Nanos now_ = kNsPerSec;
+  std::uint64_t heartbeat_ = 1;
+  std::uint32_t seq_ = 10;
+  ImageWords words_{};
+};
+
+TEST_F(Supervisor, LiveWordsPassWhileTheHeartbeatMoves) {
+  for (int i = 0; i < 200; ++i) {
+    ++heartbeat_;
+    plc_write(0, i);
+    EXPECT_EQ(scan().w[0], i);
+    EXPECT_EQ(sup_.flags(), 0u);
+    EXPECT_FALSE(sup_.tripped());
+  }
+}
+
+TEST_F(Supervisor, StaleHeartbeatTripsOnceFreezesTheWordsAndRecovers) {
+  plc_write(0, 0x0004);  // e.g. a relative move bit, set before the loss
+  scans(10);
+  ++heartbeat_;
+  scans(50);  // the change seen, then 49 ms without one
+  EXPECT_EQ(sup_.flags(), 0u);
+  scan();  // 50 ms without a heartbeat change
+  EXPECT_TRUE(sup_.tripped());
+  EXPECT_TRUE(sup_.plc_lost());
+  EXPECT_EQ(sup_.flags(), STEPMOD_HEALTH_PLC_STALE);
+  EXPECT_EQ(sup_.started(), STEPMOD_HEALTH_PLC_STALE);
+  // While stale, a new command written by someone is not what the module sees.
+  plc_write(0, 0x0008);
+  plc_write(2, 5000);
+  for (int i = 0; i < 100; ++i) {
+    const ImageWords& w = scan();
+    EXPECT_EQ(w.w[0], 0x0004);
+    EXPECT_EQ(w.w[2], 0);
+    EXPECT_FALSE(sup_.tripped());  // once per loss
+    EXPECT_EQ(sup_.flags(), STEPMOD_HEALTH_PLC_STALE);
+  }
+  // The heartbeat moves: the live words again, the condition ends.
+  ++heartbeat_;
+  const ImageWords& w = scan();
+  EXPECT_EQ(w.w[0], 0x0008);
+  EXPECT_EQ(w.w[2], 5000);
+  EXPECT_EQ(sup_.flags(), 0u);
+  EXPECT_EQ(sup_.ended(), STEPMOD_HEALTH_PLC_STALE);
+  EXPECT_FALSE(sup_.plc_lost());
+  // And it trips again at the next loss.
+  scans(49);
+  EXPECT_FALSE(sup_.tripped());
+  EXPECT_FALSE(sup_.tripped());
+  scan();
+  EXPECT_TRUE(sup_.tripped());
+}
+
+TEST_F(Supervisor, HeartbeatWatchOffNeverTrips) {
+  PlcSupervisor off(0);
+  PlcSupervisor::Sample s;
+  for (int i = 0; i < 10'000; ++i) {
+    s.now = i * kScan;
+    s.snapshot_ok = true;
+    off.scan(s);
+    ASSERT_EQ(off.flags(), 0u);
+  }
+}
+
+TEST_F(Supervisor, SequenceStuckOddIsALostPlc) {
+  plc_write(0, 0x0080);  // a held manual move
+  scans(5);
+  ++seq_;                            // the PLC begins a write ... and dies
+  words_.w[0] = 0x0010;              // half written: Immediate Stop, never published
+  for (int i = 0; i < 50; ++i) {     // odd seen, then 49 ms more
+    ++heartbeat_;                    // even with the heartbeat alive (another task of the PLC)
+    EXPECT_EQ(scan().w[0], 0x0080);  // the last good snapshot
+    EXPECT_EQ(sup_.flags(), 0u);
+  }
+  ++heartbeat_;
+  scan();
+  EXPECT_TRUE(sup_.tripped());
+  EXPECT_EQ(sup_.flags(), STEPMOD_HEALTH_SEQ_STUCK);
+  EXPECT_EQ(sup_.stuck_seq(), seq_);
+  ++seq_;  // the write completes (or a new PLC writes)
+  ++heartbeat_;
+  EXPECT_EQ(scan().w[0], 0x0010);
+  EXPECT_EQ(sup_.ended(), STEPMOD_HEALTH_SEQ_STUCK);
+  EXPECT_FALSE(sup_.plc_lost());
+}
+
+TEST_F(Supervisor, OddSequenceThatKeepsChangingIsABusyWriterNotADeadOne) {
+  for (int i = 0; i < 500; ++i) {
+    ++heartbeat_;
+    seq_ = (i % 2 == 0) ? seq_ + 2 : seq_;  // a new odd value every other scan
+    seq_ |= 1u;
+    scan();
+    EXPECT_EQ(sup_.flags() & STEPMOD_HEALTH_SEQ_STUCK, 0u);
+  }
+}
+
+TEST(SupervisorDefaults, StuckOddTimeoutIs100msWithoutTheHeartbeat) {
+  PlcSupervisor sup(0);
+  EXPECT_EQ(sup.odd_timeout(), 100 * kNsPerMs);
+  PlcSupervisor::Sample s;
+  s.seq = 7;
+  s.now = 1'000 * kNsPerMs;
+  sup.scan(s);
+  s.now += 99 * kNsPerMs;
+  sup.scan(s);
+  EXPECT_EQ(sup.flags(), 0u);
+  s.now += kNsPerMs;
+  sup.scan(s);
+  EXPECT_EQ(sup.flags(), STEPMOD_HEALTH_SEQ_STUCK);
+  EXPECT_TRUE(sup.tripped());
+}
+
+TEST_F(Supervisor, WordsChangedUnderAnUnchangedSequenceAreABypass) {
+  plc_write(2, 0);
+  scans(3);
+  for (int i = 0; i < 20; ++i) ++heartbeat_, scan();
+  words_.w[3] = 2444;  // written directly, sequence untouched
+  ++heartbeat_;
+  EXPECT_EQ(scan().w[3], 2444);  // passed on (logged and flagged, not refused)
+  EXPECT_EQ(sup_.started(), STEPMOD_HEALTH_SEQ_BYPASS);
+  EXPECT_EQ(sup_.bypass_changes(), 1u);
+  EXPECT_FALSE(sup_.plc_lost());
+  // Set while bypassing writes keep coming, cleared a second after the last one.
+  for (int i = 0; i < 999; ++i) {
+    ++heartbeat_;
+    scan();
+    ASSERT_EQ(sup_.flags(), STEPMOD_HEALTH_SEQ_BYPASS) << i;
+  }
+  ++heartbeat_;
+  scan();
+  EXPECT_EQ(sup_.flags(), 0u);
+  EXPECT_EQ(sup_.ended(), STEPMOD_HEALTH_SEQ_BYPASS);
+  // Proper seqlock writes are never a bypass.
+  for (int i = 0; i < 100; ++i) {
+    ++heartbeat_;
+    plc_write(3, i);
+    scan();
+    ASSERT_EQ(sup_.flags(), 0u);
+  }
+}
+
+}  // namespace
+}  // namespace stepmod::ipc
