@@ -39,12 +39,22 @@ void ShmImage::publish_inputs(const ImageWords& in) noexcept {
   for (unsigned i = 0; i < shape_.input_words; ++i) {
     stepmod_word_store(&img_->input_image, shape_.word_bytes, i, in.w[i]);
   }
+  __atomic_store_n(&img_->health_flags, health_flags_, __ATOMIC_RELEASE);
+  __atomic_store_n(&img_->late_faults, late_faults_, __ATOMIC_RELEASE);
   stepmod_seq_write_end(&img_->input_seq, odd);
   __atomic_fetch_add(&img_->scan_counter, 1u, __ATOMIC_RELEASE);
 }
 
 std::uint64_t ShmImage::scan_counter() const noexcept {
   return __atomic_load_n(&img_->scan_counter, __ATOMIC_ACQUIRE);
+}
+
+std::uint32_t ShmImage::health_flags() const noexcept {
+  return __atomic_load_n(&img_->health_flags, __ATOMIC_ACQUIRE);
+}
+
+std::uint32_t ShmImage::late_faults() const noexcept {
+  return __atomic_load_n(&img_->late_faults, __ATOMIC_ACQUIRE);
 }
 
 std::uint64_t ShmImage::heartbeat() const noexcept {

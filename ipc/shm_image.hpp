@@ -43,6 +43,15 @@ class ShmImage {
   // increments the scan counter: one call per completed scan.
   void publish_inputs(const ImageWords& in) noexcept;
 
+  // Daemon health (INTERFACE.md 3.3): the flags (STEPMOD_HEALTH_*) and the late-edge fault count
+  // that the next publish_inputs() writes with the input words, under the same seqlock.
+  void set_health(std::uint32_t flags, std::uint32_t late_faults) noexcept {
+    health_flags_ = flags;
+    late_faults_ = late_faults;
+  }
+  std::uint32_t health_flags() const noexcept;
+  std::uint32_t late_faults() const noexcept;
+
   std::uint64_t scan_counter() const noexcept;
   // The PLC heartbeat value (INTERFACE.md 3.2); the caller watches it for changes.
   std::uint64_t heartbeat() const noexcept;
@@ -60,6 +69,8 @@ class ShmImage {
   ModuleShape shape_;
   ShmMapping map_;
   stepmod_image_t* img_ = nullptr;
+  std::uint32_t health_flags_ = 0;
+  std::uint32_t late_faults_ = 0;
 };
 
 }  // namespace stepmod::ipc

@@ -63,7 +63,18 @@ enum stepmod_image_offset {
   STEPMOD_OFF_MSG_RESULT = 200,
   STEPMOD_OFF_RESERVED204 = 204,
   STEPMOD_OFF_MSG_DATA = 208,
-  STEPMOD_OFF_END_OF_FIELDS = 416
+  STEPMOD_OFF_HEALTH_FLAGS = 416, /* section 3.3, written with the input image */
+  STEPMOD_OFF_LATE_FAULTS = 420,  /* section 3.3 */
+  STEPMOD_OFF_END_OF_FIELDS = 424
+};
+
+/* Section 3.3: daemon health flags (offset 416), a bit each. */
+enum stepmod_health_flag {
+  STEPMOD_HEALTH_LATE_EDGE_FAULT = 1u << 0,
+  STEPMOD_HEALTH_PLC_STALE = 1u << 1,
+  STEPMOD_HEALTH_OUTPUT_SEQ_STUCK = 1u << 2,
+  STEPMOD_HEALTH_SEQLOCK_BYPASSED = 1u << 3,
+  STEPMOD_HEALTH_TRACE_LOST = 1u << 4
 };
 
 /* 64 bytes of backplane words: 16-bit words (3601/3602) sit at 2*i, 32-bit words (3202) at 4*i. */
@@ -96,6 +107,8 @@ typedef struct stepmod_image {
   int32_t msg_result;       /* 0 accepted, otherwise see the module's status bits */
   uint32_t reserved204;
   int32_t msg_data[STEPMOD_MSG_DINTS];
+  uint32_t health_flags; /* section 3.3: written under input_seq with the input image */
+  uint32_t late_faults;  /* section 3.3: late-edge faults since start, same */
   uint8_t unused[STEPMOD_IMAGE_SIZE - STEPMOD_OFF_END_OF_FIELDS];
 } stepmod_image_t;
 
@@ -121,6 +134,9 @@ STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, msg_done_seq) == STEPMOD_OFF_MSG
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, msg_result) == STEPMOD_OFF_MSG_RESULT, "msg res");
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, reserved204) == STEPMOD_OFF_RESERVED204, "r204");
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, msg_data) == STEPMOD_OFF_MSG_DATA, "msg data");
+STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, health_flags) == STEPMOD_OFF_HEALTH_FLAGS,
+                      "health");
+STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, late_faults) == STEPMOD_OFF_LATE_FAULTS, "late");
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, unused) == STEPMOD_OFF_END_OF_FIELDS, "end");
 
 /* ---------------------------------------------------------------------------------------------
@@ -242,6 +258,21 @@ static inline int stepmod_read_inputs(const stepmod_image_t* im, int32_t* out /*
 }
 static inline void stepmod_write_outputs(stepmod_image_t* im, const int32_t* in /* [16] */) {
   stepmod_seq_write(&im->output_seq, &im->output_image, im->word_bytes, im->output_words, in);
+}
+/* Section 3.3: the health flags and the late-edge fault count of one input publication (the
+ * same seqlock as the input words). Returns 0 if a write overlapped every attempt. */
+static inline int stepmod_read_health(const stepmod_image_t* im, uint32_t* flags,
+                                      uint32_t* late_faults) {
+  unsigned t = 0;
+  for (t = 0; t < 1000u; ++t) {
+    if (t > 0 && (t % 32u) == 0u) sched_yield();
+    const uint32_t s0 = __atomic_load_n(&im->input_seq, __ATOMIC_ACQUIRE);
+    if (s0 & 1u) continue;
+    *flags = __atomic_load_n(&im->health_flags, __ATOMIC_ACQUIRE);
+    *late_faults = __atomic_load_n(&im->late_faults, __ATOMIC_ACQUIRE);
+    if (__atomic_load_n(&im->input_seq, __ATOMIC_RELAXED) == s0) return 1;
+  }
+  return 0;
 }
 static inline uint64_t stepmod_scan_counter(const stepmod_image_t* im) {
   return __atomic_load_n(&im->scan_counter, __ATOMIC_ACQUIRE);

@@ -13,6 +13,9 @@
 
 #include "gpio/sim_backend.hpp"
 #include "gpio/vcd_trace.hpp"
+#ifdef STEPMOD_HAVE_MODBUS
+#include "ipc/modbus_server.hpp"
+#endif
 #include "ipc/shm_image.hpp"
 #include "ipc/sim_panel.hpp"
 #include "planner/planner_thread.hpp"
@@ -40,6 +43,9 @@ struct Daemon::Impl {
   std::unique_ptr<Stack> stack;
   std::unique_ptr<ipc::ShmImage> image;
   std::unique_ptr<ipc::SimPanelServer> panel;
+#ifdef STEPMOD_HAVE_MODBUS
+  std::unique_ptr<ipc::ModbusServer> modbus;  // [modbus] enabled; its own thread
+#endif
   std::uint64_t input_trace_dropped = 0;
   rt::PulseThread* pulse = nullptr;  // while run() runs
   std::uint32_t planner_wakes = 0;   // the planner's wake counter as last seen by kick()
@@ -90,6 +96,17 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
   d.image = std::make_unique<ipc::ShmImage>(config.name, d.stack->shape());
   if (d.sim != nullptr) {
     d.panel = std::make_unique<ipc::SimPanelServer>(config.name, d.stack->shape().axes);
+  }
+  if (config.modbus.enabled) {
+#ifdef STEPMOD_HAVE_MODBUS
+    d.modbus = std::make_unique<ipc::ModbusServer>(config.name, config.modbus);
+    spdlog::info("modbus: serving on {} (unit {}, writes {})", d.modbus->endpoint(),
+                 config.modbus.unit_id, config.modbus.writes ? "accepted" : "refused");
+#else
+    throw std::runtime_error(
+        "[modbus] enabled = true, but this stepmodd was built without "
+        "libmodbus (STEPMOD_STATIC)");
+#endif
   }
   if (trace_path) {
     const auto wires = gpio::trace_wires(*d.backend);
