@@ -278,14 +278,14 @@ TEST_F(DaemonModbus, WritesRefusedUnlessConfiguredAndNothingMoves) {
   EXPECT_EQ(errno, EMBXILFUN);
   EXPECT_EQ(modbus_write_register(c, 0, m::cmd_msw::kRelativeMove), -1);
   EXPECT_EQ(errno, EMBXILFUN);
-  module::ImageWords out;
+  ImageWords out;
   ASSERT_TRUE(plc.read_outputs(out));
-  EXPECT_EQ(out, module::ImageWords{});
+  EXPECT_EQ(out, ImageWords{});
   EXPECT_EQ(plc.heartbeat_value(), hb);
   // Reads still work, and agree with the shared memory.
   std::uint16_t regs[8] = {};
   ASSERT_EQ(modbus_read_input_registers(c, 0, 8, regs), 8);
-  module::ImageWords in;
+  ImageWords in;
   ASSERT_TRUE(plc.read_inputs(in));
   EXPECT_EQ(regs[0], static_cast<std::uint16_t>(in.w[0]));
   EXPECT_NE(regs[0] & m::status_msw::kModuleOk, 0);
@@ -343,7 +343,7 @@ TEST_F(DaemonModbus, AcceptedWriteIsAHeartbeatAndReachesTheImage) {
   const std::uint16_t w[3] = {0xFFFF, 0x1234, 0x8000};
   ASSERT_EQ(modbus_write_registers(c, 5, 3, w), 3);
   ASSERT_EQ(modbus_write_register(c, 0, 0x0000), 1);
-  module::ImageWords out;
+  ImageWords out;
   ASSERT_TRUE(plc.read_outputs(out));
   EXPECT_EQ(out.w[5], -1);
   EXPECT_EQ(out.w[6], 0x1234);

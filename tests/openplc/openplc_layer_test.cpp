@@ -167,7 +167,7 @@ TEST(OpenPlcLayer, ProgramConfiguresAndMovesA3601ThenAStoppedRuntimeStopsIt) {
   for (int i = 0; i < 120; ++i) scan(logic);  // 0.6 s of scans: twice the timeout, still moving
   ASSERT_NE(prog.iw[0] & (kMovingCw | kMovingCcw), 0);
   ipc::Client watch(daemon.name());
-  module::ImageWords in;
+  ImageWords in;
   const auto end = std::chrono::steady_clock::now() + milliseconds(3000);
   bool stopped = false;
   while (!stopped && std::chrono::steady_clock::now() < end) {
@@ -198,8 +198,8 @@ TEST(OpenPlcLayer, NoDaemonMeansNoLinkAndZeroInputs) {
 
 TEST(OpenPlcLayer, ThirtyTwoBitWordsOfA3202AreTwoRegistersHighHalfFirst) {
   const std::string name = "openplc-3202-" + std::to_string(::getpid());
-  ipc::ShmImage image(name, module::ModuleShape{module::ModuleType::k3202, 2, 4, 16, 16});
-  module::ImageWords in{};
+  ipc::ShmImage image(name, shape_of(ModuleType::k3202));
+  ImageWords in{};
   in.w[0] = 0x12345678;
   in.w[15] = -2;
   image.set_health(0x00010002u, 3);
@@ -228,7 +228,7 @@ TEST(OpenPlcLayer, ThirtyTwoBitWordsOfA3202AreTwoRegistersHighHalfFirst) {
   qw[31] = 0x0001;
   const std::uint64_t hb = image.heartbeat();
   updateBuffersOut();
-  module::ImageWords out;
+  ImageWords out;
   ASSERT_TRUE(image.read_outputs(out));
   EXPECT_EQ(static_cast<std::uint32_t>(out.w[0]), 0x89ABCDEFu);
   EXPECT_EQ(out.w[15], 1);
