@@ -21,6 +21,7 @@
 #include "planner/planner_thread.hpp"
 #include "rt/pulse_thread.hpp"
 #include "systemd/notify.hpp"
+#include "systemd/watchdog.hpp"
 #include "tools/backend_factory.hpp"
 #include "tools/stack.hpp"
 
@@ -48,6 +49,7 @@ struct Daemon::Impl {
 #endif
   std::uint64_t input_trace_dropped = 0;
   rt::PulseThread* pulse = nullptr;  // while run() runs
+  systemd::Watchdog watchdog;        // WatchdogSec=: petted per scan while the pulse thread loops
   std::uint32_t planner_wakes = 0;   // the planner's wake counter as last seen by kick()
 
   // After the control thread may have submitted commands (or set an immediate stop, which is
@@ -252,6 +254,7 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     personality.scan(out, in, now);
     kick();
     image->publish_inputs(in);
+    if (pulse != nullptr) watchdog.scan(now, pulse->loops());
     next_scan += config.scan_ns;
     if (next_scan <= now) next_scan = now + config.scan_ns;  // overrun: skip, never burst
   }
