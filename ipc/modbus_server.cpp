@@ -125,7 +125,6 @@ void ModbusServer::run() noexcept {
       if (len == 0) continue;
       const int header = modbus_get_header_length(d.ctx);
       const std::uint8_t unit = req[header - 1];
-      requests_.fetch_add(1, std::memory_order_relaxed);
       if (unit != options_.unit_id) {
         // Addressed to another unit behind this "gateway": there is none.
         modbus_reply_exception(d.ctx, req, MODBUS_EXCEPTION_GATEWAY_TARGET);

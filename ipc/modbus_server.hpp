@@ -3,7 +3,6 @@
 // shared-memory image. It runs in its own thread at normal priority and reaches the image only
 // through its seqlocks (ModbusMap), never through the control thread: a flood of requests costs
 // this thread CPU time, not a scan.
-#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -26,8 +25,6 @@ class ModbusServer {
   void stop() noexcept;
 
   std::string endpoint() const;  // "127.0.0.1:1502"
-  // Requests answered (normal or exception); for tests and diagnostics.
-  std::uint64_t requests() const noexcept { return requests_.load(std::memory_order_relaxed); }
 
  private:
   struct Impl;
@@ -35,7 +32,6 @@ class ModbusServer {
 
   std::unique_ptr<Impl> impl_;
   ModbusOptions options_;
-  std::atomic<std::uint64_t> requests_{0};
   std::thread thread_;
 };
 
