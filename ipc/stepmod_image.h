@@ -261,6 +261,21 @@ static inline int stepmod_read_inputs(const stepmod_image_t* im, int32_t* out /*
 static inline void stepmod_write_outputs(stepmod_image_t* im, const int32_t* in /* [16] */) {
   stepmod_seq_write(&im->output_seq, &im->output_image, im->word_bytes, im->output_words, in);
 }
+/* Section 3.3: the health flags and the late-edge fault count of one input publication (the
+ * same seqlock as the input words). Returns 0 if a write overlapped every attempt. */
+static inline int stepmod_read_health(const stepmod_image_t* im, uint32_t* flags,
+                                      uint32_t* late_faults) {
+  unsigned t = 0;
+  for (t = 0; t < 1000u; ++t) {
+    if (t > 0 && (t % 32u) == 0u) sched_yield();
+    const uint32_t s0 = __atomic_load_n(&im->input_seq, __ATOMIC_ACQUIRE);
+    if (s0 & 1u) continue;
+    *flags = __atomic_load_n(&im->health_flags, __ATOMIC_ACQUIRE);
+    *late_faults = __atomic_load_n(&im->late_faults, __ATOMIC_ACQUIRE);
+    if (__atomic_load_n(&im->input_seq, __ATOMIC_RELAXED) == s0) return 1;
+  }
+  return 0;
+}
 static inline uint64_t stepmod_scan_counter(const stepmod_image_t* im) {
   return __atomic_load_n(&im->scan_counter, __ATOMIC_ACQUIRE);
 }

@@ -3,6 +3,7 @@
 // would drive the machine with a setting the user did not write.
 #include "tools/config.hpp"
 
+#include <arpa/inet.h>
 #include <toml++/toml.h>
 
 #include <cerrno>
@@ -49,13 +50,14 @@ class Parser {
     }
     Config c;
     c.file = file_;
-    check_keys(root, "", {"module", "gpio", "rt", "axis"});
+    check_keys(root, "", {"module", "gpio", "rt", "axis", "modbus"});
 
     const toml::table* module = sub_table(root, "", "module");
     parse_module(module, c);
     parse_gpio(sub_table(root, "", "gpio"), c);
     parse_rt(sub_table(root, "", "rt"), c);
     parse_axes(root, module, c);
+    parse_modbus(sub_table(root, "", "modbus"), c);
     return c;
   }
 
@@ -140,6 +142,51 @@ class Parser {
       list += (list.empty() ? "\"" : ", \"") + std::string(c) + "\"";
     }
     fail(n->source(), join(prefix, key), "must be one of " + list);
+  }
+
+  bool get_bool(const toml::table* t, const std::string& prefix, std::string_view key,
+                bool def) const {
+    if (t == nullptr) return def;
+    const toml::node* n = t->get(key);
+    if (n == nullptr) return def;
+    const auto* b = n->as_boolean();
+    if (b == nullptr) fail(n->source(), join(prefix, key), "must be true or false");
+    return b->get();
+  }
+
+  // [modbus] (INTERFACE.md 6). `listen` is a numeric IPv4 address and a port: Modbus has no
+  // authentication, so binding anywhere but loopback must be written out on purpose.
+  void parse_modbus(const toml::table* t, Config& c) const {
+    const std::string p = "modbus";
+    if (t == nullptr) return;
+    check_keys(*t, p, {"enabled", "listen", "unit_id", "writes", "max_clients"});
+    ipc::ModbusOptions& m = c.modbus;
+    m.enabled = get_bool(t, p, "enabled", false);
+    m.writes = get_bool(t, p, "writes", false);
+    m.unit_id = static_cast<std::uint8_t>(get_int(t, p, "unit_id", 1, 0, 255));
+    m.max_clients = static_cast<unsigned>(get_int(t, p, "max_clients", 4, 1, 64));
+    if (const toml::node* n = t->get("listen")) {
+      const auto* s = n->as_string();
+      const std::string text = s != nullptr ? s->get() : std::string();
+      const auto colon = text.rfind(':');
+      in_addr addr{};
+      bool ok = colon != std::string::npos && colon > 0 &&
+                ::inet_pton(AF_INET, text.substr(0, colon).c_str(), &addr) == 1;
+      long port = 0;
+      if (ok) {
+        const std::string ps = text.substr(colon + 1);
+        ok = !ps.empty() && ps.size() <= 5 &&
+             ps.find_first_not_of("0123456789") == std::string::npos;
+        if (ok) port = std::stol(ps);
+        ok = ok && port >= 1 && port <= 65535;
+      }
+      if (!ok) {
+        fail(n->source(), "modbus.listen",
+             "must be \"IPv4-ADDRESS:PORT\" with a port 1..65535, e.g. \"127.0.0.1:1502\"");
+      }
+      m.address = text.substr(0, colon);
+      m.port = static_cast<std::uint16_t>(port);
+    }
   }
 
   void parse_module(const toml::table* m, Config& c) const {

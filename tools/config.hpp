@@ -11,6 +11,7 @@
 #include "gpio/axis_lines.hpp"
 #include "gpio/backend.hpp"
 #include "gpio/sim_machine.hpp"
+#include "ipc/modbus_options.hpp"
 #include "module/personality.hpp"
 
 namespace stepmod::tools {
@@ -40,6 +41,7 @@ struct Config {
   // axis (rt::PulseEngine::set_late_limit).
   Nanos late_limit_ns = 1'000 * kNsPerUs;
   std::vector<AxisConfig> axes;
+  ipc::ModbusOptions modbus;  // [modbus] (INTERFACE.md 6)
 };
 
 // Thrown for a bad file: what() is the whole message ("FILE:LINE: key 'axis[1].step': ...").

@@ -15,11 +15,15 @@
 #include "gpio/sim_backend.hpp"
 #include "gpio/vcd_trace.hpp"
 #include "ipc/plc_supervisor.hpp"
+#ifdef STEPMOD_HAVE_MODBUS
+#include "ipc/modbus_server.hpp"
+#endif
 #include "ipc/shm_image.hpp"
 #include "ipc/sim_panel.hpp"
 #include "planner/planner_thread.hpp"
 #include "rt/pulse_thread.hpp"
 #include "systemd/notify.hpp"
+#include "systemd/watchdog.hpp"
 #include "tools/backend_factory.hpp"
 #include "tools/stack.hpp"
 
@@ -47,6 +51,10 @@ struct Daemon::Impl {
   std::unique_ptr<Stack> stack;
   std::unique_ptr<ipc::ShmImage> image;
   std::unique_ptr<ipc::SimPanelServer> panel;
+#ifdef STEPMOD_HAVE_MODBUS
+  std::unique_ptr<ipc::ModbusServer> modbus;  // [modbus] enabled; its own thread
+#endif
+  systemd::Watchdog watchdog;  // WatchdogSec=: petted per scan while the pulse thread loops
   std::atomic<std::uint64_t> input_trace_dropped{0};  // control thread writes, trace reads
   rt::PulseThread* pulse = nullptr;                   // while run() runs
   std::uint32_t planner_wakes = 0;              // the planner's wake counter as last seen by kick()
@@ -114,6 +122,17 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
   d.cpu_notice_epoch.assign(d.stack->shape().axes, 0);
   if (d.sim != nullptr) {
     d.panel = std::make_unique<ipc::SimPanelServer>(config.name, d.stack->shape().axes);
+  }
+  if (config.modbus.enabled) {
+#ifdef STEPMOD_HAVE_MODBUS
+    d.modbus = std::make_unique<ipc::ModbusServer>(config.name, config.modbus);
+    spdlog::info("modbus: serving on {} (unit {}, writes {})", d.modbus->endpoint(),
+                 config.modbus.unit_id, config.modbus.writes ? "accepted" : "refused");
+#else
+    throw std::runtime_error(
+        "[modbus] enabled = true, but this stepmodd was built without "
+        "libmodbus (STEPMOD_STATIC)");
+#endif
   }
   if (trace_path) {
     const auto wires = gpio::trace_wires(*d.backend);
@@ -263,6 +282,7 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     kick();
     notice_cpu_need(now);
     image->publish_inputs(in, health(supervisor.flags()));
+    if (pulse != nullptr) watchdog.scan(now, pulse->loops());
     next_scan += config.scan_ns;
     if (next_scan <= now) next_scan = now + config.scan_ns;  // overrun: skip, never burst
   }

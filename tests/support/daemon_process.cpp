@@ -31,8 +31,17 @@ std::string replace_all(std::string s, const std::string& from, const std::strin
   return s;
 }
 
-// Starts `argv` with stderr (and stdout) appended to `log`.
-pid_t spawn(const std::vector<std::string>& args, const std::string& log) {
+// Starts `argv` with stderr (and stdout) appended to `log`. In a cross build the tests run under
+// qemu-user and so is the daemon: STEPMOD_TEST_EMULATOR (set by ctest from
+// CMAKE_CROSSCOMPILING_EMULATOR, words separated by spaces) goes in front of the program, since
+// without binfmt_misc the kernel cannot start a foreign binary by itself.
+pid_t spawn(const std::vector<std::string>& program_args, const std::string& log) {
+  std::vector<std::string> args;
+  if (const char* emu = std::getenv("STEPMOD_TEST_EMULATOR"); emu != nullptr && *emu != '\0') {
+    std::istringstream words(emu);
+    for (std::string w; words >> w;) args.push_back(w);
+  }
+  args.insert(args.end(), program_args.begin(), program_args.end());
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);

@@ -1,0 +1,60 @@
+// Stand-in for OpenPLC v3's webserver/core/ladder.h (stepmod's own file): the declarations a
+// hardware layer compiles against, with OpenPLC's names, types and signatures, so that
+// openplc/stepmod_hardware_layer.cpp is built here exactly as inside an OpenPLC tree. The
+// definitions (buffers, lock, log) come from the test driver, as glueVars.cpp and main.cpp
+// provide them in OpenPLC.
+#ifndef STEPMOD_OPENPLC_LADDER_STANDIN_H
+#define STEPMOD_OPENPLC_LADDER_STANDIN_H
+
+#include <pthread.h>
+#include <stdint.h>
+#include <time.h>
+
+#define BUFFER_SIZE 1024
+
+typedef uint8_t IEC_BOOL;
+typedef int8_t IEC_SINT;
+typedef int16_t IEC_INT;
+typedef int32_t IEC_DINT;
+typedef int64_t IEC_LINT;
+typedef uint8_t IEC_USINT;
+typedef uint16_t IEC_UINT;
+typedef uint32_t IEC_UDINT;
+typedef uint64_t IEC_ULINT;
+typedef uint8_t IEC_BYTE;
+typedef uint16_t IEC_WORD;
+typedef uint32_t IEC_DWORD;
+typedef uint64_t IEC_LWORD;
+typedef float IEC_REAL;
+typedef double IEC_LREAL;
+
+// Located variables: a NULL entry is an address the PLC program does not use.
+extern IEC_BOOL* bool_input[BUFFER_SIZE][8];
+extern IEC_BOOL* bool_output[BUFFER_SIZE][8];
+extern IEC_BYTE* byte_input[BUFFER_SIZE];
+extern IEC_BYTE* byte_output[BUFFER_SIZE];
+extern IEC_UINT* int_input[BUFFER_SIZE];   // %IW
+extern IEC_UINT* int_output[BUFFER_SIZE];  // %QW
+extern IEC_UDINT* dint_input[BUFFER_SIZE];
+extern IEC_UDINT* dint_output[BUFFER_SIZE];
+extern IEC_ULINT* lint_input[BUFFER_SIZE];
+extern IEC_ULINT* lint_output[BUFFER_SIZE];
+extern IEC_UINT* int_memory[BUFFER_SIZE];
+extern IEC_UDINT* dint_memory[BUFFER_SIZE];
+extern IEC_ULINT* lint_memory[BUFFER_SIZE];
+extern IEC_ULINT* special_functions[BUFFER_SIZE];
+
+// Guards the buffers against the runtime's other threads (Modbus slave, web server...).
+extern pthread_mutex_t bufferLock;
+extern unsigned long long common_ticktime__;
+
+// The hardware layer's four functions (main.cpp calls them; see the scan cycle in the driver).
+void initializeHardware();
+void finalizeHardware();
+void updateBuffersIn();
+void updateBuffersOut();
+
+// utils.cpp
+extern "C" void openplc_log(char* logmsg);
+
+#endif

@@ -1,0 +1,120 @@
+#!/usr/bin/env bash
+# The Debian package end to end (ctest label "package"): builds it with cpack from this build
+# tree, installs it with dpkg -i, checks what a board gets (user, groups, udev rule, unit, man
+# pages, conffiles), runs the installed stepmodd as the stepmod user on an example config and
+# drives a move with the installed stepmodctl, verifies the unit with systemd-analyze, then
+# removes and purges the package and checks that nothing is left.
+#   package_test.sh BUILD_DIR
+# Exit 77 (skipped) unless root with dpkg, or when stepmod is already installed (not ours).
+set -euo pipefail
+build=$1
+
+if [ "$(id -u)" -ne 0 ] || ! command -v dpkg >/dev/null; then
+  echo "SKIP: needs root and dpkg"; exit 77
+fi
+if dpkg-query -W -f='${Status}' stepmod 2>/dev/null | grep -q installed; then
+  echo "SKIP: a stepmod package is installed on this machine; not touching it"; exit 77
+fi
+
+tmp=$(mktemp -d /tmp/stepmod-pkg.XXXXXX)
+chmod 755 "$tmp"
+daemon_pid=""
+cleanup() {
+  [ -n "$daemon_pid" ] && kill -9 "$daemon_pid" 2>/dev/null || true
+  if dpkg-query -W -f='${Status}' stepmod 2>/dev/null | grep -q installed; then
+    dpkg -P stepmod >/dev/null 2>&1 || true
+  fi
+  rm -rf "$tmp"
+}
+trap cleanup EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+step() { echo "==> $*"; }
+
+step "cpack -G DEB"
+(cd "$build" && cpack -G DEB -B "$tmp/out" >"$tmp/cpack.log" 2>&1) || { cat "$tmp/cpack.log"; fail "cpack"; }
+arch=$(dpkg --print-architecture)
+deb=$(ls "$tmp"/out/stepmod_*_"$arch".deb)
+echo "$deb"
+dpkg-deb -c "$deb" | awk '{print $6}' >"$tmp/files"
+for f in ./usr/bin/stepmodd ./usr/bin/stepmodctl ./usr/include/stepmod/stepmod_image.h \
+         ./usr/lib/systemd/system/stepmodd@.service ./usr/lib/udev/rules.d/60-stepmod-gpio.rules \
+         ./etc/stepmod/3601-sim.toml ./etc/security/limits.d/stepmod.conf \
+         ./usr/share/man/man8/stepmodd.8.gz ./usr/share/man/man1/stepmodctl.1.gz; do
+  grep -qx "$f" "$tmp/files" || fail "$f not in the package"
+done
+dpkg-deb -f "$deb" Depends | grep -q adduser || fail "Depends lacks adduser"
+dpkg-deb -e "$deb" "$tmp/control"
+grep -qx /etc/stepmod/3601-sim.toml "$tmp/control/conffiles" || fail "examples are not conffiles"
+
+step "dpkg -i"
+had_gpio=0
+getent group gpio >/dev/null && had_gpio=1
+dpkg -i "$deb"
+getent passwd stepmod >/dev/null || fail "no stepmod user"
+[ "$(getent passwd stepmod | cut -d: -f7)" != /bin/bash ] || fail "stepmod user has a login shell"
+id -nG stepmod | tr ' ' '\n' | grep -qx gpio || fail "stepmod is not in the gpio group"
+id -nG stepmod | tr ' ' '\n' | grep -qx stepmod || fail "stepmod has no stepmod group"
+grep -q 'GROUP="gpio"' /usr/lib/udev/rules.d/60-stepmod-gpio.rules || fail "udev rule"
+for page in /usr/share/man/man8/stepmodd.8.gz /usr/share/man/man1/stepmodctl.1.gz; do
+  zcat "$page" | groff -man -Tutf8 -ww -z 2>"$tmp/groff.log" || fail "$page does not render"
+  [ ! -s "$tmp/groff.log" ] || { cat "$tmp/groff.log"; fail "$page: groff warnings"; }
+done
+/usr/bin/stepmodd --help | grep -q -- --config || fail "stepmodd --help"
+
+step "systemd-analyze verify"
+if command -v systemd-analyze >/dev/null; then
+  # A template is verified through an instance; the example config exists for this one.
+  cp /usr/lib/systemd/system/stepmodd@.service "$tmp/stepmodd@3601-sim.service"
+  systemd-analyze verify "$tmp/stepmodd@3601-sim.service" 2>&1 | tee "$tmp/verify.log"
+  if grep -v -e 'Failed to open /dev/tty' -e '^$' "$tmp/verify.log" | grep -q .; then
+    fail "systemd-analyze verify reported problems"
+  fi
+  grep -q '^WatchdogSec=' /usr/lib/systemd/system/stepmodd@.service || fail "no WatchdogSec"
+  grep -q '^Type=notify' /usr/lib/systemd/system/stepmodd@.service || fail "not Type=notify"
+else
+  fail "systemd-analyze not installed (scripts/install-deps installs systemd)"
+fi
+
+step "the installed stepmodd, as the stepmod user, on the example config"
+name="pkgtest-$$"
+sed "s/^name = .*/name = \"$name\"/" /etc/stepmod/3601-sim.toml >"$tmp/3601-sim.toml"
+chmod 644 "$tmp/3601-sim.toml"
+setpriv --reuid stepmod --regid stepmod --init-groups /usr/bin/stepmodd --config "$tmp/3601-sim.toml" >"$tmp/daemon.log" 2>&1 &
+daemon_pid=$!
+for _ in $(seq 100); do
+  [ -e "/dev/shm/stepmod.$name" ] && break
+  sleep 0.1
+done
+[ -e "/dev/shm/stepmod.$name" ] || { cat "$tmp/daemon.log"; fail "no image"; }
+[ "$(stat -c '%U:%G %a' "/dev/shm/stepmod.$name")" = "stepmod:stepmod 660" ] ||
+  fail "image owner/mode: $(stat -c '%U:%G %a' "/dev/shm/stepmod.$name")"
+ctl="/usr/bin/stepmodctl -n $name"
+$ctl configure --home --cw-limit --ccw-limit --estop >/dev/null
+$ctl move rel 1500 -s 10000 -a 10 -d 10 >/dev/null
+$ctl wait-idle --max 10 >/dev/null
+$ctl status | grep -Eq '^  position = 1500$' || { $ctl status; fail "position after the move"; }
+kill -TERM "$daemon_pid"
+rc=0
+wait "$daemon_pid" || rc=$?
+daemon_pid=""
+[ "$rc" -eq 0 ] || { cat "$tmp/daemon.log"; fail "stepmodd exit status $rc"; }
+[ ! -e "/dev/shm/stepmod.$name" ] || fail "image left behind"
+
+step "dpkg -r, then dpkg -P"
+echo "# edited" >>/etc/stepmod/3601-sim.toml
+dpkg -r stepmod
+[ ! -e /usr/bin/stepmodd ] || fail "stepmodd left after remove"
+[ -e /etc/stepmod/3601-sim.toml ] || fail "remove deleted a conffile"
+dpkg -P stepmod
+[ ! -e /etc/stepmod ] || fail "/etc/stepmod left after purge"
+[ ! -e /etc/security/limits.d/stepmod.conf ] || fail "limits left after purge"
+[ ! -e /usr/lib/udev/rules.d/60-stepmod-gpio.rules ] || fail "udev rule left after purge"
+! getent passwd stepmod >/dev/null || fail "stepmod user left after purge"
+! getent group stepmod >/dev/null || fail "stepmod group left after purge"
+if [ "$had_gpio" -eq 0 ]; then
+  ! getent group gpio >/dev/null || fail "gpio group (created by the package) left after purge"
+else
+  getent group gpio >/dev/null || fail "purge removed a gpio group it had not created"
+fi
+[ ! -e /var/lib/stepmod ] || fail "/var/lib/stepmod left after purge"
+echo "PASS"
