@@ -280,6 +280,29 @@ TEST_P(AxisShared, CE_27_RegistrationWithExternalActivePerModule) {
   }
 }
 
+// A19 (3602 config MSW bit 14, 3202 bit 28): a disabled axis ignores every command and stays
+// idle, without a Command Error. The 3601 has no disable bit: its dialect never sets the flag.
+TEST_P(AxisShared, EN_01_DisabledAxisIgnoresCommandsPerModule) {
+  if (!rules().has_disable) GTEST_SKIP() << "no disable bit on this module";
+  ax::AxisConfig cfg = full_axis_config();
+  cfg.disabled = true;
+  rig_.configure(cfg);
+  rig_.command(CommandKind::kRelativeMove, {.target = 500});
+  rig_.hold(CommandKind::kManualCw, {.target = 0, .speed = 2'000});
+  rig_.scans(100);
+  rig_.clear();
+  rig_.command(CommandKind::kAbsoluteMove, {.target = 50});
+  rig_.scans(20);
+  EXPECT_EQ(rig_.motor(), 0);
+  EXPECT_FALSE(rig_.moving());
+  EXPECT_FALSE(rig_.status().command_error);
+  // Enabled again by a new configuration, the same move runs.
+  rig_.configure();
+  rig_.command(CommandKind::kRelativeMove, {.target = 500});
+  ASSERT_TRUE(rig_.wait_idle());
+  EXPECT_EQ(rig_.motor(), 500);
+}
+
 std::string module_name(const ::testing::TestParamInfo<const ax::ModuleRules*>& info) {
   return std::to_string(static_cast<unsigned>(info.param->type));
 }
