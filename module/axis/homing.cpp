@@ -139,7 +139,7 @@ void Homing::command(const AxisCommand& c, planner::Direction dir) {
     return;
   }
   // A15: no move starts while the E-stop is active.
-  if (ax_.inputs.active(InputLine::kEStop)) {
+  if (ax_.estop_active()) {
     ax_.status.input_error = true;
     return;
   }
@@ -161,12 +161,12 @@ void Homing::command(const AxisCommand& c, planner::Direction dir) {
                                : ax_.inputs.active(InputLine::kHome);
   // [01] Ch.4 Note 2 under "End Limit Switch Active...": the limit ahead already active -> begin
   // at the reversal, no wait (H-C step 4). The opposite limit active: home normally.
-  const bool limit_ahead = ax_.inputs.active(limit_toward(dir));
+  const bool limit_ahead = ax_.limit_active(dir);
   const bool reverse_first = limit_ahead || home_active;
   const Direction first = reverse_first ? planner::opposite(dir) : dir;
   // A15: a first motion into the (opposite) limit that is already active would be the limit
   // error of 3601-HI-05 at once; refuse it without moving (the position stays as it was).
-  if (reverse_first && ax_.inputs.active(limit_toward(first))) {
+  if (reverse_first && ax_.limit_active(first)) {
     ax_.status.home_invalid = true;
     ax_.status.input_error = true;
     return;
@@ -316,7 +316,8 @@ void Homing::timers(Nanos now) {
 void Homing::on_input(const gpio::InputEvent& e, bool was_active, bool now_active) {
   // Stopping already (home reached, error, Immediate Stop): later edges change nothing.
   if (ax_.stop_cause != StopCause::kNone || h_.step == Step::kFinishing) return;
-  switch (e.line) {
+  // A 3602 CW / CCW input configured as an E-stop acts as one (AxisState::role_of).
+  switch (ax_.role_of(e.line)) {
     case InputLine::kEStop:
       // 3601-IE-01 / PI-03 / STP-02; A49: IE + PI, no HI. The homing is a motion in progress
       // for its whole sequence, pauses included (digest 7.16).

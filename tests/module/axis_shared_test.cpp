@@ -303,6 +303,41 @@ TEST_P(AxisShared, EN_01_DisabledAxisIgnoresCommandsPerModule) {
   EXPECT_EQ(rig_.motor(), 500);
 }
 
+// 3602 (digest 4.2, 3602-IE-01 / PI-03): a CW / CCW input configured as an E-stop stops a move
+// in either direction (IE, PI) and blocks the next; configured unused it does nothing. The 3601
+// and 3202 inputs are always end limits (their dialects leave the function at kLimit).
+TEST_P(AxisShared, IE_01_CwInputConfiguredAsEStopPerModule) {
+  if (!rules().cw_ccw_inputs_configurable) GTEST_SKIP() << "CW/CCW inputs are always limits";
+  ax::AxisConfig cfg = full_axis_config();
+  cfg.inputs_used &= static_cast<std::uint16_t>(~(1u << static_cast<unsigned>(InputLine::kEStop)));
+  cfg.cw_input = ax::LimitFunction::kEStop;
+  cfg.ccw_input = ax::LimitFunction::kUnused;
+  cfg.inputs_used &=
+      static_cast<std::uint16_t>(~(1u << static_cast<unsigned>(InputLine::kCcwLimit)));
+  rig_.configure(cfg);
+  // The unused CCW input: a CCW move runs through its activation.
+  rig_.command(CommandKind::kRelativeMove, {.target = -3'000});
+  rig_.run_for(100 * kNsPerMs);
+  rig_.force(InputLine::kCcwLimit, true);
+  ASSERT_TRUE(rig_.wait_idle());
+  EXPECT_EQ(rig_.motor(), -3'000);
+  EXPECT_FALSE(rig_.status().input_error);
+  // The CW input as an E-stop stops a CCW move: not a limit "in its direction" but an E-stop.
+  rig_.command(CommandKind::kRelativeMove, {.target = -50'000});
+  rig_.run_for(200 * kNsPerMs);
+  rig_.force(InputLine::kCwLimit, true);
+  ASSERT_TRUE(rig_.wait_idle());
+  EXPECT_TRUE(rig_.status().input_error);
+  EXPECT_TRUE(rig_.status().position_invalid);
+  EXPECT_GT(rig_.motor(), -50'000);
+  const std::int64_t at = rig_.motor();
+  // A15: no move starts, in either direction, while it is active.
+  rig_.command(CommandKind::kRelativeMove, {.target = -100});
+  rig_.run_for(100 * kNsPerMs);
+  EXPECT_EQ(rig_.motor(), at);
+  EXPECT_TRUE(rig_.status().input_error);
+}
+
 std::string module_name(const ::testing::TestParamInfo<const ax::ModuleRules*>& info) {
   return std::to_string(static_cast<unsigned>(info.param->type));
 }

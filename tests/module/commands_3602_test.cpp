@@ -135,5 +135,34 @@ TEST_F(Commands3602, LSW_01_ProximityEchoIsCommandLswBit6) {
   EXPECT_FALSE(lsw_status(kAxis2, m2::status_lsw::kProximityEcho));
 }
 
+// 3602-IE-01 / PI-03 on one axis: axis 1's CW input configured as an E-stop stops axis 1 only;
+// axis 2 runs on to its exact count.
+TEST_F(Commands3602, IE_01_PI_03_CwInputAsEStopStopsItsAxisOnly) {
+  const auto estop_cw =
+      static_cast<std::uint16_t>((kLimitsConfigMsw & ~m2::cfg_msw::kCwFunction) |
+                                 m2::cfg_msw::kFunctionEStop << m2::cfg_msw::kCwFunctionShift);
+  configure(kAxis1, estop_cw);
+  set_command(kAxis1, cmd::kRelativeMove, {.target = -60'000});
+  set_command(kAxis2, cmd::kRelativeMove, {.target = 20'000});
+  vm_.scans(3);
+  word(kAxis1, m2::out_word::kMsw) = 0;
+  word(kAxis2, m2::out_word::kMsw) = 0;
+  vm_.run_for(300 * kNsPerMs);
+  // Panel: axis 1's CW input line high (active high).
+  vm_.sim().force(kAxis1, 1u << static_cast<unsigned>(InputLine::kCwLimit),
+                  1u << static_cast<unsigned>(InputLine::kCwLimit), vm_.now());
+  vm_.scans(3);
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_TRUE(status(kAxis1, kInputError));
+  EXPECT_TRUE(status(kAxis1, kPositionInvalid));
+  EXPECT_TRUE(lsw_status(kAxis1, m2::status_lsw::kCwActive));
+  EXPECT_GT(motor(kAxis1), -60'000);
+  EXPECT_TRUE(moving(kAxis2));
+  ASSERT_TRUE(wait_idle(kAxis2));
+  EXPECT_EQ(motor(kAxis2), 20'000);
+  EXPECT_FALSE(status(kAxis2, kInputError));
+  EXPECT_TRUE(status(kAxis2, kMoveComplete));
+}
+
 }  // namespace
 }  // namespace stepmod::testing
