@@ -120,6 +120,14 @@ void Homing::command(const AxisCommand& c, planner::Direction dir) {
     ax_.status.home_invalid = true;
     return;
   }
+  // 3602-CE-12: a home-switch homing needs the home input configured (the 3601's configuration
+  // check guarantees it there, 3601-CFG-02; the 3602 checks it at the command, 3602-CFG-N1).
+  const bool switch_homing = ax_.cfg.homing == HomingVariant::kSwitch ||
+                             ax_.cfg.homing == HomingVariant::kSwitchWithBackplane;
+  if (switch_homing && !ax_.cfg.used(InputLine::kHome)) {
+    ax_.reject();
+    return;
+  }
   // 3601-HI-02: the target words must be 0. A8: CE as well, no motion.
   if (!c.target || *c.target != 0) {
     ax_.reject();
@@ -290,6 +298,28 @@ void Homing::fail() {
   ax_.fault_stop();  // immediate stop, IE, PI
 }
 
+// 3602-HI-07 (Ch.8 "Homing Timeout"): a homing not complete T seconds after the command (pauses
+// included) stops and sets Home Invalid. A16: a controlled stop at the homing decel, PI unchanged.
+// T = 0: no timeout (3601, 3202: always 0). The clock starts at the first scan of the sequence.
+void Homing::timeout(Nanos now) {
+  if (ax_.cfg.homing_timeout <= 0 || ax_.stop_cause != StopCause::kNone ||
+      h_.step == Step::kFinishing || h_.step == Step::kTimedOut) {
+    return;
+  }
+  if (h_.deadline < 0) {
+    h_.deadline = now + ax_.cfg.homing_timeout;
+    return;
+  }
+  if (now < h_.deadline) return;
+  ax_.status.home_invalid = true;
+  if (h_.segment) {
+    h_.step = Step::kTimedOut;  // ends when the stop has (motion_ended)
+    ax_.motion.stop(h_.decel);
+  } else {
+    ax_.activity = Activity::kIdle;  // in a pause: at rest already
+  }
+}
+
 void Homing::scan(const AxisCommand& c, Nanos now) {
   // The backplane proximity bit is a level of the command image; its transitions are events
   // (A44: only when configured and only while homing).
@@ -304,6 +334,7 @@ void Homing::scan(const AxisCommand& c, Nanos now) {
 }
 
 void Homing::timers(Nanos now) {
+  timeout(now);
   if (ax_.activity != Activity::kHoming || ax_.stop_cause != StopCause::kNone) return;
   if (h_.step != Step::kPause1 && h_.step != Step::kPause2) return;
   if (h_.pause_end < 0) {
@@ -315,7 +346,10 @@ void Homing::timers(Nanos now) {
 
 void Homing::on_input(const gpio::InputEvent& e, bool was_active, bool now_active) {
   // Stopping already (home reached, error, Immediate Stop): later edges change nothing.
-  if (ax_.stop_cause != StopCause::kNone || h_.step == Step::kFinishing) return;
+  if (ax_.stop_cause != StopCause::kNone || h_.step == Step::kFinishing ||
+      h_.step == Step::kTimedOut) {
+    return;
+  }
   // A 3602 CW / CCW input configured as an E-stop acts as one (AxisState::role_of).
   switch (ax_.role_of(e.line)) {
     case InputLine::kEStop:
@@ -351,6 +385,10 @@ void Homing::motion_ended(StopCause cause) {
   }
   if (!h_.segment) return;  // a pause: no motion to end
   h_.segment = false;
+  if (h_.step == Step::kTimedOut) {
+    ax_.activity = Activity::kIdle;  // 3602-HI-07: the sequence is over
+    return;
+  }
   event(Event::kMotionEnd);
 }
 

@@ -141,10 +141,6 @@ bool word_rules_broken(const ImageWords& out, const axis::AxisCommand& c,
             !words_zero(out, out_word::kSpeedMsw, out_word::kDecel));
   }
   switch (*only) {
-    case CommandKind::kFindHomeCw:
-    case CommandKind::kFindHomeCcw:
-      // Words 2/3 reserved (3602-HI-04 names them; the axis reads the rest).
-      return !words_zero(out, out_word::kTargetMsw, out_word::kTargetLsw);
     case CommandKind::kPresetPosition:
       return !words_zero(out, out_word::kSpeedMsw, out_word::kDecel);
     case CommandKind::kResetErrors:

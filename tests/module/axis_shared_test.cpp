@@ -338,6 +338,25 @@ TEST_P(AxisShared, IE_01_CwInputConfiguredAsEStopPerModule) {
   EXPECT_TRUE(rig_.status().input_error);
 }
 
+// 3602-HI-07 (A16): a homing still running T s after its command stops (controlled) with Home
+// Invalid; modules without a homing timeout never set one (their dialects leave T = 0).
+TEST_P(AxisShared, HI_07_HomingTimeoutPerModule) {
+  if (!rules().has_homing_timeout) GTEST_SKIP() << "no homing timeout on this module";
+  ax::AxisConfig cfg = full_axis_config();
+  cfg.homing_timeout = kNsPerSec;
+  rig_.configure(cfg);
+  rig_.command(CommandKind::kFindHomeCw, {.target = 0, .speed = 1'500});
+  rig_.run_for(800 * kNsPerMs);
+  EXPECT_TRUE(rig_.moving());
+  EXPECT_FALSE(rig_.status().home_invalid);
+  ASSERT_TRUE(rig_.wait_idle(3 * kNsPerSec));
+  EXPECT_TRUE(rig_.status().home_invalid);
+  EXPECT_FALSE(rig_.status().at_home);
+  const std::int64_t at = rig_.motor();
+  rig_.run_for(3 * kNsPerSec);
+  EXPECT_EQ(rig_.motor(), at);
+}
+
 std::string module_name(const ::testing::TestParamInfo<const ax::ModuleRules*>& info) {
   return std::to_string(static_cast<unsigned>(info.param->type));
 }
