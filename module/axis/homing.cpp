@@ -111,6 +111,7 @@ void Homing::command(const AxisCommand& c, planner::Direction dir) {
   // 3601-CE-10: "S-Curve acceleration profiles are not allowed during a homing operation."
   if (c.s_curve()) {
     ax_.reject();
+    if (ax_.rules.homing_s_curve_sets_home_invalid) ax_.status.home_invalid = true;  // 3602-HI-02
     return;
   }
   // 3601-CE-13 / HI-03: Find Home + needs a configured CW limit, Find Home - a CCW limit (not on

@@ -55,6 +55,9 @@ struct ModuleRules {
   // A home command needs the end limit in its own direction configured (3601/3202, 3601-CE-13);
   // the 3602 needs only the home input.
   bool homing_needs_limit_ahead;
+  // Find Home with S-curve: Command Error on every module (3601-CE-10, 3602-CE-11); Home Invalid
+  // too on the 3602 only (3602-HI-02; the 3601 HI list has no such item).
+  bool homing_s_curve_sets_home_invalid;
   // External input active when a registration move starts: always an error on the 3601, only
   // with a minimum registration distance of 0 on the 3602 (3601-CE-27).
   bool registration_external_always_error;
@@ -87,6 +90,7 @@ inline constexpr ModuleRules kRules3601{
     .preset_clears_move_complete = false,
     .stopped_means_idle = false,
     .homing_needs_limit_ahead = true,
+    .homing_s_curve_sets_home_invalid = false,
     .registration_external_always_error = true,
     .powers_up_with_configuration_error = true,
 };
@@ -116,6 +120,7 @@ inline constexpr ModuleRules kRules3602{
     .preset_clears_move_complete = true,
     .stopped_means_idle = true,
     .homing_needs_limit_ahead = false,
+    .homing_s_curve_sets_home_invalid = true,
     .registration_external_always_error = false,
     .powers_up_with_configuration_error = true,
 };
@@ -145,6 +150,7 @@ inline constexpr ModuleRules kRules3202{
     .preset_clears_move_complete = false,
     .stopped_means_idle = false,
     .homing_needs_limit_ahead = true,
+    .homing_s_curve_sets_home_invalid = false,
     .registration_external_always_error = true,  // no registration at all
     .powers_up_with_configuration_error = false,
 };

@@ -357,6 +357,17 @@ TEST_P(AxisShared, HI_07_HomingTimeoutPerModule) {
   EXPECT_EQ(rig_.motor(), at);
 }
 
+// Find Home with S-curve: CE everywhere (3601-CE-10, 3602-CE-11), HI on the 3602 (3602-HI-02).
+TEST_P(AxisShared, CE_10_HomingWithSCurvePerModule) {
+  rig_.configure();
+  rig_.image().shape = planner::AccelShape::kTriangularS;
+  rig_.command(CommandKind::kFindHomeCw, {.target = 0, .speed = 5'000});
+  EXPECT_TRUE(rig_.status().command_error);
+  EXPECT_EQ(rig_.status().home_invalid, rules().homing_s_curve_sets_home_invalid);
+  rig_.scans(20);
+  EXPECT_EQ(rig_.motor(), 0);
+}
+
 std::string module_name(const ::testing::TestParamInfo<const ax::ModuleRules*>& info) {
   return std::to_string(static_cast<unsigned>(info.param->type));
 }

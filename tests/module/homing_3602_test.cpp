@@ -143,5 +143,58 @@ TEST_F(Homing3602, AH_01_BothAxesHomeIndependently) {
   EXPECT_GE(motor(kAxis2), -2'901);
 }
 
+TEST_F(Homing3602, CE_11_HI_02_FindHomeWithSCurve) {
+  configure(kAxis1);
+  Move3602 p = kHome;
+  p.lsw = m2::cmd_lsw::kSCurve;
+  command(kAxis1, cmd::kFindHomeCw, p);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kHomeInvalid));
+  vm_.run_for(200 * kNsPerMs);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+TEST_F(Homing3602, HI_03_FindHomeWithAccelOutOfRange) {
+  configure(kAxis1);
+  Move3602 p = kHome;
+  p.accel = 2'001;
+  command(kAxis1, cmd::kFindHomeCw, p);
+  EXPECT_TRUE(status(kAxis1, kHomeInvalid));
+  vm_.run_for(200 * kNsPerMs);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+// 3602-HI-05 / IE-04 / PI-06: the limit opposite to the homing direction during the search.
+TEST_F(Homing3602, HI_05_IE_04_PI_06_OppositeLimitDuringHoming) {
+  configure(kAxis1);
+  command(kAxis1, cmd::kPresetPosition, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  command(kAxis1, cmd::kFindHomeCw, kHome);
+  vm_.run_for(200 * kNsPerMs);
+  ASSERT_TRUE(moving(kAxis1));
+  vm_.sim().force(kAxis1, 1u << static_cast<unsigned>(InputLine::kCcwLimit),
+                  1u << static_cast<unsigned>(InputLine::kCcwLimit), vm_.now());
+  ASSERT_TRUE(wait_idle(kAxis1, kNsPerSec));
+  EXPECT_TRUE(status(kAxis1, kHomeInvalid));
+  EXPECT_TRUE(status(kAxis1, kInputError));
+  EXPECT_TRUE(status(kAxis1, kPositionInvalid));
+  EXPECT_FALSE(status(kAxis1, kAtHome));
+}
+
+// 3602-HI-08: both overtravel limits met while searching -> immediate stop with HI + IE + PI.
+TEST_F(Homing3602, HI_08_BothLimitsDuringHoming) {
+  configure(kAxis1);
+  command(kAxis1, cmd::kFindHomeCw, kHome);
+  vm_.run_for(200 * kNsPerMs);
+  const std::uint32_t cw = 1u << static_cast<unsigned>(InputLine::kCwLimit);
+  const std::uint32_t ccw = 1u << static_cast<unsigned>(InputLine::kCcwLimit);
+  vm_.sim().force(kAxis1, cw, cw, vm_.now());  // the limit ahead: reverse after the pause
+  vm_.run_for(3 * kNsPerSec);
+  vm_.sim().force(kAxis1, cw | ccw, 0 | ccw, vm_.now());  // then the other one
+  ASSERT_TRUE(wait_idle(kAxis1, 10 * kNsPerSec));
+  EXPECT_TRUE(status(kAxis1, kHomeInvalid));
+  EXPECT_TRUE(status(kAxis1, kInputError));
+  EXPECT_TRUE(status(kAxis1, kPositionInvalid));
+}
+
 }  // namespace
 }  // namespace stepmod::testing

@@ -163,7 +163,7 @@ TEST_F(Motion3602, PI_02_ImmediateStopInvalidatesThePosition) {
   EXPECT_TRUE(moving(kAxis2) == false);
 }
 
-TEST_F(Motion3602, IE_02_PI_04_LimitDuringAMoveAndIE_C1) {
+TEST_F(Motion3602, IE_02_PI_04_IE_C1_LimitDuringAMoveThenTheNextMoveClearsIE) {
   set_command(kAxis2, cmd::kRelativeMove, {.target = -20'000});
   vm_.scans(3);
   word(kAxis2, m2::out_word::kMsw) = 0;
@@ -369,6 +369,130 @@ TEST_F(Motion3602, IP_04_BlendSegmentCountOutOfRange) {
 TEST_F(Motion3602, IP_07_IP_19_AccelerationPairOfBinary10) {
   const std::array<std::int16_t, 6> first = {2, 0, 0b10, 10, 0, 0};  // segment 1: pair 10
   program_blend(kAxis1, {first, segment(1'000, 5'000, 20), segment(1'000, 3'000, 20)});
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+}
+
+TEST_F(Motion3602, CE_J2_IP_09_InvalidSpeedChangeWhileJoggingStopsImmediately) {
+  command(kAxis1, cmd::kPresetPosition, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  set_command(kAxis1, cmd::kJogCw, {.target = 0, .speed = 5'000});
+  vm_.run_for(300 * kNsPerMs);
+  put_split(kAxis1, m2::out_word::kSpeedMsw, 1'000'001);
+  vm_.scans(3);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerMs));  // immediate: within a few steps
+}
+
+TEST_F(Motion3602, CE_J3_IP_10_OffsetWrittenWhileJoggingStopsImmediately) {
+  set_command(kAxis1, cmd::kJogCcw, {.target = 0, .speed = 5'000});
+  vm_.run_for(300 * kNsPerMs);
+  put_split(kAxis1, m2::out_word::kTargetMsw, 2'000);
+  vm_.scans(3);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerMs));
+}
+
+TEST_F(Motion3602, CE_R6_IP_14_OffsetChangedDuringRegistration) {
+  set_command(kAxis1, cmd::kJogCw, {.target = 6'000, .speed = 10'000});
+  vm_.run_for(300 * kNsPerMs);
+  put_split(kAxis1, m2::out_word::kTargetMsw, 7'000);
+  vm_.scans(3);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerMs));
+}
+
+TEST_F(Motion3602, CE_R7_IP_15_SpeedIncreasedDuringRegistration) {
+  set_command(kAxis1, cmd::kJogCw, {.target = 6'000, .speed = 10'000});
+  vm_.run_for(300 * kNsPerMs);
+  put_split(kAxis1, m2::out_word::kSpeedMsw, 12'000);
+  vm_.scans(3);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerMs));
+}
+
+TEST_F(Motion3602, CE_R8_IP_16_AccelChangedWithASpeedChangeDuringRegistration) {
+  set_command(kAxis1, cmd::kJogCw, {.target = 6'000, .speed = 10'000});
+  vm_.run_for(300 * kNsPerMs);
+  word(kAxis1, m2::out_word::kAccel) = 20;  // alone: not examined
+  vm_.scans(3);
+  EXPECT_FALSE(status(kAxis1, kCommandError));
+  put_split(kAxis1, m2::out_word::kSpeedMsw, 8'000);  // with a speed change: examined
+  vm_.scans(3);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerMs));
+}
+
+TEST_F(Motion3602, IP_02_MoveParameterOutOfRange) {
+  command(kAxis1, cmd::kRelativeMove, {.target = 100, .accel = 2'001});
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  reset_errors(kAxis1);
+  command(kAxis1, cmd::kRelativeMove, {.target = 100, .decel = 0});
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  vm_.scans(20);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+TEST_F(Motion3602, CE_B3_RunBlendWithReservedWordsNonZero) {
+  const std::array<std::int16_t, 6> first = {2, 0, 0, 10, 0, 0};
+  ASSERT_TRUE(
+      program_blend(kAxis1, {first, segment(20'000, 10'000, 20), segment(20'000, 5'000, 20)}));
+  command(kAxis1, cmd::kRunBlendCw, {.target = 0, .speed = 0, .accel = 0, .decel = 1});
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  vm_.scans(20);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+TEST_F(Motion3602, CE_B5_HoldDuringABlendFinishesItThenSelfClears) {
+  const std::array<std::int16_t, 6> first = {2, 0, 0, 10, 0, 0};
+  ASSERT_TRUE(
+      program_blend(kAxis1, {first, segment(20'000, 10'000, 20), segment(20'000, 5'000, 20)}));
+  command(kAxis1, cmd::kRunBlendCw, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  vm_.run_for(300 * kNsPerMs);
+  command(kAxis1, cmd::kHold);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerSec));
+  vm_.scans(3);
+  EXPECT_EQ(motor(kAxis1), 40'000);
+  EXPECT_FALSE(status(kAxis1, kCommandError));
+}
+
+TEST_F(Motion3602, CE_B4_ProgrammingStartedWhileABlendRuns) {
+  const std::array<std::int16_t, 6> first = {2, 0, 0, 10, 0, 0};
+  ASSERT_TRUE(
+      program_blend(kAxis1, {first, segment(20'000, 10'000, 20), segment(20'000, 5'000, 20)}));
+  command(kAxis1, cmd::kRunBlendCw, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  vm_.run_for(300 * kNsPerMs);
+  // The first block of a new cycle offered (program + transmit).
+  word(kAxis1, m2::out_word::kLsw) = lsw::kProgramBlend | lsw::kBlendTransmit;
+  vm_.scans(3);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerSec));
+  EXPECT_LT(motor(kAxis1), 40'000);  // brought down with the final deceleration
+}
+
+TEST_F(Motion3602, IP_06_ConsecutiveSegmentsWithTheSameSpeed) {
+  const std::array<std::int16_t, 6> first = {2, 0, 0, 10, 0, 0};
+  program_blend(kAxis1, {first, segment(20'000, 5'000, 20), segment(20'000, 5'000, 20)});
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+}
+
+TEST_F(Motion3602, IP_05_SegmentTooShortToReachItsSpeed) {
+  const std::array<std::int16_t, 6> first = {2, 0, 0, 10, 0, 0};
+  program_blend(kAxis1, {first, segment(100, 50'000, 1), segment(20'000, 5'000, 20)});
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+}
+
+TEST_F(Motion3602, IP_20_SegmentLengthOutOfRange) {
+  const std::array<std::int16_t, 6> first = {2, 0, 0, 10, 0, 0};
+  program_blend(kAxis1, {first, segment(1'073'741'823, 5'000, 20), segment(20'000, 3'000, 20)});
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  reset_errors(kAxis1);
+  program_blend(kAxis1, {first, segment(0, 5'000, 20), segment(20'000, 3'000, 20)});
   EXPECT_TRUE(status(kAxis1, kInvalidProfile));
 }
 
