@@ -351,6 +351,13 @@ void Homing::on_input(const gpio::InputEvent& e, bool was_active, bool now_activ
       h_.step == Step::kTimedOut) {
     return;
   }
+  // 3602-HI-06: the home input and an end limit active at the same time during homing.
+  if (ax_.rules.homing_home_with_limit_is_error && now_active && !was_active &&
+      ax_.inputs.active(InputLine::kHome) &&
+      (ax_.limit_active(Direction::kCw) || ax_.limit_active(Direction::kCcw))) {
+    fail();
+    return;
+  }
   // A 3602 CW / CCW input configured as an E-stop acts as one (AxisState::role_of).
   switch (ax_.role_of(e.line)) {
     case InputLine::kEStop:

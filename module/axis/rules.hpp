@@ -58,6 +58,9 @@ struct ModuleRules {
   // Find Home with S-curve: Command Error on every module (3601-CE-10, 3602-CE-11); Home Invalid
   // too on the 3602 only (3602-HI-02; the 3601 HI list has no such item).
   bool homing_s_curve_sets_home_invalid;
+  // The home input active together with an end limit during homing is a homing error on the 3602
+  // (3602-HI-06); the 3601 and 3202 lists have no such item.
+  bool homing_home_with_limit_is_error;
   // External input active when a registration move starts: always an error on the 3601, only
   // with a minimum registration distance of 0 on the 3602 (3601-CE-27).
   bool registration_external_always_error;
@@ -91,6 +94,7 @@ inline constexpr ModuleRules kRules3601{
     .stopped_means_idle = false,
     .homing_needs_limit_ahead = true,
     .homing_s_curve_sets_home_invalid = false,
+    .homing_home_with_limit_is_error = false,
     .registration_external_always_error = true,
     .powers_up_with_configuration_error = true,
 };
@@ -121,6 +125,7 @@ inline constexpr ModuleRules kRules3602{
     .stopped_means_idle = true,
     .homing_needs_limit_ahead = false,
     .homing_s_curve_sets_home_invalid = true,
+    .homing_home_with_limit_is_error = true,
     .registration_external_always_error = false,
     .powers_up_with_configuration_error = true,
 };
@@ -151,6 +156,7 @@ inline constexpr ModuleRules kRules3202{
     .stopped_means_idle = false,
     .homing_needs_limit_ahead = true,
     .homing_s_curve_sets_home_invalid = false,
+    .homing_home_with_limit_is_error = false,
     .registration_external_always_error = true,  // no registration at all
     .powers_up_with_configuration_error = false,
 };

@@ -368,6 +368,19 @@ TEST_P(AxisShared, CE_10_HomingWithSCurvePerModule) {
   EXPECT_EQ(rig_.motor(), 0);
 }
 
+// 3602-HI-06: the home input and an end limit active together during homing is a homing error
+// on the 3602; on the 3601 / 3202 the limit ahead is the H-C reversal, no error.
+TEST_P(AxisShared, HI_06_HomeWithLimitDuringHomingPerModule) {
+  rig_.configure();
+  rig_.command(CommandKind::kFindHomeCw, {.target = 0, .speed = 5'000});
+  rig_.run_for(100 * kNsPerMs);
+  rig_.force(InputLine::kHome, true);
+  rig_.scans(2);
+  rig_.force(InputLine::kCwLimit, true);
+  rig_.scans(5);
+  EXPECT_EQ(rig_.status().home_invalid, rules().homing_home_with_limit_is_error);
+}
+
 std::string module_name(const ::testing::TestParamInfo<const ax::ModuleRules*>& info) {
   return std::to_string(static_cast<unsigned>(info.param->type));
 }

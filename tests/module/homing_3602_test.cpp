@@ -196,5 +196,21 @@ TEST_F(Homing3602, HI_08_BothLimitsDuringHoming) {
   EXPECT_TRUE(status(kAxis1, kPositionInvalid));
 }
 
+// 3602-HI-06: a limit active at the same time as the Home input during homing.
+TEST_F(Homing3602, HI_06_LimitTogetherWithTheHomeInput) {
+  configure(kAxis1);
+  command(kAxis1, cmd::kFindHomeCw, kHome);
+  vm_.run_for(200 * kNsPerMs);
+  const std::uint32_t home = 1u << static_cast<unsigned>(InputLine::kHome);
+  const std::uint32_t cw = 1u << static_cast<unsigned>(InputLine::kCwLimit);
+  vm_.sim().force(kAxis1, home, home, vm_.now());  // the home input: the sequence goes on
+  vm_.scans(2);
+  EXPECT_FALSE(status(kAxis1, kHomeInvalid));
+  vm_.sim().force(kAxis1, home | cw, home | cw, vm_.now());  // and a limit with it
+  ASSERT_TRUE(wait_idle(kAxis1, kNsPerSec));
+  EXPECT_TRUE(status(kAxis1, kHomeInvalid));
+  EXPECT_FALSE(status(kAxis1, kAtHome));
+}
+
 }  // namespace
 }  // namespace stepmod::testing
