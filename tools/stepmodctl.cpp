@@ -206,8 +206,8 @@ int main(int argc, char** argv) {
       "Exit status: 0 ok, 1 the module reported an error bit (Command Error, Invalid Profile,\n"
       "Home Invalid, Configuration Error) for the command, 2 usage error, 3 module unreachable\n"
       "(no image /dev/shm/stepmod.NAME, or no scan in time), 4 the module's command dialect is\n"
-      "not implemented yet (the commands are the 3601's; a 3602 or 3202 image can be read with\n"
-      "status/watch/raw get and written with raw set).\n"
+      "not implemented yet (3602: configure, move, preset, reset, stop, gpo, wait-idle with\n"
+      "--axis 1|2; a 3202 image can be read with status/watch/raw get and written with raw set).\n"
       "Numbers accept 0x.. and 16#.. hex. Negative targets: use '--' before them if needed,\n"
       "e.g. stepmodctl move rel -- -500 -s 1000 -a 10 -d 10.\n"
       "Commands that drive the module also bump the PLC heartbeat while they run."};
