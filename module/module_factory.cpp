@@ -1,6 +1,7 @@
 #include <stdexcept>
 
 #include "module/m3601/module_3601.hpp"
+#include "module/m3602/module_3602.hpp"
 #include "module/personality.hpp"
 
 namespace stepmod::module {
@@ -14,11 +15,12 @@ std::unique_ptr<Personality> make_personality(ModuleType type, gpio::Backend& ba
     case ModuleType::k3601:
       return std::make_unique<m3601::Module3601>(backend, *axes[0]);
     case ModuleType::k3602:
+      return std::make_unique<m3602::Module3602>(backend, *axes[0], *axes[1]);
     case ModuleType::k3202:
       break;
   }
   throw std::invalid_argument("module type " + std::to_string(static_cast<unsigned>(type)) +
-                              " has no personality yet (only 3601)");
+                              " has no personality yet");
 }
 
 }  // namespace stepmod::module

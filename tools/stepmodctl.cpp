@@ -21,7 +21,9 @@
 #include "ipc/codec.hpp"
 #include "ipc/sim_panel.hpp"
 #include "module/m3601/words_3601.hpp"
+#include "module/m3602/words_3602.hpp"
 #include "plc/plc_3601.hpp"
+#include "plc/plc_3602.hpp"
 #include "plc/shm_port.hpp"
 #include "tools/ctl_status.hpp"
 
@@ -89,6 +91,16 @@ std::int32_t split_number(const std::string& s, const char* what) {
   if (v < kSplitMin || v > kSplitMax) {
     throw UsageError(std::string(what) + ": '" + s + "' does not fit the 3601's two words (" +
                      std::to_string(kSplitMin) + ".." + std::to_string(kSplitMax) + ")");
+  }
+  return static_cast<std::int32_t>(v);
+}
+
+// The 3602 carries a 32-bit parameter as a binary split (digest 2.2): every int32 fits; the module
+// itself refuses what is out of its ranges.
+std::int32_t binary_number(const std::string& s, const char* what) {
+  const std::int64_t v = parse_number(s, what);
+  if (v < INT32_MIN || v > INT32_MAX) {
+    throw UsageError(std::string(what) + ": '" + s + "' does not fit the 3602's two words");
   }
   return static_cast<std::int32_t>(v);
 }
@@ -194,8 +206,8 @@ int main(int argc, char** argv) {
       "Exit status: 0 ok, 1 the module reported an error bit (Command Error, Invalid Profile,\n"
       "Home Invalid, Configuration Error) for the command, 2 usage error, 3 module unreachable\n"
       "(no image /dev/shm/stepmod.NAME, or no scan in time), 4 the module's command dialect is\n"
-      "not implemented yet (the commands are the 3601's; a 3602 or 3202 image can be read with\n"
-      "status/watch/raw get and written with raw set).\n"
+      "not implemented yet (3602: configure, move, preset, reset, stop, gpo, wait-idle with\n"
+      "--axis 1|2; a 3202 image can be read with status/watch/raw get and written with raw set).\n"
       "Numbers accept 0x.. and 16#.. hex. Negative targets: use '--' before them if needed,\n"
       "e.g. stepmodctl move rel -- -500 -s 1000 -a 10 -d 10.\n"
       "Commands that drive the module also bump the PLC heartbeat while they run."};
@@ -205,6 +217,9 @@ int main(int argc, char** argv) {
   app.add_option("--name,-n", name, "module name: /dev/shm/stepmod.NAME (default stepmod)");
   app.add_option("--timeout", timeout_ms, "ms to wait for the module's scans/handshakes (2000)")
       ->check(CLI::NonNegativeNumber);
+  unsigned axis_no = 1;
+  app.add_option("--axis", axis_no, "3602: the axis a command is for, 1 or 2 (1)")
+      ->check(CLI::Range(1, 2));
 
   // ---- inspection ----
   auto* status = app.add_subcommand("status",
@@ -247,6 +262,14 @@ int main(int argc, char** argv) {
                    "inputs that are active low (N.C.): capture,external,home,estop,cw_limit,"
                    "ccw_limit; all others active high")
       ->delimiter(',');
+  bool c_cw_estop = false, c_ccw_estop = false, c_disable = false;
+  std::int16_t c_timeout = 0;
+  configure->add_flag("--cw-estop", c_cw_estop, "3602: the CW input is an E-stop (bits 4:3 = 10)");
+  configure->add_flag("--ccw-estop", c_ccw_estop,
+                      "3602: the CCW input is an E-stop (bits 6:5 = 10)");
+  configure->add_flag("--disable", c_disable, "3602: disable the axis (bit 14)");
+  configure->add_option("--homing-timeout", c_timeout, "3602: homing timeout, s (0 = none)")
+      ->check(CLI::Range(INT16_MIN, INT16_MAX));
   configure->add_option("--start-speed", c_vs, "starting speed, steps/s (1000)")
       ->check(CLI::Range(kSplitMin, kSplitMax));
 
@@ -345,6 +368,10 @@ int main(int argc, char** argv) {
   double wait_s = 60;
   wait_idle->add_option("--max", wait_s, "give up after this many seconds (60)")
       ->check(CLI::Range(0.0, 1e6));
+
+  auto* gpo = app.add_subcommand("gpo", "3602: the general-purpose output (command LSW bit 7)");
+  std::string gpo_state;
+  gpo->add_option("STATE", gpo_state, "on or off")->required()->check(CLI::IsMember({"on", "off"}));
 
   // ---- simulator panel ----
   auto* panel = app.add_subcommand("panel", "simulator panel: show, force or release inputs");
@@ -457,13 +484,70 @@ int main(int argc, char** argv) {
     switch (client.type()) {
       case ModuleType::k3601:
         break;
-      case ModuleType::k3602:
+      case ModuleType::k3602: {
+        plc::ShmPort port(client, timeout);
+        plc::Plc3602 p3(port, timeout);
+        const unsigned ax = axis_no - 1;
+        Outcome o3;
+        if (configure->parsed()) {
+          namespace cm = module::m3602::cfg_msw;
+          if (c_estop || c_enc || c_diag || c_marker) {
+            throw UsageError(
+                "the 3602 has no E-stop terminal, encoder or marker homing (use --cw-estop / "
+                "--ccw-estop)");
+          }
+          const auto function = [](bool limit, bool estop) -> unsigned {
+            return estop ? cm::kFunctionEStop : limit ? cm::kFunctionLimit : cm::kFunctionUnused;
+          };
+          std::uint16_t msw = 0;
+          msw |= c_capture ? cm::kCaptureEnabled : 0;
+          msw |= c_external ? cm::kExternalEnabled : 0;
+          msw |= c_home ? cm::kHomeEnabled : 0;
+          msw |= static_cast<std::uint16_t>(function(c_cw, c_cw_estop) << cm::kCwFunctionShift);
+          msw |= static_cast<std::uint16_t>(function(c_ccw, c_ccw_estop) << cm::kCcwFunctionShift);
+          msw |= c_prox ? cm::kBackplaneProximity : 0;
+          msw |= c_cwccw ? 0 : cm::kStepDirOutput;
+          msw |= c_disable ? cm::kDisableAxis : 0;
+          // Active levels: capture, external, home, CW, CCW (bits 0..4), active high unless named.
+          std::uint16_t lsw = 0x1F;
+          for (const auto& in : c_low) {
+            const unsigned i = panel_input(in);
+            if (i == 3) throw UsageError("the 3602 has no estop input");
+            lsw = static_cast<std::uint16_t>(lsw & ~(1u << (i < 3 ? i : i - 1)));
+          }
+          o3 = p3.configure(ax, msw, lsw, c_vs, c_timeout);
+        } else if (move->parsed()) {
+          o3 = p3.move(ax, move_kind == "abs", binary_number(move_target, "TARGET"),
+                       move_p.profile());
+        } else if (preset->parsed()) {
+          o3 = p3.preset_position(ax, binary_number(preset_value, "POSITION"));
+        } else if (reset->parsed()) {
+          o3 = p3.reset_errors(ax);
+        } else if (stop->parsed()) {
+          o3 = p3.immediate_stop(ax);
+        } else if (gpo->parsed()) {
+          o3 = p3.set_gpo(ax, gpo_state == "on");
+        } else if (wait_idle->parsed()) {
+          o3 = p3.wait_idle(ax, std::chrono::milliseconds(static_cast<long>(wait_s * 1000)));
+        } else {
+          std::cerr << "stepmodctl: module '" << name
+                    << "' is a 3602: this command is not implemented yet for it (configure, "
+                       "move, preset, reset, stop, gpo, wait-idle are)\n";
+          return kExitNoDialect;
+        }
+        print_outcome(client, o3);
+        return exit_for(o3);
+      }
       case ModuleType::k3202:
         std::cerr << "stepmodctl: module '" << name << "' is a "
                   << static_cast<unsigned>(client.type())
                   << ": its command dialect is not implemented yet (status, watch, raw get and "
                      "raw set work)\n";
         return kExitNoDialect;
+    }
+    if (axis_no != 1) throw UsageError("the 3601 has one axis: --axis 1");
+    if (c_cw_estop || c_ccw_estop || c_disable || c_timeout != 0) {
+      throw UsageError("--cw-estop, --ccw-estop, --disable and --homing-timeout are the 3602's");
     }
     plc::ShmPort port(client, timeout);
     Plc3601 plc(port, timeout);

@@ -8,6 +8,8 @@ namespace stepmod::module::axis {
 // One command-mode scan: level commands and runtime monitors first (a released manual command
 // stops the axis even while CE is set), then the command edges.
 void Axis::command_mode_scan(const AxisCommand& c, Nanos now) {
+  // A19 (3602 config MSW bit 14, 3202 bit 28): a disabled axis ignores commands and stays idle.
+  if (st_.configured && st_.cfg.disabled) return;
   manual_.levels(c);
   const CommandSet rising = c.commands.rising_since(prev_.commands);
   if (!st_.configured) {

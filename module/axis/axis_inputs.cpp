@@ -47,11 +47,13 @@ void Axis::on_input(const gpio::InputEvent& e) {
   }
   if (st_.activity == Activity::kManual && manual_.on_input(e, now_active)) return;
 
-  if (now_active && e.line == InputLine::kEStop) {
-    st_.fault_stop();  // 3601-IE-01, PI-03, STP-02
+  // A 3602 CW / CCW input acts as configured: an end limit, an E-stop, or nothing.
+  const InputLine role = st_.role_of(e.line);
+  if (now_active && role == InputLine::kEStop) {
+    st_.fault_stop();  // 3601-IE-01, PI-03, STP-02; 3602-IE-01, PI-03
     return;
   }
-  if (now_active && (e.line == InputLine::kCwLimit || e.line == InputLine::kCcwLimit)) {
+  if (now_active && (role == InputLine::kCwLimit || role == InputLine::kCcwLimit)) {
     const bool cw_limit = e.line == InputLine::kCwLimit;
     // 3601-IE-02 / PI-04 / STP-04: absolute and relative moves stop at either limit; a manual
     // move only at the limit in its direction of travel, so that it can be driven off a limit.

@@ -46,9 +46,29 @@ bool AxisState::start_move_steps(std::int64_t steps, const Profile& p) {
   return true;
 }
 
+InputLine AxisState::role_of(InputLine line) const noexcept {
+  const auto as = [line](LimitFunction f) {
+    return f == LimitFunction::kEStop ? InputLine::kEStop : line;
+  };
+  if (line == InputLine::kCwLimit) return as(cfg.cw_input);
+  if (line == InputLine::kCcwLimit) return as(cfg.ccw_input);
+  return line;
+}
+
+bool AxisState::estop_active() const noexcept {
+  return inputs.active(InputLine::kEStop) ||
+         (cfg.cw_input == LimitFunction::kEStop && inputs.active(InputLine::kCwLimit)) ||
+         (cfg.ccw_input == LimitFunction::kEStop && inputs.active(InputLine::kCcwLimit));
+}
+
+bool AxisState::limit_active(planner::Direction d) const noexcept {
+  const bool cw = d == planner::Direction::kCw;
+  const auto line = cw ? InputLine::kCwLimit : InputLine::kCcwLimit;
+  return (cw ? cfg.cw_input : cfg.ccw_input) == LimitFunction::kLimit && inputs.active(line);
+}
+
 bool AxisState::inputs_block_start(planner::Direction d) {
-  const auto limit = d == planner::Direction::kCw ? InputLine::kCwLimit : InputLine::kCcwLimit;
-  if (!inputs.active(InputLine::kEStop) && !inputs.active(limit)) return false;
+  if (!estop_active() && !limit_active(d)) return false;
   status.input_error = true;
   return true;
 }

@@ -99,6 +99,13 @@ struct AxisState {
   bool start_move_steps(std::int64_t steps, const Profile& p);
   // 3601-HLD-03: with the External input active a move outputs one step, then holds.
   void start_abs_rel(std::int64_t steps, const Profile& p);
+  // What an input line does on this axis: the 3602's CW / CCW inputs are end limits, E-stops or
+  // unused as configured (AxisConfig::cw_input / ccw_input); every other line is itself.
+  InputLine role_of(InputLine line) const noexcept;
+  // Any input acting as an E-stop is active (the E-stop terminal, or a CW / CCW input so set).
+  bool estop_active() const noexcept;
+  // The end limit toward `d` is configured as a limit and active.
+  bool limit_active(planner::Direction d) const noexcept;
   // A15: no move starts while the E-stop is active or toward an active end limit. True (with
   // Input Error set) when the move must not start.
   bool inputs_block_start(planner::Direction d);

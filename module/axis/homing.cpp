@@ -111,6 +111,7 @@ void Homing::command(const AxisCommand& c, planner::Direction dir) {
   // 3601-CE-10: "S-Curve acceleration profiles are not allowed during a homing operation."
   if (c.s_curve()) {
     ax_.reject();
+    if (ax_.rules.homing_s_curve_sets_home_invalid) ax_.status.home_invalid = true;  // 3602-HI-02
     return;
   }
   // 3601-CE-13 / HI-03: Find Home + needs a configured CW limit, Find Home - a CCW limit (not on
@@ -118,6 +119,14 @@ void Homing::command(const AxisCommand& c, planner::Direction dir) {
   if (ax_.rules.homing_needs_limit_ahead && !ax_.cfg.used(limit_toward(dir))) {
     ax_.reject();
     ax_.status.home_invalid = true;
+    return;
+  }
+  // 3602-CE-12: a home-switch homing needs the home input configured (the 3601's configuration
+  // check guarantees it there, 3601-CFG-02; the 3602 checks it at the command, 3602-CFG-N1).
+  const bool switch_homing = ax_.cfg.homing == HomingVariant::kSwitch ||
+                             ax_.cfg.homing == HomingVariant::kSwitchWithBackplane;
+  if (switch_homing && !ax_.cfg.used(InputLine::kHome)) {
+    ax_.reject();
     return;
   }
   // 3601-HI-02: the target words must be 0. A8: CE as well, no motion.
@@ -139,7 +148,7 @@ void Homing::command(const AxisCommand& c, planner::Direction dir) {
     return;
   }
   // A15: no move starts while the E-stop is active.
-  if (ax_.inputs.active(InputLine::kEStop)) {
+  if (ax_.estop_active()) {
     ax_.status.input_error = true;
     return;
   }
@@ -161,12 +170,12 @@ void Homing::command(const AxisCommand& c, planner::Direction dir) {
                                : ax_.inputs.active(InputLine::kHome);
   // [01] Ch.4 Note 2 under "End Limit Switch Active...": the limit ahead already active -> begin
   // at the reversal, no wait (H-C step 4). The opposite limit active: home normally.
-  const bool limit_ahead = ax_.inputs.active(limit_toward(dir));
+  const bool limit_ahead = ax_.limit_active(dir);
   const bool reverse_first = limit_ahead || home_active;
   const Direction first = reverse_first ? planner::opposite(dir) : dir;
   // A15: a first motion into the (opposite) limit that is already active would be the limit
   // error of 3601-HI-05 at once; refuse it without moving (the position stays as it was).
-  if (reverse_first && ax_.inputs.active(limit_toward(first))) {
+  if (reverse_first && ax_.limit_active(first)) {
     ax_.status.home_invalid = true;
     ax_.status.input_error = true;
     return;
@@ -290,6 +299,28 @@ void Homing::fail() {
   ax_.fault_stop();  // immediate stop, IE, PI
 }
 
+// 3602-HI-07 (Ch.8 "Homing Timeout"): a homing not complete T seconds after the command (pauses
+// included) stops and sets Home Invalid. A16: a controlled stop at the homing decel, PI unchanged.
+// T = 0: no timeout (3601, 3202: always 0). The clock starts at the first scan of the sequence.
+void Homing::timeout(Nanos now) {
+  if (ax_.cfg.homing_timeout <= 0 || ax_.stop_cause != StopCause::kNone ||
+      h_.step == Step::kFinishing || h_.step == Step::kTimedOut) {
+    return;
+  }
+  if (h_.deadline < 0) {
+    h_.deadline = now + ax_.cfg.homing_timeout;
+    return;
+  }
+  if (now < h_.deadline) return;
+  ax_.status.home_invalid = true;
+  if (h_.segment) {
+    h_.step = Step::kTimedOut;  // ends when the stop has (motion_ended)
+    ax_.motion.stop(h_.decel);
+  } else {
+    ax_.activity = Activity::kIdle;  // in a pause: at rest already
+  }
+}
+
 void Homing::scan(const AxisCommand& c, Nanos now) {
   // The backplane proximity bit is a level of the command image; its transitions are events
   // (A44: only when configured and only while homing).
@@ -304,6 +335,7 @@ void Homing::scan(const AxisCommand& c, Nanos now) {
 }
 
 void Homing::timers(Nanos now) {
+  timeout(now);
   if (ax_.activity != Activity::kHoming || ax_.stop_cause != StopCause::kNone) return;
   if (h_.step != Step::kPause1 && h_.step != Step::kPause2) return;
   if (h_.pause_end < 0) {
@@ -315,8 +347,19 @@ void Homing::timers(Nanos now) {
 
 void Homing::on_input(const gpio::InputEvent& e, bool was_active, bool now_active) {
   // Stopping already (home reached, error, Immediate Stop): later edges change nothing.
-  if (ax_.stop_cause != StopCause::kNone || h_.step == Step::kFinishing) return;
-  switch (e.line) {
+  if (ax_.stop_cause != StopCause::kNone || h_.step == Step::kFinishing ||
+      h_.step == Step::kTimedOut) {
+    return;
+  }
+  // 3602-HI-06: the home input and an end limit active at the same time during homing.
+  if (ax_.rules.homing_home_with_limit_is_error && now_active && !was_active &&
+      ax_.inputs.active(InputLine::kHome) &&
+      (ax_.limit_active(Direction::kCw) || ax_.limit_active(Direction::kCcw))) {
+    fail();
+    return;
+  }
+  // A 3602 CW / CCW input configured as an E-stop acts as one (AxisState::role_of).
+  switch (ax_.role_of(e.line)) {
     case InputLine::kEStop:
       // 3601-IE-01 / PI-03 / STP-02; A49: IE + PI, no HI. The homing is a motion in progress
       // for its whole sequence, pauses included (digest 7.16).
@@ -350,6 +393,10 @@ void Homing::motion_ended(StopCause cause) {
   }
   if (!h_.segment) return;  // a pause: no motion to end
   h_.segment = false;
+  if (h_.step == Step::kTimedOut) {
+    ax_.activity = Activity::kIdle;  // 3602-HI-07: the sequence is over
+    return;
+  }
   event(Event::kMotionEnd);
 }
 

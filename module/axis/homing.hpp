@@ -36,6 +36,7 @@ class Homing {
     kCreep,        // Vs (no ramp) toward the commanded direction
     kLimitStop,    // immediate stop at the end limit ahead (H-C)
     kFinishing,    // immediate stop at the home event; completes when the motion has ended
+    kTimedOut,     // 3602 homing timeout: controlled stop, then the sequence is over (HI)
   };
   enum class Event : std::uint8_t {
     kHomeRise,
@@ -52,6 +53,7 @@ class Homing {
   void limit(bool ahead);
   bool run(planner::Direction d, bool creep);
   void fail();
+  void timeout(Nanos now);
 
   struct Sequence {
     planner::Direction dir = planner::Direction::kCw;  // commanded direction
@@ -62,6 +64,7 @@ class Homing {
     bool limit_error = false;     // ended by a limit error (no Stopped, 3601-STP-04)
     bool prox = false;            // backplane proximity bit as last seen
     Nanos pause_end = -1;         // end of the running pause; -1: starts at the next scan
+    Nanos deadline = -1;          // homing timeout's expiry; -1: set at the first scan
     double vp = 0;
     planner::Ramp accel;
     planner::Ramp decel;

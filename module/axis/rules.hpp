@@ -55,6 +55,12 @@ struct ModuleRules {
   // A home command needs the end limit in its own direction configured (3601/3202, 3601-CE-13);
   // the 3602 needs only the home input.
   bool homing_needs_limit_ahead;
+  // Find Home with S-curve: Command Error on every module (3601-CE-10, 3602-CE-11); Home Invalid
+  // too on the 3602 only (3602-HI-02; the 3601 HI list has no such item).
+  bool homing_s_curve_sets_home_invalid;
+  // The home input active together with an end limit during homing is a homing error on the 3602
+  // (3602-HI-06); the 3601 and 3202 lists have no such item.
+  bool homing_home_with_limit_is_error;
   // External input active when a registration move starts: always an error on the 3601, only
   // with a minimum registration distance of 0 on the 3602 (3601-CE-27).
   bool registration_external_always_error;
@@ -87,6 +93,8 @@ inline constexpr ModuleRules kRules3601{
     .preset_clears_move_complete = false,
     .stopped_means_idle = false,
     .homing_needs_limit_ahead = true,
+    .homing_s_curve_sets_home_invalid = false,
+    .homing_home_with_limit_is_error = false,
     .registration_external_always_error = true,
     .powers_up_with_configuration_error = true,
 };
@@ -116,6 +124,8 @@ inline constexpr ModuleRules kRules3602{
     .preset_clears_move_complete = true,
     .stopped_means_idle = true,
     .homing_needs_limit_ahead = false,
+    .homing_s_curve_sets_home_invalid = true,
+    .homing_home_with_limit_is_error = true,
     .registration_external_always_error = false,
     .powers_up_with_configuration_error = true,
 };
@@ -145,6 +155,8 @@ inline constexpr ModuleRules kRules3202{
     .preset_clears_move_complete = false,
     .stopped_means_idle = false,
     .homing_needs_limit_ahead = true,
+    .homing_s_curve_sets_home_invalid = false,
+    .homing_home_with_limit_is_error = false,
     .registration_external_always_error = true,  // no registration at all
     .powers_up_with_configuration_error = false,
 };

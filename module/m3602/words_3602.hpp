@@ -1,11 +1,12 @@
 #pragma once
 // 3602 backplane words and bits, named as in the 3602 manual (shared/spec/manuals/002_...;
 // digest MODULES.md section 4). Tables only for now: stepmodctl decodes a 3602's image by these
-// names; the 3602 dialect (module and PLC side) will take its constants from them the way
-// words_3601.hpp does. Each axis has 8 words at b = 8 * axis; indices below are relative to b.
-// 32-bit values are binary splits (digest 2.2). Header-only, ground layer only.
+// names; the 3602 dialect (module and PLC side) takes its constants from them (below). Each axis
+// has 8 words at b = 8 * axis; indices below are relative to b. 32-bit values are binary splits
+// (digest 2.2). Header-only, ground layer only.
 #include <array>
 #include <cstdint>
+#include <string_view>
 
 #include "core/bit_table.hpp"
 
@@ -126,5 +127,158 @@ inline constexpr std::array<NamedBit, 11> kStatusLswBits = {{
     {12, "Backplane Home Proximity Echo"},
     {13, "General-Purpose Output"},
 }};
+
+// ---- the constants, looked up in the tables --------------------------------------------------
+
+namespace detail {
+template <typename Table>
+consteval std::uint16_t field(const Table& t, std::string_view name) {
+  return mask_of<std::uint16_t>(t, name);
+}
+// The bits of a 16-bit word that no field of `t` names: the manual's reserved bits.
+template <typename Table>
+consteval std::uint16_t unnamed(const Table& t) {
+  std::uint16_t named = 0;
+  for (const NamedBit& b : t)
+    named = static_cast<std::uint16_t>(named | ((1u << b.width) - 1) << b.bit);
+  return static_cast<std::uint16_t>(~named);
+}
+}  // namespace detail
+
+// Output words (PLC -> module) of one axis, relative to b = 8 * axis.
+namespace out_word {
+inline constexpr unsigned kMsw = index_of(kOutputWords, "Command Bits MSW");  // or config MSW
+inline constexpr unsigned kLsw = index_of(kOutputWords, "Command Bits LSW");  // or config LSW
+inline constexpr unsigned kTargetMsw = index_of(kOutputWords, "Target Position MSW");  // cfg: Vs
+inline constexpr unsigned kTargetLsw = index_of(kOutputWords, "Target Position LSW");
+inline constexpr unsigned kSpeedMsw = index_of(kOutputWords, "Programmed Speed MSW");  // cfg: 4 =
+inline constexpr unsigned kSpeedLsw = index_of(kOutputWords, "Programmed Speed LSW");  // timeout
+inline constexpr unsigned kAccel = index_of(kOutputWords, "Acceleration");
+inline constexpr unsigned kDecel = index_of(kOutputWords, "Deceleration");
+// Configuration mode (digest 4.1).
+inline constexpr unsigned kStartingSpeedMsw = kTargetMsw;
+inline constexpr unsigned kStartingSpeedLsw = kTargetLsw;
+inline constexpr unsigned kHomingTimeout = kSpeedMsw;
+}  // namespace out_word
+
+// Input words (module -> PLC) of one axis.
+namespace in_word {
+inline constexpr unsigned kStatusMsw = index_of(kInputWords, "Status Bits MSW");
+inline constexpr unsigned kStatusLsw = index_of(kInputWords, "Status Bits LSW");
+inline constexpr unsigned kPositionMsw = index_of(kInputWords, "Position MSW");
+inline constexpr unsigned kCaptureMsw = index_of(kInputWords, "Capture MSW");
+inline constexpr unsigned kStartingSpeedMsw = index_of(kInputWords, "Starting Speed MSW");
+inline constexpr unsigned kStartingSpeedLsw = index_of(kInputWords, "Starting Speed LSW");
+inline constexpr unsigned kHomingTimeout = index_of(kInputWords, "Homing Timeout");
+}  // namespace in_word
+
+namespace cfg_msw {
+using detail::field;
+inline constexpr std::uint16_t kCaptureEnabled = field(kConfigMswBits, "Capture Input Enabled");
+inline constexpr std::uint16_t kExternalEnabled = field(kConfigMswBits, "External Input Enabled");
+inline constexpr std::uint16_t kHomeEnabled = field(kConfigMswBits, "Home Input Enabled");
+inline constexpr std::uint16_t kCwFunction =
+    field(kConfigMswBits, "CW Input Function (1 = limit, 2 = E-stop)");
+inline constexpr std::uint16_t kCcwFunction =
+    field(kConfigMswBits, "CCW Input Function (1 = limit, 2 = E-stop)");
+inline constexpr unsigned kCwFunctionShift = 3;
+inline constexpr unsigned kCcwFunctionShift = 5;
+inline constexpr std::uint16_t kBackplaneProximity =
+    field(kConfigMswBits, "Backplane Home Proximity");
+inline constexpr std::uint16_t kStepDirOutput =
+    field(kConfigMswBits, "Step+Direction Output (0 = CW/CCW)");
+inline constexpr std::uint16_t kDisableAxis = field(kConfigMswBits, "Disable Axis");
+inline constexpr std::uint16_t kConfigMode = field(kConfigMswBits, "Configuration Mode");
+inline constexpr std::uint16_t kReserved = detail::unnamed(kConfigMswBits);  // 8, 9, 11, 12, 13
+// Input-function field values (digest 4.2).
+inline constexpr unsigned kFunctionUnused = 0b00;
+inline constexpr unsigned kFunctionLimit = 0b01;
+inline constexpr unsigned kFunctionEStop = 0b10;
+inline constexpr unsigned kFunctionInvalid = 0b11;
+}  // namespace cfg_msw
+
+namespace cfg_lsw {
+using detail::field;
+inline constexpr std::uint16_t kCaptureActiveHigh =
+    field(kConfigLswBits, "Capture Input Active High");
+inline constexpr std::uint16_t kExternalActiveHigh =
+    field(kConfigLswBits, "External Input Active High");
+inline constexpr std::uint16_t kHomeActiveHigh = field(kConfigLswBits, "Home Input Active High");
+inline constexpr std::uint16_t kCwActiveHigh = field(kConfigLswBits, "CW Input Active High");
+inline constexpr std::uint16_t kCcwActiveHigh = field(kConfigLswBits, "CCW Input Active High");
+inline constexpr std::uint16_t kReserved = detail::unnamed(kConfigLswBits);  // 5..15
+}  // namespace cfg_lsw
+
+namespace cmd_msw {
+using detail::field;
+inline constexpr std::uint16_t kAbsoluteMove = field(kCommandMswBits, "Absolute Move");
+inline constexpr std::uint16_t kRelativeMove = field(kCommandMswBits, "Relative Move");
+inline constexpr std::uint16_t kHold = field(kCommandMswBits, "Hold Move");
+inline constexpr std::uint16_t kResume = field(kCommandMswBits, "Resume Move");
+inline constexpr std::uint16_t kImmediateStop = field(kCommandMswBits, "Immediate Stop");
+inline constexpr std::uint16_t kFindHomeCw = field(kCommandMswBits, "Find Home CW");
+inline constexpr std::uint16_t kFindHomeCcw = field(kCommandMswBits, "Find Home CCW");
+inline constexpr std::uint16_t kJogCw = field(kCommandMswBits, "Jog CW (Registration CW)");
+inline constexpr std::uint16_t kJogCcw = field(kCommandMswBits, "Jog CCW (Registration CCW)");
+inline constexpr std::uint16_t kPresetPosition = field(kCommandMswBits, "Preset Position");
+inline constexpr std::uint16_t kResetErrors = field(kCommandMswBits, "Reset Errors");
+inline constexpr std::uint16_t kRunBlendCw = field(kCommandMswBits, "Run Blend Move CW");
+inline constexpr std::uint16_t kRunBlendCcw = field(kCommandMswBits, "Run Blend Move CCW");
+inline constexpr std::uint16_t kConfigMode = field(kCommandMswBits, "Configuration Mode");
+inline constexpr std::uint16_t kReserved = detail::unnamed(kCommandMswBits);  // 10, 14: -> CE
+}  // namespace cmd_msw
+
+namespace cmd_lsw {
+using detail::field;
+inline constexpr std::uint16_t kSCurve =
+    field(kCommandLswBits, "S-Curve Acceleration (0 = constant)");
+inline constexpr std::uint16_t kTrapezoidalS =
+    field(kCommandLswBits, "Trapezoidal S-Curve (0 = triangular)");
+inline constexpr std::uint16_t kProgramMinRegistration =
+    field(kCommandLswBits, "Program Minimum Registration Distance");
+inline constexpr std::uint16_t kProgramBlend = field(kCommandLswBits, "Program Blend Move");
+inline constexpr std::uint16_t kBlendTransmit = field(kCommandLswBits, "Blend Move Data Transmit");
+inline constexpr std::uint16_t kBackplaneProximity =
+    field(kCommandLswBits, "Backplane Home Proximity");
+inline constexpr std::uint16_t kGpo = field(kCommandLswBits, "General-Purpose Output");
+// Bits 9..13 (and 14, the radius qualifier the table leaves unnamed): interpolated moves (part 2).
+inline constexpr std::uint16_t kInterpolation = 0x7E00;
+}  // namespace cmd_lsw
+
+namespace status_msw {
+using detail::field;
+inline constexpr std::uint16_t kMovingCw = field(kStatusMswBits, "CW Motion");
+inline constexpr std::uint16_t kMovingCcw = field(kStatusMswBits, "CCW Motion");
+inline constexpr std::uint16_t kHoldState = field(kStatusMswBits, "Hold State");
+inline constexpr std::uint16_t kStopped = field(kStatusMswBits, "Axis Stopped");
+inline constexpr std::uint16_t kAtHome = field(kStatusMswBits, "At Home");
+inline constexpr std::uint16_t kAccelerating = field(kStatusMswBits, "Accelerating");
+inline constexpr std::uint16_t kDecelerating = field(kStatusMswBits, "Decelerating");
+inline constexpr std::uint16_t kMoveComplete = field(kStatusMswBits, "Move Complete");
+inline constexpr std::uint16_t kHomeInvalid = field(kStatusMswBits, "Home Invalid");
+inline constexpr std::uint16_t kInvalidProfile = field(kStatusMswBits, "Invalid Profile");
+inline constexpr std::uint16_t kPositionInvalid = field(kStatusMswBits, "Position Invalid");
+inline constexpr std::uint16_t kInputError = field(kStatusMswBits, "Input Error");
+inline constexpr std::uint16_t kCommandError = field(kStatusMswBits, "Command Error");
+inline constexpr std::uint16_t kConfigurationError = field(kStatusMswBits, "Configuration Error");
+inline constexpr std::uint16_t kAxisEnabled = field(kStatusMswBits, "Axis Enabled");
+inline constexpr std::uint16_t kConfigMode = field(kStatusMswBits, "Configuration Mode");
+}  // namespace status_msw
+
+namespace status_lsw {
+using detail::field;
+inline constexpr std::uint16_t kCaptureActive = field(kStatusLswBits, "Capture Input Active");
+inline constexpr std::uint16_t kExternalActive = field(kStatusLswBits, "External Input Active");
+inline constexpr std::uint16_t kHomeActive = field(kStatusLswBits, "Home Input Active");
+inline constexpr std::uint16_t kCwActive = field(kStatusLswBits, "CW Input Active");
+inline constexpr std::uint16_t kCcwActive = field(kStatusLswBits, "CCW Input Active");
+inline constexpr std::uint16_t kBlendRunning = field(kStatusLswBits, "Blend Move Running");
+inline constexpr std::uint16_t kBlendAcknowledge = field(kStatusLswBits, "Blend Block Acknowledge");
+inline constexpr std::uint16_t kMinRegistrationSet =
+    field(kStatusLswBits, "Min. Registration Distance Set");
+inline constexpr std::uint16_t kProximityEcho =
+    field(kStatusLswBits, "Backplane Home Proximity Echo");
+inline constexpr std::uint16_t kGpo = field(kStatusLswBits, "General-Purpose Output");
+}  // namespace status_lsw
 
 }  // namespace stepmod::module::m3602

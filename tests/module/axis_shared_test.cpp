@@ -289,6 +289,107 @@ TEST_P(AxisShared, CE_27_RegistrationWithExternalActivePerModule) {
   }
 }
 
+// A19 (3602 config MSW bit 14, 3202 bit 28): a disabled axis ignores every command and stays
+// idle, without a Command Error. The 3601 has no disable bit: its dialect never sets the flag.
+TEST_P(AxisShared, EN_01_DisabledAxisIgnoresCommandsPerModule) {
+  if (!rules().has_disable) GTEST_SKIP() << "no disable bit on this module";
+  ax::AxisConfig cfg = full_axis_config();
+  cfg.disabled = true;
+  rig_.configure(cfg);
+  rig_.command(CommandKind::kRelativeMove, {.target = 500});
+  rig_.hold(CommandKind::kManualCw, {.target = 0, .speed = 2'000});
+  rig_.scans(100);
+  rig_.clear();
+  rig_.command(CommandKind::kAbsoluteMove, {.target = 50});
+  rig_.scans(20);
+  EXPECT_EQ(rig_.motor(), 0);
+  EXPECT_FALSE(rig_.moving());
+  EXPECT_FALSE(rig_.status().command_error);
+  // Enabled again by a new configuration, the same move runs.
+  rig_.configure();
+  rig_.command(CommandKind::kRelativeMove, {.target = 500});
+  ASSERT_TRUE(rig_.wait_idle());
+  EXPECT_EQ(rig_.motor(), 500);
+}
+
+// 3602 (digest 4.2, 3602-IE-01 / PI-03): a CW / CCW input configured as an E-stop stops a move
+// in either direction (IE, PI) and blocks the next; configured unused it does nothing. The 3601
+// and 3202 inputs are always end limits (their dialects leave the function at kLimit).
+TEST_P(AxisShared, IE_01_CwInputConfiguredAsEStopPerModule) {
+  if (!rules().cw_ccw_inputs_configurable) GTEST_SKIP() << "CW/CCW inputs are always limits";
+  ax::AxisConfig cfg = full_axis_config();
+  cfg.inputs_used &= static_cast<std::uint16_t>(~(1u << static_cast<unsigned>(InputLine::kEStop)));
+  cfg.cw_input = ax::LimitFunction::kEStop;
+  cfg.ccw_input = ax::LimitFunction::kUnused;
+  cfg.inputs_used &=
+      static_cast<std::uint16_t>(~(1u << static_cast<unsigned>(InputLine::kCcwLimit)));
+  rig_.configure(cfg);
+  // The unused CCW input: a CCW move runs through its activation.
+  rig_.command(CommandKind::kRelativeMove, {.target = -3'000});
+  rig_.run_for(100 * kNsPerMs);
+  rig_.force(InputLine::kCcwLimit, true);
+  ASSERT_TRUE(rig_.wait_idle());
+  EXPECT_EQ(rig_.motor(), -3'000);
+  EXPECT_FALSE(rig_.status().input_error);
+  // The CW input as an E-stop stops a CCW move: not a limit "in its direction" but an E-stop.
+  rig_.command(CommandKind::kRelativeMove, {.target = -50'000});
+  rig_.run_for(200 * kNsPerMs);
+  rig_.force(InputLine::kCwLimit, true);
+  ASSERT_TRUE(rig_.wait_idle());
+  EXPECT_TRUE(rig_.status().input_error);
+  EXPECT_TRUE(rig_.status().position_invalid);
+  EXPECT_GT(rig_.motor(), -50'000);
+  const std::int64_t at = rig_.motor();
+  // A15: no move starts, in either direction, while it is active.
+  rig_.command(CommandKind::kRelativeMove, {.target = -100});
+  rig_.run_for(100 * kNsPerMs);
+  EXPECT_EQ(rig_.motor(), at);
+  EXPECT_TRUE(rig_.status().input_error);
+}
+
+// 3602-HI-07 (A16): a homing still running T s after its command stops (controlled) with Home
+// Invalid; modules without a homing timeout never set one (their dialects leave T = 0).
+TEST_P(AxisShared, HI_07_HomingTimeoutPerModule) {
+  if (!rules().has_homing_timeout) GTEST_SKIP() << "no homing timeout on this module";
+  ax::AxisConfig cfg = full_axis_config();
+  cfg.homing_timeout = kNsPerSec;
+  rig_.configure(cfg);
+  rig_.command(CommandKind::kFindHomeCw, {.target = 0, .speed = 1'500});
+  rig_.run_for(800 * kNsPerMs);
+  EXPECT_TRUE(rig_.moving());
+  EXPECT_FALSE(rig_.status().home_invalid);
+  ASSERT_TRUE(rig_.wait_idle(3 * kNsPerSec));
+  EXPECT_TRUE(rig_.status().home_invalid);
+  EXPECT_FALSE(rig_.status().at_home);
+  const std::int64_t at = rig_.motor();
+  rig_.run_for(3 * kNsPerSec);
+  EXPECT_EQ(rig_.motor(), at);
+}
+
+// Find Home with S-curve: CE everywhere (3601-CE-10, 3602-CE-11), HI on the 3602 (3602-HI-02).
+TEST_P(AxisShared, CE_10_HomingWithSCurvePerModule) {
+  rig_.configure();
+  rig_.image().shape = planner::AccelShape::kTriangularS;
+  rig_.command(CommandKind::kFindHomeCw, {.target = 0, .speed = 5'000});
+  EXPECT_TRUE(rig_.status().command_error);
+  EXPECT_EQ(rig_.status().home_invalid, rules().homing_s_curve_sets_home_invalid);
+  rig_.scans(20);
+  EXPECT_EQ(rig_.motor(), 0);
+}
+
+// 3602-HI-06: the home input and an end limit active together during homing is a homing error
+// on the 3602; on the 3601 / 3202 the limit ahead is the H-C reversal, no error.
+TEST_P(AxisShared, HI_06_HomeWithLimitDuringHomingPerModule) {
+  rig_.configure();
+  rig_.command(CommandKind::kFindHomeCw, {.target = 0, .speed = 5'000});
+  rig_.run_for(100 * kNsPerMs);
+  rig_.force(InputLine::kHome, true);
+  rig_.scans(2);
+  rig_.force(InputLine::kCwLimit, true);
+  rig_.scans(5);
+  EXPECT_EQ(rig_.status().home_invalid, rules().homing_home_with_limit_is_error);
+}
+
 std::string module_name(const ::testing::TestParamInfo<ModuleType>& info) {
   return std::to_string(static_cast<unsigned>(info.param));
 }

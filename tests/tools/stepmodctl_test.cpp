@@ -64,16 +64,24 @@ TEST(Stepmodctl, CommandsOnA3202SayTheDialectIsNotImplementedAndWriteNothing) {
   EXPECT_EQ(outputs_of(n), ImageWords{});
 }
 
-TEST(Stepmodctl, CommandsOnA3602SayTheDialectIsNotImplementedStatusDecodes) {
+TEST(Stepmodctl, CommandsOnA3602NotImplementedYetSayItStatusDecodes) {
   const std::string n = image_name("3602");
   ipc::ShmImage img(n, {ModuleType::k3602, 2, 2, 16, 16});
-  const CtlRun stop = stepmodctl("-n " + n + " stop");
+  const CtlRun stop = stepmodctl("-n " + n + " --axis 2 home + -s 5000 -a 10 -d 10");
   EXPECT_EQ(stop.exit_status, 4) << stop.err;
   EXPECT_NE(stop.err.find("3602"), std::string::npos) << stop.err;
   EXPECT_EQ(outputs_of(n), ImageWords{});
   const CtlRun status = stepmodctl("-n " + n + " status");
   EXPECT_EQ(status.exit_status, 0) << status.err;
   EXPECT_NE(status.out.find("3602 axis 2 in COMMAND mode"), std::string::npos) << status.out;
+}
+
+TEST(Stepmodctl, A3602OnlyOptionOnA3601IsAUsageErrorAndWritesNothing) {
+  const std::string n = image_name("3601axis");
+  ipc::ShmImage img(n, {ModuleType::k3601, 1, 2, 8, 8});
+  EXPECT_EQ(stepmodctl("-n " + n + " --axis 2 stop").exit_status, 2);
+  EXPECT_EQ(stepmodctl("-n " + n + " configure --home --cw-estop").exit_status, 2);
+  EXPECT_EQ(outputs_of(n), ImageWords{});
 }
 
 TEST(Stepmodctl, A3601TargetTheWordsCannotCarryIsAUsageErrorAndWritesNothing) {

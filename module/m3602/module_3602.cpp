@@ -1,0 +1,96 @@
+#include "module/m3602/module_3602.hpp"
+
+#include "module/m3602/config_3602.hpp"
+#include "module/m3602/dialect_3602.hpp"
+#include "module/m3602/words_3602.hpp"
+
+namespace stepmod::module::m3602 {
+
+namespace {
+constexpr ModuleShape kShape = shape_of(ModuleType::k3602);
+
+// One axis' eight words of the module's sixteen (b = 8 * axis).
+ImageWords axis_words(const ImageWords& image, unsigned axis) noexcept {
+  ImageWords w;
+  for (unsigned i = 0; i < kWordsPerAxis; ++i) w.w[i] = image.w[kWordsPerAxis * axis + i];
+  return w;
+}
+void put_axis_words(const ImageWords& w, unsigned axis, ImageWords& image) noexcept {
+  for (unsigned i = 0; i < kWordsPerAxis; ++i) image.w[kWordsPerAxis * axis + i] = w.w[i];
+}
+}  // namespace
+
+Module3602::Channel::Channel(gpio::Backend& backend, planner::MotionPort& m)
+    : motion(m), axis(axis::kRules3602, backend, m) {}
+
+void Module3602::Channel::set_gpo(bool level) {
+  if (level == gpo) return;
+  if (motion.set_gpo(level)) gpo = level;  // a full command queue: tried again next scan
+}
+
+void Module3602::Channel::scan(const ImageWords& out, ImageWords& in, Nanos now) {
+  const bool was_config = axis.in_configuration_mode();
+  // The image read as configuration words matters only with the mode bit set.
+  std::optional<axis::AxisConfig> configuration;
+  if (static_cast<std::uint16_t>(out.w[out_word::kMsw]) & cfg_msw::kConfigMode) {
+    Config3602 decoded;
+    if (check_config(out, decoded) == ConfigFault::kNone) {
+      configuration = to_axis_config(decoded);
+    }
+  }
+  axis.scan(command_from_words(out), configuration, now);
+  if (axis.in_configuration_mode()) {
+    // The axis evaluates the words every configuration scan; the verdict it keeps is this one.
+    pending_disabled = configuration && configuration->disabled;
+  } else if (was_config) {
+    disabled = pending_disabled;  // the configuration the axis took on leaving the mode
+  }
+
+  const axis::AxisStatus s = axis.status();
+  // 3602-EN-01 / A19: enabled = configured (no CfgE) and not disabled.
+  const bool enabled = !s.configuration_error && !disabled;
+  if (axis.in_configuration_mode()) {
+    // A26: the 3602 echoes the last data written. Enabled: of the configuration now written.
+    configuration_image_to_words(out, s.configuration_error, configuration && !pending_disabled,
+                                 in);
+    return;
+  }
+  // The general-purpose output follows command LSW bit 7 at any time in command mode (digest
+  // 4.7: a level, not a command).
+  set_gpo(gpo_from_words(out));
+  status_to_words(s, StatusExtras{.axis_enabled = enabled, .gpo = gpo}, in);
+}
+
+Module3602::Module3602(gpio::Backend& backend, planner::MotionPort& axis1,
+                       planner::MotionPort& axis2)
+    : axes_{Channel(backend, axis1), Channel(backend, axis2)} {}
+
+const ModuleShape& Module3602::shape() const noexcept {
+  return kShape;
+}
+
+void Module3602::on_input(const gpio::InputEvent& e) {
+  if (e.axis < axes_.size()) axes_[e.axis].axis.on_input(e);
+}
+
+void Module3602::scan(const ImageWords& out, ImageWords& in, Nanos now) {
+  in = ImageWords{};
+  for (unsigned a = 0; a < axes_.size(); ++a) {
+    ImageWords axis_in;
+    axes_[a].scan(axis_words(out, a), axis_in, now);
+    put_axis_words(axis_in, a, in);
+  }
+}
+
+void Module3602::plc_stopped(Nanos /*now*/) {
+  for (Channel& c : axes_) c.axis.plc_stopped();
+}
+
+void Module3602::shutdown() {
+  for (Channel& c : axes_) {
+    c.axis.plc_stopped();  // immediate stop of a motion under way
+    c.set_gpo(false);      // idle-low at shutdown
+  }
+}
+
+}  // namespace stepmod::module::m3602

@@ -1,0 +1,134 @@
+// End to end: the real stepmodd as a 3602 on the simulated machine, driven through shared memory
+// by the PLC-side library (plc/plc_3602), checked through the status words, the panel and the
+// VCD trace: both axes at once with exact counts, the binary split at 50,800 and at a negative
+// target, GPO edges, a CW input configured as an E-stop stopping its axis only.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "core/lines.hpp"
+#include "ipc/client.hpp"
+#include "ipc/sim_panel.hpp"
+#include "module/m3602/words_3602.hpp"
+#include "plc/plc_3602.hpp"
+#include "plc/shm_port.hpp"
+#include "tests/support/daemon_process.hpp"
+#include "tests/support/vcd_reader.hpp"
+
+namespace stepmod::testing {
+namespace {
+
+namespace m = module::m3602;
+using namespace m::status_msw;
+using std::chrono::milliseconds;
+
+std::string config_3602() {
+  std::string axes;
+  for (unsigned a = 0; a < 2; ++a) {
+    const unsigned o = 10 * a;
+    axes += "\n[[axis]]\nstep = " + std::to_string(o + 1) + "\ndir = " + std::to_string(o + 2) +
+            "\ngpo = " + std::to_string(o + 3) + "\ncapture = " + std::to_string(o + 4) +
+            "\nexternal = " + std::to_string(o + 5) + "\nhome = " + std::to_string(o + 6) +
+            "\ncw_limit = " + std::to_string(o + 7) + "\nccw_limit = " + std::to_string(o + 8) +
+            "\n[axis.sim]\ncw_limit_at = 1000000\nccw_limit_at = -1000000\nhome_from = 5000\n"
+            "home_to = 5100\n";
+  }
+  return R"(
+[module]
+type = "3602"
+name = "{NAME}"
+scan_us = 1000
+
+[gpio]
+backend = "sim"
+
+[rt]
+priority = 80
+)" + axes;
+}
+
+// Home, capture and external enabled, CW/CCW inputs as limits, step/direction, active high.
+constexpr std::uint16_t kLimits =
+    m::cfg_msw::kCaptureEnabled | m::cfg_msw::kExternalEnabled | m::cfg_msw::kHomeEnabled |
+    (m::cfg_msw::kFunctionLimit << m::cfg_msw::kCwFunctionShift) |
+    (m::cfg_msw::kFunctionLimit << m::cfg_msw::kCcwFunctionShift) | m::cfg_msw::kStepDirOutput;
+constexpr std::uint16_t kEStopCw =
+    static_cast<std::uint16_t>((kLimits & ~m::cfg_msw::kCwFunction) |
+                               (m::cfg_msw::kFunctionEStop << m::cfg_msw::kCwFunctionShift));
+
+class Daemon3602 : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    daemon_ = std::make_unique<DaemonProcess>(config_3602());
+    ASSERT_TRUE(daemon_->wait_ready()) << daemon_->log();
+    client_ = std::make_unique<ipc::Client>(daemon_->name());
+    port_ = std::make_unique<plc::ShmPort>(*client_, milliseconds(2000));
+    plc_ = std::make_unique<plc::Plc3602>(*port_, milliseconds(2000), kSeq);
+  }
+  plc::m3602::Status status(unsigned axis) const {
+    ImageWords in;
+    EXPECT_TRUE(port_->read_inputs(in));
+    return plc::m3602::decode_status(in, axis);
+  }
+  Vcd stop_and_read_trace() {
+    plc_.reset();
+    port_.reset();
+    client_.reset();
+    EXPECT_EQ(daemon_->terminate(), 0) << daemon_->log();
+    return read_vcd(daemon_->trace_path());
+  }
+  static constexpr plc::Sequencing kSeq{
+      .hold_scans = 3, .release_scans = 2, .config_scans = 3, .release_stale_bits = false};
+  static constexpr plc::Profile kProfile{.speed = 20'000, .accel = 100, .decel = 100};
+  std::unique_ptr<DaemonProcess> daemon_;
+  std::unique_ptr<ipc::Client> client_;
+  std::unique_ptr<plc::ShmPort> port_;
+  std::unique_ptr<plc::Plc3602> plc_;
+};
+
+TEST_F(Daemon3602, BothAxesAtOnceExactCountsBinarySplitAndGpoEdges) {
+  ASSERT_TRUE(plc_->configure(0, kLimits, 0x1F, 1'000).ok);
+  ASSERT_TRUE(plc_->configure(1, kLimits, 0x1F, 1'000).ok);
+  ASSERT_TRUE(plc_->set_gpo(1, true).ok);
+  ASSERT_TRUE(plc_->move(0, false, 50'800, kProfile).ok);  // 16#0000 / 16#C670
+  EXPECT_EQ(port_->outputs().w[m::out_word::kTargetLsw], -14'736);
+  ASSERT_TRUE(plc_->move(1, false, -33'333, kProfile).ok);
+  ASSERT_TRUE(plc_->wait_idle(0, std::chrono::seconds(20)).ok);
+  ASSERT_TRUE(plc_->wait_idle(1, std::chrono::seconds(20)).ok);
+  EXPECT_EQ(status(0).position, 50'800);
+  EXPECT_EQ(status(1).position, -33'333);
+  EXPECT_TRUE(status(0).has(kMoveComplete));
+  EXPECT_TRUE(status(1).has_lsw(m::status_lsw::kGpo));
+  ASSERT_TRUE(plc_->set_gpo(1, false).ok);
+  const Vcd vcd = stop_and_read_trace();
+  EXPECT_EQ(vcd.rising("axis1.step").size(), 50'800u);
+  EXPECT_EQ(vcd.rising("axis2.step").size(), 33'333u);
+  EXPECT_EQ(vcd.rising("axis2.gpo").size(), 1u);
+  EXPECT_EQ(vcd.final_level("axis2.gpo"), 0);
+  EXPECT_EQ(vcd.rising("axis1.gpo").size(), 0u);
+}
+
+TEST_F(Daemon3602, CwInputConfiguredAsEStopStopsItsAxisOnly) {
+  ASSERT_TRUE(plc_->configure(0, kEStopCw, 0x1F, 1'000).ok);
+  ASSERT_TRUE(plc_->configure(1, kLimits, 0x1F, 1'000).ok);
+  ASSERT_TRUE(plc_->move(0, false, -200'000, kProfile).ok);
+  ASSERT_TRUE(plc_->move(1, false, 40'000, kProfile).ok);
+  std::this_thread::sleep_for(milliseconds(300));
+  ipc::SimPanelClient panel(daemon_->name());
+  panel.force(0, static_cast<unsigned>(InputLine::kCwLimit), true);
+  ASSERT_TRUE(plc_->wait_idle(0, std::chrono::seconds(2)).ok);
+  EXPECT_TRUE(status(0).has(kInputError));
+  EXPECT_TRUE(status(0).has(kPositionInvalid));
+  EXPECT_TRUE(status(1).moving());
+  ASSERT_TRUE(plc_->wait_idle(1, std::chrono::seconds(20)).ok);
+  EXPECT_EQ(status(1).position, 40'000);
+  EXPECT_FALSE(status(1).has(kInputError));
+  panel.release(0, static_cast<unsigned>(InputLine::kCwLimit));
+  const Vcd vcd = stop_and_read_trace();
+  EXPECT_EQ(vcd.rising("axis2.step").size(), 40'000u);
+  EXPECT_LT(vcd.rising("axis1.step").size(), 200'000u);
+}
+
+}  // namespace
+}  // namespace stepmod::testing

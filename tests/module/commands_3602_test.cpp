@@ -1,0 +1,168 @@
+// 3602 command mode through the module's words (digest 4.5-4.11, 6.2): both axes moving at once
+// with exact counts, targets in the binary split, the ranges, Move Complete, Axis Stopped, the
+// general-purpose output.
+#include "tests/module/rig_3602.hpp"
+
+namespace stepmod::testing {
+namespace {
+
+using namespace m2::status_msw;
+namespace cmd = m2::cmd_msw;
+
+class Commands3602 : public Rig3602 {
+ protected:
+  void SetUp() override {
+    configure(kAxis1);
+    configure(kAxis2);
+  }
+};
+
+TEST_F(Commands3602, MC_01_BothAxesAtOnceExactCounts) {
+  set_command(kAxis1, cmd::kRelativeMove, {.target = 50'800, .speed = 40'000, .accel = 50});
+  set_command(kAxis2, cmd::kRelativeMove, {.target = -23'456, .speed = 20'000, .accel = 50});
+  vm_.scans(3);
+  EXPECT_TRUE(moving(kAxis1));
+  EXPECT_TRUE(moving(kAxis2));
+  // 50,800 travels as 16#0000 / 16#C670.
+  EXPECT_EQ(word(kAxis1, m2::out_word::kTargetMsw), 0);
+  EXPECT_EQ(word(kAxis1, m2::out_word::kTargetLsw), -14'736);
+  ASSERT_TRUE(wait_idle(kAxis1));
+  ASSERT_TRUE(wait_idle(kAxis2));
+  EXPECT_EQ(motor(kAxis1), 50'800);
+  EXPECT_EQ(motor(kAxis2), -23'456);
+  EXPECT_EQ(position(kAxis1), 50'800);
+  EXPECT_EQ(position(kAxis2), -23'456);
+  EXPECT_TRUE(status(kAxis1, kMoveComplete));
+  EXPECT_TRUE(status(kAxis2, kMoveComplete));
+}
+
+TEST_F(Commands3602, NegativeAbsoluteTargetInTheBinarySplit) {
+  command(kAxis1, cmd::kPresetPosition, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  command(kAxis2, cmd::kPresetPosition, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  set_command(kAxis2, cmd::kAbsoluteMove, {.target = -70'000, .speed = 50'000, .accel = 100});
+  EXPECT_EQ(word(kAxis2, m2::out_word::kTargetMsw), -2);  // 16#FFFE:EE90
+  EXPECT_EQ(word(kAxis2, m2::out_word::kTargetLsw), -4'464);
+  vm_.scans(3);
+  ASSERT_TRUE(wait_idle(kAxis2));
+  EXPECT_EQ(motor(kAxis2), -70'000);
+  EXPECT_EQ(position(kAxis2), -70'000);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+TEST_F(Commands3602, CE_05_TargetRangeIsPlusMinus1073741823) {
+  // Preset accepts the range's ends and reports them back.
+  command(kAxis1, cmd::kPresetPosition,
+          {.target = 1'073'741'823, .speed = 0, .accel = 0, .decel = 0});
+  EXPECT_EQ(position(kAxis1), 1'073'741'823);
+  EXPECT_FALSE(status(kAxis1, kCommandError));
+  command(kAxis1, cmd::kPresetPosition,
+          {.target = -1'073'741'823, .speed = 0, .accel = 0, .decel = 0});
+  EXPECT_EQ(position(kAxis1), -1'073'741'823);
+  EXPECT_FALSE(status(kAxis1, kCommandError));
+  // One beyond: Command Error, nothing moves.
+  command(kAxis1, cmd::kRelativeMove, {.target = 1'073'741'824});
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  vm_.scans(20);
+  EXPECT_EQ(motor(kAxis1), 0);
+  command(kAxis1, cmd::kResetErrors, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  EXPECT_FALSE(status(kAxis1, kCommandError));
+  command(kAxis1, cmd::kRelativeMove, {.target = -1'073'741'824});
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  vm_.scans(20);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+TEST_F(Commands3602, CE_05_SpeedAboveOneMillionIsRefused) {
+  command(kAxis1, cmd::kRelativeMove, {.target = 100, .speed = 1'000'001});
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  vm_.scans(20);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+TEST_F(Commands3602, MC_02_PresetPositionClearsMoveComplete) {
+  command(kAxis1, cmd::kRelativeMove, {.target = 800});
+  ASSERT_TRUE(wait_idle(kAxis1));
+  ASSERT_TRUE(status(kAxis1, kMoveComplete));
+  command(kAxis1, cmd::kPresetPosition, {.target = -5, .speed = 0, .accel = 0, .decel = 0});
+  EXPECT_EQ(position(kAxis1), -5);
+  EXPECT_FALSE(status(kAxis1, kMoveComplete));
+}
+
+TEST_F(Commands3602, STP_01_AxisStoppedWheneverIdleInCommandMode) {
+  EXPECT_TRUE(status(kAxis1, kStopped));
+  set_command(kAxis1, cmd::kRelativeMove, {.target = 5'000});
+  vm_.scans(3);
+  EXPECT_FALSE(status(kAxis1, kStopped));
+  EXPECT_TRUE(status(kAxis2, kStopped));
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_TRUE(status(kAxis1, kStopped));
+  EXPECT_TRUE(status(kAxis1, kMoveComplete));
+}
+
+TEST_F(Commands3602, CE_02_MoreThanOneCommandBit) {
+  command(kAxis2, cmd::kRelativeMove | cmd::kAbsoluteMove, {.target = 100});
+  EXPECT_TRUE(status(kAxis2, kCommandError));
+  EXPECT_FALSE(status(kAxis1, kCommandError));
+  vm_.scans(20);
+  EXPECT_EQ(motor(kAxis2), 0);
+}
+
+// Digest 4.7 / 3602-LSW-01: command LSW bit 7 is the general-purpose output, a level at any time
+// in command mode, on its own axis' line, echoed in status LSW bit 13.
+TEST_F(Commands3602, LSW_01_GeneralPurposeOutputFollowsLswBit7) {
+  constexpr std::uint32_t kGpoLevel = 1u << static_cast<unsigned>(OutputLine::kGpo);
+  word(kAxis2, m2::out_word::kLsw) = m2::cmd_lsw::kGpo;
+  vm_.scans(2);
+  EXPECT_TRUE(lsw_status(kAxis2, m2::status_lsw::kGpo));
+  EXPECT_FALSE(lsw_status(kAxis1, m2::status_lsw::kGpo));
+  EXPECT_EQ(vm_.sim().output_levels(kAxis2) & kGpoLevel, kGpoLevel);
+  EXPECT_EQ(vm_.sim().output_levels(kAxis1) & kGpoLevel, 0u);
+  // Kept through a move whose LSW carries it.
+  command(kAxis2, cmd::kRelativeMove, {.target = 300, .lsw = m2::cmd_lsw::kGpo});
+  ASSERT_TRUE(wait_idle(kAxis2));
+  EXPECT_EQ(motor(kAxis2), 300);
+  EXPECT_TRUE(lsw_status(kAxis2, m2::status_lsw::kGpo));
+  word(kAxis2, m2::out_word::kLsw) = 0;
+  vm_.scans(2);
+  EXPECT_FALSE(lsw_status(kAxis2, m2::status_lsw::kGpo));
+  EXPECT_EQ(vm_.sim().output_levels(kAxis2) & kGpoLevel, 0u);
+}
+
+TEST_F(Commands3602, LSW_01_ProximityEchoIsCommandLswBit6) {
+  word(kAxis1, m2::out_word::kLsw) = m2::cmd_lsw::kBackplaneProximity;
+  vm_.scans(2);
+  EXPECT_TRUE(lsw_status(kAxis1, m2::status_lsw::kProximityEcho));
+  EXPECT_FALSE(lsw_status(kAxis2, m2::status_lsw::kProximityEcho));
+}
+
+// 3602-IE-01 / PI-03 on one axis: axis 1's CW input configured as an E-stop stops axis 1 only;
+// axis 2 runs on to its exact count.
+TEST_F(Commands3602, IE_01_PI_03_CwInputAsEStopStopsItsAxisOnly) {
+  const auto estop_cw =
+      static_cast<std::uint16_t>((kLimitsConfigMsw & ~m2::cfg_msw::kCwFunction) |
+                                 m2::cfg_msw::kFunctionEStop << m2::cfg_msw::kCwFunctionShift);
+  configure(kAxis1, estop_cw);
+  set_command(kAxis1, cmd::kRelativeMove, {.target = -60'000});
+  set_command(kAxis2, cmd::kRelativeMove, {.target = 20'000});
+  vm_.scans(3);
+  word(kAxis1, m2::out_word::kMsw) = 0;
+  word(kAxis2, m2::out_word::kMsw) = 0;
+  vm_.run_for(300 * kNsPerMs);
+  // Panel: axis 1's CW input line high (active high).
+  vm_.sim().force(kAxis1, 1u << static_cast<unsigned>(InputLine::kCwLimit),
+                  1u << static_cast<unsigned>(InputLine::kCwLimit), vm_.now());
+  vm_.scans(3);
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_TRUE(status(kAxis1, kInputError));
+  EXPECT_TRUE(status(kAxis1, kPositionInvalid));
+  EXPECT_TRUE(lsw_status(kAxis1, m2::status_lsw::kCwActive));
+  EXPECT_GT(motor(kAxis1), -60'000);
+  EXPECT_TRUE(moving(kAxis2));
+  ASSERT_TRUE(wait_idle(kAxis2));
+  EXPECT_EQ(motor(kAxis2), 20'000);
+  EXPECT_FALSE(status(kAxis2, kInputError));
+  EXPECT_TRUE(status(kAxis2, kMoveComplete));
+}
+
+}  // namespace
+}  // namespace stepmod::testing

@@ -1,0 +1,216 @@
+// 3602 homing (3602 manual Ch.4 "Homing the 3602", Ch.8 "Homing Timeout"; digest 7.11, 6.2
+// Home Invalid and CE-12): the home input alone, the 2-s pause after each stop inside the
+// sequence, the homing timeout, the command checks.
+#include "tests/module/rig_3602.hpp"
+
+namespace stepmod::testing {
+namespace {
+
+using namespace m2::status_msw;
+namespace cmd = m2::cmd_msw;
+
+class Homing3602 : public Rig3602 {
+ protected:
+  // Find Home + on axis 1 (home switch at 5,000..5,100): Vp 10,000, Vs 1,000.
+  static constexpr Move3602 kHome{.target = 0, .speed = 10'000, .accel = 20, .decel = 20};
+  static constexpr Nanos kLimit = 60 * kNsPerSec;
+
+  bool wait_homed(unsigned axis) {
+    return vm_.run_until_true([this, axis] { return status(axis, kAtHome); }, kLimit);
+  }
+  // The idle gaps between step edges longer than `at_least`.
+  unsigned gaps(unsigned axis, Nanos at_least) const {
+    const auto& t = vm_.step_times(axis);
+    unsigned n = 0;
+    for (std::size_t i = 1; i < t.size(); ++i) {
+      if (t[i] - t[i - 1] >= at_least) ++n;
+    }
+    return n;
+  }
+};
+
+TEST_F(Homing3602, AH_01_HomeInputAloneEndsAtHomeWithPositionZero) {
+  configure(kAxis1);
+  command(kAxis1, cmd::kFindHomeCw, kHome);
+  ASSERT_TRUE(wait_homed(kAxis1));
+  EXPECT_EQ(position(kAxis1), 0);
+  EXPECT_FALSE(status(kAxis1, kPositionInvalid));
+  EXPECT_FALSE(status(kAxis1, kHomeInvalid));
+  EXPECT_TRUE(status(kAxis1, kStopped));  // 3602-STP-01: idle after homing too
+  // The home edge is met at 5,000 going CW at Vs after the reversal and pauses.
+  EXPECT_GE(motor(kAxis1), 5'000);
+  EXPECT_LE(motor(kAxis1), 5'001);
+  // The 2-s pause after each decel-to-stop inside the sequence: after the stop past the home
+  // switch and after the stop of the reversal (digest 7.11 steps 3 and 6).
+  EXPECT_EQ(gaps(kAxis1, 2 * kNsPerSec), 2u);
+  EXPECT_EQ(gaps(kAxis1, 2 * kNsPerSec + 50 * kNsPerMs), 0u);  // and not much more
+  // Passing the home switch later does not set At Home again once a move cleared it.
+  command(kAxis1, cmd::kRelativeMove, {.target = 300});
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_FALSE(status(kAxis1, kAtHome));
+}
+
+TEST_F(Homing3602, CE_12_FindHomeWithoutTheHomeInputEnabled) {
+  configure(kAxis1, static_cast<std::uint16_t>(kLimitsConfigMsw & ~m2::cfg_msw::kHomeEnabled));
+  command(kAxis1, cmd::kFindHomeCw, kHome);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  vm_.run_for(200 * kNsPerMs);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+TEST_F(Homing3602, HI_04_FindHomeWithNonZeroReservedWords) {
+  configure(kAxis1);
+  Move3602 p = kHome;
+  p.target = 1;
+  command(kAxis1, cmd::kFindHomeCw, p);
+  EXPECT_TRUE(status(kAxis1, kHomeInvalid));
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  vm_.run_for(200 * kNsPerMs);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+TEST_F(Homing3602, HI_01_FindHomeWithVpBelowVs) {
+  configure(kAxis1);
+  Move3602 p = kHome;
+  p.speed = 999;
+  command(kAxis1, cmd::kFindHomeCw, p);
+  EXPECT_TRUE(status(kAxis1, kHomeInvalid));
+  vm_.run_for(200 * kNsPerMs);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+// 3602-HI-07, A16: the timeout stops the search with a controlled stop and sets HI; PI is left
+// as it was.
+TEST_F(Homing3602, HI_07_HomingTimeoutSetsHomeInvalid) {
+  configure(kAxis1, kLimitsConfigMsw, kAllActiveHigh3602, 1'000, 1);  // T = 1 s
+  command(kAxis1, cmd::kPresetPosition, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  ASSERT_FALSE(status(kAxis1, kPositionInvalid));
+  Move3602 slow = kHome;
+  slow.speed = 2'000;  // 5,000 steps away: 2.5 s, longer than T
+  command(kAxis1, cmd::kFindHomeCw, slow);
+  vm_.run_for(900 * kNsPerMs);
+  EXPECT_TRUE(moving(kAxis1));
+  EXPECT_FALSE(status(kAxis1, kHomeInvalid));
+  ASSERT_TRUE(wait_idle(kAxis1, 2 * kNsPerSec));
+  EXPECT_TRUE(status(kAxis1, kHomeInvalid));
+  EXPECT_FALSE(status(kAxis1, kAtHome));
+  EXPECT_FALSE(status(kAxis1, kPositionInvalid));  // A16
+  EXPECT_LT(motor(kAxis1), 5'000);
+  EXPECT_GT(motor(kAxis1), 1'000);
+  EXPECT_EQ(position(kAxis1), motor(kAxis1));
+  // Nothing runs on afterwards.
+  const std::int64_t at = motor(kAxis1);
+  vm_.run_for(3 * kNsPerSec);
+  EXPECT_EQ(motor(kAxis1), at);
+}
+
+TEST_F(Homing3602, HI_07_TimeoutCountsThePauses) {
+  // T = 3 s: the search reaches the switch in ~0.6 s, then the 2-s pause and the reversal; the
+  // sequence cannot complete within 3 s, so it times out, pauses included.
+  configure(kAxis1, kLimitsConfigMsw, kAllActiveHigh3602, 1'000, 3);
+  command(kAxis1, cmd::kFindHomeCw, kHome);
+  ASSERT_TRUE(vm_.run_until_true([this] { return status(kAxis1, kHomeInvalid); }, kLimit));
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_FALSE(status(kAxis1, kAtHome));
+  const std::int64_t at = motor(kAxis1);
+  vm_.run_for(5 * kNsPerSec);
+  EXPECT_EQ(motor(kAxis1), at);
+}
+
+TEST_F(Homing3602, HI_07_ZeroTimeoutSearchesWithoutLimit) {
+  configure(kAxis1, kLimitsConfigMsw, kAllActiveHigh3602, 1'000, 0);
+  Move3602 slow = kHome;
+  slow.speed = 2'000;
+  command(kAxis1, cmd::kFindHomeCw, slow);
+  ASSERT_TRUE(wait_homed(kAxis1));
+  EXPECT_FALSE(status(kAxis1, kHomeInvalid));
+}
+
+// Both axes home at once, each on its own switch (axis 2: -3,000..-2,900, Find Home -).
+TEST_F(Homing3602, AH_01_BothAxesHomeIndependently) {
+  configure(kAxis1);
+  configure(kAxis2);
+  set_command(kAxis1, cmd::kFindHomeCw, kHome);
+  set_command(kAxis2, cmd::kFindHomeCcw, kHome);
+  vm_.scans(3);
+  word(kAxis1, m2::out_word::kMsw) = 0;
+  word(kAxis2, m2::out_word::kMsw) = 0;
+  ASSERT_TRUE(wait_homed(kAxis1));
+  ASSERT_TRUE(wait_homed(kAxis2));
+  EXPECT_GE(motor(kAxis1), 5'000);
+  EXPECT_LE(motor(kAxis1), 5'001);
+  EXPECT_LE(motor(kAxis2), -2'900);
+  EXPECT_GE(motor(kAxis2), -2'901);
+}
+
+TEST_F(Homing3602, CE_11_HI_02_FindHomeWithSCurve) {
+  configure(kAxis1);
+  Move3602 p = kHome;
+  p.lsw = m2::cmd_lsw::kSCurve;
+  command(kAxis1, cmd::kFindHomeCw, p);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kHomeInvalid));
+  vm_.run_for(200 * kNsPerMs);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+TEST_F(Homing3602, HI_03_FindHomeWithAccelOutOfRange) {
+  configure(kAxis1);
+  Move3602 p = kHome;
+  p.accel = 2'001;
+  command(kAxis1, cmd::kFindHomeCw, p);
+  EXPECT_TRUE(status(kAxis1, kHomeInvalid));
+  vm_.run_for(200 * kNsPerMs);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+// 3602-HI-05 / IE-04 / PI-06: the limit opposite to the homing direction during the search.
+TEST_F(Homing3602, HI_05_IE_04_PI_06_OppositeLimitDuringHoming) {
+  configure(kAxis1);
+  command(kAxis1, cmd::kPresetPosition, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  command(kAxis1, cmd::kFindHomeCw, kHome);
+  vm_.run_for(200 * kNsPerMs);
+  ASSERT_TRUE(moving(kAxis1));
+  vm_.sim().force(kAxis1, 1u << static_cast<unsigned>(InputLine::kCcwLimit),
+                  1u << static_cast<unsigned>(InputLine::kCcwLimit), vm_.now());
+  ASSERT_TRUE(wait_idle(kAxis1, kNsPerSec));
+  EXPECT_TRUE(status(kAxis1, kHomeInvalid));
+  EXPECT_TRUE(status(kAxis1, kInputError));
+  EXPECT_TRUE(status(kAxis1, kPositionInvalid));
+  EXPECT_FALSE(status(kAxis1, kAtHome));
+}
+
+// 3602-HI-08: both overtravel limits met while searching -> immediate stop with HI + IE + PI.
+TEST_F(Homing3602, HI_08_BothLimitsDuringHoming) {
+  configure(kAxis1);
+  command(kAxis1, cmd::kFindHomeCw, kHome);
+  vm_.run_for(200 * kNsPerMs);
+  const std::uint32_t cw = 1u << static_cast<unsigned>(InputLine::kCwLimit);
+  const std::uint32_t ccw = 1u << static_cast<unsigned>(InputLine::kCcwLimit);
+  vm_.sim().force(kAxis1, cw, cw, vm_.now());  // the limit ahead: reverse after the pause
+  vm_.run_for(3 * kNsPerSec);
+  vm_.sim().force(kAxis1, cw | ccw, 0 | ccw, vm_.now());  // then the other one
+  ASSERT_TRUE(wait_idle(kAxis1, 10 * kNsPerSec));
+  EXPECT_TRUE(status(kAxis1, kHomeInvalid));
+  EXPECT_TRUE(status(kAxis1, kInputError));
+  EXPECT_TRUE(status(kAxis1, kPositionInvalid));
+}
+
+// 3602-HI-06: a limit active at the same time as the Home input during homing.
+TEST_F(Homing3602, HI_06_LimitTogetherWithTheHomeInput) {
+  configure(kAxis1);
+  command(kAxis1, cmd::kFindHomeCw, kHome);
+  vm_.run_for(200 * kNsPerMs);
+  const std::uint32_t home = 1u << static_cast<unsigned>(InputLine::kHome);
+  const std::uint32_t cw = 1u << static_cast<unsigned>(InputLine::kCwLimit);
+  vm_.sim().force(kAxis1, home, home, vm_.now());  // the home input: the sequence goes on
+  vm_.scans(2);
+  EXPECT_FALSE(status(kAxis1, kHomeInvalid));
+  vm_.sim().force(kAxis1, home | cw, home | cw, vm_.now());  // and a limit with it
+  ASSERT_TRUE(wait_idle(kAxis1, kNsPerSec));
+  EXPECT_TRUE(status(kAxis1, kHomeInvalid));
+  EXPECT_FALSE(status(kAxis1, kAtHome));
+}
+
+}  // namespace
+}  // namespace stepmod::testing

@@ -1,0 +1,500 @@
+// 3602 command mode through the module's words, motion commands and their errors (digest 6.2
+// CE, IP, PI, IE, HLD; 7.4-7.10): moves, hold/resume, immediate stop, jog, registration and the
+// minimum registration distance, blend programming and run.
+#include "tests/module/rig_3602.hpp"
+
+namespace stepmod::testing {
+namespace {
+
+using namespace m2::status_msw;
+namespace cmd = m2::cmd_msw;
+namespace lsw = m2::cmd_lsw;
+
+class Motion3602 : public Rig3602 {
+ protected:
+  void SetUp() override {
+    configure(kAxis1);
+    configure(kAxis2);
+  }
+  void reset_errors(unsigned a) {
+    command(a, cmd::kResetErrors, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  }
+  void force(unsigned a, InputLine l, bool level) {
+    const std::uint32_t bit = 1u << static_cast<unsigned>(l);
+    if (level) {
+      levels_[a] |= bit;
+    } else {
+      levels_[a] &= ~bit;
+    }
+    mask_[a] |= bit;
+    vm_.sim().force(a, mask_[a], levels_[a], vm_.now());
+    vm_.scans(2);
+  }
+  // Blend programming (digest 4.5, Ch.9 "Programming Blend Move Profiles"): each block with LSW
+  // bits 4 and 5, wait for the acknowledge (status LSW bit 9), drop bit 5, wait for it to clear.
+  bool program_blend(unsigned a, const std::vector<std::array<std::int16_t, 6>>& blocks) {
+    clear_words(a);
+    for (const auto& b : blocks) {
+      for (unsigned i = 0; i < 6; ++i) word(a, 2 + i) = b[i];
+      word(a, m2::out_word::kLsw) = lsw::kProgramBlend | lsw::kBlendTransmit;
+      if (!vm_.run_until_true([&] { return lsw_status(a, m2::status_lsw::kBlendAcknowledge); },
+                              kNsPerSec)) {
+        return false;
+      }
+      word(a, m2::out_word::kLsw) = lsw::kProgramBlend;
+      if (!vm_.run_until_true([&] { return !lsw_status(a, m2::status_lsw::kBlendAcknowledge); },
+                              kNsPerSec)) {
+        return false;
+      }
+    }
+    clear_words(a);
+    vm_.scans(3);
+    return true;
+  }
+  static std::array<std::int16_t, 6> segment(std::int32_t length, std::int32_t speed,
+                                             std::int16_t rate) {
+    const auto l = ipc::codec::encode_3602(length);
+    const auto s = ipc::codec::encode_3602(speed);
+    return {l.msw, l.lsw, s.msw, s.lsw, rate, 0};
+  }
+  std::uint32_t mask_[2] = {0, 0};
+  std::uint32_t levels_[2] = {0, 0};
+};
+
+TEST_F(Motion3602, CE_01_ConfigurationRequestDuringMotionFinishesTheMove) {
+  set_command(kAxis1, cmd::kRelativeMove, {.target = 8'000});
+  vm_.scans(3);
+  ASSERT_TRUE(moving(kAxis1));
+  write_config(kAxis1, kLimitsConfigMsw);
+  vm_.scans(3);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(moving(kAxis1));
+  ASSERT_TRUE(vm_.run_until_true([this] { return status(kAxis1, kConfigMode); }, 10 * kNsPerSec));
+  EXPECT_EQ(motor(kAxis1), 8'000);
+  EXPECT_FALSE(status(kAxis1, kCommandError));
+}
+
+TEST_F(Motion3602, CE_04_MoveWhileMovingIsRefusedAndTheMoveRunsOn) {
+  set_command(kAxis1, cmd::kRelativeMove, {.target = 6'000});
+  vm_.scans(3);
+  word(kAxis1, m2::out_word::kMsw) = 0;
+  vm_.scans(1);
+  command(kAxis1, cmd::kAbsoluteMove, {.target = 100});
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_EQ(motor(kAxis1), 6'000);
+}
+
+TEST_F(Motion3602, CE_06_IP_01_VpBelowVsForAMove) {
+  command(kAxis1, cmd::kRelativeMove, {.target = 100, .speed = 999});
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  vm_.scans(20);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+TEST_F(Motion3602, CE_07_AbsoluteMoveWithPositionInvalid) {
+  ASSERT_TRUE(status(kAxis1, kPositionInvalid));  // 3602-PI-01 after the configuration
+  command(kAxis1, cmd::kAbsoluteMove, {.target = 100});
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  vm_.scans(20);
+  EXPECT_EQ(motor(kAxis1), 0);
+  reset_errors(kAxis1);
+  command(kAxis1, cmd::kRelativeMove, {.target = 100});  // relative is allowed
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_EQ(motor(kAxis1), 100);
+}
+
+TEST_F(Motion3602, PI_01_PI_C1_ConfigurationInvalidatesPresetValidates) {
+  EXPECT_TRUE(status(kAxis1, kPositionInvalid));
+  EXPECT_EQ(position(kAxis1), 0);
+  command(kAxis1, cmd::kPresetPosition, {.target = 123, .speed = 0, .accel = 0, .decel = 0});
+  EXPECT_FALSE(status(kAxis1, kPositionInvalid));
+  EXPECT_EQ(position(kAxis1), 123);
+  command(kAxis1, cmd::kAbsoluteMove, {.target = -77});
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_EQ(motor(kAxis1), -200);
+  EXPECT_EQ(position(kAxis1), -77);
+}
+
+TEST_F(Motion3602, CE_09_ResumeWhenNotInHold) {
+  command(kAxis1, cmd::kResume);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+}
+
+TEST_F(Motion3602, HLD_01_HoldThenResumeReachesTheTarget) {
+  set_command(kAxis1, cmd::kRelativeMove, {.target = 20'000});
+  vm_.scans(3);
+  word(kAxis1, m2::out_word::kMsw) = 0;
+  vm_.run_for(500 * kNsPerMs);
+  command(kAxis1, cmd::kHold);
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_TRUE(status(kAxis1, kHoldState));
+  EXPECT_TRUE(status(kAxis1, kStopped));  // 3602-STP-01: in Hold too
+  EXPECT_LT(motor(kAxis1), 20'000);
+  command(kAxis1, cmd::kResume, {.target = 0, .speed = 15'000});
+  EXPECT_FALSE(status(kAxis1, kCommandError));
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_EQ(motor(kAxis1), 20'000);
+  EXPECT_TRUE(status(kAxis1, kMoveComplete));
+}
+
+TEST_F(Motion3602, HLD_01_ExternalInputHoldsAMove) {
+  set_command(kAxis1, cmd::kRelativeMove, {.target = 20'000});
+  vm_.scans(3);
+  word(kAxis1, m2::out_word::kMsw) = 0;
+  vm_.run_for(300 * kNsPerMs);
+  force(kAxis1, InputLine::kExternal, true);
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_TRUE(status(kAxis1, kHoldState));
+  EXPECT_TRUE(lsw_status(kAxis1, m2::status_lsw::kExternalActive));
+}
+
+TEST_F(Motion3602, PI_02_ImmediateStopInvalidatesThePosition) {
+  command(kAxis1, cmd::kPresetPosition, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  set_command(kAxis1, cmd::kRelativeMove, {.target = 20'000});
+  vm_.scans(3);
+  word(kAxis1, m2::out_word::kMsw) = 0;
+  vm_.run_for(300 * kNsPerMs);
+  command(kAxis1, cmd::kImmediateStop);
+  ASSERT_TRUE(wait_idle(kAxis1, 10 * kNsPerMs));
+  EXPECT_TRUE(status(kAxis1, kPositionInvalid));
+  EXPECT_FALSE(status(kAxis1, kMoveComplete));
+  EXPECT_TRUE(moving(kAxis2) == false);
+}
+
+TEST_F(Motion3602, IE_02_PI_04_IE_C1_LimitDuringAMoveThenTheNextMoveClearsIE) {
+  set_command(kAxis2, cmd::kRelativeMove, {.target = -20'000});
+  vm_.scans(3);
+  word(kAxis2, m2::out_word::kMsw) = 0;
+  vm_.run_for(300 * kNsPerMs);
+  force(kAxis2, InputLine::kCwLimit, true);  // either limit stops an absolute/relative move
+  ASSERT_TRUE(wait_idle(kAxis2));
+  EXPECT_TRUE(status(kAxis2, kInputError));
+  EXPECT_TRUE(status(kAxis2, kPositionInvalid));
+  // IE-C1: the next move clears IE once no input is active.
+  force(kAxis2, InputLine::kCwLimit, false);
+  command(kAxis2, cmd::kRelativeMove, {.target = -100});
+  EXPECT_FALSE(status(kAxis2, kInputError));
+  EXPECT_FALSE(status(kAxis2, kCommandError));
+}
+
+TEST_F(Motion3602, IE_05_JogTowardAnActiveLimit) {
+  force(kAxis1, InputLine::kCwLimit, true);
+  EXPECT_TRUE(lsw_status(kAxis1, m2::status_lsw::kCwActive));
+  set_command(kAxis1, cmd::kJogCw, {.target = 0, .speed = 5'000});
+  vm_.scans(20);
+  EXPECT_TRUE(status(kAxis1, kInputError));
+  EXPECT_EQ(motor(kAxis1), 0);
+  // Driven off the limit the other way.
+  set_command(kAxis1, 0, {});
+  vm_.scans(2);
+  set_command(kAxis1, cmd::kJogCcw, {.target = 0, .speed = 5'000});
+  vm_.run_for(200 * kNsPerMs);
+  EXPECT_LT(motor(kAxis1), 0);
+}
+
+TEST_F(Motion3602, IE_03_PI_05_SameDirectionLimitDuringAJog) {
+  set_command(kAxis1, cmd::kJogCw, {.target = 0, .speed = 5'000});
+  vm_.run_for(300 * kNsPerMs);
+  force(kAxis1, InputLine::kCwLimit, true);
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_TRUE(status(kAxis1, kInputError));
+  EXPECT_TRUE(status(kAxis1, kPositionInvalid));
+}
+
+TEST_F(Motion3602, JogRampedRunsWhileHeldAndDeceleratesOnRelease) {
+  set_command(kAxis1, cmd::kJogCw, {.target = 0, .speed = 5'000, .accel = 10, .decel = 10});
+  vm_.run_for(kNsPerSec);
+  EXPECT_TRUE(status(kAxis1, kMovingCw));
+  const std::int64_t at = motor(kAxis1);
+  EXPECT_GT(at, 2'000);
+  word(kAxis1, m2::out_word::kMsw) = 0;
+  EXPECT_TRUE(vm_.run_until_true([this] { return status(kAxis1, kDecelerating); }, 50 * kNsPerMs));
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_GT(motor(kAxis1), at);
+  EXPECT_TRUE(status(kAxis1, kStopped));
+  EXPECT_FALSE(status(kAxis1, kMoveComplete));  // MC-01: jogs do not set it
+}
+
+// A14: a jog whose initial Vp is <= Vs runs at constant speed (no ramp): Vp = Vs = 1,000 steps/s
+// outputs 1,000 steps/s from the first step.
+TEST_F(Motion3602, CE_J1_IP_08_ConstantSpeedJogAndItsSpeedChange) {
+  set_command(kAxis1, cmd::kJogCcw, {.target = 0, .speed = 1'000});
+  vm_.run_for(500 * kNsPerMs);
+  const auto& t = vm_.step_times(kAxis1);
+  ASSERT_GE(t.size(), 10u);
+  EXPECT_NEAR(static_cast<double>(t[2] - t[1]), 1e6, 2e4);  // 1 ms per step from the start
+  EXPECT_FALSE(status(kAxis1, kAccelerating));
+  // J1: a speed change on such a jog is refused (CE + IP).
+  put_split(kAxis1, m2::out_word::kSpeedMsw, 3'000);
+  vm_.scans(3);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+}
+
+TEST_F(Motion3602, JogOneShotAtVsWithSpeedZero) {
+  command(kAxis1, cmd::kJogCw, {.target = 0, .speed = 0});
+  vm_.scans(10);
+  EXPECT_EQ(motor(kAxis1), 1);
+  command(kAxis1, cmd::kJogCcw, {.target = 0, .speed = 0});
+  vm_.scans(10);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+// Registration: a jog with a position offset; after the External edge it moves exactly the
+// offset, then stops (digest 7.9).
+TEST_F(Motion3602, RegistrationMovesTheOffsetAfterTheExternalEdge) {
+  set_command(kAxis1, cmd::kJogCw, {.target = 6'000, .speed = 10'000, .accel = 10, .decel = 10});
+  vm_.run_for(700 * kNsPerMs);
+  ASSERT_TRUE(moving(kAxis1));
+  force(kAxis1, InputLine::kExternal, true);
+  std::int64_t steps_then = 0;
+  const auto& t = vm_.step_times(kAxis1);
+  // The step count when the input rose: the steps before its time.
+  const Nanos edge = vm_.now() - 2 * kNsPerMs;
+  for (Nanos s : t) {
+    if (s <= edge) ++steps_then;
+  }
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_NEAR(static_cast<double>(motor(kAxis1)), static_cast<double>(steps_then + 6'000), 25.0);
+}
+
+TEST_F(Motion3602, CE_R5_IP_13_NegativeRegistrationOffset) {
+  command(kAxis1, cmd::kJogCw, {.target = -5'000, .speed = 10'000});
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  vm_.scans(20);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+TEST_F(Motion3602, CE_R4_IP_12_OffsetShorterThanTheStop) {
+  // Vs 1,000 -> Vp 10,000 at 10 steps/ms/s needs 4,950 steps to stop (digest 7.9).
+  command(kAxis1, cmd::kJogCw, {.target = 4'949, .speed = 10'000, .accel = 10, .decel = 10});
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  vm_.scans(20);
+  EXPECT_EQ(motor(kAxis1), 0);
+  reset_errors(kAxis1);
+  set_command(kAxis1, cmd::kJogCw, {.target = 4'950, .speed = 10'000, .accel = 10, .decel = 10});
+  vm_.scans(5);
+  EXPECT_FALSE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(moving(kAxis1));
+}
+
+TEST_F(Motion3602, CE_R3_IP_11_ExternalActiveWithMinimumDistanceZero) {
+  force(kAxis1, InputLine::kExternal, true);
+  command(kAxis1, cmd::kJogCw, {.target = 6'000, .speed = 10'000});
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  vm_.scans(20);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+// LSW bit 2: program the minimum registration distance (words 2/3); status LSW bit 10 reports a
+// non-zero distance. With one set, a registration may start with External active (digest 8.0).
+TEST_F(Motion3602, LSW_01_MinimumRegistrationDistanceSetAndUsed) {
+  EXPECT_FALSE(lsw_status(kAxis1, m2::status_lsw::kMinRegistrationSet));
+  set_command(
+      kAxis1, 0,
+      {.target = 2'000, .speed = 0, .accel = 0, .decel = 0, .lsw = lsw::kProgramMinRegistration});
+  vm_.scans(3);
+  clear_words(kAxis1);
+  vm_.scans(2);
+  EXPECT_TRUE(lsw_status(kAxis1, m2::status_lsw::kMinRegistrationSet));
+  EXPECT_FALSE(status(kAxis1, kCommandError));
+  force(kAxis1, InputLine::kExternal, true);
+  set_command(kAxis1, cmd::kJogCw, {.target = 6'000, .speed = 10'000});
+  vm_.scans(5);
+  EXPECT_FALSE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(moving(kAxis1));
+}
+
+TEST_F(Motion3602, CE_R1_NegativeMinimumRegistrationDistance) {
+  set_command(
+      kAxis1, 0,
+      {.target = -1, .speed = 0, .accel = 0, .decel = 0, .lsw = lsw::kProgramMinRegistration});
+  vm_.scans(3);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_FALSE(lsw_status(kAxis1, m2::status_lsw::kMinRegistrationSet));
+}
+
+TEST_F(Motion3602, CE_R2_CE_08_HoldDuringARegistration) {
+  set_command(kAxis1, cmd::kJogCw, {.target = 6'000, .speed = 10'000});
+  vm_.run_for(200 * kNsPerMs);
+  set_command(kAxis1, cmd::kHold, {.target = 6'000, .speed = 10'000});
+  vm_.scans(3);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+}
+
+// Blend: program 2 segments (first block + 2 segment blocks, handshake on LSW bits 4/5 and status
+// LSW bit 9), run it CW: exact total, Move Complete.
+TEST_F(Motion3602, MC_01_BlendProgrammedWithTheHandshakeRunsItsTotal) {
+  const std::array<std::int16_t, 6> first = {2, 0, 0, 10, 0, 0};  // 2 segments, final decel 10
+  ASSERT_TRUE(
+      program_blend(kAxis1, {first, segment(50'800, 20'000, 20), segment(20'000, 5'000, 20)}));
+  EXPECT_FALSE(status(kAxis1, kInvalidProfile));
+  EXPECT_FALSE(status(kAxis1, kCommandError));
+  command(kAxis1, cmd::kRunBlendCw, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  EXPECT_TRUE(lsw_status(kAxis1, m2::status_lsw::kBlendRunning));
+  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerSec));
+  EXPECT_EQ(motor(kAxis1), 70'800);
+  EXPECT_TRUE(status(kAxis1, kMoveComplete));
+  EXPECT_FALSE(lsw_status(kAxis1, m2::status_lsw::kBlendRunning));
+  // Run blend - runs it back.
+  command(kAxis1, cmd::kRunBlendCcw, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerSec));
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+TEST_F(Motion3602, CE_B1_RunBlendBeforeAProfileWasProgrammed) {
+  command(kAxis2, cmd::kRunBlendCw, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  EXPECT_TRUE(status(kAxis2, kCommandError));
+  vm_.scans(10);
+  EXPECT_EQ(motor(kAxis2), 0);
+}
+
+TEST_F(Motion3602, CE_B2_ProfileWithoutFinalDeceleration) {
+  const std::array<std::int16_t, 6> first = {2, 0, 0, 0, 0, 0};
+  program_blend(kAxis1, {first, segment(1'000, 5'000, 20), segment(1'000, 3'000, 20)});
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+}
+
+TEST_F(Motion3602, IP_04_BlendSegmentCountOutOfRange) {
+  const std::array<std::int16_t, 6> first = {1, 0, 0, 10, 0, 0};
+  program_blend(kAxis1, {first});
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+}
+
+TEST_F(Motion3602, IP_07_IP_19_AccelerationPairOfBinary10) {
+  const std::array<std::int16_t, 6> first = {2, 0, 0b10, 10, 0, 0};  // segment 1: pair 10
+  program_blend(kAxis1, {first, segment(1'000, 5'000, 20), segment(1'000, 3'000, 20)});
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+}
+
+TEST_F(Motion3602, CE_J2_IP_09_InvalidSpeedChangeWhileJoggingStopsImmediately) {
+  command(kAxis1, cmd::kPresetPosition, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  set_command(kAxis1, cmd::kJogCw, {.target = 0, .speed = 5'000});
+  vm_.run_for(300 * kNsPerMs);
+  put_split(kAxis1, m2::out_word::kSpeedMsw, 1'000'001);
+  vm_.scans(3);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerMs));  // immediate: within a few steps
+}
+
+TEST_F(Motion3602, CE_J3_IP_10_OffsetWrittenWhileJoggingStopsImmediately) {
+  set_command(kAxis1, cmd::kJogCcw, {.target = 0, .speed = 5'000});
+  vm_.run_for(300 * kNsPerMs);
+  put_split(kAxis1, m2::out_word::kTargetMsw, 2'000);
+  vm_.scans(3);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerMs));
+}
+
+TEST_F(Motion3602, CE_R6_IP_14_OffsetChangedDuringRegistration) {
+  set_command(kAxis1, cmd::kJogCw, {.target = 6'000, .speed = 10'000});
+  vm_.run_for(300 * kNsPerMs);
+  put_split(kAxis1, m2::out_word::kTargetMsw, 7'000);
+  vm_.scans(3);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerMs));
+}
+
+TEST_F(Motion3602, CE_R7_IP_15_SpeedIncreasedDuringRegistration) {
+  set_command(kAxis1, cmd::kJogCw, {.target = 6'000, .speed = 10'000});
+  vm_.run_for(300 * kNsPerMs);
+  put_split(kAxis1, m2::out_word::kSpeedMsw, 12'000);
+  vm_.scans(3);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerMs));
+}
+
+TEST_F(Motion3602, CE_R8_IP_16_AccelChangedWithASpeedChangeDuringRegistration) {
+  set_command(kAxis1, cmd::kJogCw, {.target = 6'000, .speed = 10'000});
+  vm_.run_for(300 * kNsPerMs);
+  word(kAxis1, m2::out_word::kAccel) = 20;  // alone: not examined
+  vm_.scans(3);
+  EXPECT_FALSE(status(kAxis1, kCommandError));
+  put_split(kAxis1, m2::out_word::kSpeedMsw, 8'000);  // with a speed change: examined
+  vm_.scans(3);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerMs));
+}
+
+TEST_F(Motion3602, IP_02_MoveParameterOutOfRange) {
+  command(kAxis1, cmd::kRelativeMove, {.target = 100, .accel = 2'001});
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  reset_errors(kAxis1);
+  command(kAxis1, cmd::kRelativeMove, {.target = 100, .decel = 0});
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  vm_.scans(20);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+TEST_F(Motion3602, CE_B3_RunBlendWithReservedWordsNonZero) {
+  const std::array<std::int16_t, 6> first = {2, 0, 0, 10, 0, 0};
+  ASSERT_TRUE(
+      program_blend(kAxis1, {first, segment(20'000, 10'000, 20), segment(20'000, 5'000, 20)}));
+  command(kAxis1, cmd::kRunBlendCw, {.target = 0, .speed = 0, .accel = 0, .decel = 1});
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  vm_.scans(20);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+TEST_F(Motion3602, CE_B5_HoldDuringABlendFinishesItThenSelfClears) {
+  const std::array<std::int16_t, 6> first = {2, 0, 0, 10, 0, 0};
+  ASSERT_TRUE(
+      program_blend(kAxis1, {first, segment(20'000, 10'000, 20), segment(20'000, 5'000, 20)}));
+  command(kAxis1, cmd::kRunBlendCw, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  vm_.run_for(300 * kNsPerMs);
+  command(kAxis1, cmd::kHold);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerSec));
+  vm_.scans(3);
+  EXPECT_EQ(motor(kAxis1), 40'000);
+  EXPECT_FALSE(status(kAxis1, kCommandError));
+}
+
+TEST_F(Motion3602, CE_B4_ProgrammingStartedWhileABlendRuns) {
+  const std::array<std::int16_t, 6> first = {2, 0, 0, 10, 0, 0};
+  ASSERT_TRUE(
+      program_blend(kAxis1, {first, segment(20'000, 10'000, 20), segment(20'000, 5'000, 20)}));
+  command(kAxis1, cmd::kRunBlendCw, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  vm_.run_for(300 * kNsPerMs);
+  // The first block of a new cycle offered (program + transmit).
+  word(kAxis1, m2::out_word::kLsw) = lsw::kProgramBlend | lsw::kBlendTransmit;
+  vm_.scans(3);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerSec));
+  EXPECT_LT(motor(kAxis1), 40'000);  // brought down with the final deceleration
+}
+
+TEST_F(Motion3602, IP_06_ConsecutiveSegmentsWithTheSameSpeed) {
+  const std::array<std::int16_t, 6> first = {2, 0, 0, 10, 0, 0};
+  program_blend(kAxis1, {first, segment(20'000, 5'000, 20), segment(20'000, 5'000, 20)});
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+}
+
+TEST_F(Motion3602, IP_05_SegmentTooShortToReachItsSpeed) {
+  const std::array<std::int16_t, 6> first = {2, 0, 0, 10, 0, 0};
+  program_blend(kAxis1, {first, segment(100, 50'000, 1), segment(20'000, 5'000, 20)});
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+}
+
+TEST_F(Motion3602, IP_20_SegmentLengthOutOfRange) {
+  const std::array<std::int16_t, 6> first = {2, 0, 0, 10, 0, 0};
+  program_blend(kAxis1, {first, segment(1'073'741'823, 5'000, 20), segment(20'000, 3'000, 20)});
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  reset_errors(kAxis1);
+  program_blend(kAxis1, {first, segment(0, 5'000, 20), segment(20'000, 3'000, 20)});
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+}
+
+}  // namespace
+}  // namespace stepmod::testing
