@@ -155,13 +155,22 @@ TEST_F(Daemon3601, RelativeMoveExactPulsesAndProfileTiming) {
   if (!kTimingChecks) return;
 
   const double vs = 1'000, vp = 10'000, a = 10'000;
-  // First and last pulse periods at the starting speed (within 10 %: the pulse thread runs on a
-  // shared two-core VM and a single period is only 1 ms).
-  const double first = (steps[1] - steps[0]) * 1e-9;
-  const double ideal_first = ramp_step_time(vs, a, 2) - ramp_step_time(vs, a, 1);
-  EXPECT_NEAR(first, ideal_first, 0.1 * ideal_first);
-  const double last = (steps[steps.size() - 1] - steps[steps.size() - 2]) * 1e-9;
-  EXPECT_NEAR(last, ideal_first, 0.1 * ideal_first);
+  // The ramps start and end at the starting speed: each of the first and last 20 periods against
+  // its ideal (the ramp is symmetric, a = d), as a median ratio within 10 %. A median, because on a
+  // loaded two-core VM a single edge may be late (within the late-edge limit), which lengthens one
+  // period and shortens the next; the profile itself is checked to the nanosecond in virtual time.
+  const auto median_ratio = [&](bool at_end) {
+    std::vector<double> r;
+    for (std::size_t k = 1; k <= 20; ++k) {
+      const double ideal = ramp_step_time(vs, a, k + 1) - ramp_step_time(vs, a, k);
+      const std::size_t i = at_end ? steps.size() - 1 - k : k - 1;
+      r.push_back((steps[i + 1] - steps[i]) * 1e-9 / ideal);
+    }
+    std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
+    return r[r.size() / 2];
+  };
+  EXPECT_NEAR(median_ratio(false), 1.0, 0.1);
+  EXPECT_NEAR(median_ratio(true), 1.0, 0.1);
   // Cruise at the programmed speed: the median period between steps 6,000 and 14,000.
   std::vector<std::int64_t> periods;
   for (std::size_t i = 6'000; i < 14'000; ++i) periods.push_back(steps[i + 1] - steps[i]);
