@@ -1,5 +1,6 @@
 #include <stdexcept>
 
+#include "module/m3202/module_3202.hpp"
 #include "module/m3601/module_3601.hpp"
 #include "module/personality.hpp"
 
@@ -13,12 +14,13 @@ std::unique_ptr<Personality> make_personality(ModuleType type, gpio::Backend& ba
   switch (type) {
     case ModuleType::k3601:
       return std::make_unique<m3601::Module3601>(backend, *axes[0]);
-    case ModuleType::k3602:
     case ModuleType::k3202:
+      return std::make_unique<m3202::Module3202>(backend, *axes[0], *axes[1]);
+    case ModuleType::k3602:
       break;
   }
   throw std::invalid_argument("module type " + std::to_string(static_cast<unsigned>(type)) +
-                              " has no personality yet (only 3601)");
+                              " has no personality yet (only 3601 and 3202)");
 }
 
 }  // namespace stepmod::module

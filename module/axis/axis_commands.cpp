@@ -53,6 +53,14 @@ void Axis::command_edge(const AxisCommand& c, const CommandSet& rising) {
   }
   const auto kind = rising.single();
   if (!kind) return;
+  // 3202-CE-05 / IP-03 / HI-04: reserved command words not 0.
+  if (c.reserved_words_nonzero) {
+    st_.reject_profile();
+    if (*kind == CommandKind::kFindHomeCw || *kind == CommandKind::kFindHomeCcw) {
+      st_.status.home_invalid = true;
+    }
+    return;
+  }
   switch (*kind) {
     case CommandKind::kAbsoluteMove:
       command_move(c, true);
