@@ -77,6 +77,29 @@ TEST_P(AxisShared, CE_L1_CE_L2_OnlyResetErrorsWhileCommandError) {
   EXPECT_EQ(rig_.motor(), 20'100);
 }
 
+// 3202-CE-05 / IP-03 / HI-04: a module's reserved command words not 0 (the dialect's
+// AxisCommand::reserved_words_nonzero) refuse the command with CE + IP, and HI for a homing;
+// nothing moves. Modules without such words never set the flag, so the rule is inert for them.
+TEST_P(AxisShared, CE_05_IP_03_HI_04_ReservedWordsNotZero) {
+  rig_.configure();
+  rig_.image().reserved_words_nonzero = true;
+  rig_.command(CommandKind::kRelativeMove, {.target = 100});
+  EXPECT_TRUE(rig_.status().command_error);
+  EXPECT_TRUE(rig_.status().invalid_profile);
+  EXPECT_FALSE(rig_.status().home_invalid);
+  rig_.image().reserved_words_nonzero = true;
+  rig_.command(CommandKind::kResetErrors, {.speed = 0, .accel = 0, .decel = 0});
+  EXPECT_TRUE(rig_.status().command_error);  // Reset Errors too is refused with them
+  rig_.image().reserved_words_nonzero = false;
+  rig_.command(CommandKind::kResetErrors, {.speed = 0, .accel = 0, .decel = 0});
+  ASSERT_FALSE(rig_.status().command_error);
+  rig_.image().reserved_words_nonzero = true;
+  rig_.command(CommandKind::kFindHomeCw, {.target = 0});
+  EXPECT_TRUE(rig_.status().home_invalid);
+  rig_.run_for(100 * kNsPerMs);
+  EXPECT_EQ(rig_.motor(), 0);
+}
+
 // 3601-CE-04 / IP-02: a speed or rate outside the module's range (rules.hpp) is refused with CE
 // and Invalid Profile.
 TEST_P(AxisShared, CE_04_IP_02_OutOfRangeParameters) {

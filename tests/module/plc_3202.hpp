@@ -41,6 +41,7 @@ struct Move3202 {
 class Plc3202 : public ::testing::Test {
  protected:
   Plc3202() : vm_(default_3202()) {}
+  explicit Plc3202(VirtualMachineOptions o) : vm_(std::move(o)) {}
 
   std::int32_t& word(unsigned ch, unsigned i) { return vm_.plc_out().w[ch * 8 + i]; }
   std::int32_t in(unsigned ch, unsigned i) const { return vm_.plc_in().w[ch * 8 + i]; }
