@@ -232,6 +232,10 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
         plc_stopped = true;
       }
     }
+    // The 3202's blend message (INTERFACE.md 3): handed over before the scan that reports it.
+    if (const auto msg = image->pending_message()) {
+      image->finish_message(msg->seq, personality.on_message(msg->data, now));
+    }
     personality.scan(out, in, now);
     kick();
     image->publish_inputs(in);

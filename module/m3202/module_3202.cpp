@@ -1,5 +1,6 @@
 #include "module/m3202/module_3202.hpp"
 
+#include "module/m3202/blend_message_3202.hpp"
 #include "module/m3202/config_3202.hpp"
 #include "module/m3202/words_3202.hpp"
 
@@ -54,6 +55,21 @@ void Module3202::scan_channel(unsigned ch, const ImageWords& out, ImageWords& in
   }
   if (was_config_mode) c.disabled = c.pending_disabled;  // the configuration taken on leaving
   status_to_words(c.axis.status(), c.disabled, ch, in);
+}
+
+std::int32_t Module3202::on_message(std::span<const std::int32_t> data, Nanos /*now*/) {
+  const BlendMessage m = blend_message_from_dints(data);
+  if (m.channel != 1 && m.channel != 2) {
+    // 3202-IP-11, A23: no channel is named: Invalid Profile on both, nothing stored.
+    for (Channel& c : channels_) c.axis.set_invalid_profile();
+    return kMessageRefused;
+  }
+  Channel& c = channels_[static_cast<unsigned>(m.channel - 1)];
+  if (c.disabled) {
+    c.axis.set_invalid_profile();  // 3202-IP-15: the channel is not configured (or disabled)
+    return kMessageRefused;
+  }
+  return c.axis.program_blend(m.first, m.segments) ? kMessageAccepted : kMessageRefused;
 }
 
 void Module3202::plc_stopped(Nanos /*now*/) {

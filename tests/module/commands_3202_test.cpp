@@ -110,6 +110,18 @@ TEST_F(Commands3202, CE_06_AbsoluteMoveWithPositionInvalid) {
   expect_refused(0, false);
 }
 
+TEST_F(Commands3202, IP_04_A32_TheLongestMoveFitsTheRegisters) {
+  // A32: on the 3202 every value beyond the documented ranges is a range error (CE-03/IP-02), so
+  // no accepted move overflows: the longest one (-8,388,608 -> 8,388,607) is planned.
+  preset(0, -8'388'608);
+  command(0, cb::kAbsoluteMove,
+          {.target = 8'388'607, .speed = 1'000'000, .accel = 2'000'000, .decel = 2'000'000});
+  EXPECT_TRUE(moving(0));
+  EXPECT_FALSE(status(0, sb::kInvalidProfile | sb::kCommandError));
+  command(0, cb::kImmediateStop);
+  ASSERT_TRUE(wait_idle(0));
+}
+
 TEST_F(Commands3202, PI_01_AfterEveryConfiguration) {
   preset(0, 500);
   EXPECT_FALSE(status(0, sb::kPositionInvalid));
