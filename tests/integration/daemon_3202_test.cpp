@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "ipc/client.hpp"
+#include "ipc/sim_panel.hpp"
 #include "module/m3202/blend_message_3202.hpp"
 #include "module/m3202/words_3202.hpp"
 #include "plc/plc_3202.hpp"
@@ -146,6 +147,27 @@ TEST_F(Daemon3202, BlendMessageThroughTheMailboxRunsItsLength) {
   const Vcd vcd = stop_and_read_trace();
   EXPECT_EQ(vcd.rising("axis2.step").size(), 10'000u);
   EXPECT_EQ(vcd.rising("axis1.step").size(), 0u);
+}
+
+TEST_F(Daemon3202, EStopOnOneChannelStopsOnlyThatChannel) {
+  ASSERT_TRUE(plc_->configure(0, kBits | m::cfg_bit::kEStopUsed, 1'000).ok);
+  ASSERT_TRUE(plc_->move(0, false, 150'000, kProfile).ok);
+  ASSERT_TRUE(plc_->move(1, false, 30'000, kProfile).ok);
+  port_->pass(milliseconds(500));
+  ipc::SimPanelClient panel(daemon_->name());
+  panel.force(0, 3, true);  // bit 3: E-stop, active high
+  ASSERT_TRUE(plc_->wait_idle(0, std::chrono::seconds(5)).ok);
+  EXPECT_TRUE(st(0).has(sb::kInputError));
+  EXPECT_TRUE(st(0).has(sb::kPositionInvalid));
+  EXPECT_TRUE(st(0).has(sb::kStopped));
+  EXPECT_TRUE(st(1).moving());
+  EXPECT_FALSE(st(1).has(sb::kInputError));
+  ASSERT_TRUE(plc_->wait_idle(1, std::chrono::seconds(20)).ok);
+  EXPECT_TRUE(st(1).has(sb::kMoveComplete));
+  panel.release(0, 3);
+  const Vcd vcd = stop_and_read_trace();
+  EXPECT_LT(vcd.rising("axis1.step").size(), 150'000u);
+  EXPECT_EQ(vcd.rising("axis2.step").size(), 30'000u);
 }
 
 TEST_F(Daemon3202, SigtermMidMoveStopsBothChannels) {
