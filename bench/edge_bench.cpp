@@ -152,14 +152,15 @@ struct Rig {
   // Constant-speed move of `steps` at `rate` steps/s on every axis (one command each).
   void move_all(std::int64_t steps, double rate) {
     for (unsigned i = 0; i < axes.size(); ++i) {
+      planner::MoveSpec m;
+      m.steps = steps;
+      m.dir = planner::Direction::kCw;
+      m.vs = rate;
+      m.vp = rate;
       planner::Command c;
-      c.kind = planner::CommandKind::kMove;
       c.axis = static_cast<std::uint8_t>(i);
       c.epoch = 1;
-      c.move.steps = steps;
-      c.move.dir = planner::Direction::kCw;
-      c.move.vs = rate;
-      c.move.vp = rate;
+      c.what = m;
       plan->submit(c);
     }
   }

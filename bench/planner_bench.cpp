@@ -42,14 +42,15 @@ void run(benchmark::State& state, const Case& k) {
     state.PauseTiming();
     auto plan = std::make_unique<planner::Planner>(std::span(&axis, 1));
     state.ResumeTiming();
+    planner::MoveSpec m;
+    m.steps = k.steps;
+    m.vs = k.vs;
+    m.vp = k.vp;
+    m.accel = {k.accel, k.shape};
+    m.decel = {k.decel, k.shape};
     planner::Command c;
-    c.kind = planner::CommandKind::kMove;
     c.epoch = ++epoch;
-    c.move.steps = k.steps;
-    c.move.vs = k.vs;
-    c.move.vp = k.vp;
-    c.move.accel = {k.accel, k.shape};
-    c.move.decel = {k.decel, k.shape};
+    c.what = m;
     plan->submit(c);
     bool last = false;
     while (!last) {

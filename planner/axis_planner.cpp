@@ -2,129 +2,64 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
+#include <variant>
 
 namespace stepmod::planner {
 
 namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 Nanos to_ns(double seconds) noexcept {
   return std::llround(seconds * 1e9);
 }
+
+// While a cut request is open, the planner looks for the pulse thread's answer this often.
+constexpr Nanos kCutPollNs = 20 * kNsPerUs;
+
 }  // namespace
 
 AxisPlanner::AxisPlanner(const PlannerAxis& axis, const PlannerOptions& options) noexcept
-    : ring_(axis.edges), control_(axis.control), timing_(axis.timing), opt_(options) {}
+    : control_(axis.control), timing_(axis.timing), opt_(options), out_(axis.edges, axis.timing) {}
 
 double AxisPlanner::frontier_speed() const noexcept {
   if (!m_.active) return 0.0;
-  if (m_.follow) return f_.v;
-  return phases_.velocity_at(m_.tk);
+  if (m_.follow) return follow_.speed();
+  return profile_.velocity_at(m_.tk);
 }
 
 std::int64_t AxisPlanner::planned_steps_at(Nanos t) const noexcept {
-  std::int64_t hi = m_.k;
-  if (hi == 0) return 0;
-  constexpr std::size_t mask = kHistory - 1;
-  if (history_[static_cast<std::size_t>(hi) & mask] <= t) return hi;
-  std::int64_t lo = std::max<std::int64_t>(1, hi - static_cast<std::int64_t>(kHistory) + 1);
-  // Older than the history: the best we know is that it was before step lo.
-  if (history_[static_cast<std::size_t>(lo) & mask] > t) return lo - 1;
-  // Invariant: time(lo) <= t < time(hi).
-  while (hi - lo > 1) {
-    const std::int64_t mid = lo + (hi - lo) / 2;
-    if (history_[static_cast<std::size_t>(mid) & mask] <= t) {
-      lo = mid;
-    } else {
-      hi = mid;
-    }
-  }
-  return lo;
-}
-
-rt::Edge AxisPlanner::make_edge(Nanos t, OutputLine line, std::uint8_t level, std::int8_t dpos,
-                                std::uint8_t flags) const noexcept {
-  rt::Edge e;
-  e.t = t;
-  e.epoch = (flags & rt::edge_flag::kMotion) != 0 ? m_.epoch : 0;
-  e.line = line;
-  e.level = level;
-  e.dpos = dpos;
-  e.flags = flags;
-  return e;
-}
-
-void AxisPlanner::stage(const rt::Edge& e) noexcept {
-  if (staged_count_ == kStaged) {
-    // Only reachable with a ring far too small for the step rate: make room by pushing the
-    // oldest edge early rather than losing an edge of the motion.
-    if (!ring_->try_push(staged_[staged_head_])) return;
-    last_pushed_t_ = staged_[staged_head_].t;
-    staged_head_ = (staged_head_ + 1) & (kStaged - 1);
-    --staged_count_;
-  }
-  staged_[(staged_head_ + staged_count_) & (kStaged - 1)] = e;
-  ++staged_count_;
-  if (e.t > last_t_) last_t_ = e.t;
-}
-
-void AxisPlanner::stage_sorted(const rt::Edge& e) noexcept {
-  // Behind every staged edge at or before e.t, ahead of later ones (a GPO change must not wait
-  // for a step planned a second ahead).
-  stage(e);
-  std::size_t i = staged_count_ - 1;
-  while (i > 0) {
-    rt::Edge& prev = staged_[(staged_head_ + i - 1) & (kStaged - 1)];
-    rt::Edge& cur = staged_[(staged_head_ + i) & (kStaged - 1)];
-    if (prev.t <= cur.t) break;
-    std::swap(prev, cur);
-    --i;
-  }
-}
-
-void AxisPlanner::flush(Nanos horizon) noexcept {
-  while (staged_count_ != 0) {
-    const rt::Edge& e = staged_[staged_head_];
-    if (e.t > horizon) break;
-    if (!ring_->try_push(e)) break;
-    last_pushed_t_ = e.t;
-    staged_head_ = (staged_head_ + 1) & (kStaged - 1);
-    --staged_count_;
-  }
+  return out_.steps_at(t, m_.k);
 }
 
 void AxisPlanner::apply(const Command& c, Nanos now) noexcept {
   check_abort();
   now_ = std::max(now_, now);
-  switch (c.kind) {
-    case CommandKind::kMove:
-    case CommandKind::kRun:
-    case CommandKind::kBlend:
-    case CommandKind::kFollow:
-      start_motion(c, now);
-      break;
-    case CommandKind::kFollowUpdate:
-      follow_update(c);
-      break;
-    case CommandKind::kChangeSpeed:
-      change_speed(c);
-      break;
-    case CommandKind::kStop:
-      stop(c);
-      break;
-    case CommandKind::kStopAfter:
-      stop_after(c);
-      break;
-    case CommandKind::kAbort:
-      if (c.epoch == last_motion_epoch_) abort_last_motion();
-      break;
-    case CommandKind::kSetGpo:
-      set_gpo(c.level, now);
-      break;
-    case CommandKind::kSetPulseFormat:
-      set_pulse_format(c.level, now);
-      break;
+  resolve_cut(true);
+  if (c.starts_motion()) {
+    if (prepare_start(c, now)) launch(earliest_origin(now));
+    return;
   }
+  const std::uint32_t epoch = c.epoch;
+  std::visit(
+      [&](const auto& p) {
+        using P = std::decay_t<decltype(p)>;
+        if constexpr (std::is_same_v<P, FollowUpdate>) {
+          follow_update(epoch, p.spec);
+        } else if constexpr (std::is_same_v<P, SpeedChange>) {
+          change_speed(epoch, p);
+        } else if constexpr (std::is_same_v<P, StopSpec>) {
+          stop(epoch, p);
+        } else if constexpr (std::is_same_v<P, StopAfterSpec>) {
+          stop_after(epoch, p);
+        } else if constexpr (std::is_same_v<P, AbortSpec>) {
+          if (epoch == last_motion_epoch_) abort_last_motion();
+        } else if constexpr (std::is_same_v<P, GpoSpec>) {
+          out_.gpo(p.level, now);
+        } else if constexpr (std::is_same_v<P, PulseFormatSpec>) {
+          out_.pulse_format(p.step_dir, now, m_.active);
+        }
+      },
+      c.what);
 }
 
 void AxisPlanner::check_abort() noexcept {
@@ -132,111 +67,83 @@ void AxisPlanner::check_abort() noexcept {
   const std::uint32_t a = control_->abort_epoch.load(std::memory_order_acquire);
   if (a == seen_abort_) return;
   seen_abort_ = a;
-  if (last_motion_epoch_ != 0 && last_motion_epoch_ <= a) abort_last_motion();
+  if (last_motion_epoch_ != 0 && last_motion_epoch_ <= a) {
+    resolve_cut(true);
+    abort_last_motion();
+  }
 }
 
 void AxisPlanner::abort_last_motion() noexcept {
   if (last_motion_aborted_ || last_motion_epoch_ == 0) return;
   last_motion_aborted_ = true;
-  // The pulse thread drops this motion's edges; drop the ones it would never see as well.
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < staged_count_; ++i) {
-    const rt::Edge e = staged_[(staged_head_ + i) & (kStaged - 1)];
-    if ((e.flags & rt::edge_flag::kMotion) != 0 && e.epoch <= last_motion_epoch_) continue;
-    staged_[(staged_head_ + kept++) & (kStaged - 1)] = e;
-  }
-  staged_count_ = kept;
   m_.active = false;
-  // Its direction edge may have been dropped unexecuted: write the direction again next time.
-  dir_level_ = -1;
-  // The next motion (and a GPO change) may go right away: only edges that will really run bound
-  // them. Ring order matters only among those: the pulse thread drops the aborted edges ahead of
-  // them as soon as they reach the head (abort_epoch is set before the abort is submitted).
-  last_t_ = std::max(motion_floor_t_, nonmotion_t_);
-  last_pushed_t_ = std::min(last_pushed_t_, last_t_);
+  out_.abort(last_motion_epoch_);
 }
 
-void AxisPlanner::start_motion(const Command& c, Nanos now) noexcept {
+bool AxisPlanner::prepare_start(const Command& c, Nanos now) noexcept {
+  check_abort();
+  now_ = std::max(now_, now);
+  resolve_cut(true);
   if (control_ != nullptr && c.epoch <= control_->abort_epoch.load(std::memory_order_acquire)) {
-    return;  // aborted before it started
+    return false;  // aborted before it started
   }
-  if (c.epoch <= last_motion_epoch_) return;  // stale or repeated
+  if (c.epoch <= last_motion_epoch_) return false;  // stale or repeated
   // A new motion replaces one that is still being planned: that one ends on its newest step.
   if (m_.active) finish_at_frontier();
-  if (want_step_dir_ != step_dir_) step_dir_ = want_step_dir_;
 
   Motion m;
   m.active = true;
+  m.held = true;
   m.epoch = c.epoch;
-  switch (c.kind) {
-    case CommandKind::kMove:
-      m.dir = c.move.dir;
-      build_move(c.move, phases_);
-      m.end = c.move.steps;
-      m.constant_speed = c.move.vp <= c.move.vs;
-      m.vs = c.move.vs;
-      m.decel = c.move.decel;
-      break;
-    case CommandKind::kRun:
-      m.dir = c.run.dir;
-      build_run(c.run, phases_);
-      m.end = kEndless;
-      m.constant_speed = c.run.vp <= c.run.vs;
-      m.can_change_speed = true;
-      m.vs = c.run.vs;
-      m.decel = c.run.decel;
-      break;
-    case CommandKind::kFollow:
-      // Steps and their direction come from follow_step as the target moves.
-      m.dir = c.follow.target < 0 ? Direction::kCcw : Direction::kCw;
-      m.end = kEndless;
-      m.follow = true;
-      m.vs = c.follow.vs;
-      f_ = FollowState{};
-      f_.spec = c.follow;
-      break;
-    default:
-      m.dir = c.blend.dir;
-      build_blend(c.blend, phases_);
-      m.end = blend_length(c.blend);
-      m.vs = c.blend.vs;
-      m.decel = c.blend.final_decel;
-      break;
+  if (const auto* follow = std::get_if<FollowStart>(&c.what)) {
+    // Steps and their direction come from follow_step as the target moves.
+    m.dir = follow->spec.target < 0 ? Direction::kCcw : Direction::kCw;
+    m.end = kEndless;
+    m.follow = true;
+    follow_.start(follow->spec);
+  } else {
+    ProfileSource::Start st;
+    if (const auto* move = std::get_if<MoveSpec>(&c.what)) {
+      st = profile_.start(*move);
+    } else if (const auto* run = std::get_if<RunSpec>(&c.what)) {
+      st = profile_.start(*run);
+    } else {
+      st = profile_.start(blend_);
+    }
+    m.dir = st.dir;
+    m.end = st.end;
   }
-  const bool ccw = m.dir == Direction::kCcw;
-  m.line = (step_dir_ || !ccw) ? OutputLine::kStep : OutputLine::kDir;
-  m.base_flags = rt::edge_flag::kMotion | (ccw ? rt::edge_flag::kCcw : 0);
-  m.origin = std::max(now + opt_.start_delay_ns, last_t_);
-  m.tk_ns = m.origin;
+  out_.begin(c.epoch, m.dir);
+  // Step/direction: the direction line must settle dir_setup_ns before the first step. CW/CCW:
+  // the CCW pulse line rests low. Only a change (or an unknown level) costs an edge. (A follow
+  // motion writes it with its first step: follow_step.)
+  if (!m.follow && m.end > 0 && out_.direction_pending()) {
+    const Nanos first = to_ns(profile_.first_step_time(m.end));
+    m.dir_edge = true;
+    m.dir_shift = std::max<Nanos>(0, timing_.dir_setup_ns - first);
+  }
 
   last_motion_epoch_ = c.epoch;
   last_motion_aborted_ = false;
-  motion_floor_t_ = last_t_;
   m_ = m;
-  solver_.reset(&phases_);
+  return true;
+}
 
+Nanos AxisPlanner::earliest_origin(Nanos now) const noexcept {
+  return std::max(now + opt_.start_delay_ns, out_.last_t()) + m_.dir_shift;
+}
+
+void AxisPlanner::launch(Nanos origin) noexcept {
+  if (!m_.active || !m_.held) return;  // aborted while it waited for its group
+  m_.held = false;
+  m_.origin = origin;
+  m_.tk_ns = origin;
   if (m_.end <= 0) {
     finish_at_frontier();  // nothing to move: one marker edge tells the pulse thread it ended
     return;
   }
-  if (m_.follow) return;  // the direction is written with the first step (follow_step)
-
-  // Step/direction: the direction line must settle dir_setup_ns before the first step. CW/CCW:
-  // the CCW pulse line rests low. Only a change (or an unknown level) costs an edge.
-  const int target = step_dir_ ? (ccw ? kDirLevelCcw : kDirLevelCw) : 0;
-  if (dir_level_ != target) {
-    StepSolver probe;
-    probe.reset(&phases_);
-    const double t1 = m_.end == 1 ? phases_.end_time() : probe.time_of(1.0);
-    const Nanos first = to_ns(t1);
-    const rt::Phase ph = phases_.empty() ? rt::Phase::kCruise : phases_[0].phase;
-    stage(make_edge(m_.origin, OutputLine::kDir, static_cast<std::uint8_t>(target), 0,
-                    m_.base_flags | static_cast<std::uint8_t>(ph) | rt::edge_flag::kFirst));
-    m_.first_pending = false;
-    if (first < timing_.dir_setup_ns) m_.origin += timing_.dir_setup_ns - first;
-    m_.tk_ns = m_.origin;
-    dir_level_ = target;
-  }
+  if (!m_.dir_edge) return;
+  out_.direction(origin - m_.dir_shift, profile_.first_phase());
 }
 
 void AxisPlanner::finish_at_frontier() noexcept {
@@ -246,82 +153,106 @@ void AxisPlanner::finish_at_frontier() noexcept {
     return;
   }
   m_.active = false;
-  if (m_.k > 0) {
-    stage(make_edge(m_.tk_ns + timing_.step_pulse_ns, m_.line, 0, 0,
-                    m_.k_flags | rt::edge_flag::kLast));
-    return;
-  }
-  // No step at all: rewrite the direction line at its present level, carrying kFirst/kLast so the
-  // pulse thread still reports the motion finished.
-  const int level = dir_level_ >= 0 ? dir_level_ : 0;
-  dir_level_ = level;
-  std::uint8_t flags = m_.base_flags | rt::edge_flag::kLast;
-  if (m_.first_pending) flags |= rt::edge_flag::kFirst;
-  stage(make_edge(std::max(m_.tk_ns, last_t_), OutputLine::kDir, static_cast<std::uint8_t>(level),
-                  0, flags));
+  out_.end(m_.tk_ns);
 }
 
 void AxisPlanner::replan_to_end(std::int64_t end, const Ramp& ramp, bool exact_ramp) noexcept {
-  const double v = phases_.velocity_at(m_.tk);
-  const double remaining = static_cast<double>(end - m_.k);
-  phases_.reset(m_.tk, static_cast<double>(m_.k), v);
-  if (v <= m_.vs || ramp.rate <= 0.0) {
-    phases_.add_cruise(remaining);
-  } else {
-    const double d = ramp_distance(v, m_.vs, ramp);
-    if (!exact_ramp && d <= remaining) {
-      phases_.add_cruise(remaining - d);
-      phases_.add_ramp(m_.vs, ramp);
-    } else {
-      // The ramp alone covers the rest: its rate is adjusted so that it ends exactly on `end`
-      // (a little gentler or steeper than asked for a stop; steeper when a registration count
-      // leaves too few steps).
-      phases_.add_ramp_over(m_.vs, ramp.shape, remaining);
-    }
-  }
+  profile_.replan_to_end(m_.k, m_.tk, end, ramp, exact_ramp);
   m_.end = end;
-  m_.can_change_speed = false;
-  solver_.reset(&phases_);
 }
 
-void AxisPlanner::change_speed(const Command& c) noexcept {
-  if (!m_.active || c.epoch != m_.epoch || !m_.can_change_speed) return;
-  if (!(c.run.vp > 0.0)) return;
-  // Replanned from the newest planned step (at most the lookahead ahead of the pulse thread).
-  const double v = phases_.velocity_at(m_.tk);
-  phases_.reset(m_.tk, static_cast<double>(m_.k), v);
-  phases_.add_ramp(c.run.vp, c.run.vp > v ? c.run.accel : c.run.decel);
-  phases_.add_cruise(kInf);
-  m_.decel = c.run.decel;
-  m_.constant_speed = false;
-  solver_.reset(&phases_);
+void AxisPlanner::change_speed(std::uint32_t epoch, const SpeedChange& c) noexcept {
+  if (!m_.active || m_.held || m_.follow || epoch != m_.epoch) return;
+  if (!profile_.can_change_speed() || !(c.vp > 0.0)) return;
+  profile_.change_speed(m_.k, m_.tk, c);
 }
 
-void AxisPlanner::stop(const Command& c) noexcept {
-  if (!m_.active || c.epoch != m_.epoch) return;
+void AxisPlanner::stop(std::uint32_t epoch, const StopSpec& c) noexcept {
+  if (!m_.active || epoch != m_.epoch) return;
   if (m_.follow) {
     // A follow motion keeps its own (decel) law: it ends once at rest on its target.
-    f_.finishing = true;
+    follow_.finish();
     return;
   }
-  const double v = phases_.velocity_at(m_.tk);
-  if (m_.constant_speed || v <= m_.vs * (1.0 + 1e-9) || c.ramp.rate <= 0.0) {
+  if (c.trigger_t != kNoTrigger && request_cut(c)) return;
+  stop_at_frontier(c.ramp);
+}
+
+void AxisPlanner::stop_at_frontier(const Ramp& ramp) noexcept {
+  if (!m_.active) return;
+  const std::int64_t end = profile_.stop_end(m_.k, m_.tk, ramp);
+  if (end == m_.k) {
     // Nothing to ramp down: the step already planned is the last one (one step if none yet).
     if (m_.k == 0) {
-      if (m_.end > 1) replan_to_end(1, c.ramp, true);
+      if (m_.end > 1) replan_to_end(1, ramp, true);
     } else if (m_.end > m_.k) {
       finish_at_frontier();
     }
     return;
   }
-  const double d = ramp_distance(v, m_.vs, c.ramp);
-  const std::int64_t end = m_.k + std::max<std::int64_t>(1, std::llround(d));
   if (end >= m_.end) return;  // the motion ends as soon anyway (e.g. already decelerating)
-  replan_to_end(end, c.ramp, true);
+  replan_to_end(end, ramp, true);
 }
 
-void AxisPlanner::stop_after(const Command& c) noexcept {
-  if (!m_.active || c.epoch != m_.epoch || m_.follow) return;
+bool AxisPlanner::request_cut(const StopSpec& c) noexcept {
+  if (control_ == nullptr || m_.held || cut_.open || cut_epoch_ == m_.epoch) return false;
+  const Nanos want = std::max(c.trigger_t, now_ + opt_.cut_margin_ns);
+  const std::int64_t k = planned_steps_at(want);
+  // Nothing planned after `want` (the frontier stop is as early), or no step before it yet.
+  if (k < 1 || k >= m_.k || m_.k - k >= static_cast<std::int64_t>(EdgeEmitter::kHistory) - 1) {
+    return false;
+  }
+  const Nanos t_c = out_.step_time(k);
+  // A GPO edge queued after t_c would hold the replacement edges behind it in the ring.
+  if (t_c < out_.nonmotion_t()) return false;
+  const double t = static_cast<double>(t_c - m_.origin) * 1e-9;
+  // Replanned after step k (a speed change): the profile at k is gone.
+  if (t < profile_.start_time()) return false;
+  if (profile_.stop_end(k, t, c.ramp) >= m_.end) return false;  // it ends as soon anyway
+  if (!control_->cut.request(m_.epoch, t_c)) return false;
+  cut_ = PendingCut{true, c.ramp, k, t_c};
+  return true;
+}
+
+bool AxisPlanner::resolve_cut(bool now_or_never) noexcept {
+  if (!cut_.open) return true;
+  switch (control_->cut.poll()) {
+    case rt::EdgeCut::Outcome::kAccepted:
+      cut_.open = false;
+      apply_cut();
+      return true;
+    case rt::EdgeCut::Outcome::kPending:
+      if (!now_or_never) return false;
+      if (!control_->cut.withdraw()) return resolve_cut(true);  // decided meanwhile
+      break;
+    case rt::EdgeCut::Outcome::kRefused:  // an edge after the cut had already run
+    case rt::EdgeCut::Outcome::kNone:
+      break;
+  }
+  cut_.open = false;
+  stop_at_frontier(cut_.ramp);
+  return true;
+}
+
+void AxisPlanner::apply_cut() noexcept {
+  if (!m_.active) return;
+  cut_epoch_ = m_.epoch;
+  // Back to step k: the edges after it are replaced.
+  const double t = static_cast<double>(cut_.t - m_.origin) * 1e-9;
+  out_.cut(cut_.t, profile_.phase_at(t));
+  m_.k = cut_.k;
+  m_.tk = t;
+  m_.tk_ns = cut_.t;
+  const std::int64_t end = profile_.stop_end(cut_.k, t, cut_.ramp);
+  if (end <= m_.k) {
+    finish_at_frontier();
+    return;
+  }
+  replan_to_end(end, cut_.ramp, true);
+}
+
+void AxisPlanner::stop_after(std::uint32_t epoch, const StopAfterSpec& c) noexcept {
+  if (!m_.active || epoch != m_.epoch || m_.follow) return;
   // Steps of this motion up to c.t, counting the ones already planned after it.
   const std::int64_t end = planned_steps_at(c.t) + std::max<std::int64_t>(c.steps, 0);
   if (end >= m_.end) return;  // already ends there or sooner
@@ -330,65 +261,22 @@ void AxisPlanner::stop_after(const Command& c) noexcept {
     return;
   }
   // Digest 7.9 step 4: freeze the present speed, cruise, decelerate with the motion's decel.
-  replan_to_end(end, m_.decel, false);
-}
-
-void AxisPlanner::set_gpo(bool level, Nanos now) noexcept {
-  // Not part of any motion: as soon as the ring's order allows (behind edges already pushed).
-  const Nanos t = std::max(now, last_pushed_t_);
-  stage_sorted(make_edge(t, OutputLine::kGpo, level ? 1 : 0, 0, 0));
-  nonmotion_t_ = std::max(nonmotion_t_, t);
-}
-
-void AxisPlanner::set_pulse_format(bool step_dir, Nanos now) noexcept {
-  want_step_dir_ = step_dir;
-  // A motion in progress keeps its format; the next one starts with the new one.
-  if (m_.active || step_dir == step_dir_) return;
-  step_dir_ = step_dir;
-  if (dir_level_ != 0) {
-    // The direction line becomes the CCW pulse line (or back): leave it at its idle level.
-    const Nanos t = std::max(now, last_pushed_t_);
-    stage_sorted(make_edge(t, OutputLine::kDir, 0, 0, 0));
-    nonmotion_t_ = std::max(nonmotion_t_, t);
-    dir_level_ = 0;
-  }
+  replan_to_end(end, profile_.decel(), false);
 }
 
 void AxisPlanner::step_once() noexcept {
   Motion& m = m_;
   const std::int64_t k = m.k + 1;
-  double t;
-  rt::Phase ph;
-  if (k >= m.end) {
-    // The last step lands exactly at the profile's end (Tt), not at a rounded solve.
-    t = phases_.end_time();
-    ph = phases_.empty() ? rt::Phase::kCruise : phases_[phases_.size() - 1].phase;
-  } else {
-    t = solver_.time_of(static_cast<double>(k));
-    ph = phases_[solver_.phase_index()].phase;
-  }
+  auto [t, ph] = profile_.step(k, m.end);
   if (t < m.tk) t = m.tk;
   Nanos ns = m.origin + to_ns(t);
   if (ns < m.tk_ns) ns = m.tk_ns;
-  const auto flags = static_cast<std::uint8_t>(m.base_flags | static_cast<std::uint8_t>(ph));
-  if (m.k > 0) {
-    // Trailing edge of the previous step: the configured width, or half the period if shorter.
-    const Nanos w = std::min(timing_.step_pulse_ns, (ns - m.tk_ns) / 2);
-    stage(make_edge(m.tk_ns + w, m.line, 0, 0, m.k_flags));
-  }
-  std::uint8_t lead = flags;
-  if (m.first_pending) {
-    lead |= rt::edge_flag::kFirst;
-    m.first_pending = false;
-  }
-  stage(make_edge(ns, m.line, 1, static_cast<std::int8_t>(sign(m.dir)), lead));
-  history_[static_cast<std::size_t>(k) & (kHistory - 1)] = ns;
+  out_.step(ns, ph, k);
   m.k = k;
   m.tk = t;
   m.tk_ns = ns;
-  m.k_flags = flags;
   if (k >= m.end) {
-    stage(make_edge(ns + timing_.step_pulse_ns, m.line, 0, 0, flags | rt::edge_flag::kLast));
+    out_.end(ns);
     m.active = false;
   }
 }
@@ -396,149 +284,67 @@ void AxisPlanner::step_once() noexcept {
 Nanos AxisPlanner::fill(Nanos now) noexcept {
   check_abort();
   now_ = std::max(now_, now);
+  if (!resolve_cut(false)) return now + kCutPollNs;  // which edges to push is not known yet
   const Nanos horizon = now + opt_.lookahead_ns;
-  flush(horizon);
-  while (m_.active && staged_count_ == 0) {
+  out_.flush(horizon);
+  while (m_.active && !m_.held && out_.staged_empty()) {
     if (m_.follow) {
       if (!follow_step()) break;  // at rest on the target: the next target wakes us
     } else {
       step_once();
     }
-    flush(horizon);
+    out_.flush(horizon);
   }
-  if (staged_count_ == 0) return now + kIdleServiceInterval;
-  const Nanos head = staged_[staged_head_].t;
+  if (out_.staged_empty()) return now + kIdleServiceInterval;
+  const Nanos head = out_.head_t();
   if (head > horizon) {
     // Come back when half the lookahead is left before it: refills happen in batches.
     return head - opt_.lookahead_ns / 2;
   }
   // Ring full: about half of what it holds has run by the midpoint to its newest edge.
-  return now + std::max<Nanos>(10 * kNsPerUs, (last_pushed_t_ - now) / 2);
+  return now + std::max<Nanos>(10 * kNsPerUs, (out_.last_pushed_t() - now) / 2);
 }
 
-void AxisPlanner::follow_update(const Command& c) noexcept {
-  if (!m_.active || !m_.follow || c.epoch != m_.epoch) return;
-  f_.spec = c.follow;
+void AxisPlanner::follow_update(std::uint32_t epoch, const FollowSpec& f) noexcept {
+  if (!m_.active || !m_.follow || epoch != m_.epoch) return;
+  follow_.update(f);
 }
 
 void AxisPlanner::follow_finish() noexcept {
   m_.active = false;
   // Every step's trailing edge is already staged: a marker edge (the direction line rewritten at
   // its present level) carries kLast so that the pulse thread reports the motion finished.
-  const int level = dir_level_ >= 0 ? dir_level_ : 0;
-  dir_level_ = level;
-  std::uint8_t flags = m_.base_flags | rt::edge_flag::kLast;
-  if (m_.first_pending) flags |= rt::edge_flag::kFirst;
-  m_.first_pending = false;
-  stage(make_edge(std::max(now_, last_t_), OutputLine::kDir, static_cast<std::uint8_t>(level), 0,
-                  flags));
+  out_.end(now_);
 }
 
-// The follow law (FollowSpec): the speed of the next step is the highest that
-//   * the accel allows from the previous step's speed (v^2 + 2a per step; 0 = jump to `speed`),
-//   * still lets the axis stop on the target (vs^2 + 2d (n - 1) for n steps left; 0 = no limit),
-//   * stays within vmax (accel > 0) or the master's `speed` (accel = 0);
-// the step interval is 2 / (v_prev + v_next), exact for a constant rate. A target behind the axis
-// (it moved back) is handled by decelerating at d down to vs, stopping and reversing. Steps are
-// decided when planned, at most the lookahead ahead of their time, so they only ever use a known
-// target and the count stays exact.
+// A follow step: the servo decides it (planner/follow_servo.hpp), the emitter writes it.
 bool AxisPlanner::follow_step() noexcept {
-  FollowState& f = f_;
-  const FollowSpec& s = f.spec;
-  const double vs = std::max(s.vs, 1.0);
-  const double vmax = std::max(s.vmax, 1.0);
-  const double cap = s.accel > 0.0 ? vmax : std::clamp(s.speed, 1.0, vmax);
-  const Nanos floor_t = now_ + opt_.start_delay_ns;
-  // A step at the present speed would already be overdue: the axis has been waiting for its
-  // target, so it starts again from rest.
-  if (f.v > 0.0 && m_.tk_ns + to_ns(1.0 / f.v) < now_) f.v = 0.0;
-
-  const std::int64_t e = s.target - f.pos;
-  const int want = e > 0 ? 1 : (e < 0 ? -1 : 0);
-  int dir = want;
-  double v = 0.0;
-  if (f.v > 0.0 && want != f.dir) {
-    // On or past the target while moving: ramp down to vs at d, then stop.
-    const double v2 = f.v * f.v - 2.0 * s.decel;
-    if (s.decel > 0.0 && f.v > vs && v2 >= vs * vs) {
-      v = std::sqrt(v2);
-      dir = f.dir;
-    } else {
-      f.v = 0.0;
-    }
-  }
-  if (v == 0.0) {
-    if (want == 0) {
-      f.v = 0.0;
-      if (f.finishing) {
-        follow_finish();
-        return true;
-      }
+  FollowStep st;
+  switch (follow_.next(m_.tk_ns, m_.k == 0, now_, opt_.start_delay_ns, timing_.step_pulse_ns, st)) {
+    case FollowServo::Next::kWait:
       return false;
-    }
-    const double n = static_cast<double>(want > 0 ? e : -e);
-    v = cap;
-    if (s.accel > 0.0) v = std::min(v, f.v > 0.0 ? std::sqrt(f.v * f.v + 2.0 * s.accel) : vs);
-    if (s.decel > 0.0) {
-      v = std::min(v, std::sqrt(vs * vs + 2.0 * s.decel * (n - 1.0)));
-      // It cannot slow down faster than d either (the target came closer than planned for).
-      if (f.v > 0.0) v = std::max(v, std::sqrt(std::max(0.0, f.v * f.v - 2.0 * s.decel)));
-    }
-    v = std::max(v, 1.0);
+    case FollowServo::Next::kFinish:
+      follow_finish();
+      return true;
+    case FollowServo::Next::kStep:
+      break;
   }
-
-  // Time of the step.
-  const bool from_rest = f.v <= 0.0;
-  Nanos t;
-  if (!from_rest) {
-    t = m_.tk_ns + to_ns(2.0 / (f.v + v));
-  } else {
-    t = floor_t;
-    if (m_.k > 0) t = std::max(t, m_.tk_ns + to_ns(1.0 / v));
-  }
-  t = std::max(t, last_t_ + 1);
-  if (from_rest || dir != sign(m_.dir) || m_.k == 0) {
-    const bool ccw = dir < 0;
-    m_.dir = ccw ? Direction::kCcw : Direction::kCw;
-    m_.line = (step_dir_ || !ccw) ? OutputLine::kStep : OutputLine::kDir;
-    m_.base_flags = rt::edge_flag::kMotion | (ccw ? rt::edge_flag::kCcw : 0);
-    const int level = step_dir_ ? (ccw ? kDirLevelCcw : kDirLevelCw) : 0;
-    if (dir_level_ != level) {
+  Nanos t = std::max(st.t, out_.last_t() + 1);
+  if (st.from_rest || st.dir != sign(m_.dir) || m_.k == 0) {
+    m_.dir = st.dir < 0 ? Direction::kCcw : Direction::kCw;
+    out_.turn(m_.dir);
+    if (out_.direction_pending()) {
       // Step/direction: the direction line settles dir_setup_ns before the step.
-      const Nanos td = std::max(last_t_, std::max(now_, t - timing_.dir_setup_ns));
-      std::uint8_t flags = m_.base_flags;
-      if (m_.first_pending) flags |= rt::edge_flag::kFirst;
-      m_.first_pending = false;
-      stage(make_edge(td, OutputLine::kDir, static_cast<std::uint8_t>(level), 0, flags));
-      dir_level_ = level;
+      const Nanos td = std::max(out_.last_t(), std::max(now_, t - timing_.dir_setup_ns));
+      out_.direction(td, rt::Phase::kCruise);
       t = std::max(t, td + timing_.dir_setup_ns);
     }
   }
-  rt::Phase ph = rt::Phase::kCruise;
-  if (!from_rest && dir == f.dir) {
-    if (v > f.v * (1.0 + 1e-9)) ph = rt::Phase::kAccel;
-    if (v < f.v * (1.0 - 1e-9)) ph = rt::Phase::kDecel;
-  }
-  const auto flags = static_cast<std::uint8_t>(m_.base_flags | static_cast<std::uint8_t>(ph));
-  std::uint8_t lead = flags;
-  if (m_.first_pending) {
-    lead |= rt::edge_flag::kFirst;
-    m_.first_pending = false;
-  }
-  stage(make_edge(t, m_.line, 1, static_cast<std::int8_t>(dir), lead));
-  // The trailing edge goes with it (the next step is not known yet): the configured width, or
-  // half the shortest period the next step can come at.
-  const double v_up = s.accel > 0.0 ? std::sqrt(v * v + 2.0 * s.accel) : std::max(v, cap);
-  const Nanos w = std::max<Nanos>(1, std::min(timing_.step_pulse_ns, to_ns(0.5 / v_up)));
-  stage(make_edge(t + w, m_.line, 0, 0, flags));
   const std::int64_t k = m_.k + 1;
-  history_[static_cast<std::size_t>(k) & (kHistory - 1)] = t;
+  out_.pulse(t, st.phase, st.dir, st.width, k);
   m_.k = k;
   m_.tk_ns = t;
-  m_.k_flags = flags;
-  f.pos += dir;
-  f.dir = dir;
-  f.v = v;
+  follow_.taken(st);
   return true;
 }
 

@@ -5,17 +5,15 @@
 #include <cstdint>
 #include <limits>
 
+#include "planner/edge_emitter.hpp"
+#include "planner/follow_servo.hpp"
 #include "planner/motion_request.hpp"
 #include "planner/planner.hpp"
 #include "planner/profile.hpp"
+#include "planner/profile_source.hpp"
 #include "rt/edge.hpp"
 
 namespace stepmod::planner {
-
-// Step/direction format: the direction line is high while the axis runs CW (position increasing)
-// and low for CCW, as the simulated drive reads it (gpio/sim_machine.cpp). Lines idle low.
-inline constexpr std::uint8_t kDirLevelCcw = 0;
-inline constexpr std::uint8_t kDirLevelCw = 1;
 
 // An axis with nothing to do asks to be serviced again this far ahead; a submit wakes it anyway.
 inline constexpr Nanos kIdleServiceInterval = 10 * kNsPerSec;
@@ -26,8 +24,16 @@ class AxisPlanner {
   AxisPlanner(const AxisPlanner&) = delete;
   AxisPlanner& operator=(const AxisPlanner&) = delete;
 
-  // Applies one command for this axis at time `now`.
+  // Applies one command for this axis at time `now` (a start: prepare_start + launch at once).
   void apply(const Command& c, Nanos now) noexcept;
+  // A blend start's segment table, copied out of the planner's blend slot before apply().
+  void take_blend(const BlendSpec& b) noexcept { blend_ = b; }
+  // Group start, in two halves: prepare_start sets the motion up and holds it (no edge); false if
+  // the start is stale or aborted. earliest_origin is the soonest time 0 it could have at `now`;
+  // launch gives it its time 0 (>= earliest_origin) and lets it run.
+  bool prepare_start(const Command& c, Nanos now) noexcept;
+  Nanos earliest_origin(Nanos now) const noexcept;
+  void launch(Nanos origin) noexcept;
   // Pushes edges while the ring has room, up to now + lookahead. Returns the time by which it
   // must be called again.
   Nanos fill(Nanos now) noexcept;
@@ -40,51 +46,39 @@ class AxisPlanner {
   double frontier_speed() const noexcept;
   // Steps of the newest motion planned at or before t (from the recent history).
   std::int64_t planned_steps_at(Nanos t) const noexcept;
-  bool step_dir_format() const noexcept { return step_dir_; }
+  bool step_dir_format() const noexcept { return out_.step_dir_format(); }
 
  private:
-  static constexpr std::int64_t kEndless = std::numeric_limits<std::int64_t>::max();
-  static constexpr std::size_t kHistory = 1u << 14;  // step times kept for stop_after
-  static constexpr std::size_t kStaged = 64;
-
   struct Motion {
     bool active = false;
     std::uint32_t epoch = 0;
     Direction dir = Direction::kCw;
-    bool constant_speed = false;    // started with vp <= vs: stops end after the next step
-    bool can_change_speed = false;  // a Run that no stop has ended yet
-    std::int64_t end = kEndless;    // step count at which the motion ends
-    double vs = 1.0;
-    Ramp decel;
-    Nanos origin = 0;          // time 0 of the motion
-    std::int64_t k = 0;        // steps generated
-    double tk = 0.0;           // time of step k, s from origin
-    Nanos tk_ns = 0;           // the same, absolute
-    std::uint8_t k_flags = 0;  // flags of step k's edges (without kFirst)
-    OutputLine line = OutputLine::kStep;
-    std::uint8_t base_flags = 0;  // kMotion | kCcw
-    bool first_pending = true;    // kFirst not yet given to an edge
+    std::int64_t end = kEndless;  // step count at which the motion ends
+    Nanos origin = 0;             // time 0 of the motion
+    std::int64_t k = 0;           // steps generated
+    double tk = 0.0;              // time of step k, s from origin
+    Nanos tk_ns = 0;              // the same, absolute
     bool follow = false;          // a follow motion (FollowSpec): steps come from follow_step
+    bool held = false;            // prepared, waiting for launch() (group start)
+    Nanos dir_shift = 0;          // launch: time 0 this long after the direction edge
+    bool dir_edge = false;        // launch: write the direction line first
   };
 
-  // The servo state of a follow motion (encoder follower).
-  struct FollowState {
-    FollowSpec spec;         // latest target, speed and ramps
-    std::int64_t pos = 0;    // net steps planned (CW positive) since the motion's start
-    int dir = 0;             // sense of the newest step: +1 CW, -1 CCW, 0 before the first
-    double v = 0.0;          // speed of the newest step (steps/s); 0 = at rest
-    bool finishing = false;  // kStop seen: end as soon as the axis rests on its target
-  };
-
-  void start_motion(const Command& c, Nanos now) noexcept;
-  void change_speed(const Command& c) noexcept;
-  void stop(const Command& c) noexcept;
-  void stop_after(const Command& c) noexcept;
+  void change_speed(std::uint32_t epoch, const SpeedChange& s) noexcept;
+  void stop(std::uint32_t epoch, const StopSpec& s) noexcept;
+  void stop_at_frontier(const Ramp& ramp) noexcept;
+  // Stop at the trigger (StopSpec::trigger_t): asks the pulse thread for a cut at the step
+  // planned at max(trigger, now + margin); false if none is possible (then stop_at_frontier).
+  bool request_cut(const StopSpec& s) noexcept;
+  // The pulse thread's answer to a cut request; with `now_or_never` an undecided request is
+  // withdrawn (another command for this axis must not wait). True when no request is open.
+  bool resolve_cut(bool now_or_never) noexcept;
+  // Accepted: replans from the cut's step; the new edges carry edge_flag::kReplacement.
+  void apply_cut() noexcept;
+  void stop_after(std::uint32_t epoch, const StopAfterSpec& s) noexcept;
   void abort_last_motion() noexcept;
   void check_abort() noexcept;
-  void set_gpo(bool level, Nanos now) noexcept;
-  void set_pulse_format(bool step_dir, Nanos now) noexcept;
-  void follow_update(const Command& c) noexcept;
+  void follow_update(std::uint32_t epoch, const FollowSpec& f) noexcept;
   // Plans the next step of the follow motion (or ends it); false when there is nothing to do.
   bool follow_step() noexcept;
   // Ends the follow motion where it is (its steps' trailing edges are already staged).
@@ -92,44 +86,35 @@ class AxisPlanner {
 
   // Ends the motion on its newest planned step (kLast on that step's trailing edge).
   void finish_at_frontier() noexcept;
-  // Replans from the newest step: cruise at its speed, then ramp to vs so that the motion ends
-  // exactly on step `end`. A ramp that does not fit is made steeper; with `exact_ramp` the ramp's
-  // rate is always adjusted to cover the whole rest (no cruise).
+  // Replans the profile from the newest step to end on step `end` (ProfileSource::replan_to_end).
   void replan_to_end(std::int64_t end, const Ramp& ramp, bool exact_ramp) noexcept;
   void step_once() noexcept;
-  void stage(const rt::Edge& e) noexcept;
-  void stage_sorted(const rt::Edge& e) noexcept;
-  void flush(Nanos horizon) noexcept;
-  rt::Edge make_edge(Nanos t, OutputLine line, std::uint8_t level, std::int8_t dpos,
-                     std::uint8_t flags) const noexcept;
 
-  SpscRing<rt::Edge>* ring_;
-  const rt::AxisControl* control_;
+  rt::AxisControl* control_;
   AxisTiming timing_;
   PlannerOptions opt_;
+  EdgeEmitter out_;
 
-  bool step_dir_ = true;
-  bool want_step_dir_ = true;  // format asked for; applied when no motion is in progress
-  int dir_level_ = 0;  // -1: unknown (an aborted motion's direction edge may have been dropped)
-  Nanos last_t_ = std::numeric_limits<Nanos>::min();          // newest staged or pushed edge
-  Nanos last_pushed_t_ = std::numeric_limits<Nanos>::min();   // newest edge in the ring
-  Nanos motion_floor_t_ = std::numeric_limits<Nanos>::min();  // last_t_ before the newest motion
-  Nanos nonmotion_t_ = std::numeric_limits<Nanos>::min();     // newest GPO/format edge
   std::uint32_t last_motion_epoch_ = 0;
   bool last_motion_aborted_ = false;
   std::uint32_t seen_abort_ = 0;
 
+  // A cut requested from the pulse thread (request_cut) and not answered yet: this axis pushes
+  // nothing meanwhile.
+  struct PendingCut {
+    bool open = false;
+    Ramp ramp;
+    std::int64_t k = 0;  // the last step kept
+    Nanos t = 0;         // its leading edge: edges of the motion after it are replaced
+  };
+  PendingCut cut_;
+  std::uint32_t cut_epoch_ = 0;  // the newest motion that was cut (one cut per motion)
+
   Motion m_;
-  FollowState f_;
-  Nanos now_ = 0;  // time of the latest apply/fill (a follow step from rest starts after it)
-  PhaseList phases_;
-  StepSolver solver_;
-
-  std::array<rt::Edge, kStaged> staged_{};  // generated, not yet in the ring, in time order
-  std::size_t staged_head_ = 0;
-  std::size_t staged_count_ = 0;
-
-  std::array<Nanos, kHistory> history_{};  // history_[k % kHistory] = time of step k
+  FollowServo follow_;  // the step source of a follow motion
+  BlendSpec blend_;     // the newest blend start's table (take_blend)
+  Nanos now_ = 0;       // time of the latest apply/fill (a follow step from rest starts after it)
+  ProfileSource profile_;  // the step source of moves, runs and blends
 };
 
 }  // namespace stepmod::planner

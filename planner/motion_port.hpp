@@ -14,65 +14,49 @@ class CommandSink {
   virtual ~CommandSink() = default;
   // Queues a command for the planner; false if the queue is full (the caller reports an error).
   virtual bool submit(const Command& c) noexcept = 0;
+  // Queues a blend start (c.what: BlendStart) with its segment table, which travels through the
+  // planner's blend slot of c.axis instead of the command. False if the queue is full or the
+  // axis' previous blend has not been taken by the planner yet.
+  virtual bool submit_blend(Command c, const BlendSpec& b) noexcept = 0;
 };
 
 class MotionPort {
  public:
-  MotionPort(unsigned axis, CommandSink& sink, rt::AxisFeedback& feedback,
-             rt::AxisControl& control, const rt::StepHistory& history) noexcept
+  MotionPort(unsigned axis, CommandSink& sink, rt::AxisFeedback& feedback, rt::AxisControl& control,
+             const rt::StepHistory& history) noexcept
       : axis_(static_cast<std::uint8_t>(axis)),
         sink_(sink),
         fb_(feedback),
         ctl_(control),
         history_(history) {}
 
-  // Each start returns the new motion's epoch (0 if the planner queue was full).
-  std::uint32_t start_move(const MoveSpec& m) noexcept {
-    Command c;
-    c.kind = CommandKind::kMove;
-    c.move = m;
-    return start(c);
+  // Each start returns the new motion's epoch (0 if the planner queue was full). With a group
+  // tag, the motion starts on the time base of its group (GroupTag): every member axis submits
+  // its start with the same tag, one after the other, in the same scan.
+  std::uint32_t start_move(const MoveSpec& m, GroupTag group = {}) noexcept {
+    return start(m, group);
   }
-  std::uint32_t start_run(const RunSpec& r) noexcept {
-    Command c;
-    c.kind = CommandKind::kRun;
-    c.run = r;
-    return start(c);
+  std::uint32_t start_run(const RunSpec& r, GroupTag group = {}) noexcept {
+    return start(r, group);
   }
-  std::uint32_t start_blend(const BlendSpec& b) noexcept {
-    Command c;
-    c.kind = CommandKind::kBlend;
-    c.blend = b;
-    return start(c);
+  std::uint32_t start_blend(const BlendSpec& b, GroupTag group = {}) noexcept {
+    Command c = prepare_start(BlendStart{}, group);
+    if (!sink_.submit_blend(c, b)) return 0;
+    return started(c);
   }
   // Encoder follower: a follow motion (FollowSpec), then its new targets. stop() ends it once it
   // has reached its target and is at rest; immediate_stop() cuts it.
-  std::uint32_t start_follow(const FollowSpec& f) noexcept {
-    Command c;
-    c.kind = CommandKind::kFollow;
-    c.follow = f;
-    return start(c);
-  }
-  bool follow(const FollowSpec& f) noexcept {
-    Command c;
-    c.kind = CommandKind::kFollowUpdate;
-    c.follow = f;
-    return send(c);
-  }
+  std::uint32_t start_follow(const FollowSpec& f) noexcept { return start(FollowStart{f}, {}); }
+  bool follow(const FollowSpec& f) noexcept { return send(FollowUpdate{f}); }
   bool change_speed(double vp, Ramp accel, Ramp decel) noexcept {
-    Command c;
-    c.kind = CommandKind::kChangeSpeed;
-    c.run.vp = vp;
-    c.run.accel = accel;
-    c.run.decel = decel;
-    return send(c);
+    return send(SpeedChange{vp, accel, decel});
   }
-  bool stop(Ramp decel) noexcept {
-    Command c;
-    c.kind = CommandKind::kStop;
-    c.ramp = decel;
-    return send(c);
-  }
+  // Controlled stop, planned from the newest planned step (a lookahead, ~4 ms, after now).
+  bool stop(Ramp decel) noexcept { return send(StopSpec{decel, kNoTrigger}); }
+  // Controlled stop whose deceleration starts at its cause's time `trigger_t` (the input edge's
+  // timestamp, the scan time of a Hold), or as soon after it as the planner can still replace the
+  // queued edges (StopSpec).
+  bool stop(Ramp decel, Nanos trigger_t) noexcept { return send(StopSpec{decel, trigger_t}); }
   bool stop_after(Nanos t, std::int64_t steps) noexcept {
     // Exactness backstop in the pulse thread (AxisControl::limit_steps): the count at t plus
     // `steps` in the motion's direction, once the motion's own edges have started to run.
@@ -82,38 +66,20 @@ class MotionPort {
       ctl_.limit_steps.store(at_t + (ccw ? -steps : steps), std::memory_order_relaxed);
       ctl_.limit_epoch.store(epoch_, std::memory_order_release);
     }
-    Command c;
-    c.kind = CommandKind::kStopAfter;
-    c.t = t;
-    c.steps = steps;
-    return send(c);
+    return send(StopAfterSpec{t, steps});
   }
   // Immediate stop: takes effect in the pulse thread at its next loop, planner or not.
   void immediate_stop() noexcept {
     ctl_.abort_epoch.store(epoch_, std::memory_order_release);
-    Command c;
-    c.kind = CommandKind::kAbort;
-    send(c);
+    send(AbortSpec{});
   }
   // The configured output format: true = step + direction, false = CW + CCW pulse lines.
-  bool set_pulse_format(bool step_dir) noexcept {
-    Command c;
-    c.kind = CommandKind::kSetPulseFormat;
-    c.level = step_dir;
-    return send(c);
-  }
-  bool set_gpo(bool level) noexcept {
-    Command c;
-    c.kind = CommandKind::kSetGpo;
-    c.level = level;
-    return send(c);
-  }
+  bool set_pulse_format(bool step_dir) noexcept { return send(PulseFormatSpec{step_dir}); }
+  bool set_gpo(bool level) noexcept { return send(GpoSpec{level}); }
 
   // Feedback, as last published by the pulse thread.
   std::uint32_t epoch() const noexcept { return epoch_; }
-  bool busy() const noexcept {
-    return fb_.finished_epoch.load(std::memory_order_acquire) < epoch_;
-  }
+  bool busy() const noexcept { return fb_.finished_epoch.load(std::memory_order_acquire) < epoch_; }
   std::int64_t steps() const noexcept { return fb_.steps.load(std::memory_order_acquire); }
   // Step count at a past time t (capture, registration): exact while t is within the history.
   bool steps_at(Nanos t, std::int64_t& out) const noexcept {
@@ -137,16 +103,28 @@ class MotionPort {
   unsigned axis() const noexcept { return axis_; }
 
  private:
-  std::uint32_t start(Command& c) noexcept {
+  Command prepare_start(CommandPayload what, GroupTag group) const noexcept {
+    Command c;
     c.axis = axis_;
     c.epoch = epoch_ + 1;
-    if (!sink_.submit(c)) return 0;
+    c.group = group;
+    c.what = what;
+    return c;
+  }
+  std::uint32_t started(const Command& c) noexcept {
     epoch_ = c.epoch;
     return epoch_;
   }
-  bool send(Command& c) noexcept {
+  std::uint32_t start(CommandPayload what, GroupTag group) noexcept {
+    const Command c = prepare_start(what, group);
+    if (!sink_.submit(c)) return 0;
+    return started(c);
+  }
+  bool send(CommandPayload what) noexcept {
+    Command c;
     c.axis = axis_;
     c.epoch = epoch_;
+    c.what = what;
     return sink_.submit(c);
   }
 

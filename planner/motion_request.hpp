@@ -3,7 +3,11 @@
 // module converts the manuals' steps/ms/s). Commands are trivially copyable so they cross threads
 // through an SpscRing without allocation.
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <limits>
+#include <type_traits>
+#include <variant>
 
 #include "core/clock.hpp"
 
@@ -79,32 +83,99 @@ struct FollowSpec {
   double decel = 0.0;         // steps/s^2; 0 = stop (and reverse) without a ramp
 };
 
+// The payload of each command kind: one small type per kind, so a command carries only what its
+// kind needs. A blend's segment table (BlendSpec, 552 bytes) does not travel in a command: the
+// control thread hands it over through the planner's per-axis blend slot (Planner::submit_blend)
+// and the command only names it.
+struct BlendStart {
+  std::uint32_t seq = 0;  // the slot's hand-over number (Planner::submit_blend)
+};
+struct SpeedChange {  // running motion: ramp to vp with accel (up) or decel (down)
+  double vp = 0.0;
+  Ramp accel;
+  Ramp decel;
+};
+// No trigger time: the stop is planned from the newest planned step (a lookahead late).
+inline constexpr Nanos kNoTrigger = std::numeric_limits<Nanos>::min();
+struct StopSpec {  // controlled stop: decelerate to vs with `ramp`, then end
+  Ramp ramp;
+  // When the stop's cause happened (an input edge's timestamp, the scan that saw a Hold):
+  // the deceleration starts at max(trigger_t, planner now + a margin), replacing edges already
+  // queued for later (AxisControl's cut). kNoTrigger: from the newest planned step.
+  Nanos trigger_t = kNoTrigger;
+};
+struct StopAfterSpec {  // registration: end exactly `steps` steps after the step count at `t`
+  Nanos t = 0;
+  std::int64_t steps = 0;
+};
+struct AbortSpec {};  // immediate stop (the pulse thread already drops the motion's edges)
+struct GpoSpec {      // general-purpose output level (3602)
+  bool level = false;
+};
+struct PulseFormatSpec {  // true: step + direction outputs, false: CW + CCW pulse outputs
+  bool step_dir = true;
+};
+struct FollowStart {  // encoder follower (ends with a stop or an abort)
+  FollowSpec spec;
+};
+struct FollowUpdate {  // follow motion: new target, speed and ramps
+  FollowSpec spec;
+};
+
+// The kind is the payload's index in CommandPayload: keep the two lists in the same order.
 enum class CommandKind : std::uint8_t {
-  kMove,            // start `move` as motion `epoch`
-  kRun,             // start `run` as motion `epoch`
-  kBlend,           // start `blend` as motion `epoch`
-  kChangeSpeed,     // running motion `epoch`: ramp to run.vp with run.accel / run.decel
-  kStop,            // controlled stop of `epoch`: decelerate to vs with `ramp`, then end
-  kStopAfter,       // registration: end `epoch` exactly `steps` steps after the step count at `t`
-  kAbort,           // immediate stop of `epoch` (the pulse thread already drops its edges)
-  kSetGpo,          // general-purpose output level `level` (3602)
-  kSetPulseFormat,  // `level` = true: step + direction outputs, false: CW + CCW pulse outputs
-  kFollow,          // start `follow` as motion `epoch` (encoder follower; ends with kStop/kAbort)
-  kFollowUpdate,    // follow motion `epoch`: new target, speed and ramps from `follow`
+  kMove,            // MoveSpec: start as motion `epoch`
+  kRun,             // RunSpec: start as motion `epoch`
+  kBlend,           // BlendStart: start the slot's BlendSpec as motion `epoch`
+  kChangeSpeed,     // SpeedChange of running motion `epoch`
+  kStop,            // StopSpec: controlled stop of `epoch`
+  kStopAfter,       // StopAfterSpec: registration end of `epoch`
+  kAbort,           // AbortSpec: immediate stop of `epoch`
+  kSetGpo,          // GpoSpec
+  kSetPulseFormat,  // PulseFormatSpec
+  kFollow,          // FollowStart: start as motion `epoch`
+  kFollowUpdate,    // FollowUpdate of follow motion `epoch`
+};
+using CommandPayload =
+    std::variant<MoveSpec, RunSpec, BlendStart, SpeedChange, StopSpec, StopAfterSpec, AbortSpec,
+                 GpoSpec, PulseFormatSpec, FollowStart, FollowUpdate>;
+static_assert(std::variant_size_v<CommandPayload> ==
+              static_cast<std::size_t>(CommandKind::kFollowUpdate) + 1);
+
+// Group start: the motions of `size` axes that start together on one time base. Each member's
+// start command carries the same id; the planner starts none of them before it holds all (or
+// until a command that is not a member arrives), then gives them all one time 0. Ids are the
+// caller's: unique among the groups in flight (GroupIds hands them out).
+struct GroupTag {
+  std::uint32_t id = 0;  // 0: not part of a group
+  std::uint8_t size = 0;
+};
+class GroupIds {
+ public:
+  GroupTag next(std::uint8_t size) noexcept {
+    if (++last_ == 0) ++last_;
+    return GroupTag{last_, size};
+  }
+
+ private:
+  std::uint32_t last_ = 0;
 };
 
 struct Command {
-  CommandKind kind = CommandKind::kMove;
   std::uint8_t axis = 0;
   std::uint32_t epoch = 0;
-  MoveSpec move;
-  RunSpec run;
-  Ramp ramp;
-  std::int64_t steps = 0;
-  Nanos t = 0;
-  bool level = false;
-  BlendSpec blend;
-  FollowSpec follow;
+  GroupTag group;  // start commands only
+  CommandPayload what;
+
+  CommandKind kind() const noexcept { return static_cast<CommandKind>(what.index()); }
+  bool starts_motion() const noexcept {
+    const CommandKind k = kind();
+    return k == CommandKind::kMove || k == CommandKind::kRun || k == CommandKind::kBlend ||
+           k == CommandKind::kFollow;
+  }
 };
+// Commands cross threads by copy through an SpscRing: small and trivially copyable.
+static_assert(std::is_trivially_copyable_v<Command>);
+static_assert(sizeof(Command) <= 96);
 
 }  // namespace stepmod::planner

@@ -21,8 +21,8 @@ struct AxisTiming {
 };
 
 struct PlannerAxis {
-  SpscRing<rt::Edge>* edges = nullptr;       // producer side
-  const rt::AxisControl* control = nullptr;  // abort_epoch: skip aborted motions
+  SpscRing<rt::Edge>* edges = nullptr;  // producer side
+  rt::AxisControl* control = nullptr;   // abort_epoch: skip aborted motions; cut (stops)
   AxisTiming timing;
 };
 
@@ -30,6 +30,9 @@ struct PlannerOptions {
   Nanos lookahead_ns = 4 * kNsPerMs;      // keep each ring filled this far ahead of `now`
   Nanos start_delay_ns = 150 * kNsPerUs;  // a new motion's time 0 is at least this after `now`
   std::size_t command_queue = 64;
+  // A stop with a trigger time replaces queued edges from max(trigger, now + this) on: time for
+  // the pulse thread to see the cut before it runs the first edge it drops (rt/edge_cut.hpp).
+  Nanos cut_margin_ns = 100 * kNsPerUs;
 };
 
 class AxisPlanner;  // planner/axis_planner.hpp
@@ -41,6 +44,7 @@ class Planner final : public CommandSink {
 
   // Control thread (single producer).
   bool submit(const Command& c) noexcept override;
+  bool submit_blend(Command c, const BlendSpec& b) noexcept override;
 
   // Planner thread: applies the queued commands and fills every ring up to now + lookahead.
   // Returns the time at which it should run again at the latest.
@@ -51,10 +55,31 @@ class Planner final : public CommandSink {
   const PlannerOptions& options() const noexcept { return options_; }
 
  private:
+  // A blend's segment table on its way from the control thread to the planner thread. The
+  // control thread writes `spec` only while the planner has taken every blend handed over before
+  // (taken == handed), then submits the BlendStart command: the command ring's release/acquire
+  // orders the write before the planner's read, and `taken` (release, after the planner's copy)
+  // orders that read before the next write.
+  struct BlendSlot {
+    BlendSpec spec;
+    std::uint32_t handed = 0;  // control thread only: the newest seq submitted
+    std::atomic<std::uint32_t> taken{0};
+  };
+  void apply(const Command& c, Nanos now);
+  // Starts the group being collected (all of its members that arrived) on one time 0.
+  void launch_group(Nanos now);
+
   PlannerOptions options_;
   std::vector<std::unique_ptr<AxisPlanner>> axes_;
+  std::unique_ptr<BlendSlot[]> blend_slots_;
   SpscRing<Command> queue_;
   std::atomic<std::uint32_t> wake_{0};
+  // The group start being collected: its id, size, the commands received, and the axes that
+  // accepted theirs (an aborted or stale start is not a member any more).
+  GroupTag group_{};
+  std::size_t group_received_ = 0;
+  Nanos group_deadline_ = 0;
+  std::vector<unsigned> group_axes_;
 };
 
 }  // namespace stepmod::planner

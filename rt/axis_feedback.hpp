@@ -1,13 +1,15 @@
 #pragma once
 // State shared between the pulse thread and the rest of the daemon, one block per axis.
 // AxisFeedback is written only by the pulse thread; AxisControl only by the module (control)
-// thread. Every field is a lone atomic: no locks on the real-time path.
+// thread, but for its `cut` (planner <-> pulse thread). Every field is a lone atomic: no locks on
+// the real-time path.
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
 
 #include "core/clock.hpp"
 #include "rt/edge.hpp"
+#include "rt/edge_cut.hpp"
 
 namespace stepmod::rt {
 
@@ -32,6 +34,9 @@ struct AxisControl {
   // (relaxed), then limit_epoch (release).
   std::atomic<std::int64_t> limit_steps{0};
   std::atomic<std::uint32_t> limit_epoch{0};
+  // Controlled stop at its trigger: between the planner thread and the pulse thread (not the
+  // module): replaces a motion's queued edges from a time on (rt/edge_cut.hpp).
+  EdgeCut cut;
 };
 
 // Time -> step count, for events stamped in the past (capture input, registration trigger).

@@ -17,6 +17,8 @@ inline constexpr std::uint8_t kCcw = 0x04;        // the motion runs CCW (positi
 inline constexpr std::uint8_t kFirst = 0x08;      // first edge of its motion (epoch)
 inline constexpr std::uint8_t kLast = 0x10;       // last edge of its motion: axis at rest after it
 inline constexpr std::uint8_t kMotion = 0x20;     // belongs to a motion (not a GPO-only change)
+// Planned after a cut (rt/edge_cut.hpp): replaces the motion's queued edges from the cut on.
+inline constexpr std::uint8_t kReplacement = 0x40;
 }  // namespace edge_flag
 
 struct Edge {

@@ -41,6 +41,7 @@ Nanos PulseEngine::next_due() noexcept {
     // it has not yet learnt was aborted, and aborted edges queued behind a GPO edge reach the
     // head only after it has been executed.
     drop_stale(axis);
+    if (link.control != nullptr) link.control->cut.before_next(*link.edges);  // edge_cut.hpp
     drop_beyond_limit(axis);
     const Edge* e = link.edges->peek();
     if (e == nullptr && in_motion_[axis] != 0) starved = true;
@@ -156,6 +157,7 @@ void PulseEngine::execute_one(Nanos write_time) noexcept {
   if (p == nullptr) return;  // cannot happen: we are the only consumer and next_due() saw it
   const Edge e = *p;
   link.edges->pop();
+  if (link.control != nullptr) link.control->cut.executed(e);
 
   // Before write() clears pulse_high_: whether this edge ends the pulse under way.
   const bool direction_edge = e.dpos == 0 && e.line == OutputLine::kDir &&

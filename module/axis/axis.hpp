@@ -57,9 +57,10 @@ class Axis {
   void enter_command_mode();
   // Command mode (axis_commands.cpp).
   void command_mode_scan(const AxisCommand& c, Nanos now);
-  void command_edge(const AxisCommand& c, const CommandSet& rising);
+  void command_edge(const AxisCommand& c, const CommandSet& rising, Nanos now);
   void command_move(const AxisCommand& c, bool absolute);
-  void command_hold();
+  // `now`: the scan that saw the Hold; its deceleration starts there (issue 12 item 9).
+  void command_hold(Nanos now);
   void command_resume(const AxisCommand& c);
   void command_immediate_stop();
   void command_preset_position(const AxisCommand& c);

@@ -11,7 +11,7 @@ void Axis::command_mode_scan(const AxisCommand& c, Nanos now) {
   manual_.levels(c);
   const CommandSet rising = c.commands.rising_since(prev_.commands);
   if (!st_.configured) {
-    if (!rising.empty()) command_edge(c, rising);
+    if (!rising.empty()) command_edge(c, rising, now);
     return;
   }
   manual_.scan(c, rising, now);
@@ -20,14 +20,14 @@ void Axis::command_mode_scan(const AxisCommand& c, Nanos now) {
   if (st_.activity == Activity::kHoming) homing_.scan(c, now);
   blend_.programming_scan(c, prev_);
   if (!rising.empty()) {
-    command_edge(c, rising);
+    command_edge(c, rising, now);
   } else if (c.commands.empty() && c.store_min_registration && !prev_.store_min_registration &&
              !st_.status.command_error) {
     manual_.store_min_registration(c);  // no command set, the store flag rising (digest 3.8)
   }
 }
 
-void Axis::command_edge(const AxisCommand& c, const CommandSet& rising) {
+void Axis::command_edge(const AxisCommand& c, const CommandSet& rising, Nanos now) {
   // 3601-CE-L1: while CE is set, only Reset Errors is looked at (Immediate Stop included).
   if (st_.status.command_error && !rising.has(CommandKind::kResetErrors)) return;
   // 3601-CE-02 / CE-12: more than one command at a time. A33: an undefined command bit counts as
@@ -69,7 +69,7 @@ void Axis::command_edge(const AxisCommand& c, const CommandSet& rising) {
       command_move(c, false);
       break;
     case CommandKind::kHold:
-      command_hold();
+      command_hold(now);
       break;
     case CommandKind::kResume:
       command_resume(c);
@@ -157,13 +157,13 @@ void Axis::command_move(const AxisCommand& c, bool absolute) {
 }
 
 // Hold: 3601 manual Ch.4 "Hold Move".
-void Axis::command_hold() {
+void Axis::command_hold(Nanos now) {
   if (st_.activity == Activity::kEncoderMove) return;  // A4: ignored, no CE (encoder.cpp)
   if (st_.activity == Activity::kMove) {
     // A hold already under way (or the External input's) needs nothing more.
     if (st_.stop_cause == StopCause::kNone) {
       st_.stop_cause = StopCause::kHold;  // 3601-HLD-01
-      st_.motion.stop(st_.move_decel);
+      st_.motion.stop(st_.move_decel, now);
     }
     return;
   }
@@ -176,7 +176,7 @@ void Axis::command_hold() {
   st_.reject();
   if (st_.activity == Activity::kManual && st_.stop_cause == StopCause::kNone) {
     st_.stop_cause = StopCause::kRelease;
-    st_.motion.stop(st_.move_decel);
+    st_.motion.stop(st_.move_decel, now);
   }
 }
 

@@ -67,13 +67,13 @@ void Axis::on_input(const gpio::InputEvent& e) {
     // 3601-HLD-02: a controlled stop to the Hold state for absolute/relative moves; a
     // controlled stop (Stopped) for manual moves (digest 7.6).
     st_.stop_cause = StopCause::kExternal;
-    st_.motion.stop(st_.move_decel);
+    st_.motion.stop(st_.move_decel, e.t);  // the ramp starts at the edge (issue 12 item 9)
   }
 }
 
 void Axis::encoder_changed(Nanos t) {
   if (st_.activity == Activity::kEncoderMove) {
-    encoder_.watch(prev_);  // prev_: the command image in force (the last scan's)
+    encoder_.watch(prev_, t);  // prev_: the command image in force (the last scan's)
     return;
   }
   follower_.counted(t);

@@ -56,7 +56,7 @@ void Encoder::move(const AxisCommand& c, bool absolute) {
   stop_pending_ = false;
 }
 
-void Encoder::watch(const AxisCommand& c) {
+void Encoder::watch(const AxisCommand& c, Nanos t) {
   if (!watch_ || ax_.stop_cause != StopCause::kNone) return;
   const bool reached =
       ax_.dir == planner::Direction::kCw ? ax_.encoder >= target_ : ax_.encoder <= target_;
@@ -67,7 +67,8 @@ void Encoder::watch(const AxisCommand& c) {
   // Immediate Stop end it then). Clearing only the command is harmless.
   if (!c.encoder_move) return;
   // Reaching the count is the move's normal end (StopCause::kNone → Move Complete, 3601-MC-01).
-  if (!ax_.motion.stop(ax_.move_decel)) stop_pending_ = true;
+  // The ramp starts at the count's own time (issue 12 item 9), not after the queued edges.
+  if (!ax_.motion.stop(ax_.move_decel, t)) stop_pending_ = true;
 }
 
 // ---- Preset Encoder --------------------------------------------------------------------------

@@ -20,7 +20,7 @@ class Encoder {
   // Every command-mode scan: diagnostic feedback counting, a stop that could not be queued yet.
   void scan();
   // After an encoder count change during an encoder move (`c`: the command image in force).
-  void watch(const AxisCommand& c);
+  void watch(const AxisCommand& c, Nanos t);  // t: the count change that may reach the target
 
  private:
   AxisState& ax_;

@@ -2,17 +2,26 @@
 // type's ModuleRules (3601, 3602, 3202): a module inherits them by using module/axis/. Test names
 // carry the 3601 checklist id of the rule (digest 6.1); the 3602 and 3202 lists state the same
 // rule under their own ids (their "Latch rules as on the 3601", 7.15, 7.16).
+#include <ostream>
+
 #include "tests/module/axis_rig.hpp"
+
+namespace stepmod {
+// GoogleTest prints the parameter into the test names ctest lists: the type number, not bytes.
+inline void PrintTo(ModuleType t, std::ostream* os) {
+  *os << static_cast<unsigned>(t);
+}
+}  // namespace stepmod
 
 namespace stepmod::testing {
 namespace {
 
 using ax::CommandKind;
 
-class AxisShared : public ::testing::TestWithParam<const ax::ModuleRules*> {
+class AxisShared : public ::testing::TestWithParam<ModuleType> {
  protected:
-  AxisShared() : rig_(*GetParam()) {}
-  const ax::ModuleRules& rules() const { return *GetParam(); }
+  AxisShared() : rig_(ax::rules_of(GetParam())) {}
+  const ax::ModuleRules& rules() const { return ax::rules_of(GetParam()); }
   AxisRig rig_;
 };
 
@@ -339,13 +348,11 @@ TEST_P(AxisShared, CE_27_RegistrationWithExternalActivePerModule) {
   }
 }
 
-std::string module_name(const ::testing::TestParamInfo<const ax::ModuleRules*>& info) {
-  return std::to_string(static_cast<unsigned>(info.param->type));
+std::string module_name(const ::testing::TestParamInfo<ModuleType>& info) {
+  return std::to_string(static_cast<unsigned>(info.param));
 }
 
-INSTANTIATE_TEST_SUITE_P(Modules, AxisShared,
-                         ::testing::Values(&ax::kRules3601, &ax::kRules3602, &ax::kRules3202),
-                         module_name);
+INSTANTIATE_TEST_SUITE_P(Modules, AxisShared, ::testing::ValuesIn(kModuleTypes), module_name);
 
 }  // namespace
 }  // namespace stepmod::testing

@@ -152,9 +152,7 @@ TEST(Edges, DirectionEdgeOnlyOnChangeAndSetupBeforeFirstStep) {
 
 TEST(Edges, CwCcwFormatPulsesOnTwoLinesWithoutDirectionEdges) {
   Harness h;
-  Command f;
-  f.level = false;  // CW + CCW pulse outputs
-  h.send(CommandKind::kSetPulseFormat, f);
+  h.send(PulseFormatSpec{false});  // CW + CCW pulse outputs
   const std::uint32_t ccw =
       h.start_move(move(50, 1'000, 5'000, 1e5, 1e5, AccelShape::kConstant, Direction::kCcw));
   ASSERT_TRUE(h.run_until_finished(ccw));
@@ -176,9 +174,7 @@ TEST(Edges, PulseFormatChangeLeavesTheSecondLineLow) {
       h.start_move(move(5, 1'000, 1'000, 1e4, 1e4, AccelShape::kConstant, kAwayFromIdle));
   ASSERT_TRUE(h.run_until_finished(m));
   ASSERT_EQ(h.motion_edges(m).front().level, 1);  // direction line left high
-  Command f;
-  f.level = false;  // to CW/CCW: that line is now the CCW pulse output
-  h.send(CommandKind::kSetPulseFormat, f);
+  h.send(PulseFormatSpec{false});  // to CW/CCW: that line is now the CCW pulse output
   h.service();
   const Edge& e = h.edges.back();
   EXPECT_EQ(e.line, OutputLine::kDir);
@@ -188,9 +184,8 @@ TEST(Edges, PulseFormatChangeLeavesTheSecondLineLow) {
 
 TEST(Edges, GpoEdgeIsImmediateAndNotAMotion) {
   Harness h;
-  Command g;
-  g.level = true;
-  h.send(CommandKind::kSetGpo, g);
+  GpoSpec g{true};
+  h.send(g);
   h.service();
   ASSERT_EQ(h.edges.size(), 1u);
   EXPECT_EQ(h.edges[0].line, OutputLine::kGpo);
@@ -201,7 +196,7 @@ TEST(Edges, GpoEdgeIsImmediateAndNotAMotion) {
   h.start_move(move(3, 10, 10, 1e4, 1e4));
   h.run_for(20 * kMs);
   g.level = false;
-  h.send(CommandKind::kSetGpo, g);
+  h.send(g);
   const Nanos sent = h.now;
   h.service();
   const Edge& last = h.edges.back();
@@ -228,9 +223,9 @@ TEST(Stop, ControlledStopFromCruiseEndsAtVs) {
     const std::uint32_t ep = h.start_run(run(1'000, 10'000, 10'000, 10'000, s));
     h.run_for(3 * kNsPerSec);
     const std::int64_t before = static_cast<std::int64_t>(h.steps(ep).size());
-    Command c;
+    StopSpec c;
     c.ramp = Ramp{10'000, s};
-    h.send(CommandKind::kStop, c);
+    h.send(c);
     ASSERT_TRUE(h.run_until_finished(ep));
     const std::vector<Edge> st = h.steps(ep);
     const std::int64_t decel = static_cast<std::int64_t>(st.size()) - before;
@@ -254,9 +249,9 @@ TEST(Stop, DuringAMoveThatIsAlreadyEndingIsIgnored) {
   // Da = Dd = 4950, cruise 2100 steps: the deceleration starts at step 7050, at 1.11 s.
   const std::uint32_t ep = h.start_move(move(12'000, 1'000, 10'000, 10'000, 10'000));
   h.run_for(1'200 * kMs);
-  Command c;
+  StopSpec c;
   c.ramp = Ramp{10'000, AccelShape::kConstant};
-  h.send(CommandKind::kStop, c);
+  h.send(c);
   ASSERT_TRUE(h.run_until_finished(ep));
   EXPECT_EQ(h.steps(ep).size(), 12'000u);
 }
@@ -267,9 +262,9 @@ TEST(Stop, ConstantSpeedRunEndsAfterTheNextStep) {
   h.run_for(100 * kMs);
   const std::size_t pushed = h.steps(ep).size();
   EXPECT_NEAR(static_cast<double>(period_at(h.steps(ep), h.now - 10 * kMs)), 500'000, 1.0);
-  Command c;
+  StopSpec c;
   c.ramp = Ramp{10'000, AccelShape::kConstant};
-  h.send(CommandKind::kStop, c);
+  h.send(c);
   ASSERT_TRUE(h.run_until_finished(ep, kNsPerSec));
   EXPECT_LE(h.steps(ep).size(), pushed + 1);
 }
@@ -279,15 +274,15 @@ TEST(ChangeSpeed, RampsUpThenDownBelowVs) {
   const std::uint32_t ep = h.start_run(run(1'000, 5'000, 10'000, 10'000));
   h.run_for(1 * kNsPerSec);
   EXPECT_NEAR(static_cast<double>(period_at(h.steps(ep), h.now - 10 * kMs)), 200'000, 1.0);
-  Command c;
-  c.run.vp = 10'000;
-  c.run.accel = Ramp{20'000, AccelShape::kConstant};
-  c.run.decel = Ramp{5'000, AccelShape::kConstant};
-  h.send(CommandKind::kChangeSpeed, c);
+  SpeedChange c;
+  c.vp = 10'000;
+  c.accel = Ramp{20'000, AccelShape::kConstant};
+  c.decel = Ramp{5'000, AccelShape::kConstant};
+  h.send(c);
   h.run_for(1 * kNsPerSec);  // 0.25 s ramp
   EXPECT_NEAR(static_cast<double>(period_at(h.steps(ep), h.now - 10 * kMs)), 100'000, 1.0);
-  c.run.vp = 500;  // below vs: allowed for a running manual move
-  h.send(CommandKind::kChangeSpeed, c);
+  c.vp = 500;  // below vs: allowed for a running manual move
+  h.send(c);
   h.run_for(3 * kNsPerSec);  // 1.9 s ramp
   EXPECT_NEAR(static_cast<double>(period_at(h.steps(ep), h.now - 10 * kMs)), 2'000'000, 1.0);
   // Phases: accel during the first change, decel during the second.
@@ -296,9 +291,9 @@ TEST(ChangeSpeed, RampsUpThenDownBelowVs) {
   EXPECT_EQ(st.back().phase(), rt::Phase::kCruise);
   // Stop at a speed below vs: ends after the next step.
   const std::size_t n = st.size();
-  Command s;
+  StopSpec s;
   s.ramp = Ramp{10'000, AccelShape::kConstant};
-  h.send(CommandKind::kStop, s);
+  h.send(s);
   ASSERT_TRUE(h.run_until_finished(ep, 10 * kNsPerSec));
   EXPECT_LE(h.steps(ep).size(), n + 1);
   expect_well_formed(h.edges, AxisTiming{});
@@ -307,24 +302,24 @@ TEST(ChangeSpeed, RampsUpThenDownBelowVs) {
 TEST(ChangeSpeed, IgnoredForAMoveAndForAnOldEpoch) {
   Harness h;
   const std::uint32_t ep = h.start_move(move(3'000, 1'000, 2'000, 10'000, 10'000));
-  Command c;
-  c.run.vp = 9'000;
-  c.run.accel = c.run.decel = Ramp{10'000, AccelShape::kConstant};
-  h.send(CommandKind::kChangeSpeed, c);
+  SpeedChange change;
+  change.vp = 9'000;
+  change.accel = change.decel = Ramp{10'000, AccelShape::kConstant};
+  h.send(change);
   ASSERT_TRUE(h.run_until_finished(ep));
   // Unchanged profile: the last step at exactly Tt after the motion's time 0.
   const Nanos t_move = h.steps(ep).back().t - (test::kT0 + h.opt.start_delay_ns);
 
   const std::uint32_t r = h.start_run(run(1'000, 2'000, 10'000, 10'000));
+  Command c;
   c.epoch = r - 1;  // stale
-  c.kind = CommandKind::kChangeSpeed;
+  c.what = change;
   h.submit(c);
   h.run_for(500 * kMs);
   EXPECT_NEAR(static_cast<double>(period_at(h.steps(r), h.now - 10 * kMs)), 500'000, 1.0);
   Command stop;
-  stop.kind = CommandKind::kStop;
   stop.epoch = r - 1;  // stale: must not stop the run
-  stop.ramp = Ramp{10'000, AccelShape::kConstant};
+  stop.what = StopSpec{Ramp{10'000, AccelShape::kConstant}};
   h.submit(stop);
   h.run_for(500 * kMs);
   EXPECT_FALSE(h.finished(r));
@@ -340,10 +335,10 @@ TEST(StopAfter, RegistrationEndsExactlyStepsAfterTrigger) {
     // Triggered 1 ms ago; steps after it are already planned (the lookahead).
     const Nanos trigger = h.now - 1 * kMs;
     const std::int64_t r = 12'000;
-    Command c;
+    StopAfterSpec c;
     c.t = trigger;
     c.steps = r;
-    h.send(CommandKind::kStopAfter, c);
+    h.send(c);
     ASSERT_TRUE(h.run_until_finished(ep));
     const std::vector<Edge> st = h.steps(ep);
     const std::int64_t at_trigger = count_at_or_before(st, trigger);
@@ -359,10 +354,10 @@ TEST(StopAfter, DuringAccelerationFreezesSpeedAndShortCountDeceleratesHarder) {
   const std::uint32_t ep = h.start_run(run(1'000, 10'000, 10'000, 10'000));
   h.run_for(300 * kMs);  // about 4000 steps/s, still accelerating
   const Nanos trigger = h.now - 2 * kMs;
-  Command c;
+  StopAfterSpec c;
   c.t = trigger;
   c.steps = 200;  // less than the 750 steps the decel would need from ~4000/s
-  h.send(CommandKind::kStopAfter, c);
+  h.send(c);
   ASSERT_TRUE(h.run_until_finished(ep));
   const std::vector<Edge> st = h.steps(ep);
   EXPECT_EQ(static_cast<std::int64_t>(st.size()), count_at_or_before(st, trigger) + 200);
@@ -374,10 +369,10 @@ TEST(StopAfter, CountAlreadyPassedEndsAtOnce) {
   const std::uint32_t ep = h.start_run(run(1'000, 1'000, 10'000, 10'000));
   h.run_for(100 * kMs);
   const std::size_t n = h.steps(ep).size();
-  Command c;
+  StopAfterSpec c;
   c.t = h.now - 50 * kMs;
   c.steps = 1;
-  h.send(CommandKind::kStopAfter, c);
+  h.send(c);
   ASSERT_TRUE(h.run_until_finished(ep, kNsPerSec));
   EXPECT_LE(h.steps(ep).size(), n + 1);
 }
@@ -412,15 +407,14 @@ TEST(Abort, DropsTheMotionAndTheNextStartsPromptly) {
   h.run_for(1 * kNsPerSec);
   // Immediate stop as MotionPort does it: abort_epoch first, then the command.
   h.control.abort_epoch.store(ep);
-  h.send(CommandKind::kAbort);
+  h.send(AbortSpec{});
   const std::size_t n = h.edges.size();
   h.run_for(20 * kMs);
   EXPECT_EQ(h.edges.size(), n) << "no edge of an aborted motion after the abort";
 
   // A GPO change is not held behind the dropped edges either.
-  Command g;
-  g.level = true;
-  h.send(CommandKind::kSetGpo, g);
+  GpoSpec g{true};
+  h.send(g);
   h.service();
   EXPECT_EQ(h.edges.back().line, OutputLine::kGpo);
   EXPECT_EQ(h.edges.back().t, h.now);
@@ -447,9 +441,8 @@ TEST(Abort, AbortEpochAloneStopsPlanningAndBlocksLateStarts) {
   EXPECT_EQ(h.edges.size(), n);
   // A start command whose epoch is already aborted never runs.
   Command c;
-  c.kind = CommandKind::kMove;
   c.epoch = ep + 1;
-  c.move = move(10, 1'000, 1'000, 1e4, 1e4);
+  c.what = move(10, 1'000, 1'000, 1e4, 1e4);
   h.control.abort_epoch.store(ep + 1);
   h.submit(c);
   h.run_for(100 * kMs);
@@ -474,10 +467,9 @@ TEST(Planner, RoutesCommandsByAxisAndAsksForRefills) {
   std::array<PlannerAxis, 2> axes{PlannerAxis{&r0, &c0, {}}, PlannerAxis{&r1, &c1, {}}};
   Planner p(axes);
   Command c;
-  c.kind = CommandKind::kRun;
   c.axis = 1;
   c.epoch = 1;
-  c.run = run(1'000, 10'000, 10'000, 10'000);
+  c.what = run(1'000, 10'000, 10'000, 10'000);
   ASSERT_TRUE(p.submit(c));
   const std::uint32_t w = p.wake_counter().load();
   EXPECT_GT(w, 0u);

@@ -1,4 +1,4 @@
-// Follow motions (CommandKind::kFollow / kFollowUpdate, the encoder follower's planner side): the
+// Follow motions (FollowStart / FollowUpdate commands, the encoder follower's planner side): the
 // exact count, the ramp limits while catching up, reversal, the instant mode's speed, stop and
 // abort, in virtual time.
 #include <gtest/gtest.h>
@@ -32,15 +32,12 @@ FollowSpec spec(std::int64_t target, double accel, double decel, double speed = 
 
 std::uint32_t start_follow(Harness& h, const FollowSpec& f) {
   Command c;
-  c.kind = CommandKind::kFollow;
-  c.follow = f;
+  c.what = FollowStart{f};
   return h.start(c);
 }
 
 void update(Harness& h, const FollowSpec& f) {
-  Command c;
-  c.follow = f;
-  h.send(CommandKind::kFollowUpdate, c);
+  h.send(FollowUpdate{f});
 }
 
 std::int64_t net(const std::vector<Edge>& steps) {
@@ -78,7 +75,7 @@ TEST(Follow, TargetFedCountByCountIsReachedExactly) {
     asked.push_back(h.now);
     h.run_for(100 * kUs, 50 * kUs);
   }
-  h.send(CommandKind::kStop);
+  h.send(StopSpec{});
   ASSERT_TRUE(h.run_until_finished(ep, 100 * kMs, 50 * kUs));
   const auto steps = h.steps(ep);
   EXPECT_EQ(steps.size(), 2'000u);
@@ -98,7 +95,7 @@ TEST(Follow, RampedCatchUpRespectsAccelAndDecelAndEndsOnTarget) {
   h.run_for(kMs);
   update(h, spec(20'000, a, d, 1.0, vs));  // the target jumps: the axis ramps up, then down
   h.run_for(2'000 * kMs, 200 * kUs);
-  h.send(CommandKind::kStop);
+  h.send(StopSpec{});
   ASSERT_TRUE(h.run_until_finished(ep, kNsPerSec));
   const auto steps = h.steps(ep);
   ASSERT_EQ(steps.size(), 20'000u);
@@ -131,7 +128,7 @@ TEST(Follow, TargetBehindTheAxisDeceleratesReversesAndEndsExactly) {
   f.target = -1'000;
   update(h, f);
   h.run_for(200 * kMs, 200 * kUs);
-  h.send(CommandKind::kStop);
+  h.send(StopSpec{});
   ASSERT_TRUE(h.run_until_finished(ep, kNsPerSec));
   const auto steps = h.steps(ep);
   EXPECT_EQ(net(steps), -1'000);
@@ -167,15 +164,13 @@ TEST(Follow, InstantModeSpreadsPendingStepsAtTheMastersSpeed) {
     EXPECT_NEAR(static_cast<double>(steps[i].t - steps[i - 1].t), 50'000.0, 2.0);
   }
   EXPECT_FALSE(h.finished(ep));  // a follow motion waits for more until it is stopped
-  h.send(CommandKind::kStop);
+  h.send(StopSpec{});
   EXPECT_TRUE(h.run_until_finished(ep, 10 * kMs));
 }
 
 TEST(Follow, CwCcwFormatUsesThePulseLineOfEachDirection) {
   Harness h;
-  Command fmt;
-  fmt.level = false;  // CW + CCW pulse outputs
-  h.send(CommandKind::kSetPulseFormat, fmt);
+  h.send(PulseFormatSpec{false});  // CW + CCW pulse outputs
   h.run_for(kMs);
   FollowSpec f = spec(10, 0.0, 0.0, 10'000.0);
   const std::uint32_t ep = start_follow(h, f);
@@ -198,7 +193,7 @@ TEST(Follow, AbortCutsItAndStopWhileAtRestEndsAtOnce) {
   const std::size_t before = h.steps(ep).size();
   ASSERT_GT(before, 0u);
   h.control.abort_epoch.store(ep);
-  h.send(CommandKind::kAbort);
+  h.send(AbortSpec{});
   h.run_for(10 * kMs);
   // Nothing planned after the abort (edges already in the ring are the pulse thread's to drop).
   const std::size_t after = h.steps(ep).size();
@@ -208,7 +203,7 @@ TEST(Follow, AbortCutsItAndStopWhileAtRestEndsAtOnce) {
   const std::uint32_t ep2 = start_follow(h, spec(0, 0.0, 0.0));
   h.run_for(5 * kMs);
   EXPECT_FALSE(h.finished(ep2));
-  h.send(CommandKind::kStop);
+  h.send(StopSpec{});
   EXPECT_TRUE(h.run_until_finished(ep2, 5 * kMs));
   EXPECT_TRUE(h.steps(ep2).empty());
 }

@@ -41,25 +41,25 @@ struct Harness {
   }
   std::uint32_t start_move(const MoveSpec& m) {
     Command c;
-    c.kind = CommandKind::kMove;
-    c.move = m;
+    c.what = m;
     return start(c);
   }
   std::uint32_t start_run(const RunSpec& r) {
     Command c;
-    c.kind = CommandKind::kRun;
-    c.run = r;
+    c.what = r;
     return start(c);
   }
   std::uint32_t start_blend(const BlendSpec& b) {
     Command c;
-    c.kind = CommandKind::kBlend;
-    c.blend = b;
-    return start(c);
+    c.epoch = ++epoch;
+    planner->submit_blend(c, b);
+    return epoch;
   }
-  void send(CommandKind kind, Command c = {}) {
-    c.kind = kind;
+  // A command for the newest motion.
+  void send(CommandPayload what) {
+    Command c;
     c.epoch = epoch;
+    c.what = what;
     submit(c);
   }
 

@@ -7,6 +7,9 @@
 #include <thread>
 
 #include "planner/axis_planner.hpp"
+#include "planner/motion_port.hpp"
+#include "rt/pulse_thread.hpp"
+#include "tests/rt/fake_backend.hpp"
 
 namespace stepmod::planner {
 namespace {
@@ -37,11 +40,12 @@ TEST(PlannerThread, WakesOnSubmitAndStops) {
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
   const std::uint64_t idle_loops = thread.loops();
 
+  MoveSpec m;
+  m.steps = 20;
+  m.vs = m.vp = 10'000;
   Command c;
-  c.kind = CommandKind::kMove;
   c.epoch = 1;
-  c.move.steps = 20;
-  c.move.vs = c.move.vp = 10'000;
+  c.what = m;
   ASSERT_TRUE(planner.submit(c));
   // Without the wake-up the thread would sleep for 10 s before seeing the command.
   std::uint64_t leading = 0;
@@ -60,6 +64,43 @@ TEST(PlannerThread, WakesOnSubmitAndStops) {
   thread.stop();
   EXPECT_FALSE(thread.running());
   thread.stop();  // idempotent
+}
+
+// A stop at its trigger with real threads (TSan: the cut's hand-over between the planner thread
+// and the pulse thread). Timing is the machine's; the count must be exact whatever it decides.
+TEST(PlannerThread, StopAtTriggerWithThePulseThreadKeepsTheCountExact) {
+  rt::test::Rig rig(1);
+  PlannerAxis axis{&rig.ring(0), &rig.ctl(0), {}};
+  Planner planner(std::span<const PlannerAxis>(&axis, 1));
+  MotionPort port(0, planner, rig.fb(0), rig.ctl(0), rig.history(0));
+  rt::PulseThread::Options o;
+  o.priority = 0;  // SCHED_OTHER: a shared CI machine
+  o.lock_memory = false;
+  rt::PulseThread pulse(*rig.engine, o);
+  PlannerThread thread(planner);
+  ASSERT_TRUE(pulse.start());
+  thread.start();
+  RunSpec run;
+  run.vs = 500;
+  run.vp = 5'000;
+  run.accel = run.decel = Ramp{50'000, AccelShape::kConstant};
+  ASSERT_NE(port.start_run(run), 0u);
+  pulse.ring();
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  ASSERT_TRUE(port.stop(run.decel, monotonic_now()));
+  pulse.ring();
+  EXPECT_TRUE(eventually([&] { return !port.busy(); }));
+  thread.stop();
+  pulse.stop();
+  pulse.join();
+  std::size_t rises = 0, falls = 0;
+  for (const auto& w : rig.backend.writes()) {
+    if (w.line != OutputLine::kStep) continue;
+    (w.level ? rises : falls) += 1;
+  }
+  EXPECT_EQ(static_cast<std::int64_t>(rises), rig.fb(0).steps.load());
+  EXPECT_EQ(rises, falls);
+  EXPECT_GT(rises, 0u);
 }
 
 }  // namespace

@@ -76,7 +76,12 @@ void VirtualMachine::run_until(Nanos t) {
         last_steps_[a] = s;
       }
       deliver_inputs();
+      // An input handler that submitted a command wakes the planner, as in the daemon.
+      if (stack_->planner().wake_counter().load() != planner_wakes_) {
+        next_plan_ = std::min(next_plan_, now_ + kPlannerWake);
+      }
     } else if (next_plan_ == now_) {
+      planner_wakes_ = stack_->planner().wake_counter().load();
       const Nanos want = stack_->planner().service(now_);
       next_plan_ = std::clamp(want, now_ + 1, now_ + kPlannerMaxSleep);
     } else {

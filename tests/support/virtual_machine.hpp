@@ -55,6 +55,7 @@ class VirtualMachine {
   Nanos now_;
   Nanos next_scan_;
   Nanos next_plan_;
+  std::uint32_t planner_wakes_ = 0;  // Planner::wake_counter() as of the last service
   std::vector<std::vector<Nanos>> step_times_;
   std::vector<std::int64_t> last_steps_;
 };

@@ -1,0 +1,76 @@
+#include "planner/follow_servo.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace stepmod::planner {
+
+namespace {
+Nanos to_ns(double seconds) noexcept {
+  return std::llround(seconds * 1e9);
+}
+}  // namespace
+
+FollowServo::Next FollowServo::next(Nanos prev_t, bool first, Nanos now, Nanos start_delay,
+                                    Nanos pulse_ns, FollowStep& out) noexcept {
+  const FollowSpec& s = spec_;
+  const double vs = std::max(s.vs, 1.0);
+  const double vmax = std::max(s.vmax, 1.0);
+  const double cap = s.accel > 0.0 ? vmax : std::clamp(s.speed, 1.0, vmax);
+  // A step at the present speed would already be overdue: the axis has been waiting for its
+  // target, so it starts again from rest.
+  if (v_ > 0.0 && prev_t + to_ns(1.0 / v_) < now) v_ = 0.0;
+
+  const std::int64_t e = s.target - pos_;
+  const int want = e > 0 ? 1 : (e < 0 ? -1 : 0);
+  int dir = want;
+  double v = 0.0;
+  if (v_ > 0.0 && want != dir_) {
+    // On or past the target while moving: ramp down to vs at d, then stop.
+    const double v2 = v_ * v_ - 2.0 * s.decel;
+    if (s.decel > 0.0 && v_ > vs && v2 >= vs * vs) {
+      v = std::sqrt(v2);
+      dir = dir_;
+    } else {
+      v_ = 0.0;
+    }
+  }
+  if (v == 0.0) {
+    if (want == 0) {
+      v_ = 0.0;
+      return finishing_ ? Next::kFinish : Next::kWait;
+    }
+    const double n = static_cast<double>(want > 0 ? e : -e);
+    v = cap;
+    if (s.accel > 0.0) v = std::min(v, v_ > 0.0 ? std::sqrt(v_ * v_ + 2.0 * s.accel) : vs);
+    if (s.decel > 0.0) {
+      v = std::min(v, std::sqrt(vs * vs + 2.0 * s.decel * (n - 1.0)));
+      // It cannot slow down faster than d either (the target came closer than planned for).
+      if (v_ > 0.0) v = std::max(v, std::sqrt(std::max(0.0, v_ * v_ - 2.0 * s.decel)));
+    }
+    v = std::max(v, 1.0);
+  }
+
+  // Time of the step.
+  out.from_rest = v_ <= 0.0;
+  if (!out.from_rest) {
+    out.t = prev_t + to_ns(2.0 / (v_ + v));
+  } else {
+    out.t = now + start_delay;
+    if (!first) out.t = std::max(out.t, prev_t + to_ns(1.0 / v));
+  }
+  out.phase = rt::Phase::kCruise;
+  if (!out.from_rest && dir == dir_) {
+    if (v > v_ * (1.0 + 1e-9)) out.phase = rt::Phase::kAccel;
+    if (v < v_ * (1.0 - 1e-9)) out.phase = rt::Phase::kDecel;
+  }
+  // The trailing edge goes with the step (the next step is not known yet): the configured width,
+  // or half the shortest period the next step can come at.
+  const double v_up = s.accel > 0.0 ? std::sqrt(v * v + 2.0 * s.accel) : std::max(v, cap);
+  out.width = std::max<Nanos>(1, std::min(pulse_ns, to_ns(0.5 / v_up)));
+  out.dir = dir;
+  out.v = v;
+  return Next::kStep;
+}
+
+}  // namespace stepmod::planner
