@@ -145,6 +145,25 @@ TEST_P(AxisShared, BlendProgrammedAtOnceChecksStoresAndRuns) {
   EXPECT_EQ(rig_.motor(), 10'000);
 }
 
+// 3202-CE-07 (3202 manual Ch.4 "Hold Move" note 2): Hold during the deceleration of a move is
+// ignored on the 3202; the 3601 and 3602 hold (rules.hpp hold_ignored_while_decelerating).
+TEST_P(AxisShared, CE_07_HoldDuringTheDecelerationPerModule) {
+  rig_.configure();
+  rig_.command(CommandKind::kRelativeMove, {.target = 12'000});
+  ASSERT_TRUE(rig_.run_until_true([this] { return rig_.status().decelerating; }, 10 * kNsPerSec));
+  rig_.command(CommandKind::kHold);
+  ASSERT_TRUE(rig_.wait_idle());
+  EXPECT_FALSE(rig_.status().command_error);
+  if (rules().hold_ignored_while_decelerating) {
+    EXPECT_FALSE(rig_.status().hold);
+    EXPECT_TRUE(rig_.status().move_complete);
+    EXPECT_EQ(rig_.motor(), 12'000);
+  } else {
+    EXPECT_TRUE(rig_.status().hold);
+    EXPECT_FALSE(rig_.status().move_complete);
+  }
+}
+
 // 3601-CE-04 / IP-02: a speed or rate outside the module's range (rules.hpp) is refused with CE
 // and Invalid Profile.
 TEST_P(AxisShared, CE_04_IP_02_OutOfRangeParameters) {

@@ -157,6 +157,27 @@ TEST_F(Commands3202, CE_07_HoldDuringAManualMoveStopsItWithCommandError) {
   EXPECT_FALSE(status(0, sb::kPositionInvalid));
 }
 
+TEST_F(Commands3202, CE_07_HoldDuringHomingRaisesCommandErrorAndHomingCompletes) {
+  command(0, cb::kFindHomeCw, {.speed = 5'000, .accel = 100'000, .decel = 100'000});
+  vm_.run_for(200 * kNsPerMs);
+  ASSERT_TRUE(moving(0));
+  command(0, cb::kHold);
+  EXPECT_TRUE(status(0, sb::kCommandError));
+  ASSERT_TRUE(vm_.run_until_true([&] { return status(0, sb::kAtHome); }, 20 * kNsPerSec));
+  EXPECT_EQ(motor(0), 5'000);
+}
+
+TEST_F(Commands3202, CE_07_HoldDuringTheDecelerationPhaseIsIgnored) {
+  command(0, cb::kRelativeMove, {.target = 12'000});
+  ASSERT_TRUE(vm_.run_until_true([&] { return status(0, sb::kDecelerating); }, 10 * kNsPerSec));
+  command(0, cb::kHold);
+  ASSERT_TRUE(wait_idle(0));
+  EXPECT_FALSE(status(0, sb::kCommandError));
+  EXPECT_FALSE(status(0, sb::kHoldState));
+  EXPECT_TRUE(status(0, sb::kMoveComplete));
+  EXPECT_EQ(motor(0), 12'000);
+}
+
 TEST_F(Commands3202, CE_08_ResumeWhenNotInHold) {
   command(0, cb::kResume);
   expect_refused(0, false);
