@@ -453,6 +453,19 @@ TEST_F(Commands3202, HLD_01_HoldAndResume) {
   EXPECT_FALSE(status(0, sb::kHoldState));
 }
 
+TEST_F(Commands3202, HLD_01_EncoderMoveIgnoresHoldAndStopsOnExternalWithoutHold) {
+  command(0, cb::kRelativeMove, {.target = 30'000, .flags = cb::kEncoderMove});
+  vm_.run_for(300 * kNsPerMs);
+  command(0, cb::kHold);  // Ch.4 "Hold Move" note 4: ignored
+  EXPECT_FALSE(status(0, sb::kCommandError));
+  EXPECT_TRUE(moving(0));
+  force(0, InputLine::kExternal, true);
+  ASSERT_TRUE(wait_idle(0, 5 * kNsPerSec));
+  EXPECT_LT(motor(0), 30'000);
+  EXPECT_FALSE(status(0, sb::kHoldState));
+  EXPECT_FALSE(status(0, sb::kMoveComplete));
+}
+
 TEST_F(Commands3202, PI_08_PlcLeavesRunModeWhileMoving) {
   command(0, cb::kRelativeMove, {.target = 50'000});
   command(1, cb::kRelativeMove, {.target = 50'000});
