@@ -1,5 +1,6 @@
 #include <stdexcept>
 
+#include "module/m3202/module_3202.hpp"
 #include "module/m3601/module_3601.hpp"
 #include "module/m3602/module_3602.hpp"
 #include "module/personality.hpp"
@@ -17,10 +18,10 @@ std::unique_ptr<Personality> make_personality(ModuleType type, gpio::Backend& ba
     case ModuleType::k3602:
       return std::make_unique<m3602::Module3602>(backend, *axes[0], *axes[1]);
     case ModuleType::k3202:
-      break;
+      return std::make_unique<m3202::Module3202>(backend, *axes[0], *axes[1]);
   }
-  throw std::invalid_argument("module type " + std::to_string(static_cast<unsigned>(type)) +
-                              " has no personality yet");
+  throw std::invalid_argument("unknown module type " +
+                              std::to_string(static_cast<unsigned>(type)));
 }
 
 }  // namespace stepmod::module

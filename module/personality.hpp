@@ -36,6 +36,14 @@ class Personality {
   // position becomes invalid, as the manuals say of a PLC switched to Program mode.
   virtual void plc_stopped(Nanos now) = 0;
 
+  // A message arrived through the image's mailbox (INTERFACE.md 3: the 3202's 52-DINT blend
+  // message); returns the message result (0 accepted). Modules without messages refuse it.
+  virtual std::int32_t on_message(std::span<const std::int32_t> data, Nanos now) {
+    (void)data;
+    (void)now;
+    return 1;
+  }
+
   // Shutdown: immediate stop of every axis.
   virtual void shutdown() = 0;
 };

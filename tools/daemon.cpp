@@ -278,6 +278,13 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     // As a PLC leaving Run mode (INTERFACE 3.2): every move stops, position invalid. Once per
     // loss; the frozen words keep anything new from starting until the PLC is back.
     if (supervisor.tripped()) personality.plc_stopped(now);
+    // The 3202's blend message (INTERFACE.md 3): handed over before the scan that reports it. Not
+    // while the PLC is lost: like the frozen words, nothing new is acted on until it is back.
+    if (!supervisor.plc_lost()) {
+      if (const auto msg = image->pending_message()) {
+        image->finish_message(msg->seq, personality.on_message(msg->data, now));
+      }
+    }
     personality.scan(out, in, now);
     kick();
     notice_cpu_need(now);

@@ -20,11 +20,15 @@
 #include "ipc/client.hpp"
 #include "ipc/codec.hpp"
 #include "ipc/sim_panel.hpp"
+#include "module/m3202/blend_message_3202.hpp"
+#include "module/m3202/words_3202.hpp"
 #include "module/m3601/words_3601.hpp"
 #include "module/m3602/words_3602.hpp"
+#include "plc/plc_3202.hpp"
 #include "plc/plc_3601.hpp"
 #include "plc/plc_3602.hpp"
 #include "plc/shm_port.hpp"
+#include "tools/ctl_3202.hpp"
 #include "tools/ctl_status.hpp"
 
 namespace {
@@ -138,10 +142,10 @@ struct ProfileOpts {
   void add(CLI::App* app, bool required, bool with_scurve = true) {
     speed_opt = app->add_option("--speed,-s", speed, "programmed speed, steps/s")
                     ->check(CLI::Range(kSplitMin, kSplitMax));
-    app->add_option("--accel,-a", accel, "acceleration, steps/ms/s (1..2000)")
-        ->check(CLI::Range(INT16_MIN, INT16_MAX));
-    app->add_option("--decel,-d", decel, "deceleration, steps/ms/s (1..2000)")
-        ->check(CLI::Range(INT16_MIN, INT16_MAX));
+    app->add_option("--accel,-a", accel,
+                    "acceleration: steps/ms/s on a 3601 (1..2000), steps/s^2 on a 3202 "
+                    "(1000..2000000)");
+    app->add_option("--decel,-d", decel, "deceleration, in the same unit as --accel");
     if (required) {
       speed_opt->required();
       app->get_option("--accel")->required();
@@ -153,6 +157,12 @@ struct ProfileOpts {
     }
   }
   Profile profile() const { return {speed, accel, decel, parse_accel(scurve)}; }
+  // The 3601's accel/decel are 16-bit words: a wider value would arrive as another number.
+  void require_16bit() const {
+    if (accel < INT16_MIN || accel > INT16_MAX || decel < INT16_MIN || decel > INT16_MAX) {
+      throw UsageError("--accel/--decel do not fit the 3601's 16-bit words");
+    }
+  }
 };
 
 void print_outcome(const ipc::Client& c, const Outcome& o) {
@@ -205,9 +215,9 @@ int main(int argc, char** argv) {
       "scan, release the bit, show the decoded status).\n\n"
       "Exit status: 0 ok, 1 the module reported an error bit (Command Error, Invalid Profile,\n"
       "Home Invalid, Configuration Error) for the command, 2 usage error, 3 module unreachable\n"
-      "(no image /dev/shm/stepmod.NAME, or no scan in time), 4 the module's command dialect is\n"
-      "not implemented yet (3602: configure, move, preset, reset, stop, gpo, wait-idle with\n"
-      "--axis 1|2; a 3202 image can be read with status/watch/raw get and written with raw set).\n"
+      "(no image /dev/shm/stepmod.NAME, or no scan in time), 4 the command is not implemented yet\n"
+      "for this module (the 3602 has configure, move, preset, reset, stop, gpo and wait-idle, with\n"
+      "--axis 1|2; the 3601 and the 3202, with --channel 1|2, have every command).\n"
       "Numbers accept 0x.. and 16#.. hex. Negative targets: use '--' before them if needed,\n"
       "e.g. stepmodctl move rel -- -500 -s 1000 -a 10 -d 10.\n"
       "Commands that drive the module also bump the PLC heartbeat while they run."};
@@ -215,6 +225,9 @@ int main(int argc, char** argv) {
   std::string name = "stepmod";
   int timeout_ms = 2000;
   app.add_option("--name,-n", name, "module name: /dev/shm/stepmod.NAME (default stepmod)");
+  unsigned channel = 1;
+  app.add_option("--channel,-c", channel, "3202: the channel a command acts on, 1 or 2 (1)")
+      ->check(CLI::Range(1, 2));
   app.add_option("--timeout", timeout_ms, "ms to wait for the module's scans/handshakes (2000)")
       ->check(CLI::NonNegativeNumber);
   unsigned axis_no = 1;
@@ -267,7 +280,8 @@ int main(int argc, char** argv) {
   configure->add_flag("--cw-estop", c_cw_estop, "3602: the CW input is an E-stop (bits 4:3 = 10)");
   configure->add_flag("--ccw-estop", c_ccw_estop,
                       "3602: the CCW input is an E-stop (bits 6:5 = 10)");
-  configure->add_flag("--disable", c_disable, "3602: disable the axis (bit 14)");
+  configure->add_flag("--disable", c_disable,
+                      "3602: disable the axis (bit 14); 3202: disable the channel (bit 28)");
   configure->add_option("--homing-timeout", c_timeout, "3602: homing timeout, s (0 = none)")
       ->check(CLI::Range(INT16_MIN, INT16_MAX));
   configure->add_option("--start-speed", c_vs, "starting speed, steps/s (1000)")
@@ -329,15 +343,17 @@ int main(int argc, char** argv) {
   std::vector<std::string> segs;
   std::int32_t final_decel = 0;
   std::string final_type;
-  blend_prog
-      ->add_option("--segment", segs,
-                   "LENGTH:SPEED:ACCEL[:tri|trap], once per segment in order (2..16)")
-      ->required();
-  // Word 5 carries the type in bits 15..14 and the value in bits 13..0.
-  blend_prog->add_option("--final-decel", final_decel, "final deceleration, steps/ms/s")
-      ->required()
-      ->check(CLI::Range(0, 0x3FFF));
+  std::string blend_file;
+  blend_prog->add_option("--segment", segs,
+                         "LENGTH:SPEED:ACCEL[:tri|trap], once per segment in order (2..16)");
+  // 3601: word 5 carries the type in bits 15..14 and the value in bits 13..0 (checked below);
+  // 3202: DINT 3, bits 31..30 and 29..0.
+  blend_prog->add_option("--final-decel", final_decel,
+                         "final deceleration, steps/ms/s (3601) or steps/s^2 (3202)");
   blend_prog->add_option("--final-type", final_type, "final deceleration type: const|tri|trap");
+  blend_prog->add_option("--file", blend_file,
+                         "3202: the profile from a file (segment = L:S:A[:type], final_decel = "
+                         "N, final_type = T; one per line)");
   auto* blend_run = blend->add_subcommand("run", "run the stored profile, + or -");
   std::string blend_dir;
   blend_run->add_option("DIR", blend_dir, "+ (cw) or - (ccw)")->required();
@@ -480,9 +496,96 @@ int main(int argc, char** argv) {
       return kExitOk;
     }
 
+    // The 3202's commands, on channel `ch` (0 or 1); its numbers are native DINTs and its rates
+    // steps/s^2, so the options are passed as given and the module judges them.
+    auto run_3202 = [&](plc::Port& port, ipc::Client& c, std::chrono::milliseconds t,
+                        unsigned ch) -> Outcome {
+      namespace cb = module::m3202::cfg_bit;
+      plc::Plc3202 plc(port, t);
+      if (configure->parsed()) {
+        std::uint32_t bits = 0;
+        bits |= c_capture ? cb::kCaptureUsed : 0;
+        bits |= c_external ? cb::kExternalUsed : 0;
+        bits |= c_home ? cb::kHomeUsed : 0;
+        bits |= c_estop ? cb::kEStopUsed : 0;
+        bits |= c_cw ? cb::kCwLimitUsed : 0;
+        bits |= c_ccw ? cb::kCcwLimitUsed : 0;
+        bits |= c_prox ? cb::kBackplaneProximity : 0;
+        bits |= c_enc ? cb::kQuadratureEncoder : 0;
+        bits |= c_diag ? cb::kDiagnosticFeedback : 0;
+        bits |= c_cwccw ? 0 : cb::kStepDirOutput;
+        bits |= c_marker ? cb::kMarkerHoming : 0;
+        bits |= c_disable ? cb::kDisable : 0;
+        // Active levels in bits 16..21: active high unless named (digest 5.2).
+        std::uint32_t levels = cb::kActiveLevels;
+        for (const auto& in : c_low) levels &= ~(1u << (cb::kActiveLevelShift + panel_input(in)));
+        return plc.configure(ch, bits | levels, c_vs);
+      }
+      if (move->parsed()) {
+        return plc.move(ch, move_kind == "abs", split_number(move_target, "TARGET"),
+                        move_p.profile(), move_encoder);
+      }
+      if (jog->parsed()) {
+        if (jog_reg != 0) throw UsageError("the 3202 has no registration move");
+        return plc.jog(ch, parse_direction(jog_dir), jog_p.profile(),
+                       std::chrono::milliseconds(static_cast<long>(jog_for * 1000)));
+      }
+      if (home->parsed()) return plc.home(ch, parse_direction(home_dir), home_p.profile());
+      if (hold->parsed()) return plc.hold(ch);
+      if (resume->parsed()) {
+        std::optional<Profile> p;
+        if (resume_p.speed_opt->count() > 0) p = resume_p.profile();
+        return plc.resume(ch, p);
+      }
+      if (stop->parsed()) return plc.immediate_stop(ch);
+      if (preset->parsed()) return plc.preset_position(ch, split_number(preset_value, "POSITION"));
+      if (preset_enc->parsed()) {
+        return plc.preset_encoder(ch, split_number(preset_enc_value, "VALUE"));
+      }
+      if (reset->parsed()) return plc.reset_errors(ch);
+      if (blend_run->parsed()) return plc.blend_run(ch, parse_direction(blend_dir));
+      if (wait_idle->parsed()) {
+        return plc.wait_idle(ch, std::chrono::milliseconds(static_cast<long>(wait_s * 1000)));
+      }
+      if (blend_prog->parsed()) {
+        plc::BlendProfile b;
+        try {
+          if (!blend_file.empty()) {
+            b = tools::ctl::read_blend_file(blend_file);
+          } else {
+            for (const std::string& s : segs)
+              b.segments.push_back(tools::ctl::parse_blend_segment(s));
+            b.final_decel = final_decel;
+            b.final_type = tools::ctl::parse_accel_type(final_type);
+          }
+        } catch (const tools::ctl::BlendSyntaxError& e) {
+          throw UsageError(e.what());
+        }
+        // The 52-DINT message through the image's mailbox (INTERFACE.md 3).
+        const auto data = plc::m3202::blend_message(static_cast<std::int32_t>(ch + 1), b);
+        const auto result = c.send_message(data, t);
+        Outcome o = plc.status(ch);
+        if (!result) {
+          o.ok = false;
+          o.timed_out = true;
+          o.message = "blend: the module did not take the message (is stepmodd running?)";
+        } else if (*result != module::m3202::kMessageAccepted) {
+          o.ok = false;
+          o.message = "blend: message refused (result " + std::to_string(*result) +
+                      "; see Invalid Profile / Command Error)";
+        }
+        return o;
+      }
+      throw UsageError(std::string("this command does not exist on the 3202"));
+    };
+
     // Everything below is a command in the module's dialect, chosen by the image header.
     switch (client.type()) {
       case ModuleType::k3601:
+        for (const ProfileOpts* p : {&move_p, &jog_p, &home_p, &resume_p}) p->require_16bit();
+        if (blend_prog->parsed() && (segs.empty() || final_decel < 0 || final_decel > 0x3FFF)) {
+          throw UsageError("blend program: --segment (2..16) and --final-decel 0..16383 needed");
+        }
         break;
       case ModuleType::k3602: {
         plc::ShmPort port(client, timeout);
@@ -538,12 +641,12 @@ int main(int argc, char** argv) {
         print_outcome(client, o3);
         return exit_for(o3);
       }
-      case ModuleType::k3202:
-        std::cerr << "stepmodctl: module '" << name << "' is a "
-                  << static_cast<unsigned>(client.type())
-                  << ": its command dialect is not implemented yet (status, watch, raw get and "
-                     "raw set work)\n";
-        return kExitNoDialect;
+      case ModuleType::k3202: {
+        plc::ShmPort port3202(client, timeout);
+        const Outcome o3202 = run_3202(port3202, client, timeout, channel - 1);
+        print_outcome(client, o3202);
+        return exit_for(o3202);
+      }
     }
     if (axis_no != 1) throw UsageError("the 3601 has one axis: --axis 1");
     if (c_cw_estop || c_ccw_estop || c_disable || c_timeout != 0) {

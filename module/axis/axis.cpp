@@ -143,6 +143,15 @@ void Axis::poll_motion_end() {
   }
 }
 
+bool Axis::program_blend(const BlendFirstBlock& first,
+                         std::span<const BlendSegmentBlock> segments) {
+  if (config_mode_ || !st_.configured) {
+    st_.status.invalid_profile = true;  // 3202-IP-15
+    return false;
+  }
+  return blend_.program(first, segments);
+}
+
 void Axis::plc_stopped() {
   // 3601-PI-07: the PLC left Run mode while moving: motion stops, position invalid.
   if (st_.moving()) st_.immediate_stop(StopCause::kImmediate);

@@ -41,6 +41,12 @@ class Axis {
   // The PLC left Run mode (3601-PI-07), or shutdown: immediate stop of a motion under way.
   void plc_stopped();
 
+  // The 3202's blend message for this channel (digest 5.8): 3202-IP-15 before the channel is
+  // configured, else Blend::program. Returns whether the profile was stored.
+  bool program_blend(const BlendFirstBlock& first, std::span<const BlendSegmentBlock> segments);
+  // A blend message that names no channel (3202-IP-11, A23): Invalid Profile on every channel.
+  void set_invalid_profile() noexcept { st_.status.invalid_profile = true; }
+
   // The status after the last scan (or input edge).
   AxisStatus status() const noexcept;
   bool in_configuration_mode() const noexcept { return config_mode_; }

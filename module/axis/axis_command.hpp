@@ -91,6 +91,9 @@ struct AxisCommand {
   // A word-level rule of the dialect is broken for the one command set (words that must be 0, a
   // command LSW that must be 0, ...), or for the minimum-registration store: Command Error.
   bool words_invalid = false;
+  // The module's reserved command words are not 0 (3202-CE-05 / IP-03, and HI-04 for a homing
+  // command): CE + IP (+ HI). Modules without reserved command words leave it false.
+  bool reserved_words_nonzero = false;
 
   // Parameters, decoded (nullopt: the words hold no valid number in the module's encoding).
   std::optional<std::int32_t> target;  // target / preset value / registration count / distance

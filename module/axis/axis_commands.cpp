@@ -55,6 +55,14 @@ void Axis::command_edge(const AxisCommand& c, const CommandSet& rising, Nanos no
   }
   const auto kind = rising.single();
   if (!kind) return;
+  // 3202-CE-05 / IP-03 / HI-04: reserved command words not 0.
+  if (c.reserved_words_nonzero) {
+    st_.reject_profile();
+    if (*kind == CommandKind::kFindHomeCw || *kind == CommandKind::kFindHomeCcw) {
+      st_.status.home_invalid = true;
+    }
+    return;
+  }
   switch (*kind) {
     case CommandKind::kAbsoluteMove:
       command_move(c, true);
@@ -154,6 +162,11 @@ void Axis::command_move(const AxisCommand& c, bool absolute) {
 void Axis::command_hold(Nanos now) {
   if (st_.activity == Activity::kEncoderMove) return;  // A4: ignored, no CE (encoder.cpp)
   if (st_.activity == Activity::kMove) {
+    // 3202-CE-07: "because the module is already decelerating" (rules.hpp).
+    if (st_.rules.hold_ignored_while_decelerating &&
+        st_.motion.phase() == planner::MotionPort::Phase::kDecelerating) {
+      return;
+    }
     // A hold already under way (or the External input's) needs nothing more.
     if (st_.stop_cause == StopCause::kNone) {
       st_.stop_cause = StopCause::kHold;  // 3601-HLD-01

@@ -187,6 +187,38 @@ bool Blend::segment_block(const BlendSegmentBlock& b) {
   return fits(needed, static_cast<double>(seg.length));
 }
 
+bool Blend::program(const BlendFirstBlock& first, std::span<const BlendSegmentBlock> segments) {
+  if (ax_.activity == Activity::kBlend) {
+    // 3202-CE-19 (as 3601-CE-22): the stored profile of the running blend is kept.
+    ax_.reject();
+    hold_error_ = false;  // this CE does not clear itself
+    if (ax_.stop_cause == StopCause::kNone) {
+      ax_.stop_cause = StopCause::kHold;  // a controlled stop; motion_ended gives its outcome
+      ax_.motion.stop(ax_.move_decel);
+    }
+    return false;
+  }
+  // A new profile replaces the stored one (digest 7.10 rule 7): a refused one leaves none.
+  stored_ = false;
+  cycle_ = false;
+  pending_ = planner::BlendSpec{};
+  total_ = 0;
+  blocks_ = 1;
+  bool ok = first_block(first);
+  for (std::size_t n = 0; ok && n < pending_.count; ++n) {
+    blocks_ = static_cast<unsigned>(n) + 2;
+    ok = n < segments.size() && segment_block(segments[n]);
+  }
+  blocks_ = 0;
+  if (!ok) {
+    ax_.status.invalid_profile = true;
+    return false;
+  }
+  profile_ = pending_;
+  stored_ = true;
+  return true;
+}
+
 // Run Blend + / -: 3601 manual Ch.4 "Blend Move". The dialect's word rules (3601-CE-21: target,
 // speed, accel and decel words 0; 3601-CE-15: command LSW 0) were checked at dispatch.
 void Blend::run(planner::Direction dir) {

@@ -3,6 +3,7 @@
 // checks a profile from decoded blocks, the stored profile, and the running blend's Hold and
 // end rules. It owns the profile and the cycle's state.
 #include <cstdint>
+#include <span>
 
 #include "module/axis/axis_state.hpp"
 
@@ -15,6 +16,11 @@ class Blend {
   // Every command-mode scan of a configured axis: the programming handshake (`prev`: the
   // previous scan's command image, for the transmit edge).
   void programming_scan(const AxisCommand& c, const AxisCommand& prev);
+  // A whole profile at once (the 3202's blend message, digest 5.8): the block cycle's checks on
+  // the first block and the declared segments; stored only if every check passes. While a blend
+  // runs: CE and the blend is brought down with its final deceleration (3202-CE-19). Returns
+  // whether it was stored.
+  bool program(const BlendFirstBlock& first, std::span<const BlendSegmentBlock> segments);
   // Run Blend + / -.
   void run(planner::Direction dir);
   // Hold while a blend runs (3601-CE-23): CE now, cleared by itself when the blend ends.

@@ -66,6 +66,9 @@ struct ModuleRules {
   bool registration_external_always_error;
   // Power-up: 3601/3602 in command mode with Configuration Error; 3202 disabled without it.
   bool powers_up_with_configuration_error;
+  // Hold during the deceleration of an absolute/relative move is ignored, no CE (3202 manual
+  // Ch.4 "Hold Move" note 2, 3202-CE-07); the 3601 and 3602 manuals say nothing: they hold.
+  bool hold_ignored_while_decelerating = false;
 };
 
 inline constexpr ModuleRules kRules3601{
@@ -159,6 +162,7 @@ inline constexpr ModuleRules kRules3202{
     .homing_home_with_limit_is_error = false,
     .registration_external_always_error = true,  // no registration at all
     .powers_up_with_configuration_error = false,
+    .hold_ignored_while_decelerating = true,
 };
 
 constexpr const ModuleRules& rules_of(ModuleType t) noexcept {

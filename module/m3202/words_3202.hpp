@@ -1,9 +1,10 @@
 #pragma once
-// 3202 backplane words and bits, named as in the 3202 manual (shared/spec/manuals/003_...;
-// digest MODULES.md section 5). Tables only for now: stepmodctl decodes a 3202's image by these
-// names; the 3202 dialect (module and PLC side) will take its constants from them the way
-// words_3601.hpp does. Each channel has 8 DINTs at b = 8 * channel; indices below are relative
-// to b. Values are native 32-bit integers (digest 2.3). Header-only, ground layer only.
+// 3202 backplane words and bits, named as in the 3202 manual
+// (shared/spec/manuals/002_f6a32b63084cb2fa.txt; digest MODULES.md section 5). Tables only for now:
+// stepmodctl decodes a 3202's image by these names; the 3202 dialect (module and PLC side) will
+// take its constants from them the way words_3601.hpp does. Each channel has 8 DINTs at b = 8 *
+// channel; indices below are relative to b. Values are native 32-bit integers (digest 2.3).
+// Header-only, ground layer only.
 #include <array>
 #include <cstdint>
 
@@ -112,5 +113,100 @@ inline constexpr std::array<NamedBit, 25> kStatusBits = {{
     {30, "Module OK"},
     {31, "Configuration Mode"},
 }};
+
+// Bit masks by name, for the dialect (module side and PLC side). Values from the tables above.
+namespace cfg_bit {
+inline constexpr std::uint32_t kCaptureUsed = 1u << 0;
+inline constexpr std::uint32_t kExternalUsed = 1u << 1;
+inline constexpr std::uint32_t kHomeUsed = 1u << 2;
+inline constexpr std::uint32_t kEStopUsed = 1u << 3;
+inline constexpr std::uint32_t kCwLimitUsed = 1u << 4;
+inline constexpr std::uint32_t kCcwLimitUsed = 1u << 5;
+inline constexpr std::uint32_t kBackplaneProximity = 1u << 6;
+inline constexpr std::uint32_t kQuadratureEncoder = 1u << 8;
+inline constexpr std::uint32_t kDiagnosticFeedback = 1u << 9;
+inline constexpr std::uint32_t kStepDirOutput = 1u << 10;
+inline constexpr std::uint32_t kMarkerHoming = 1u << 12;
+inline constexpr unsigned kActiveLevelShift = 16;  // bits 16..21: active levels, InputLine order
+inline constexpr std::uint32_t kInputsUsed = 0x3Fu;
+inline constexpr std::uint32_t kActiveLevels = 0x3Fu << kActiveLevelShift;
+inline constexpr std::uint32_t kDisable = 1u << 28;
+inline constexpr std::uint32_t kConfigMode = 1u << 31;
+// 3202-CFG-09: reserved bits 7, 11, 13-15, 22-27, 29, 30.
+inline constexpr std::uint32_t kReserved =
+    (1u << 7) | (1u << 11) | (0x7u << 13) | (0x3Fu << 22) | (1u << 29) | (1u << 30);
+}  // namespace cfg_bit
+
+namespace cmd_bit {
+inline constexpr std::uint32_t kAbsoluteMove = 1u << 0;
+inline constexpr std::uint32_t kRelativeMove = 1u << 1;
+inline constexpr std::uint32_t kHold = 1u << 2;
+inline constexpr std::uint32_t kResume = 1u << 3;
+inline constexpr std::uint32_t kImmediateStop = 1u << 4;
+inline constexpr std::uint32_t kFindHomeCw = 1u << 5;
+inline constexpr std::uint32_t kFindHomeCcw = 1u << 6;
+inline constexpr std::uint32_t kManualCw = 1u << 7;
+inline constexpr std::uint32_t kManualCcw = 1u << 8;
+inline constexpr std::uint32_t kPresetPosition = 1u << 9;
+inline constexpr std::uint32_t kPresetEncoder = 1u << 10;
+inline constexpr std::uint32_t kResetErrors = 1u << 11;
+inline constexpr std::uint32_t kRunBlendCw = 1u << 12;
+inline constexpr std::uint32_t kRunBlendCcw = 1u << 13;
+inline constexpr std::uint32_t kSCurve = 1u << 16;
+inline constexpr std::uint32_t kTrapezoidalS = 1u << 17;
+inline constexpr std::uint32_t kEncoderMove = 1u << 18;
+inline constexpr std::uint32_t kBackplaneProximity = 1u << 29;
+inline constexpr std::uint32_t kConfigMode = 1u << 31;
+// 3202-CE-24, A33: reserved bits 14, 15, 19-28, 30 count as an extra (undefined) command.
+inline constexpr std::uint32_t kReserved = (1u << 14) | (1u << 15) | (0x3FFu << 19) | (1u << 30);
+}  // namespace cmd_bit
+
+namespace status_bit {
+inline constexpr std::uint32_t kMovingCw = 1u << 0;
+inline constexpr std::uint32_t kMovingCcw = 1u << 1;
+inline constexpr std::uint32_t kHoldState = 1u << 2;
+inline constexpr std::uint32_t kStopped = 1u << 3;
+inline constexpr std::uint32_t kAtHome = 1u << 4;
+inline constexpr std::uint32_t kAccelerating = 1u << 5;
+inline constexpr std::uint32_t kDecelerating = 1u << 6;
+inline constexpr std::uint32_t kMoveComplete = 1u << 7;
+inline constexpr std::uint32_t kBlendRunning = 1u << 8;
+inline constexpr std::uint32_t kPositionInvalid = 1u << 10;
+inline constexpr std::uint32_t kInputError = 1u << 11;
+inline constexpr std::uint32_t kCommandError = 1u << 12;
+inline constexpr std::uint32_t kConfigurationError = 1u << 13;
+inline constexpr std::uint32_t kHomeInvalid = 1u << 14;
+inline constexpr std::uint32_t kInvalidProfile = 1u << 15;
+inline constexpr unsigned kInputShift = 16;  // bits 16..21: inputs active, InputLine order
+inline constexpr std::uint32_t kChannelDisabled = 1u << 28;
+inline constexpr std::uint32_t kProximityEcho = 1u << 29;
+inline constexpr std::uint32_t kModuleOk = 1u << 30;
+inline constexpr std::uint32_t kConfigMode = 1u << 31;
+}  // namespace status_bit
+
+// Word indices relative to the channel's base (digest 5.1, 5.3, 5.4, 5.6).
+namespace out_word {
+inline constexpr unsigned kCommand = 0;  // configuration mode: configuration bits
+inline constexpr unsigned kTarget = 1;   // configuration mode: starting speed
+inline constexpr unsigned kSpeed = 2;
+inline constexpr unsigned kAccel = 3;
+inline constexpr unsigned kDecel = 4;
+inline constexpr unsigned kFirstReserved = 5;  // 5..7 must be 0 (3202-CE-05)
+}  // namespace out_word
+namespace in_word {
+inline constexpr unsigned kStatus = 0;
+inline constexpr unsigned kPosition = 1;  // configuration mode: starting speed mirror
+inline constexpr unsigned kEncoder = 2;
+inline constexpr unsigned kCapture = 3;  // configuration mode: firmware revision
+}  // namespace in_word
+
+// The firmware revision reported in configuration mode (major in bits 31-16, minor in 15-0).
+// 3.1: capture without encoder is valid (3202-CFG-08 applies to <= 2.2 only).
+inline constexpr std::uint32_t kFirmwareMajor = 3;
+inline constexpr std::uint32_t kFirmwareMinor = 1;
+
+constexpr unsigned channel_base(unsigned channel) noexcept {
+  return channel * kWordsPerChannel;
+}
 
 }  // namespace stepmod::module::m3202

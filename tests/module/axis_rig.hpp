@@ -51,6 +51,8 @@ class AxisRig {
   bool run_until_true(const std::function<bool()>& done, Nanos limit);
 
   const ax::AxisStatus& status() const noexcept { return status_; }
+  // The axis itself, for the calls that are no command image (the 3202's blend message).
+  ax::Axis& axis() noexcept { return *axis_; }
   bool moving() const noexcept { return status_.moving_cw || status_.moving_ccw; }
   std::int64_t motor() { return sim_->position(0); }
   // Panel: force an input's electrical level.

@@ -86,6 +86,84 @@ TEST_P(AxisShared, CE_L1_CE_L2_OnlyResetErrorsWhileCommandError) {
   EXPECT_EQ(rig_.motor(), 20'100);
 }
 
+// 3202-CE-05 / IP-03 / HI-04: a module's reserved command words not 0 (the dialect's
+// AxisCommand::reserved_words_nonzero) refuse the command with CE + IP, and HI for a homing;
+// nothing moves. Modules without such words never set the flag, so the rule is inert for them.
+TEST_P(AxisShared, CE_05_IP_03_HI_04_ReservedWordsNotZero) {
+  rig_.configure();
+  rig_.image().reserved_words_nonzero = true;
+  rig_.command(CommandKind::kRelativeMove, {.target = 100});
+  EXPECT_TRUE(rig_.status().command_error);
+  EXPECT_TRUE(rig_.status().invalid_profile);
+  EXPECT_FALSE(rig_.status().home_invalid);
+  rig_.image().reserved_words_nonzero = true;
+  rig_.command(CommandKind::kResetErrors, {.speed = 0, .accel = 0, .decel = 0});
+  EXPECT_TRUE(rig_.status().command_error);  // Reset Errors too is refused with them
+  rig_.image().reserved_words_nonzero = false;
+  rig_.command(CommandKind::kResetErrors, {.speed = 0, .accel = 0, .decel = 0});
+  ASSERT_FALSE(rig_.status().command_error);
+  rig_.image().reserved_words_nonzero = true;
+  rig_.command(CommandKind::kFindHomeCw, {.target = 0});
+  EXPECT_TRUE(rig_.status().home_invalid);
+  rig_.run_for(100 * kNsPerMs);
+  EXPECT_EQ(rig_.motor(), 0);
+}
+
+// A whole blend profile at once (Axis::program_blend, the 3202's message, digest 5.8): the block
+// cycle's checks; stored only when valid, runs the sum of its lengths; refused with IP and
+// nothing stored otherwise; refused before the axis is configured (3202-IP-15).
+TEST_P(AxisShared, BlendProgrammedAtOnceChecksStoresAndRuns) {
+  ax::BlendFirstBlock first;
+  first.segments = 2;
+  first.final_shape = planner::AccelShape::kConstant;
+  first.final_decel = 100'000;
+  std::array<ax::BlendSegmentBlock, 2> segs{};
+  segs[0].length = 6'000;
+  segs[0].speed = 5'000;
+  segs[0].rate = 100'000;
+  segs[1].length = 4'000;
+  segs[1].speed = 2'000;
+  segs[1].rate = 100'000;
+  EXPECT_FALSE(rig_.axis().program_blend(first, segs));  // not configured
+  rig_.scans(1);
+  EXPECT_TRUE(rig_.status().invalid_profile);
+  rig_.configure();
+  EXPECT_TRUE(rig_.axis().program_blend(first, segs));
+  rig_.command(CommandKind::kRunBlendCw, {.speed = 0, .accel = 0, .decel = 0});
+  ASSERT_TRUE(rig_.wait_idle());
+  EXPECT_EQ(rig_.motor(), 10'000);
+  EXPECT_TRUE(rig_.status().move_complete);
+  // Same speed twice: refused, and the earlier profile is gone too (digest 7.10 rule 7).
+  segs[1].speed = 5'000;
+  EXPECT_FALSE(rig_.axis().program_blend(first, segs));
+  rig_.scans(1);
+  EXPECT_TRUE(rig_.status().invalid_profile);
+  rig_.command(CommandKind::kResetErrors, {.speed = 0, .accel = 0, .decel = 0});
+  rig_.command(CommandKind::kRunBlendCw, {.speed = 0, .accel = 0, .decel = 0});
+  EXPECT_TRUE(rig_.status().command_error);
+  rig_.run_for(100 * kNsPerMs);
+  EXPECT_EQ(rig_.motor(), 10'000);
+}
+
+// 3202-CE-07 (3202 manual Ch.4 "Hold Move" note 2): Hold during the deceleration of a move is
+// ignored on the 3202; the 3601 and 3602 hold (rules.hpp hold_ignored_while_decelerating).
+TEST_P(AxisShared, CE_07_HoldDuringTheDecelerationPerModule) {
+  rig_.configure();
+  rig_.command(CommandKind::kRelativeMove, {.target = 12'000});
+  ASSERT_TRUE(rig_.run_until_true([this] { return rig_.status().decelerating; }, 10 * kNsPerSec));
+  rig_.command(CommandKind::kHold);
+  ASSERT_TRUE(rig_.wait_idle());
+  EXPECT_FALSE(rig_.status().command_error);
+  if (rules().hold_ignored_while_decelerating) {
+    EXPECT_FALSE(rig_.status().hold);
+    EXPECT_TRUE(rig_.status().move_complete);
+    EXPECT_EQ(rig_.motor(), 12'000);
+  } else {
+    EXPECT_TRUE(rig_.status().hold);
+    EXPECT_FALSE(rig_.status().move_complete);
+  }
+}
+
 // 3601-CE-04 / IP-02: a speed or rate outside the module's range (rules.hpp) is refused with CE
 // and Invalid Profile.
 TEST_P(AxisShared, CE_04_IP_02_OutOfRangeParameters) {

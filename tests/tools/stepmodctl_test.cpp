@@ -54,13 +54,31 @@ ImageWords outputs_of(const std::string& name) {
   return w;
 }
 
-TEST(Stepmodctl, CommandsOnA3202SayTheDialectIsNotImplementedAndWriteNothing) {
+TEST(Stepmodctl, A3202CommandWritesOnlyItsChannelsDints) {
   const std::string n = image_name("3202");
   ipc::ShmImage img(n, {ModuleType::k3202, 2, 4, 16, 16});
-  const CtlRun r = stepmodctl("-n " + n + " move abs 100 -s 1000 -a 10 -d 10");
-  EXPECT_EQ(r.exit_status, 4) << r.err;
-  EXPECT_NE(r.err.find("3202"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("not implemented yet"), std::string::npos) << r.err;
+  // Nobody scans this image: the words are written, then the wait times out (exit 3).
+  const CtlRun r =
+      stepmodctl("-n " + n + " --timeout 200 -c 2 move abs 100 -s 1000 -a 100000 -d 50000");
+  EXPECT_EQ(r.exit_status, 3) << r.err;
+  const ImageWords w = outputs_of(n);
+  for (unsigned i = 0; i < 8; ++i) EXPECT_EQ(w.w[i], 0) << "channel 1 DINT " << i;
+  EXPECT_EQ(w.w[8], 0);  // the edge-triggered bit is released after the wait
+  EXPECT_EQ(w.w[9], 100);
+  EXPECT_EQ(w.w[10], 1'000);
+  EXPECT_EQ(w.w[11], 100'000);  // steps/s^2, a native DINT (A31)
+  EXPECT_EQ(w.w[12], 50'000);
+}
+
+TEST(Stepmodctl, A3202RefusesWhatItLacksAndABadChannel) {
+  const std::string n = image_name("3202");
+  ipc::ShmImage img(n, {ModuleType::k3202, 2, 4, 16, 16});
+  const CtlRun follow = stepmodctl("-n " + n + " follow +");
+  EXPECT_EQ(follow.exit_status, 2) << follow.err;
+  const CtlRun reg = stepmodctl("-n " + n + " jog + -s 1000 -a 1000 -d 1000 --registration 5");
+  EXPECT_EQ(reg.exit_status, 2) << reg.err;
+  const CtlRun channel = stepmodctl("-n " + n + " -c 3 stop");
+  EXPECT_EQ(channel.exit_status, 2) << channel.err;
   EXPECT_EQ(outputs_of(n), ImageWords{});
 }
 
