@@ -135,7 +135,10 @@ class Mbpoll {
   // Holding registers from `addr` (function 16, or 6 for one value).
   void write(unsigned addr, const std::vector<int>& values) {
     std::string cmd = base_ + " -t 4 -r " + std::to_string(addr) + " 127.0.0.1 --";
-    for (int v : values) cmd += " " + std::to_string(v);
+    for (int v : values) {
+      cmd += ' ';  // appended apart: `" " + std::string` trips GCC 12's -O3 -Wrestrict
+      cmd += std::to_string(v);
+    }
     std::string out;
     ASSERT_EQ(run(cmd, &out), 0) << cmd << "\n" << out;
     ASSERT_NE(out.find("Written " + std::to_string(values.size()) + " reference"),
