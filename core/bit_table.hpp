@@ -42,4 +42,21 @@ consteval unsigned index_of(const Table& table, std::string_view name) {
   throw "index_of: no word of this name in the table";
 }
 
+// The 16-bit modules' words (3601, 3602): their dialects' constants are written with these two.
+namespace bits16 {
+template <typename Table>
+consteval std::uint16_t field(const Table& t, std::string_view name) {
+  return mask_of<std::uint16_t>(t, name);
+}
+// The bits of a 16-bit word that no field of `t` names: the manual's reserved bits.
+template <typename Table>
+consteval std::uint16_t unnamed(const Table& t) {
+  std::uint16_t named = 0;
+  for (const NamedBit& b : t) {
+    named = static_cast<std::uint16_t>(named | ((1u << b.width) - 1) << b.bit);
+  }
+  return static_cast<std::uint16_t>(~named);
+}
+}  // namespace bits16
+
 }  // namespace stepmod

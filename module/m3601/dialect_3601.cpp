@@ -4,6 +4,7 @@
 
 #include "ipc/codec.hpp"
 #include "module/axis/rules.hpp"
+#include "module/blend_types_16bit.hpp"
 #include "module/m3601/words_3601.hpp"
 
 namespace stepmod::module::m3601 {
@@ -69,29 +70,8 @@ constexpr unsigned kFinalDecelWord = 5;
 axis::BlendFirstBlock blend_first_block(const ImageWords& out) noexcept {
   axis::BlendFirstBlock b;
   b.segments = word(out, kSegmentCountWord);
-  for (unsigned n = 1; n <= b.shapes.size(); ++n) {
-    const auto w = static_cast<std::uint16_t>(out.w[n <= 8 ? kPairs1To8Word : kPairs9To16Word]);
-    const unsigned pair = (w >> (2 * ((n - 1) % 8))) & 0x3u;
-    // A22: the low bit selects S-curve; binary 10 (low bit 0) is constant, as the manual's
-    // general rule "least significant bit reset => constant" says.
-    b.shapes[n - 1] = !(pair & 0x1u)  ? planner::AccelShape::kConstant
-                      : (pair & 0x2u) ? planner::AccelShape::kTrapezoidalS
-                                      : planner::AccelShape::kTriangularS;
-  }
+  decode_blend_types_16bit(out, kPairs1To8Word, kPairs9To16Word, kFinalDecelWord, b);
   const auto w5 = static_cast<std::uint16_t>(out.w[kFinalDecelWord]);
-  switch (w5 >> 14) {
-    case 0b00:
-      b.final_shape = planner::AccelShape::kConstant;
-      break;
-    case 0b01:
-      b.final_shape = planner::AccelShape::kTriangularS;
-      break;
-    case 0b11:
-      b.final_shape = planner::AccelShape::kTrapezoidalS;
-      break;
-    default:
-      break;  // 3601-IP-19, A22: type 10 is invalid for the final decel
-  }
   b.final_decel = static_cast<std::int64_t>(w5 & 0x3FFF) * kAccelUnit;
   b.unused_words_zero = out.w[out_word::kAccel] == 0 && out.w[out_word::kDecel] == 0;
   return b;

@@ -5,6 +5,7 @@
 #include "core/lines.hpp"
 #include "ipc/codec.hpp"
 #include "module/axis/rules.hpp"
+#include "module/blend_types_16bit.hpp"
 #include "module/m3602/words_3602.hpp"
 
 namespace stepmod::module::m3602 {
@@ -73,28 +74,8 @@ constexpr std::uint16_t kFinalDecelReserved = 0x3800;
 axis::BlendFirstBlock blend_first_block(const ImageWords& out) noexcept {
   axis::BlendFirstBlock b;
   b.segments = word(out, kSegmentCountWord);
-  for (unsigned n = 1; n <= b.shapes.size(); ++n) {
-    const auto w = static_cast<std::uint16_t>(out.w[n <= 8 ? kPairs1To8Word : kPairs9To16Word]);
-    const unsigned pair = (w >> (2 * ((n - 1) % 8))) & 0x3u;
-    // A pair of binary 10 reads as constant here; 3602-IP-07 refuses it (has_invalid_pair).
-    b.shapes[n - 1] = !(pair & 0x1u)  ? planner::AccelShape::kConstant
-                      : (pair & 0x2u) ? planner::AccelShape::kTrapezoidalS
-                                      : planner::AccelShape::kTriangularS;
-  }
+  decode_blend_types_16bit(out, kPairs1To8Word, kPairs9To16Word, kFinalDecelWord, b);
   const auto w5 = static_cast<std::uint16_t>(out.w[kFinalDecelWord]);
-  switch (w5 >> 14) {
-    case 0b00:
-      b.final_shape = planner::AccelShape::kConstant;
-      break;
-    case 0b01:
-      b.final_shape = planner::AccelShape::kTriangularS;
-      break;
-    case 0b11:
-      b.final_shape = planner::AccelShape::kTrapezoidalS;
-      break;
-    default:
-      break;  // 10 -> IP (digest 4.5)
-  }
   b.final_decel = static_cast<std::int64_t>(w5 & kFinalDecelValue) * kAccelUnit;
   b.unused_words_zero = (w5 & kFinalDecelReserved) == 0 && words_zero(out, 6, 7);
   return b;

@@ -130,20 +130,7 @@ inline constexpr std::array<NamedBit, 11> kStatusLswBits = {{
 
 // ---- the constants, looked up in the tables --------------------------------------------------
 
-namespace detail {
-template <typename Table>
-consteval std::uint16_t field(const Table& t, std::string_view name) {
-  return mask_of<std::uint16_t>(t, name);
-}
-// The bits of a 16-bit word that no field of `t` names: the manual's reserved bits.
-template <typename Table>
-consteval std::uint16_t unnamed(const Table& t) {
-  std::uint16_t named = 0;
-  for (const NamedBit& b : t)
-    named = static_cast<std::uint16_t>(named | ((1u << b.width) - 1) << b.bit);
-  return static_cast<std::uint16_t>(~named);
-}
-}  // namespace detail
+namespace detail = ::stepmod::bits16;  // field(), unnamed()
 
 // Output words (PLC -> module) of one axis, relative to b = 8 * axis.
 namespace out_word {
