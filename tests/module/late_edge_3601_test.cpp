@@ -91,5 +91,36 @@ TEST_F(LateEdge3601, StallDuringHomingEndsTheHomingAsAnImmediateStop) {
   EXPECT_EQ(motor(), at);
 }
 
+// The guard can cut a homing sequence at any moment: while it searches, decelerates, pauses 2 s,
+// reverses or creeps. Whatever the moment, the sequence ends (the axis reports it is not moving)
+// and nothing moves afterwards: either the cut ended it as an Immediate Stop (Stopped, Position
+// Invalid), or the stall fell in a pause (no edge was due) and the homing completed.
+TEST_F(LateEdge3601, StallAtAnyMomentOfHomingEndsTheSequence) {
+  for (const Nanos at :
+       {20 * kNsPerMs, 150 * kNsPerMs, 600 * kNsPerMs, 1'200 * kNsPerMs, 2'400 * kNsPerMs,
+        2'700 * kNsPerMs, 3'500 * kNsPerMs, 4'600 * kNsPerMs, 5'200 * kNsPerMs, 6'000 * kNsPerMs}) {
+    SCOPED_TRACE(::testing::Message() << "stall " << at / kNsPerMs << " ms into the homing");
+    command(cmd::kResetErrors);
+    command(cmd::kFindHomeCw, {.target = 0, .speed = 5'000, .accel = 20, .decel = 20});
+    vm_.run_for(at);
+    vm_.stall_pulse_thread(vm_.now(), 50 * kNsPerMs);
+    // The end of a homing: At Home, Stopped or an error (the moving bits are also clear in its
+    // 2-s pauses, so they do not tell).
+    ASSERT_TRUE(port_.wait_inputs(
+        [](const ImageWords& in) {
+          const auto s = plc::m3601::decode_status(in);
+          return s.has(kAtHome) || s.has(kStopped) || s.has(kHomeInvalid) || s.has(kInputError);
+        },
+        std::chrono::seconds(20)))
+        << "status " << status_msw();
+    EXPECT_TRUE((status(kStopped) && status(kPositionInvalid)) || status(kAtHome))
+        << "status " << status_msw();
+    const std::int64_t rest = motor();
+    vm_.run_for(3 * kNsPerSec);
+    EXPECT_EQ(motor(), rest);
+    EXPECT_FALSE(moving());
+  }
+}
+
 }  // namespace
 }  // namespace stepmod::testing
