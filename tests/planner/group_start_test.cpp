@@ -89,7 +89,7 @@ TEST(GroupStart, TwoAxesFirstStepsAtTheSameInstant) {
   ASSERT_EQ(dir1.line, OutputLine::kDir);
   EXPECT_GE(s1.front().t - dir1.t, AxisTiming{}.dir_setup_ns);
   // The common time 0 is axis 0's (the later one): after its first motion's last edge.
-  const Edge& last_of_first = r.steps(0)[before - 1];
+  const Edge last_of_first = r.steps(0)[before - 1];  // a copy: steps() returns a new vector
   EXPECT_GT(s0.front().t, last_of_first.t);
   EXPECT_GT(s1.front().t, test::kT0 + 2 * r.planner->options().start_delay_ns);
 }
