@@ -21,9 +21,19 @@ class RawShmPlc {
  public:
   explicit RawShmPlc(const std::string& name) : client_(name) {}
 
+  // A consistent snapshot of the inputs. A read that keeps overlapping the module's writes (a
+  // sanitizer build with the pulse thread spinning beside the control thread) is tried again:
+  // reporting zeros instead would read as "not moving" and end a wait early.
   ImageWords in() const {
     ImageWords w;
-    EXPECT_TRUE(client_.read_inputs(w));
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+    while (!client_.read_inputs(w)) {
+      if (std::chrono::steady_clock::now() > end) {
+        ADD_FAILURE() << "no consistent snapshot of the input image in 2 s";
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
     return w;
   }
   std::uint16_t status_msw() const { return static_cast<std::uint16_t>(in().w[0]); }
