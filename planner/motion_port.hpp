@@ -44,6 +44,17 @@ class MotionPort {
     if (!sink_.submit_blend(c, b)) return 0;
     return started(c);
   }
+  // Interpolated path (planner/path_spec.hpp): each of the two axes' ports starts its coordinate
+  // with one shared GroupTag of size 2, in the same scan. hold_path on either port stops the
+  // whole path along it; resume_path (both ports, one new tag) continues it to its end.
+  std::uint32_t start_path(const PathSpec& p, PathCoordinate coordinate, GroupTag group) noexcept {
+    return start(PathStart{p, coordinate}, group);
+  }
+  std::uint32_t resume_path(PathCoordinate coordinate, double vp, Ramp accel, Ramp decel,
+                            GroupTag group) noexcept {
+    return start(PathResume{coordinate, vp, accel, decel}, group);
+  }
+  bool hold_path(Ramp decel) noexcept { return send(PathHold{decel}); }
   // Encoder follower: a follow motion (FollowSpec), then its new targets. stop() ends it once it
   // has reached its target and is at rest; immediate_stop() cuts it.
   std::uint32_t start_follow(const FollowSpec& f) noexcept { return start(FollowStart{f}, {}); }

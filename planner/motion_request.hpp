@@ -10,24 +10,10 @@
 #include <variant>
 
 #include "core/clock.hpp"
+#include "planner/path_spec.hpp"
+#include "planner/ramp.hpp"
 
 namespace stepmod::planner {
-
-enum class Direction : std::int8_t { kCw = 1, kCcw = -1 };
-inline constexpr int sign(Direction d) noexcept {
-  return static_cast<int>(d);
-}
-inline constexpr Direction opposite(Direction d) noexcept {
-  return d == Direction::kCw ? Direction::kCcw : Direction::kCw;
-}
-
-// The manuals' acceleration types (digest section 7.2). k = ramp time factor: 1, 2, 4/3.
-enum class AccelShape : std::uint8_t { kConstant = 0, kTriangularS = 1, kTrapezoidalS = 2 };
-
-struct Ramp {
-  double rate = 0.0;  // steps/s^2, > 0
-  AccelShape shape = AccelShape::kConstant;
-};
 
 // A finite move of `steps` (> 0) steps: jump to vs, ramp to vp (or a lower peak: triangle), ramp
 // down, last step at vs (digest 7.2, 7.3). vp <= vs means no ramps (constant speed vs... vp).
@@ -135,12 +121,15 @@ enum class CommandKind : std::uint8_t {
   kSetPulseFormat,  // PulseFormatSpec
   kFollow,          // FollowStart: start as motion `epoch`
   kFollowUpdate,    // FollowUpdate of follow motion `epoch`
+  kPath,            // PathStart: start as motion `epoch`, one coordinate of a path (group of 2)
+  kPathResume,      // PathResume: continue the held path as motion `epoch` (group of 2)
+  kPathHold,        // PathHold: controlled stop of the running path, both of its axes
 };
-using CommandPayload =
-    std::variant<MoveSpec, RunSpec, BlendStart, SpeedChange, StopSpec, StopAfterSpec, AbortSpec,
-                 GpoSpec, PulseFormatSpec, FollowStart, FollowUpdate>;
+using CommandPayload = std::variant<MoveSpec, RunSpec, BlendStart, SpeedChange, StopSpec,
+                                    StopAfterSpec, AbortSpec, GpoSpec, PulseFormatSpec, FollowStart,
+                                    FollowUpdate, PathStart, PathResume, PathHold>;
 static_assert(std::variant_size_v<CommandPayload> ==
-              static_cast<std::size_t>(CommandKind::kFollowUpdate) + 1);
+              static_cast<std::size_t>(CommandKind::kPathHold) + 1);
 
 // Group start: the motions of `size` axes that start together on one time base. Each member's
 // start command carries the same id; the planner starts none of them before it holds all (or
@@ -171,11 +160,12 @@ struct Command {
   bool starts_motion() const noexcept {
     const CommandKind k = kind();
     return k == CommandKind::kMove || k == CommandKind::kRun || k == CommandKind::kBlend ||
-           k == CommandKind::kFollow;
+           k == CommandKind::kFollow || k == CommandKind::kPath || k == CommandKind::kPathResume;
   }
 };
 // Commands cross threads by copy through an SpscRing: small and trivially copyable.
 static_assert(std::is_trivially_copyable_v<Command>);
-static_assert(sizeof(Command) <= 96);
+// A path start (two points, a sweep and a profile) is the largest payload.
+static_assert(sizeof(Command) <= 128);
 
 }  // namespace stepmod::planner
