@@ -393,5 +393,28 @@ TEST_F(Interpolation3602, MC_01_ZeroLengthLineCompletesOnBothAxes) {
   EXPECT_TRUE(status(kAxis2, kMoveComplete));
 }
 
+// A32: a position outside the +-2^30 box (reached by a relative move) and an absolute end point at
+// the box's other side are 2^31 steps apart: more than the module's 32-bit registers hold.
+TEST_F(Interpolation3602, IP_03_AbsolutePathOverflowsTheRegisters) {
+  preset(kAxis1, 1'073'741'823);
+  preset(kAxis2, 0);
+  clear_words(kAxis1);
+  command(kAxis1, m2::cmd_msw::kRelativeMove, {.target = 2});
+  ASSERT_TRUE(wait_idle(kAxis1));
+  ASSERT_EQ(position(kAxis1), 1'073'741'825);
+  path_command(
+      {.lsw = il::kLinear | il::kAbsoluteCoordinates, .end_x = -1'073'741'823, .end_y = 0});
+  EXPECT_TRUE(ce(kAxis1));
+  EXPECT_TRUE(ip(kAxis1));
+  vm_.scans(20);
+  EXPECT_EQ(position(kAxis1), 1'073'741'825);
+  // One step less is a 32-bit count: accepted.
+  reset_errors(kAxis1);
+  path_command(
+      {.lsw = il::kLinear | il::kAbsoluteCoordinates, .end_x = -1'073'741'822, .end_y = 0});
+  EXPECT_FALSE(ce(kAxis1));
+  EXPECT_TRUE(lsw_status(kAxis1, m2::status_lsw::kInterpolatedRunning));
+}
+
 }  // namespace
 }  // namespace stepmod::testing
