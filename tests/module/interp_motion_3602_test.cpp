@@ -312,6 +312,54 @@ TEST_F(InterpMotion3602, IE_02_CwLimitOnAxis1StopsBothAxes) {
   EXPECT_TRUE(status(kAxis2, kPositionInvalid));
 }
 
+// Digest 7.7: an E-stop on either axis cuts the path on both (3602-IE-01, PI-03).
+TEST_F(InterpMotion3602, IE_01_EStopOnAxis2StopsBothAxes) {
+  configure(kAxis2, static_cast<std::uint16_t>(
+                        (kLimitsConfigMsw & ~m2::cfg_msw::kCwFunction) |
+                        (m2::cfg_msw::kFunctionEStop << m2::cfg_msw::kCwFunctionShift)));
+  home_both(0, 0);
+  path_command({.end_x = 20'000, .end_y = -20'000});
+  ASSERT_TRUE(wait_running());
+  force(kAxis2, InputLine::kCwLimit, true);  // axis 2 runs CCW: an E-stop stops it all the same
+  ASSERT_TRUE(vm_.run_until_true([this] { return path_idle(); }, 20 * kNsPerMs));
+  EXPECT_TRUE(status(kAxis2, kInputError));
+  EXPECT_TRUE(status(kAxis1, kPositionInvalid));
+  EXPECT_TRUE(status(kAxis2, kPositionInvalid));
+  EXPECT_LT(motor(kAxis1), 20'000);
+}
+
+// A46: Hold given to axis 2 does not hold the path; CE on axis 1.
+TEST_F(InterpMotion3602, CE_I1_HoldOnAxis2IsRefusedThePathRunsOn) {
+  path_command({.end_x = 8'000, .end_y = 6'000});
+  ASSERT_TRUE(wait_running());
+  clear_words(kAxis2);
+  command(kAxis2, cmd::kHold);
+  EXPECT_TRUE(ce(kAxis1));
+  EXPECT_FALSE(ce(kAxis2));
+  ASSERT_TRUE(wait_path_end());
+  EXPECT_EQ(motor(kAxis1), 8'000);
+  EXPECT_EQ(motor(kAxis2), 6'000);
+  EXPECT_FALSE(status(kAxis1, kHoldState));
+}
+
+// A path held, then axis 2 moved on its own: the path cannot continue from where it stopped.
+TEST_F(InterpMotion3602, CE_09_ResumeAfterAxis2MovedIsRefused) {
+  path_command({.end_x = 20'000, .end_y = 10'000});
+  vm_.run_for(300 * kNsPerMs);
+  command(kAxis1, cmd::kHold);
+  ASSERT_TRUE(wait_stopped_moving());
+  vm_.scans(5);
+  ASSERT_TRUE(status(kAxis1, kHoldState));
+  clear_words(kAxis2);
+  command(kAxis2, cmd::kRelativeMove, {.target = 100});
+  ASSERT_TRUE(wait_idle(kAxis2));
+  const std::int64_t x = motor(kAxis1);
+  command(kAxis1, cmd::kResume, {.target = 0, .speed = 10'000});
+  EXPECT_TRUE(ce(kAxis1));
+  vm_.scans(20);
+  EXPECT_EQ(motor(kAxis1), x);
+}
+
 TEST_F(InterpMotion3602, CE_04_SecondInterpolatedMoveWhileRunning) {
   path_command({.end_x = 8'000, .end_y = 6'000});
   ASSERT_TRUE(wait_running());
