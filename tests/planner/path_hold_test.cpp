@@ -153,6 +153,32 @@ TEST(PathHold, AResumeWithoutAHeldPathEndsAtOnceWithoutAStep) {
   EXPECT_EQ(net(r, 1), 50);
 }
 
+TEST(PathHold, AResumeBeforeTheHoldHasStoppedBothAxesGivesThePathUp) {
+  PathRig r;
+  const PathSpec p = line(40'000, 30'000, 1'000, 20'000, 200'000, 200'000);
+  ASSERT_TRUE(r.start(p));
+  r.run_for(300 * kNsPerMs);
+  ASSERT_TRUE(r.ports[0]->hold_path(Ramp{20'000, AccelShape::kConstant}));  // a 1 s ramp
+  r.run_for(20 * kNsPerMs);
+  ASSERT_FALSE(r.done(0, 1));  // still decelerating
+  ASSERT_TRUE(
+      r.resume(20'000, Ramp{200'000, AccelShape::kConstant}, Ramp{200'000, AccelShape::kConstant}));
+  ASSERT_TRUE(r.run_until_done());
+  // No jump to the stop point: the resumed motions make no step, the held ones end where they
+  // were, and no two steps of an axis share an instant.
+  EXPECT_EQ(test::steps_of(r, 0, 2), 0);
+  EXPECT_EQ(test::steps_of(r, 1, 2), 0);
+  for (unsigned a = 0; a < 2; ++a) {
+    Nanos prev = 0;
+    for (const rt::Edge& e : r.edges[a]) {
+      if (e.dpos == 0) continue;
+      EXPECT_GT(e.t, prev);
+      prev = e.t;
+    }
+  }
+  EXPECT_LT(test::max_path_error(test::rebuild(r), p), 1.0);
+}
+
 TEST(PathHold, TwoHoldsAndResumesOfAFullCircleEndExactlyOnItsStart) {
   PathRig r;
   const PathSpec p = arc(0.0, 2'000.4, -2 * kPi, 1'000, 30'000, 300'000, 300'000);
