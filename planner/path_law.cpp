@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 namespace stepmod::planner {
 
@@ -57,7 +58,10 @@ void PathLaw::init(const PathSpec& p, PathCoordinate c) noexcept {
     if (n_ends + 1 >= kMaxSegments) break;
     ends[n_ends++] = (phik - phi0_) * inv_sweep_;
   }
-  std::sort(ends.begin(), ends.begin() + static_cast<std::ptrdiff_t>(n_ends));
+  // k runs up: the reversals come in path order for a CCW sweep, in reverse for a CW one.
+  if (sweep_ < 0.0) {
+    for (std::size_t i = 0, j = n_ends; i + 1 < j; ++i, --j) std::swap(ends[i], ends[j - 1]);
+  }
   ends[n_ends++] = 1.0;
 
   double u0 = 0.0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <limits>
 
 #include "planner/axis_planner.hpp"
 #include "planner/wakeup.hpp"
@@ -53,6 +54,18 @@ void Planner::apply(const Command& c, Nanos now) {
     // An immediate stop of either axis (seen by its planner only when it next runs) discards the
     // path: take every axis' aborts into account before the path is held or resumed.
     for (auto& a : axes_) a->poll_abort();
+  }
+  if (c.kind() == CommandKind::kPathResume && paths_.held != 0) {
+    // A resume before the hold has stopped every axis of the path (the module resumes only from
+    // its Hold state, when both have stopped): the axes are not at the stop point the resume
+    // would start from, so the path is given up rather than jump there.
+    for (auto& a : axes_) {
+      if (a->path_id() == paths_.held && a->path_frontier() != std::numeric_limits<Nanos>::min()) {
+        paths_.broken = paths_.held;
+        paths_.held = 0;
+        break;
+      }
+    }
   }
   if (const auto* h = std::get_if<PathHold>(&c.what)) {
     if (group_.id != 0) launch_group(now);

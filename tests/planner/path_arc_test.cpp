@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <random>
 #include <vector>
 
 #include "path_test_util.hpp"
@@ -133,6 +134,111 @@ TEST(PathArc, FullCircleOfAMillionStepsEndsExactlyOnItsStart) {
   // The last 1,000 points of both axes, one by one: the end closes the circle within a step.
   const std::vector<test::PathPoint> tail(pts.end() - 1'000, pts.end());
   EXPECT_LT(test::max_path_error(tail, p), 1.0);
+}
+
+// Checks every turn of both axes: the direction line changed after the previous pulse ended and
+// at least the set-up time before the turned step, at the level of the new direction.
+void expect_turns_set_up(const PathRig& r, const AxisTiming& timing) {
+  for (unsigned a = 0; a < 2; ++a) {
+    int dir = 0;
+    int level = 0;  // lines idle low: CCW
+    Nanos dir_t = 0;
+    Nanos prev_trailing = 0;
+    int turns = 0;
+    for (const rt::Edge& e : r.edges[a]) {
+      if (e.line == OutputLine::kDir) {
+        dir_t = e.t;
+        level = e.level;
+        EXPECT_GE(e.t, prev_trailing) << "direction changed under a pulse";
+        continue;
+      }
+      if (e.dpos == 0) {
+        prev_trailing = e.t;
+        continue;
+      }
+      if (dir != 0 && e.dpos != dir) {
+        ++turns;
+        EXPECT_GE(e.t - dir_t, timing.dir_setup_ns) << "axis " << a;
+      }
+      EXPECT_EQ(level, e.dpos > 0 ? 1 : 0) << "axis " << a << " at " << e.t;  // 1 = CW
+      dir = e.dpos;
+    }
+    EXPECT_GE(turns, 1) << "axis " << a;
+  }
+}
+
+TEST(PathArc, ATurnWritesTheDirectionLineASetUpTimeBeforeTheTurnedStep) {
+  const AxisTiming timing{2'000, 20'000};
+  {
+    // Three quarters of a circle: both axes turn; 50 us per step of path.
+    PathRig r({}, timing);
+    const PathSpec p = arc(0.0, 40.5, -1.5 * kPi, 20'000, 20'000);
+    ASSERT_TRUE(r.start(p));
+    ASSERT_TRUE(r.run_until_done());
+    expect_turns_set_up(r, timing);
+    EXPECT_LT(test::max_path_error(test::rebuild(r), p), 1.0);
+  }
+  {
+    // A radius of 1.5 steps at 200,000 steps/s: a turn comes sooner than the set-up time allows,
+    // the turned step waits for it (and the end point is still exact).
+    PathRig r({}, timing);
+    const PathSpec p = arc(0.0, 1.5, 2 * kPi, 200'000, 200'000);
+    ASSERT_TRUE(r.start(p));
+    ASSERT_TRUE(r.run_until_done());
+    expect_turns_set_up(r, timing);
+    EXPECT_EQ(test::steps_of(r, 0, 1), test::arc_crossings(p, false));
+    EXPECT_EQ(test::steps_of(r, 1, 1), test::arc_crossings(p, true));
+  }
+}
+
+TEST(PathArc, CwCcwPulseFormatTurnsOnTheOtherLine) {
+  PathRig r;
+  ASSERT_TRUE(r.ports[0]->set_pulse_format(false));
+  ASSERT_TRUE(r.ports[1]->set_pulse_format(false));
+  r.service();
+  const PathSpec p = arc(60.5, 0.0, 2 * kPi, 1'000, 1'000);
+  ASSERT_TRUE(r.start(p));
+  ASSERT_TRUE(r.run_until_done());
+  // CW steps pulse the step line, CCW steps the direction line (the CCW pulse line).
+  for (unsigned a = 0; a < 2; ++a) {
+    for (const rt::Edge& e : r.edges[a]) {
+      if (e.dpos != 0) {
+        EXPECT_EQ(e.line, e.dpos > 0 ? OutputLine::kStep : OutputLine::kDir);
+      }
+    }
+  }
+  EXPECT_EQ(test::steps_of(r, 0, 1), test::arc_crossings(p, false));
+  EXPECT_EQ(test::steps_of(r, 1, 1), test::arc_crossings(p, true));
+  EXPECT_LT(test::max_path_error(test::rebuild(r), p), 1.0);
+}
+
+TEST(PathArc, RandomLinesAndArcsEndExactlyWithinOneStep) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  for (int i = 0; i < 150; ++i) {
+    const double rad = 1.0 + 3'000.0 * uni(rng) * uni(rng);
+    const double a0 = 2 * kPi * uni(rng);
+    const double sweep = (uni(rng) < 0.5 ? -1 : 1) * (0.05 + (2 * kPi - 0.05) * uni(rng));
+    if (i % 3 == 0) {
+      const auto dx = static_cast<std::int64_t>(std::llround((uni(rng) - 0.5) * 6'000));
+      const auto dy = static_cast<std::int64_t>(std::llround((uni(rng) - 0.5) * 6'000));
+      PathRig r;
+      const PathSpec p = test::line(dx, dy, 1'000, 40'000, 400'000, 400'000);
+      ASSERT_TRUE(r.start(p));
+      ASSERT_TRUE(r.run_until_done());
+      const std::vector<test::PathPoint> pts = test::rebuild(r);
+      EXPECT_EQ(test::steps_of(r, 0, 1), std::llabs(dx));
+      EXPECT_EQ(test::steps_of(r, 1, 1), std::llabs(dy));
+      if (!pts.empty()) {
+        EXPECT_EQ(pts.back().x, dx);
+        EXPECT_EQ(pts.back().y, dy);
+      }
+      EXPECT_LT(test::max_path_error(pts, p), 1.0);
+    } else {
+      expect_arc(
+          arc(-rad * std::cos(a0), -rad * std::sin(a0), sweep, 1'000, 40'000, 400'000, 400'000));
+    }
+  }
 }
 
 }  // namespace
