@@ -61,7 +61,7 @@ axis::AxisCommand InterpolatedMove::filter_axis2(const axis::AxisCommand& c) {
   return filtered;
 }
 
-void InterpolatedMove::scan(const std::optional<InterpolatedCommand>& command) {
+void InterpolatedMove::scan(const std::optional<InterpolatedCommand>& words) {
   if (state_ == State::kRunning) {
     carry_stops();
     poll_end();
@@ -72,10 +72,10 @@ void InterpolatedMove::scan(const std::optional<InterpolatedCommand>& command) {
 
   // The command fires on the 0->1 edge of axis 1's interpolation bits (digest 7.16). In
   // configuration mode axis 1's words are configuration words, not a command.
-  const bool requested = command.has_value() && !x_.in_configuration_mode();
+  const bool requested = words.has_value() && !x_.in_configuration_mode();
   const bool rising = requested && !requested_;
   requested_ = requested;
-  if (rising) this->command(*command);
+  if (rising) command(*words);
 }
 
 void InterpolatedMove::after_input() {

@@ -40,7 +40,7 @@ class InterpolatedMove {
   axis::AxisCommand filter_axis2(const axis::AxisCommand& c);
   // After the axes' scan: ends, stops carried over, a Resume, and this scan's interpolated
   // command (nullopt: axis 1's LSW bits 9..14 are 0).
-  void scan(const std::optional<InterpolatedCommand>& command);
+  void scan(const std::optional<InterpolatedCommand>& words);
   // After an input edge reached the axes: a stop one axis took is carried over to the other.
   void after_input();
 

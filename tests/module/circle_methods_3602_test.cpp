@@ -48,13 +48,12 @@ InterpolatedCommand via(std::int32_t vx, std::int32_t vy, std::int32_t ex, std::
 
 TEST(Circle3602, RoundedLengthRoundsHalfUp) {
   EXPECT_EQ(rounded_length(3, 4), 5);
+  EXPECT_EQ(rounded_length(-3, -4), 5);
   EXPECT_EQ(rounded_length(1, 1), 1);  // 1.414
-  EXPECT_EQ(rounded_length(1, 2), 2);  // 2.236
-  EXPECT_EQ(rounded_length(2, 1), 2);
-  // 6.5^2 = 42.25: 42 -> 6.48 rounds down, 43 -> 6.56 rounds up.
-  EXPECT_EQ(rounded_length(6, std::int64_t{0}), 6);
-  EXPECT_EQ(rounded_length(1, 1), 1);
-  EXPECT_EQ(rounded_length(3, 3), 4);  // sqrt(18) = 4.243
+  EXPECT_EQ(rounded_length(3, 3), 4);  // 4.243
+  // Around 8.5 (8.5^2 = 72.25): sqrt(72) = 8.485 -> 8, sqrt(73) = 8.544 -> 9.
+  EXPECT_EQ(rounded_length(6, 6), 8);
+  EXPECT_EQ(rounded_length(8, 3), 9);
   // Beyond 64 bits of square: (2^32, 2^32) -> 2^32 * sqrt(2) = 6,074,000,999.95 -> 6,074,001,000.
   EXPECT_EQ(rounded_length(std::int64_t{1} << 32, std::int64_t{1} << 32), 6'074'001'000);
 }
