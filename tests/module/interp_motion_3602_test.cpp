@@ -360,6 +360,22 @@ TEST_F(InterpMotion3602, CE_09_ResumeAfterAxis2MovedIsRefused) {
   EXPECT_EQ(motor(kAxis1), x);
 }
 
+// 3602-CE-01 on a path: configuration mode requested on axis 1 while the path runs -> CE, the
+// path finishes on both axes, then axis 1 enters configuration mode and CE clears.
+TEST_F(InterpMotion3602, CE_01_ConfigurationRequestDuringThePathFinishesIt) {
+  path_command({.end_x = 6'000, .end_y = 3'000});
+  ASSERT_TRUE(wait_running());
+  write_config(kAxis1, kLimitsConfigMsw);  // axis 1's words only; axis 2's stay
+  vm_.scans(3);
+  EXPECT_TRUE(ce(kAxis1));
+  EXPECT_TRUE(moving(kAxis1));
+  ASSERT_TRUE(vm_.run_until_true([this] { return status(kAxis1, kConfigMode); }, 10 * kNsPerSec));
+  EXPECT_EQ(motor(kAxis1), 6'000);
+  EXPECT_EQ(motor(kAxis2), 3'000);
+  EXPECT_FALSE(ce(kAxis1));
+  EXPECT_TRUE(status(kAxis2, kMoveComplete));
+}
+
 TEST_F(InterpMotion3602, CE_04_SecondInterpolatedMoveWhileRunning) {
   path_command({.end_x = 8'000, .end_y = 6'000});
   ASSERT_TRUE(wait_running());
