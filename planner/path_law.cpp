@@ -22,6 +22,12 @@ void PathLaw::init(const PathSpec& p, PathCoordinate c) noexcept {
   y_ = c == PathCoordinate::kY;
   shape_ = p.shape;
   end_ = y_ ? p.end_y : p.end_x;
+  // An arc without a sweep or a radius has no circle to follow (the module never sends one):
+  // it is planned as the line to its end point, so the end is still exact.
+  if (shape_ == PathShape::kArc &&
+      (!(std::fabs(p.sweep) > 0.0) || std::hypot(p.centre_x, p.centre_y) == 0.0)) {
+    shape_ = PathShape::kLine;
+  }
   if (shape_ == PathShape::kLine) {
     length_ = std::hypot(static_cast<double>(p.end_x), static_cast<double>(p.end_y));
     inv_end_ = end_ != 0 ? 1.0 / static_cast<double>(end_) : 0.0;
