@@ -22,6 +22,12 @@ void PathLaw::init(const PathSpec& p, PathCoordinate c) noexcept {
   y_ = c == PathCoordinate::kY;
   shape_ = p.shape;
   end_ = y_ ? p.end_y : p.end_x;
+  // An arc without a sweep or a radius has no circle to follow (the module never sends one):
+  // it is planned as the line to its end point, so the end is still exact.
+  if (shape_ == PathShape::kArc &&
+      (!(std::fabs(p.sweep) > 0.0) || std::hypot(p.centre_x, p.centre_y) == 0.0)) {
+    shape_ = PathShape::kLine;
+  }
   if (shape_ == PathShape::kLine) {
     length_ = std::hypot(static_cast<double>(p.end_x), static_cast<double>(p.end_y));
     inv_end_ = end_ != 0 ? 1.0 / static_cast<double>(end_) : 0.0;
@@ -133,9 +139,26 @@ double PathLaw::solve(std::size_t i, double n, double u_lo) const noexcept {
   if (shape_ == PathShape::kLine) {
     u = n * inv_end_;
   } else {
-    u = arc_u(sg, n, u_lo);
-    // The spiral: once more with the radius at the point found (|r1 - r0| < 1 step: converged).
-    if (dr_ != 0.0) u = arc_u(sg, n, u);
+    // On the circle of the radius at u_lo: one acos.
+    const double r_lo = r0_ + dr_ * u_lo;
+    const double cq = std::clamp((n - c_) / r_lo, -1.0, 1.0);
+    const double a = std::acos(cq);
+    u = ((sg.k_odd ? sg.k_pi + kPi - a : sg.k_pi + a) - phi0_) * inv_sweep_;
+    if (dr_ != 0.0) {
+      // The spiral: one Newton step on q(u) = n from there, without trigonometry (cos phi = cq,
+      // sin phi from it and the half-turn), quadratic in the small radius change. Near a reversal
+      // q is flat in u and Newton would overshoot: a second acos at the new radius instead.
+      const double r = r0_ + dr_ * u;
+      const double sa = std::sqrt(std::max(0.0, 1.0 - cq * cq));
+      const double f = c_ + r * cq - n;
+      const double fp = dr_ * cq - r * (sg.k_odd ? -sa : sa) * sweep_;
+      const double step = fp != 0.0 ? f / fp : 0.0;
+      if (std::fabs(step) <= 0.5 * std::fabs(u - u_lo)) {
+        u -= step;
+      } else {
+        u = arc_u(sg, n, u);
+      }
+    }
   }
   return std::clamp(u, u_lo, sg.u1);
 }

@@ -54,8 +54,8 @@ class PathLaw {
   std::int64_t reached(std::size_t i, double u) const noexcept;
 
   // The point u of segment i, not before u_lo, at which the coordinate reaches integer n (n lies
-  // between the count at u_lo and the segment's target). The per-step path: one acos (two on a
-  // spiral).
+  // between the count at u_lo and the segment's target). The per-step path: one acos, on a
+  // spiral one Newton step more (a second acos next to a reversal).
   double solve(std::size_t i, double n, double u_lo) const noexcept;
 
  private:

@@ -3,20 +3,23 @@
 // The manual's profile (digest 7.2) runs on the path length s, s(t) a PhaseList like a move's;
 // the coordinate q(s) comes from the path's geometry (planner/path_law.hpp). The axis steps when
 // q reaches its next integer in its direction of travel, so its count n is always within one
-// step of q (hysteresis), and it turns where q reverses:
+// step of q (hysteresis), and it turns where q reverses. X along an arc on which it rises from 0
+// to a peak of 2.6 and falls back to 0:
 //
-//   q(s)  3 -|                 .  -  .                       (an arc: X rises, peaks, falls)
-//           |            .  '           ' .
-//         2 -|- - - - -.- - - - - - - - - - -.- - - - -
-//           |       .                          .
-//         1 -|- - .- - - - - - - - - - - - - - - -.- - -
-//           |  .                                    .
-//         0 -+------------------------------------------------------------------> s
-//             s1  s2                 peak         s3     s4       (s_k: q reaches an integer)
-//   STEP  ____|‾|__|‾|_________________________________|‾|____|‾|____
-//   DIR   ‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾|_______________  (set up before s3's step)
-//   n       0   1    2     (peak 2.6: no step, the count stays 2)   1      0
-//   t_k = t(s_k): the profile's time of path length s_k (the shared StepSolver).
+//   s        0 ...... s1 ...... s2 ...... sp ...... s2' ...... s3 ...... s4
+//   q(s)     0        1         2         2.6       2          1         0
+//   event             step +1   step +1   turn      (none)     step -1   step -1
+//   n        0        1         2         2         2          1         0
+//                      ____      ____                           ____      ____
+//   STEP  ____________|    |____|    |_________________________|    |____|    |____
+//         _________________________________
+//   DIR                                    |__________________________________________  (1 = CW)
+//                                          |<--- dir_setup --->| s3
+//
+//   The time of each step is the profile's time of its s: t_k = t(s_k) on s(t) (the shared
+//   StepSolver), the same function on both axes. A turn writes the direction line after the
+//   previous pulse and at least dir_setup_ns before the turned step (EdgeEmitter::reverse); only
+//   a turn sooner than that (a radius of a few steps at a high speed) delays the turned step.
 //
 // Both axes of a path run their own PathSource with the same spec and the same time 0 (a group
 // start), so they compute the identical s(t) and their steps interleave as the path demands,

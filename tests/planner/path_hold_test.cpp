@@ -179,6 +179,40 @@ TEST(PathHold, AResumeBeforeTheHoldHasStoppedBothAxesGivesThePathUp) {
   EXPECT_LT(test::max_path_error(test::rebuild(r), p), 1.0);
 }
 
+TEST(PathHold, AHoldBeforeTheFirstStepStopsAtTheStartAndResumeRunsTheWholePath) {
+  PathRig r;
+  const PathSpec p = arc(-90.5, -20.25, 3.0, 1'000, 20'000, 200'000, 200'000);
+  ASSERT_TRUE(r.start(p));
+  ASSERT_TRUE(r.ports[0]->hold_path(kHoldRamp));  // the same scan as the start
+  ASSERT_TRUE(r.run_until_done());
+  const std::int64_t before = test::steps_of(r, 0, 1) + test::steps_of(r, 1, 1);
+  EXPECT_LE(before, 2);  // at most the step or two planned before the hold's time
+  ASSERT_TRUE(
+      r.resume(20'000, Ramp{200'000, AccelShape::kConstant}, Ramp{200'000, AccelShape::kConstant}));
+  ASSERT_TRUE(r.run_until_done());
+  EXPECT_EQ(net(r, 0), p.end_x);
+  EXPECT_EQ(net(r, 1), p.end_y);
+  EXPECT_EQ(test::steps_of(r, 0, 1) + test::steps_of(r, 0, 2), test::arc_crossings(p, false));
+  EXPECT_EQ(test::steps_of(r, 1, 1) + test::steps_of(r, 1, 2), test::arc_crossings(p, true));
+  EXPECT_LT(test::max_path_error(test::rebuild(r), p), 1.0);
+}
+
+TEST(PathHold, AnAxisWithoutStepsIsHeldAndResumedWithTheOther) {
+  PathRig r;
+  const PathSpec p = line(0, -20'000, 1'000, 20'000, 200'000, 200'000);
+  ASSERT_TRUE(r.start(p));
+  r.run_for(200 * kNsPerMs);
+  ASSERT_TRUE(r.ports[0]->hold_path(kHoldRamp));  // sent on X, which has nothing to do
+  ASSERT_TRUE(r.run_until_done());
+  EXPECT_GT(net(r, 1), -20'000);
+  ASSERT_TRUE(
+      r.resume(20'000, Ramp{200'000, AccelShape::kConstant}, Ramp{200'000, AccelShape::kConstant}));
+  ASSERT_TRUE(r.run_until_done());
+  EXPECT_EQ(net(r, 0), 0);
+  EXPECT_EQ(net(r, 1), -20'000);
+  EXPECT_GT(test::steps_of(r, 1, 2), 0);
+}
+
 TEST(PathHold, TwoHoldsAndResumesOfAFullCircleEndExactlyOnItsStart) {
   PathRig r;
   const PathSpec p = arc(0.0, 2'000.4, -2 * kPi, 1'000, 30'000, 300'000, 300'000);

@@ -197,6 +197,11 @@ inline PathSpec arc(double cx, double cy, double sweep, double vs = 1'000, doubl
   const double a = std::atan2(-cy, -cx) + sweep;
   p.end_x = std::llround(cx + r * std::cos(a));
   p.end_y = std::llround(cy + r * std::sin(a));
+  // The sweep is the angle to the rounded end point (path_spec.hpp): the nominal one corrected
+  // by the rounding's angle (a fraction of a step over the radius).
+  double da = std::atan2(static_cast<double>(p.end_y) - cy, static_cast<double>(p.end_x) - cx) - a;
+  da = std::remainder(da, 2 * kPi);
+  p.sweep = sweep + da;
   p.vs = vs;
   p.vp = vp;
   p.accel = Ramp{accel, AccelShape::kConstant};
