@@ -1,5 +1,6 @@
 // The stepmodctl program against images nobody scans: the command dialect is chosen from the
-// image header (3602/3202: exit 4, not implemented yet), and bad input never writes a word.
+// image header, a command writes only its axis' / channel's words, and bad input never writes a
+// word (exit 2). tests/integration/stepmodctl_daemon_test.cpp runs it against a real daemon.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -82,16 +83,55 @@ TEST(Stepmodctl, A3202RefusesWhatItLacksAndABadChannel) {
   EXPECT_EQ(outputs_of(n), ImageWords{});
 }
 
-TEST(Stepmodctl, CommandsOnA3602NotImplementedYetSayItStatusDecodes) {
+TEST(Stepmodctl, A3602CommandWritesOnlyItsAxisWordsStatusDecodesBoth) {
   const std::string n = image_name("3602");
   ipc::ShmImage img(n, {ModuleType::k3602, 2, 2, 16, 16});
-  const CtlRun stop = stepmodctl("-n " + n + " --axis 2 home + -s 5000 -a 10 -d 10");
-  EXPECT_EQ(stop.exit_status, 4) << stop.err;
-  EXPECT_NE(stop.err.find("3602"), std::string::npos) << stop.err;
-  EXPECT_EQ(outputs_of(n), ImageWords{});
+  // Nobody scans this image: the words are written, then the wait times out (exit 3).
+  const CtlRun r = stepmodctl("-n " + n + " --timeout 200 --axis 2 home + -s 5000 -a 10 -d 20");
+  EXPECT_EQ(r.exit_status, 3) << r.err;
+  const ImageWords w = outputs_of(n);
+  for (unsigned i = 0; i < 8; ++i) EXPECT_EQ(w.w[i], 0) << "axis 1 word " << i;
+  EXPECT_EQ(w.w[8], 0);  // the edge-triggered bit is released after the wait
+  EXPECT_EQ(w.w[10], 0);
+  EXPECT_EQ(w.w[11], 0);  // Find Home: words 2/3 reserved 0
+  EXPECT_EQ(w.w[12], 0);
+  EXPECT_EQ(w.w[13], 5'000);  // binary split: MSW 0, LSW 5000
+  EXPECT_EQ(w.w[14], 10);
+  EXPECT_EQ(w.w[15], 20);
   const CtlRun status = stepmodctl("-n " + n + " status");
   EXPECT_EQ(status.exit_status, 0) << status.err;
+  EXPECT_NE(status.out.find("3602 axis 1 in COMMAND mode"), std::string::npos) << status.out;
   EXPECT_NE(status.out.find("3602 axis 2 in COMMAND mode"), std::string::npos) << status.out;
+}
+
+TEST(Stepmodctl, A3602RefusesWhatItLacksAndWhatItsWordsCannotCarry) {
+  const std::string n = image_name("3602bad");
+  ipc::ShmImage img(n, {ModuleType::k3602, 2, 2, 16, 16});
+  const char* bad[] = {
+      "follow +",                                     // no encoder follower
+      "preset-encoder 5",                             // no encoder
+      "move rel 5 -s 1000 -a 10 -d 10 --encoder",     // no encoder move
+      "--axis 3 stop",                                // two axes
+      "--axis 1 --channel 2 stop",                    // contradicting unit
+      "move abs 4294967296 -s 1000 -a 10 -d 10",      // beyond int32
+      "move abs 5 -s 1000 -a 40000 -d 10",            // accel beyond a 16-bit word
+      "move abs 12x -s 1000 -a 10 -d 10",             // not a number
+      "configure --estop",                            // no E-stop terminal
+      "configure --cw-limit --cw-estop",              // limit or E-stop
+      "configure --active-low estop",                 // no estop input
+      "jog + -s 1000 -a 10 -d 10 --registration 0x",  // not a number
+      "blend program --segment 100:1000:10 --segment 100:1000:10 --final-decel 3000",  // > 2047
+      "blend program --segment 100:1000:10",  // no final decel
+      "blend run up",                         // direction
+      "resume -s 1000",                       // all three or none
+      "gpo maybe",                            // on or off
+  };
+  for (const char* args : bad) {
+    const CtlRun r = stepmodctl("-n " + n + " --timeout 200 " + args);
+    EXPECT_EQ(r.exit_status, 2) << args << ": " << r.err;
+    EXPECT_FALSE(r.err.empty()) << args;
+  }
+  EXPECT_EQ(outputs_of(n), ImageWords{});
 }
 
 TEST(Stepmodctl, A3602OnlyOptionOnA3601IsAUsageErrorAndWritesNothing) {
