@@ -1,48 +1,21 @@
 // The stepmodctl program against images nobody scans: the command dialect is chosen from the
 // image header, a command writes only its axis' / channel's words, and bad input never writes a
 // word (exit 2). tests/integration/stepmodctl_daemon_test.cpp runs it against a real daemon.
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "ipc/client.hpp"
 #include "ipc/shm_image.hpp"
+#include "tests/support/ctl_run.hpp"
 
 namespace stepmod::tools {
 namespace {
 
-struct CtlRun {
-  int exit_status = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-CtlRun stepmodctl(const std::string& args) {
-  const std::string base = "/tmp/stepmodctl-test-" + std::to_string(::getpid());
-  const std::string cmd =
-      std::string(STEPMODCTL_PATH) + " " + args + " >" + base + ".out 2>" + base + ".err";
-  CtlRun r;
-  const int rc = std::system(cmd.c_str());
-  r.exit_status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-  r.out = slurp(base + ".out");
-  r.err = slurp(base + ".err");
-  std::remove((base + ".out").c_str());
-  std::remove((base + ".err").c_str());
-  return r;
-}
+using testing::CtlRun;
+using testing::stepmodctl;
 
 std::string image_name(const char* tag) {
   return std::string("ctl-") + tag + "-" + std::to_string(::getpid());
