@@ -52,11 +52,13 @@ constexpr const char* kDescription =
 // --speed/--accel/--decel[/--scurve] of a sub-command, as text: each dialect checks the range
 // its words carry.
 void add_profile(CLI::App* app, ProfileArgs& p, bool required, bool with_scurve = true) {
-  auto* s = app->add_option("--speed,-s", p.speed, "programmed speed, steps/s");
+  auto* s = app->add_option("--speed,-s", p.speed, "programmed speed, steps/s")->type_name("N");
   auto* a = app->add_option("--accel,-a", p.accel,
                             "acceleration: steps/ms/s on a 3601/3602 (1..2000), steps/s^2 on a "
-                            "3202 (1000..2000000)");
-  auto* d = app->add_option("--decel,-d", p.decel, "deceleration, in the same unit as --accel");
+                            "3202 (1000..2000000)")
+                ->type_name("N");
+  auto* d = app->add_option("--decel,-d", p.decel, "deceleration, in the same unit as --accel")
+                ->type_name("N");
   if (required) {
     s->required();
     a->required();
@@ -156,9 +158,10 @@ int main(int argc, char** argv) {
                       "3602: the CCW input is an E-stop (bits 6:5 = 10)");
   configure->add_flag("--disable", cf.disable,
                       "3602: disable the axis (bit 14); 3202: disable the channel (bit 28)");
-  configure->add_option("--homing-timeout", cf.homing_timeout,
-                        "3602: homing timeout, s (0 = none)");
-  configure->add_option("--start-speed", cf.start_speed, "starting speed, steps/s (1000)");
+  configure->add_option("--homing-timeout", cf.homing_timeout, "3602: homing timeout, s (0 = none)")
+      ->type_name("S");
+  configure->add_option("--start-speed", cf.start_speed, "starting speed, steps/s (1000)")
+      ->type_name("N");
 
   auto* move = verb(app.add_subcommand("move", "absolute or relative move"), Verb::kMove);
   move->add_option("KIND", cmd.kind, "abs or rel")
@@ -177,7 +180,8 @@ int main(int argc, char** argv) {
   jog->add_option("--for,-t", cmd.jog_seconds, "seconds to hold the jog bit (1)")
       ->check(CLI::Range(0.0, 1e6));
   jog->add_option("--registration", cmd.registration,
-                  "registration move: steps after the stop trigger");
+                  "registration move: steps after the stop trigger")
+      ->type_name("STEPS");
 
   auto* home =
       verb(app.add_subcommand("home", "find home in direction + (CW) or - (CCW)"), Verb::kHome);
@@ -212,13 +216,17 @@ int main(int argc, char** argv) {
            Verb::kBlendProgram);
   blend_prog->add_option("--segment", cmd.segments,
                          "LENGTH:SPEED:ACCEL[:tri|trap], once per segment in order (2..16)");
-  blend_prog->add_option("--final-decel", cmd.final_decel,
-                         "final deceleration: steps/ms/s (3601 0..16383, 3602 0..2047) or "
-                         "steps/s^2 (3202)");
+  blend_prog
+      ->add_option("--final-decel", cmd.final_decel,
+                   "final deceleration: steps/ms/s (3601 0..16383, 3602 0..2047) or "
+                   "steps/s^2 (3202)")
+      ->type_name("N");
   blend_prog->add_option("--final-type", cmd.final_type, "final deceleration type: const|tri|trap");
-  blend_prog->add_option("--file", cmd.blend_file,
-                         "the profile from a file instead (segment = L:S:A[:type], final_decel "
-                         "= N, final_type = T; one per line, # comments)");
+  blend_prog
+      ->add_option("--file", cmd.blend_file,
+                   "the profile from a file instead (segment = L:S:A[:type], final_decel "
+                   "= N, final_type = T; one per line, # comments)")
+      ->type_name("FILE");
   auto* blend_run =
       verb(blend->add_subcommand("run", "run the stored profile, + or -"), Verb::kBlendRun);
   blend_run->add_option("DIR", cmd.direction, "+ (cw) or - (ccw)")->required();

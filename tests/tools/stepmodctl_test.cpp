@@ -53,6 +53,22 @@ TEST(Stepmodctl, A3202RefusesWhatItLacksAndABadChannel) {
   EXPECT_EQ(reg.exit_status, 2) << reg.err;
   const CtlRun channel = stepmodctl("-n " + n + " -c 3 stop");
   EXPECT_EQ(channel.exit_status, 2) << channel.err;
+  const char* bad[] = {
+      "min-registration 100",                            // no registration move
+      "gpo on",                                          // no GPO
+      "configure --cw-estop",                            // the 3602's
+      "configure --active-low brake",                    // no such input
+      "move abs 4294967296 -s 1000 -a 1000 -d 1000",     // beyond a DINT
+      "blend program --file /nonexistent/profile.txt",   // unreadable
+      "blend program --file /dev/null --segment 1:2:3",  // one source
+      "blend program --segment 100:1000:1000 --segment 100:x:1000 --final-decel 1",
+      "resume -a 1000",  // all three or none
+  };
+  for (const char* args : bad) {
+    const CtlRun r = stepmodctl("-n " + n + " --timeout 200 -c 2 " + args);
+    EXPECT_EQ(r.exit_status, 2) << args << ": " << r.err;
+    EXPECT_FALSE(r.err.empty()) << args;
+  }
   EXPECT_EQ(outputs_of(n), ImageWords{});
 }
 
@@ -112,6 +128,12 @@ TEST(Stepmodctl, A3602OnlyOptionOnA3601IsAUsageErrorAndWritesNothing) {
   ipc::ShmImage img(n, {ModuleType::k3601, 1, 2, 8, 8});
   EXPECT_EQ(stepmodctl("-n " + n + " --axis 2 stop").exit_status, 2);
   EXPECT_EQ(stepmodctl("-n " + n + " configure --home --cw-estop").exit_status, 2);
+  EXPECT_EQ(stepmodctl("-n " + n + " gpo on").exit_status, 2);
+  EXPECT_EQ(stepmodctl("-n " + n +
+                       " blend program --segment 1:1000:10 --segment 1:1000:10 "
+                       "--final-decel 20000")
+                .exit_status,
+            2);  // beyond bits 13..0 of word 5
   EXPECT_EQ(outputs_of(n), ImageWords{});
 }
 
