@@ -48,8 +48,7 @@ struct ProfileArgs {
 
 struct Command {
   Verb verb = Verb::kConfigure;
-  unsigned unit = 0;        // axis (3602) or channel (3202), 0-based; 0 on a 3601
-  bool unit_given = false;  // --axis or --channel was on the command line
+  unsigned unit = 0;  // axis (3602) or channel (3202), 0-based; 0 on a 3601
   ConfigureArgs configure;
   std::string kind;           // move: abs | rel
   std::string value;          // TARGET / POSITION / VALUE (empty: 0) / DISTANCE

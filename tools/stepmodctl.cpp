@@ -367,7 +367,6 @@ int main(int argc, char** argv) {
     }
     const unsigned unit_no = axis_no != 0 ? axis_no : channel_no != 0 ? channel_no : 1;
     cmd.unit = unit_no - 1;
-    cmd.unit_given = axis_no != 0 || channel_no != 0;
     cmd.gpo_on = gpo_state == "on";
     plc::ShmPort port(client, timeout);
     plc::Outcome o;

@@ -215,7 +215,7 @@ TEST_F(Ctl3202, BlendFromAFileOnChannel2StatusNamesBothChannels) {
   std::remove(file.c_str());
   ctl("-c 2 blend run -");
   ctl("-c 2 wait-idle --max 20");
-  EXPECT_EQ(status(1).position, -10'000);
+  EXPECT_EQ(status(1).position, -10'000) << ctl("status").out << daemon_->log();
   EXPECT_EQ(status(0).position, 0);
   const CtlRun s = ctl("status");
   for (const char* want : {"3202 channel 1 in COMMAND mode", "3202 channel 2 in COMMAND mode",
@@ -232,7 +232,7 @@ TEST_F(Ctl3202, BlendFromOptionsOnChannel1) {
       "--final-decel 100000");
   ctl("-c 1 blend run +");
   ctl("-c 1 wait-idle --max 20");
-  EXPECT_EQ(status(0).position, 5'000);
+  EXPECT_EQ(status(0).position, 5'000) << ctl("status").out << daemon_->log();
 }
 
 TEST_F(Ctl3202, EveryChannelCommandOnChannel2LeavesChannel1Alone) {
