@@ -217,6 +217,23 @@ TEST_F(Homing3602, HI_06_LimitTogetherWithTheHomeInput) {
   EXPECT_FALSE(status(kAxis1, kAtHome));
 }
 
+// 3602-CE-08, third clause: Hold during a Find Home -> CE; the homing goes on to At Home
+// (digest 7.11: "Hold -> CE, homing continues").
+TEST_F(Homing3602, CE_08_HoldDuringFindHomeIsRefusedAndHomingContinues) {
+  configure(kAxis1);
+  command(kAxis1, cmd::kFindHomeCw, kHome);
+  vm_.run_for(200 * kNsPerMs);
+  ASSERT_TRUE(moving(kAxis1));
+  command(kAxis1, cmd::kHold, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_FALSE(status(kAxis1, kHoldState));
+  EXPECT_TRUE(moving(kAxis1));
+  ASSERT_TRUE(wait_homed(kAxis1));
+  EXPECT_EQ(position(kAxis1), 0);
+  EXPECT_GE(motor(kAxis1), 5'000);
+  EXPECT_LE(motor(kAxis1), 5'001);
+}
+
 // ---- Homing option 2: the home input gated by the backplane proximity bit (config MSW bit 7,
 // command LSW bit 6; 3602 manual Ch.4 "Homing the 3602" Figure 4.2, digest 7.11 H-B) -----------
 
