@@ -94,8 +94,10 @@ std::string check_levels(unsigned axis, const std::vector<Sample>& samples, cons
   check(step_ok.mismatched == 0, fmt("axis %u step level: ", axis) + step_ok.first_mismatch);
   check(dir_ok.mismatched == 0, fmt("axis %u dir level: ", axis) + dir_ok.first_mismatch);
   // As in daemon_vm_test move: under TCG a third or so of the samples stay clear of the VCD
-  // origin's uncertainty; a fifth is still hundreds of decided levels.
-  check(step_ok.compared > samples.size() / 5 && step_ok.compared >= 300,
+  // origin's uncertainty; a fifth is still hundreds of decided levels. Two samplers share the one
+  // emulated CPU here, and on a loaded host one took only ~840 samples in 3 s (~550 decided):
+  // 200 per axis leaves room for that and is still far from a check that cannot fail.
+  check(step_ok.compared > samples.size() / 5 && step_ok.compared >= 200,
         fmt("axis %u: only %zu of %zu samples could be compared", axis, step_ok.compared,
             samples.size()));
   check(sampled >= observable && sampled <= pulses,
@@ -137,7 +139,9 @@ std::string status_3202(std::uint32_t w) {
 std::string case_3202() {
   namespace sb = m32::status_bit;
   namespace cb = m32::cfg_bit;
-  constexpr std::int32_t kSteps1 = 500, kSteps2 = -400, kMore2 = 300;
+  // kMore2 at 200 steps/s runs 2 s: channel 2 is still moving when channel 1's E-stop (0.3 s
+  // after the start) has been seen, even with the guest stalled for a few hundred ms.
+  constexpr std::int32_t kSteps1 = 500, kSteps2 = -400, kMore2 = 400;
   constexpr stepmod::plc::Profile kP1{.speed = 250, .accel = 10'000, .decel = 10'000};
   constexpr stepmod::plc::Profile kP2{.speed = 200, .accel = 10'000, .decel = 10'000};
   // Phase 2: channel 1's endless move at 400 steps/s with the slowest deceleration, so a
