@@ -3,7 +3,8 @@
 // the gpio-sim board (scripts/vm/guest/board-setup.sh: BOARD_CHIP, GPIO_SIM_DIR, AX1_STEP, ...
 // in the environment), starts stepmodd (gpiod backend, --trace), drives it as a PLC does
 // (ipc::Client), drives the inputs through sim_gpioN/pull, samples the outputs through
-// sim_gpioN/value and checks everything against the daemon's VCD.
+// sim_gpioN/value and checks everything against the daemon's VCD (helpers shared with
+// modules_vm_test, the 3202/3602 cases: tests/vm/vm_harness.hpp).
 //
 //   daemon_vm_test errors     missing chip, line out of range, line in use: exit 1 naming them
 //   daemon_vm_test move       relative move: sampled outputs = VCD, exact pulse count
