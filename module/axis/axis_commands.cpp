@@ -9,10 +9,16 @@
 namespace stepmod::module::axis {
 namespace {
 
-// Whether a step count or position fits the modules' 32-bit registers (A32).
+// Whether a position fits the modules' signed 32-bit registers (A32).
 constexpr bool fits_int32(std::int64_t v) noexcept {
   return v >= std::numeric_limits<std::int32_t>::min() &&
          v <= std::numeric_limits<std::int32_t>::max();
+}
+// Whether a step count fits: its magnitude, either way (a count of 2^31 does not, CW or CCW; the
+// interpolated path draws the same line, tests/module/interp_3602_test.cpp on branch interp).
+constexpr bool count_fits_int32(std::int64_t steps) noexcept {
+  return steps >= -std::int64_t{std::numeric_limits<std::int32_t>::max()} &&
+         steps <= std::numeric_limits<std::int32_t>::max();
 }
 
 }  // namespace
@@ -164,7 +170,7 @@ void Axis::command_move(const AxisCommand& c, bool absolute) {
   // count or the position at the end does not fit the firmware's signed 32-bit registers. Only
   // the 3602 gets there in practice: an absolute move from far outside the +-2^30 box of its
   // targets and presets, or a relative move past 2^31 - 1; elsewhere the ranges refuse it first.
-  if (!fits_int32(steps) || !fits_int32(end)) {
+  if (!count_fits_int32(steps) || !fits_int32(end)) {
     st_.reject_profile();
     return;
   }
