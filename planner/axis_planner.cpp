@@ -24,6 +24,7 @@ AxisPlanner::AxisPlanner(const PlannerAxis& axis, const PlannerOptions& options)
 double AxisPlanner::frontier_speed() const noexcept {
   if (!m_.active) return 0.0;
   if (m_.follow) return follow_.speed();
+  if (m_.path) return path_.vector_speed_at(m_.tk);  // the path's vector speed
   return profile_.velocity_at(m_.tk);
 }
 
@@ -48,7 +49,16 @@ void AxisPlanner::apply(const Command& c, Nanos now) noexcept {
         } else if constexpr (std::is_same_v<P, SpeedChange>) {
           change_speed(epoch, p);
         } else if constexpr (std::is_same_v<P, StopSpec>) {
-          stop(epoch, p);
+          if (follows_path(epoch)) {
+            hold_path(std::max(now + opt_.start_delay_ns, path_frontier()), p.ramp);
+          } else {
+            stop(epoch, p);
+          }
+        } else if constexpr (std::is_same_v<P, PathHold>) {
+          // Alone (the Planner holds every axis of the path together).
+          if (follows_path(epoch)) {
+            hold_path(std::max(now + opt_.start_delay_ns, path_frontier()), p.ramp);
+          }
         } else if constexpr (std::is_same_v<P, StopAfterSpec>) {
           stop_after(epoch, p);
         } else if constexpr (std::is_same_v<P, AbortSpec>) {
@@ -76,6 +86,7 @@ void AxisPlanner::check_abort() noexcept {
 void AxisPlanner::abort_last_motion() noexcept {
   if (last_motion_aborted_ || last_motion_epoch_ == 0) return;
   last_motion_aborted_ = true;
+  discard_path();
   m_.active = false;
   out_.abort(last_motion_epoch_);
 }
@@ -90,6 +101,8 @@ bool AxisPlanner::prepare_start(const Command& c, Nanos now) noexcept {
   if (c.epoch <= last_motion_epoch_) return false;  // stale or repeated
   // A new motion replaces one that is still being planned: that one ends on its newest step.
   if (m_.active) finish_at_frontier();
+  const bool path = c.kind() == CommandKind::kPath || c.kind() == CommandKind::kPathResume;
+  if (!path) discard_path();
 
   Motion m;
   m.active = true;
@@ -101,6 +114,8 @@ bool AxisPlanner::prepare_start(const Command& c, Nanos now) noexcept {
     m.end = kEndless;
     m.follow = true;
     follow_.start(follow->spec);
+  } else if (path) {
+    prepare_path(c, m);
   } else {
     ProfileSource::Start st;
     if (const auto* move = std::get_if<MoveSpec>(&c.what)) {
@@ -118,7 +133,7 @@ bool AxisPlanner::prepare_start(const Command& c, Nanos now) noexcept {
   // the CCW pulse line rests low. Only a change (or an unknown level) costs an edge. (A follow
   // motion writes it with its first step: follow_step.)
   if (!m.follow && m.end > 0 && out_.direction_pending()) {
-    const Nanos first = to_ns(profile_.first_step_time(m.end));
+    const Nanos first = to_ns(m.path ? path_.peek().t : profile_.first_step_time(m.end));
     m.dir_edge = true;
     m.dir_shift = std::max<Nanos>(0, timing_.dir_setup_ns - first);
   }
@@ -143,7 +158,7 @@ void AxisPlanner::launch(Nanos origin) noexcept {
     return;
   }
   if (!m_.dir_edge) return;
-  out_.direction(origin - m_.dir_shift, profile_.first_phase());
+  out_.direction(origin - m_.dir_shift, m_.path ? path_.first_phase() : profile_.first_phase());
 }
 
 void AxisPlanner::finish_at_frontier() noexcept {
@@ -161,8 +176,50 @@ void AxisPlanner::replan_to_end(std::int64_t end, const Ramp& ramp, bool exact_r
   m_.end = end;
 }
 
+void AxisPlanner::prepare_path(const Command& c, Motion& m) noexcept {
+  m.path = true;
+  PathSource::Start st{Direction::kCw, 0};
+  if (const auto* ps = std::get_if<PathStart>(&c.what)) {
+    discard_path();  // a new path replaces a held one
+    st = path_.start(ps->spec, ps->coordinate);
+    path_state_ = PathState::kRunning;
+    path_id_ = c.group.id;
+  } else {
+    const auto& r = std::get<PathResume>(c.what);
+    const bool resumable = path_state_ == PathState::kHeld &&
+                           (path_id_ == 0 || (book_ != nullptr && book_->held == path_id_));
+    if (resumable) {
+      st = path_.resume(r.vp, r.accel, r.decel);
+      path_state_ = PathState::kRunning;
+      path_id_ = c.group.id;
+    } else {
+      discard_path();  // ends at once, no step
+    }
+  }
+  m.dir = st.dir;
+  m.end = st.end;
+}
+
+void AxisPlanner::discard_path() noexcept {
+  if (path_state_ == PathState::kNone) return;
+  if (book_ != nullptr && path_id_ != 0) {
+    if (book_->held == path_id_) book_->held = 0;
+    book_->broken = path_id_;
+  }
+  path_state_ = PathState::kNone;
+}
+
+void AxisPlanner::hold_path(Nanos t, const Ramp& ramp) noexcept {
+  if (path_state_ == PathState::kNone) return;
+  path_state_ = PathState::kHeld;
+  const std::int64_t left = path_.hold(static_cast<double>(t - m_.origin) * 1e-9, ramp);
+  if (!m_.active || !m_.path || m_.held) return;  // its steps are all made: only the point moved
+  m_.end = m_.k + left;
+  if (left == 0) finish_at_frontier();
+}
+
 void AxisPlanner::change_speed(std::uint32_t epoch, const SpeedChange& c) noexcept {
-  if (!m_.active || m_.held || m_.follow || epoch != m_.epoch) return;
+  if (!m_.active || m_.held || m_.follow || m_.path || epoch != m_.epoch) return;
   if (!profile_.can_change_speed() || !(c.vp > 0.0)) return;
   profile_.change_speed(m_.k, m_.tk, c);
 }
@@ -252,7 +309,7 @@ void AxisPlanner::apply_cut() noexcept {
 }
 
 void AxisPlanner::stop_after(std::uint32_t epoch, const StopAfterSpec& c) noexcept {
-  if (!m_.active || epoch != m_.epoch || m_.follow) return;
+  if (!m_.active || epoch != m_.epoch || m_.follow || m_.path) return;
   // Steps of this motion up to c.t, counting the ones already planned after it.
   const std::int64_t end = planned_steps_at(c.t) + std::max<std::int64_t>(c.steps, 0);
   if (end >= m_.end) return;  // already ends there or sooner
@@ -262,6 +319,28 @@ void AxisPlanner::stop_after(std::uint32_t epoch, const StopAfterSpec& c) noexce
   }
   // Digest 7.9 step 4: freeze the present speed, cruise, decelerate with the motion's decel.
   replan_to_end(end, profile_.decel(), false);
+}
+
+void AxisPlanner::path_step_once() noexcept {
+  Motion& m = m_;
+  const std::int64_t k = m.k + 1;
+  const PathSource::Step st = path_.take();
+  Nanos ns = m.origin + to_ns(st.t);
+  if (ns < m.tk_ns) ns = m.tk_ns;
+  if (st.dir != m.dir) {
+    // The coordinate reversed (an arc's extreme): the open pulse ends, the direction line turns
+    // and settles before this step.
+    m.dir = st.dir;
+    ns = out_.reverse(st.dir, ns, st.phase);
+  }
+  out_.step(ns, st.phase, k);
+  m.k = k;
+  m.tk = st.t;
+  m.tk_ns = ns;
+  if (k >= m.end) {
+    out_.end(ns);
+    m.active = false;
+  }
 }
 
 void AxisPlanner::step_once() noexcept {
@@ -290,6 +369,8 @@ Nanos AxisPlanner::fill(Nanos now) noexcept {
   while (m_.active && !m_.held && out_.staged_empty()) {
     if (m_.follow) {
       if (!follow_step()) break;  // at rest on the target: the next target wakes us
+    } else if (m_.path) {
+      path_step_once();
     } else {
       step_once();
     }

@@ -8,6 +8,7 @@
 #include "planner/edge_emitter.hpp"
 #include "planner/follow_servo.hpp"
 #include "planner/motion_request.hpp"
+#include "planner/path_source.hpp"
 #include "planner/planner.hpp"
 #include "planner/profile.hpp"
 #include "planner/profile_source.hpp"
@@ -48,6 +49,28 @@ class AxisPlanner {
   std::int64_t planned_steps_at(Nanos t) const noexcept;
   bool step_dir_format() const noexcept { return out_.step_dir_format(); }
 
+  // The interpolated path (planner/path_source.hpp). The planner applies a hold to every axis of
+  // the path (PathHold, sent on any one of them) from one common time; the book records which
+  // path is held and resumable across the axes (planner.hpp).
+  void set_path_book(PathBook* book) noexcept { book_ = book; }
+  // Takes an immediate stop published in AxisControl::abort_epoch into account now.
+  void poll_abort() noexcept { check_abort(); }
+  // The path this axis' newest motion follows (its group id), while it runs or is held; 0 if
+  // its newest motion is not a path, or its path was discarded.
+  std::uint32_t path_id() const noexcept { return path_state_ == PathState::kNone ? 0 : path_id_; }
+  // Motion `epoch` of this axis is a path that runs or is held (it may have made all its steps).
+  bool follows_path(std::uint32_t epoch) const noexcept {
+    return path_state_ != PathState::kNone && epoch == last_motion_epoch_;
+  }
+  // The newest step this axis has planned of its path (none: min).
+  Nanos path_frontier() const noexcept {
+    return m_.active && m_.path ? m_.tk_ns : std::numeric_limits<Nanos>::min();
+  }
+  // Stops the path along it from time t (>= every step either axis has planned): the path's
+  // profile ramps down to vs with `ramp` from t, this axis makes the steps up to the point where
+  // it stops and the path stays resumable from there.
+  void hold_path(Nanos t, const Ramp& ramp) noexcept;
+
  private:
   struct Motion {
     bool active = false;
@@ -59,6 +82,7 @@ class AxisPlanner {
     double tk = 0.0;              // time of step k, s from origin
     Nanos tk_ns = 0;              // the same, absolute
     bool follow = false;          // a follow motion (FollowSpec): steps come from follow_step
+    bool path = false;            // a path motion (PathStart/PathResume): steps from path_
     bool held = false;            // prepared, waiting for launch() (group start)
     Nanos dir_shift = 0;          // launch: time 0 this long after the direction edge
     bool dir_edge = false;        // launch: write the direction line first
@@ -89,6 +113,12 @@ class AxisPlanner {
   // Replans the profile from the newest step to end on step `end` (ProfileSource::replan_to_end).
   void replan_to_end(std::int64_t end, const Ramp& ramp, bool exact_ramp) noexcept;
   void step_once() noexcept;
+  void path_step_once() noexcept;
+  // Sets up a path start or resume in `m`; false: it makes no step (a resume without a path).
+  void prepare_path(const Command& c, Motion& m) noexcept;
+  // Another motion or an abort: the path this axis followed cannot be resumed any more (on
+  // either axis: the book).
+  void discard_path() noexcept;
 
   rt::AxisControl* control_;
   AxisTiming timing_;
@@ -115,6 +145,12 @@ class AxisPlanner {
   BlendSpec blend_;     // the newest blend start's table (take_blend)
   Nanos now_ = 0;       // time of the latest apply/fill (a follow step from rest starts after it)
   ProfileSource profile_;  // the step source of moves, runs and blends
+
+  enum class PathState : std::uint8_t { kNone, kRunning, kHeld };
+  PathSource path_;  // the step source of path motions
+  PathState path_state_ = PathState::kNone;
+  std::uint32_t path_id_ = 0;  // the group id of the newest path motion
+  PathBook* book_ = nullptr;
 };
 
 }  // namespace stepmod::planner

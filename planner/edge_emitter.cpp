@@ -70,6 +70,19 @@ void EdgeEmitter::turn(Direction dir) noexcept {
                                           (base_flags_ & rt::edge_flag::kReplacement));
 }
 
+Nanos EdgeEmitter::reverse(Direction dir, Nanos t_next, rt::Phase phase) noexcept {
+  if (pulse_open_) {
+    const Nanos w = std::max<Nanos>(1, std::min(timing_.step_pulse_ns, (t_next - step_t_) / 2));
+    stage(make_edge(step_t_ + w, line_, 0, 0, step_flags_));
+    pulse_open_ = false;
+  }
+  turn(dir);
+  if (!direction_pending()) return t_next;  // CW/CCW format: the other line, no set-up
+  const Nanos td = std::max(last_t_, t_next - timing_.dir_setup_ns);
+  direction(td, phase);
+  return std::max(t_next, td + timing_.dir_setup_ns);
+}
+
 void EdgeEmitter::direction(Nanos t, rt::Phase phase) noexcept {
   const std::uint8_t level = dir_target();
   stage(make_edge(t, OutputLine::kDir, level, 0,

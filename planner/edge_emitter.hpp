@@ -54,6 +54,11 @@ class EdgeEmitter {
   // Step k of the motion at t: ends the previous step's pulse (its full width, or half the
   // period if shorter) and starts this one; the pulse stays open until the next step or end().
   void step(Nanos t, rt::Phase phase, std::int64_t k) noexcept;
+  // The motion turns between two steps (a path coordinate's reversal): the open pulse ends (its
+  // full width, or half the time to the next step if shorter), later steps pulse the line of
+  // `dir`, and in step/direction format the direction line changes. Returns the earliest time of
+  // the next step: t_next, or later if the direction line needs its set-up time.
+  Nanos reverse(Direction dir, Nanos t_next, rt::Phase phase) noexcept;
   // A whole pulse at t, `width` wide, `dpos` (+1 CW, -1 CCW): when the next step is not known
   // yet (follow).
   void pulse(Nanos t, rt::Phase phase, int dpos, Nanos width, std::int64_t k) noexcept;

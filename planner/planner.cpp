@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <limits>
 
 #include "planner/axis_planner.hpp"
 #include "planner/wakeup.hpp"
@@ -14,7 +15,10 @@ Planner::Planner(std::span<const PlannerAxis> axes, PlannerOptions options)
       // The ring needs a power of two; round a configured size up rather than fail.
       queue_(std::bit_ceil(std::max<std::size_t>(options.command_queue, 2))) {
   axes_.reserve(axes.size());
-  for (const PlannerAxis& a : axes) axes_.push_back(std::make_unique<AxisPlanner>(a, options_));
+  for (const PlannerAxis& a : axes) {
+    axes_.push_back(std::make_unique<AxisPlanner>(a, options_));
+    axes_.back()->set_path_book(&paths_);
+  }
   group_axes_.reserve(axes.size());
 }
 
@@ -46,6 +50,35 @@ void Planner::apply(const Command& c, Nanos now) {
     axis.take_blend(slot.spec);
     slot.taken.store(blend->seq, std::memory_order_release);
   }
+  if (c.kind() == CommandKind::kPathResume || c.kind() == CommandKind::kPathHold) {
+    // An immediate stop of either axis (seen by its planner only when it next runs) discards the
+    // path: take every axis' aborts into account before the path is held or resumed.
+    for (auto& a : axes_) a->poll_abort();
+  }
+  if (c.kind() == CommandKind::kPathResume && paths_.held != 0) {
+    // A resume before the hold has stopped every axis of the path (the module resumes only from
+    // its Hold state, when both have stopped): the axes are not at the stop point the resume
+    // would start from, so the path is given up rather than jump there.
+    for (auto& a : axes_) {
+      if (a->path_id() == paths_.held && a->path_frontier() != std::numeric_limits<Nanos>::min()) {
+        paths_.broken = paths_.held;
+        paths_.held = 0;
+        break;
+      }
+    }
+  }
+  if (const auto* h = std::get_if<PathHold>(&c.what)) {
+    if (group_.id != 0) launch_group(now);
+    hold_path(c, h->ramp, now);
+    return;
+  }
+  if (const auto* st = std::get_if<StopSpec>(&c.what);
+      st != nullptr && axis.follows_path(c.epoch)) {
+    // A controlled stop of one axis of a path stops the whole path along it.
+    if (group_.id != 0) launch_group(now);
+    hold_path(c, st->ramp, now);
+    return;
+  }
   const bool member = c.group.id != 0 && c.starts_motion();
   // A group is collected from consecutive commands; anything else ends the collection (a member
   // that was never submitted, e.g. a full queue, must not hold the others back).
@@ -71,6 +104,24 @@ void Planner::launch_group(Nanos now) {
   group_ = GroupTag{};
   group_received_ = 0;
   group_axes_.clear();
+}
+
+void Planner::hold_path(const Command& c, const Ramp& ramp, Nanos now) {
+  AxisPlanner& sender = *axes_[c.axis];
+  if (!sender.follows_path(c.epoch)) return;  // stale: its path is no longer the newest motion
+  const std::uint32_t id = sender.path_id();
+  const auto member = [&](unsigned i) {
+    return i == c.axis || (id != 0 && axes_[i]->path_id() == id);
+  };
+  // One time for all: no step either axis has planned may be replanned.
+  Nanos t = now + options_.start_delay_ns;
+  for (unsigned i = 0; i < axes_.size(); ++i) {
+    if (member(i)) t = std::max(t, axes_[i]->path_frontier());
+  }
+  for (unsigned i = 0; i < axes_.size(); ++i) {
+    if (member(i)) axes_[i]->hold_path(t, ramp);
+  }
+  if (id != 0 && paths_.broken != id) paths_.held = id;
 }
 
 Nanos Planner::service(Nanos now) {

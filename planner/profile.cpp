@@ -38,12 +38,16 @@ double rate_for_distance(double v1, double v2, AccelShape shape, double distance
 }
 
 MoveProfile classify_move(const MoveSpec& m) noexcept {
+  return classify_length(static_cast<double>(m.steps), m.vs, m.vp, m.accel, m.decel);
+}
+
+MoveProfile classify_length(double n, double vs_in, double vp, const Ramp& accel,
+                            const Ramp& decel) noexcept {
   MoveProfile p;
-  const double n = static_cast<double>(m.steps);
-  p.vs = std::max(m.vs, kMinSpeed);
-  if (m.vp <= m.vs) {
+  p.vs = std::max(vs_in, kMinSpeed);
+  if (vp <= vs_in) {
     p.kind = ProfileKind::kConstantSpeed;
-    p.vpk = std::max(constant_speed(m.vs, m.vp), kMinSpeed);
+    p.vpk = std::max(constant_speed(vs_in, vp), kMinSpeed);
     p.vs = p.vpk;
     p.dp = n;
     p.tp = n / p.vpk;
@@ -51,9 +55,8 @@ MoveProfile classify_move(const MoveSpec& m) noexcept {
     return p;
   }
   const double vs = p.vs;
-  const double vp = m.vp;
-  const double da = ramp_distance(vs, vp, m.accel);
-  const double dd = ramp_distance(vp, vs, m.decel);
+  const double da = ramp_distance(vs, vp, accel);
+  const double dd = ramp_distance(vp, vs, decel);
   const double sum = da + dd;
   if (std::fabs(sum - n) <= 1e-9 * n) {
     p.kind = ProfileKind::kTouch;
@@ -67,14 +70,14 @@ MoveProfile classify_move(const MoveSpec& m) noexcept {
     // Vpk^2 = Vs^2 + 2N / (ka/a + kd/d); a missing rate is a jump and contributes no distance.
     p.kind = ProfileKind::kTriangle;
     double denom = 0.0;
-    if (m.accel.rate > 0.0) denom += shape_factor(m.accel.shape) / m.accel.rate;
-    if (m.decel.rate > 0.0) denom += shape_factor(m.decel.shape) / m.decel.rate;
+    if (accel.rate > 0.0) denom += shape_factor(accel.shape) / accel.rate;
+    if (decel.rate > 0.0) denom += shape_factor(decel.shape) / decel.rate;
     p.vpk = std::sqrt(vs * vs + 2.0 * n / denom);
   }
-  p.da = ramp_distance(vs, p.vpk, m.accel);
-  p.dd = ramp_distance(p.vpk, vs, m.decel);
-  p.ta = ramp_time(vs, p.vpk, m.accel);
-  p.td = ramp_time(p.vpk, vs, m.decel);
+  p.da = ramp_distance(vs, p.vpk, accel);
+  p.dd = ramp_distance(p.vpk, vs, decel);
+  p.ta = ramp_time(vs, p.vpk, accel);
+  p.td = ramp_time(p.vpk, vs, decel);
   p.tt = p.ta + p.tp + p.td;
   return p;
 }
@@ -174,6 +177,26 @@ void PhaseList::add_cruise(double distance) noexcept {
   s_end_ = p.s1;
 }
 
+void PhaseList::truncate(double t) noexcept {
+  if (t < t_start_) t = t_start_;
+  for (std::size_t i = 0; i < n_; ++i) {
+    JerkPhase& p = ph_[i];
+    if (t < p.t0 + p.dur) {
+      const double tau = t - p.t0;
+      n_ = tau > 0.0 ? i + 1 : i;
+      if (tau > 0.0) {
+        p.dur = tau;
+        p.s1 = p.position(tau);
+      }
+      t_end_ = t;
+      s_end_ = tau > 0.0 ? p.s1 : p.s0;
+      v_end_ = p.velocity(tau);
+      return;
+    }
+  }
+  // At or after the list's end: nothing to drop.
+}
+
 double PhaseList::position_at(double t) const noexcept {
   if (n_ == 0 || t <= t_start_) return n_ == 0 ? s_end_ : ph_[0].s0;
   for (std::size_t i = 0; i < n_; ++i) {
@@ -194,15 +217,20 @@ double PhaseList::velocity_at(double t) const noexcept {
 }
 
 MoveProfile build_move(const MoveSpec& m, PhaseList& out) noexcept {
-  const MoveProfile p = classify_move(m);
-  out.reset(0.0, 0.0, p.vs);
+  return build_length(static_cast<double>(m.steps), m.vs, m.vp, m.accel, m.decel, out);
+}
+
+MoveProfile build_length(double length, double vs, double vp, const Ramp& accel, const Ramp& decel,
+                         PhaseList& out, double s0) noexcept {
+  const MoveProfile p = classify_length(length, vs, vp, accel, decel);
+  out.reset(0.0, s0, p.vs);
   if (p.kind == ProfileKind::kConstantSpeed) {
-    out.add_cruise(static_cast<double>(m.steps));
+    out.add_cruise(length);
     return p;
   }
-  out.add_ramp(p.vpk, m.accel);
+  out.add_ramp(p.vpk, accel);
   out.add_cruise(p.dp);
-  out.add_ramp(p.vs, m.decel);
+  out.add_ramp(p.vs, decel);
   return p;
 }
 

@@ -41,6 +41,9 @@ struct MoveProfile {
   double tt = 0.0;                      // total time = time of the last step
 };
 MoveProfile classify_move(const MoveSpec& m) noexcept;
+// The same over a length that need not be an integer (the interpolated path's length).
+MoveProfile classify_length(double length, double vs, double vp, const Ramp& accel,
+                            const Ramp& decel) noexcept;
 
 // Speed of a constant-speed motion (vp <= vs): vp, or vs for vp = 0 (one-shot, digest 7.3).
 inline double constant_speed(double vs, double vp) noexcept {
@@ -92,6 +95,10 @@ class PhaseList {
   double end_speed() const noexcept { return v_end_; }
   double start_time() const noexcept { return t_start_; }
 
+  // Keeps the law up to time t (>= the list's start): the phase under way at t ends there, later
+  // ones are dropped (a replan that keeps the steps planned before t: the path's hold).
+  void truncate(double t) noexcept;
+
   // Evaluation at any time from the list's start (for tests and replanning).
   double position_at(double t) const noexcept;
   double velocity_at(double t) const noexcept;
@@ -107,6 +114,9 @@ class PhaseList {
 
 // Builders: fill `out` (from time 0, position 0) with a whole motion.
 MoveProfile build_move(const MoveSpec& m, PhaseList& out) noexcept;
+// A move's profile over `length` (need not be an integer) from time 0 and position s0.
+MoveProfile build_length(double length, double vs, double vp, const Ramp& accel, const Ramp& decel,
+                         PhaseList& out, double s0 = 0.0) noexcept;
 // Endless: ramp vs -> vp (or jump to vp in constant-speed mode), then cruise forever.
 void build_run(const RunSpec& r, PhaseList& out) noexcept;
 // Digest 7.10 / A21: each segment ramps from the previous speed within its length, the last one

@@ -201,6 +201,14 @@ void Axis::command_hold(Nanos now) {
     }
     return;
   }
+  if (st_.activity == Activity::kCoordinated) {
+    // A coordinated motion stops along its path, all of its axes (3602-HLD-01, digest 7.14).
+    if (st_.stop_cause == StopCause::kNone) {
+      st_.stop_cause = StopCause::kHold;
+      st_.motion.hold_path(st_.move_decel);
+    }
+    return;
+  }
   if (st_.activity == Activity::kBlend) {
     blend_.hold();  // 3601-CE-23: CE, the blend continues, CE clears at its end
     return;
@@ -224,6 +232,10 @@ void Axis::command_resume(const AxisCommand& c) {
   }
   const auto profile = st_.read_profile(c, true);
   if (!profile) return;
+  if (st_.hold_coordinated) {
+    coordinated_resume_ = profile;  // its coordinator continues the path (A39)
+    return;
+  }
   const std::int64_t remaining = held_target_ - st_.position();
   const planner::Direction dir = remaining < 0 ? planner::Direction::kCcw : planner::Direction::kCw;
   if (st_.inputs_block_start(dir)) return;

@@ -76,6 +76,7 @@ bool AxisState::inputs_block_start(planner::Direction d) {
 void AxisState::clear_move_outcome() noexcept {
   status.move_complete = false;
   status.hold = false;
+  hold_coordinated = false;
   status.stopped = false;
   status.at_home = false;
   // 3602-IE-C1: "if none of the inputs are active when the command is issued".
