@@ -281,8 +281,8 @@ int main(int argc, char** argv) {
     return sub;
   };
   const auto end_point = [&](CLI::App* sub) {
-    sub->add_option("X", pa.end_x, "end point X (axis 1), steps")->required();
-    sub->add_option("Y", pa.end_y, "end point Y (axis 2), steps")->required();
+    sub->add_option("X", pa.end_x, "end point X (axis 1), steps")->type_name("STEPS")->required();
+    sub->add_option("Y", pa.end_y, "end point Y (axis 2), steps")->type_name("STEPS")->required();
   };
   const auto path_options = [&](CLI::App* sub) {
     sub->add_flag("--abs", pa.absolute, "points are positions (default: offsets from the start)");
@@ -300,20 +300,20 @@ int main(int argc, char** argv) {
       "centre", "circular arc to X Y around the centre CX CY; X Y = the start: a full circle");
   sense(path_centre);
   end_point(path_centre);
-  path_centre->add_option("CX", pa.point_x, "centre X, steps")->required();
-  path_centre->add_option("CY", pa.point_y, "centre Y, steps")->required();
+  path_centre->add_option("CX", pa.point_x, "centre X, steps")->type_name("STEPS")->required();
+  path_centre->add_option("CY", pa.point_y, "centre Y, steps")->type_name("STEPS")->required();
   path_options(path_centre);
   auto* path_radius = path_move(
       "radius", "circular arc to X Y of radius R: R > 0 the shorter arc, R < 0 the longer one");
   sense(path_radius);
   end_point(path_radius);
-  path_radius->add_option("R", pa.radius, "signed radius, steps")->required();
+  path_radius->add_option("R", pa.radius, "signed radius, steps")->type_name("STEPS")->required();
   path_options(path_radius);
   auto* path_via =
       path_move("via", "circular arc to X Y through the via point VX VY (its sense follows)");
   end_point(path_via);
-  path_via->add_option("VX", pa.point_x, "via point X, steps")->required();
-  path_via->add_option("VY", pa.point_y, "via point Y, steps")->required();
+  path_via->add_option("VX", pa.point_x, "via point X, steps")->type_name("STEPS")->required();
+  path_via->add_option("VY", pa.point_y, "via point Y, steps")->type_name("STEPS")->required();
   path_options(path_via);
   auto* path_wait =
       verb(path->add_subcommand("wait", "waits until both axes have stopped"), Verb::kPathWait);

@@ -143,7 +143,10 @@ void check_segment(const std::vector<pt::PathPoint>& points, const PathSpec& p, 
     EXPECT_EQ(nx, pt::arc_crossings(p, false));
     EXPECT_EQ(ny, pt::arc_crossings(p, true));
   }
-  EXPECT_LT(pt::max_path_error(points, p), 1.0 + slack_steps);
+  const double error = pt::max_path_error(points, p);
+  EXPECT_LT(error, 1.0 + slack_steps);
+  std::cout << what << ": " << points.size() << " steps, largest distance from the ideal path "
+            << error << " steps\n";
   // The interleaving: the steps come in the path's order. Along a line the projection never goes
   // back by a step; along an arc the angle never goes back by more than two steps' worth (a step
   // point may lie a little behind the ideal point), and on a full circle the last points are
