@@ -104,6 +104,9 @@ plc::Outcome run_3202(const Command& c, plc::Port& port, ipc::Client& client,
       throw UsageError("the 3202 has no registration move: no min-registration");
     case Verb::kFollow:
       throw UsageError("the 3202 has no encoder follower");
+    case Verb::kPath:
+    case Verb::kPathWait:
+      throw UsageError("the 3202 has no interpolated moves (path is the 3602's)");
     case Verb::kGpo:
       break;
   }

@@ -112,6 +112,9 @@ plc::Outcome run_3601(const Command& c, plc::Port& port, std::chrono::millisecon
     }
     case Verb::kWaitIdle:
       return plc.wait_idle(millis(c.wait_seconds));
+    case Verb::kPath:
+    case Verb::kPathWait:
+      throw UsageError("the 3601 has one axis: interpolated moves (path) are the 3602's");
     case Verb::kGpo:
       break;
   }

@@ -1,11 +1,13 @@
 // stepmodctl's 3602 dialect: two axes (--axis 1|2), numbers as the binary split of two 16-bit
 // words (digest 2.2: every int32 fits, the module refuses what is out of its ranges),
-// accelerations in steps/ms/s in one 16-bit word each. Interpolated moves are not offered here.
+// accelerations in steps/ms/s in one 16-bit word each. Interpolated moves (`path`) are
+// tools/ctl_path_3602.cpp's.
 #include "module/m3602/words_3602.hpp"
 #include "plc/plc_3602.hpp"
 #include "tools/ctl_args.hpp"
 #include "tools/ctl_blend.hpp"
 #include "tools/ctl_dialects.hpp"
+#include "tools/ctl_path_3602.hpp"
 
 namespace stepmod::tools::ctl {
 
@@ -111,6 +113,9 @@ plc::Outcome run_3602(const Command& c, plc::Port& port, std::chrono::millisecon
       return plc.wait_idle(ax, millis(c.wait_seconds));
     case Verb::kGpo:
       return plc.set_gpo(ax, c.gpo_on);
+    case Verb::kPath:
+    case Verb::kPathWait:
+      return run_path_3602(c, port, timeout, kProfile);
     case Verb::kPresetEncoder:
       throw UsageError("the 3602 has no encoder: no preset-encoder");
     case Verb::kFollow:

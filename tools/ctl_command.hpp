@@ -27,6 +27,8 @@ enum class Verb {
   kFollow,
   kWaitIdle,
   kGpo,
+  kPath,      // 3602: an interpolated move of both axes
+  kPathWait,  // 3602: waits until both axes have stopped
 };
 
 // configure's flags, one per configuration bit of some module.
@@ -44,6 +46,16 @@ struct ConfigureArgs {
 struct ProfileArgs {
   std::string speed, accel, decel, scurve;
   bool given() const { return !speed.empty() || !accel.empty() || !decel.empty(); }
+};
+
+// `path line|centre|radius|via`'s arguments (3602 interpolated moves), as written.
+struct PathArgs {
+  std::string method;  // line, centre, radius, via
+  std::string sense;   // centre / radius: cw or ccw
+  std::string end_x, end_y;
+  std::string point_x, point_y;  // centre: the centre; via: the via point
+  std::string radius;            // radius: signed, > 0 the shorter arc, < 0 the longer one
+  bool absolute = false;         // positions, not offsets from the start point
 };
 
 struct Command {
@@ -65,6 +77,7 @@ struct Command {
   std::string follow_sense;
   std::int32_t follow_multiplier = 1, follow_divisor = 1, follow_accel = 0, follow_decel = 0;
   bool gpo_on = false;
+  PathArgs path;
 };
 
 }  // namespace stepmod::tools::ctl

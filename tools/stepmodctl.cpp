@@ -264,6 +264,62 @@ int main(int argc, char** argv) {
   std::string gpo_state;
   gpo->add_option("STATE", gpo_state, "on or off")->required()->check(CLI::IsMember({"on", "off"}));
 
+  // ---- 3602 interpolated moves: both axes on one path, commanded on axis 1 ----
+  auto* path = app.add_subcommand(
+      "path",
+      "3602: an interpolated move of both axes (X = axis 1, Y = axis 2) from where they stand: "
+      "a line or a circular arc, points relative to the start unless --abs; -s/-a/-d are the "
+      "vector speed and rates");
+  path->require_subcommand(1);
+  PathArgs& pa = cmd.path;
+  const auto path_move = [&](const char* method, const char* help) {
+    auto* sub = path->add_subcommand(method, help);
+    sub->parse_complete_callback([&cmd, method] {
+      cmd.verb = Verb::kPath;
+      cmd.path.method = method;
+    });
+    return sub;
+  };
+  const auto end_point = [&](CLI::App* sub) {
+    sub->add_option("X", pa.end_x, "end point X (axis 1), steps")->type_name("STEPS")->required();
+    sub->add_option("Y", pa.end_y, "end point Y (axis 2), steps")->type_name("STEPS")->required();
+  };
+  const auto path_options = [&](CLI::App* sub) {
+    sub->add_flag("--abs", pa.absolute, "points are positions (default: offsets from the start)");
+    add_profile(sub, cmd.profile, true);
+  };
+  const auto sense = [&](CLI::App* sub) {
+    sub->add_option("SENSE", pa.sense, "cw or ccw (X right, Y up)")
+        ->required()
+        ->check(CLI::IsMember({"cw", "ccw", "CW", "CCW"}));
+  };
+  auto* path_line = path_move("line", "linear interpolation to X Y");
+  end_point(path_line);
+  path_options(path_line);
+  auto* path_centre = path_move(
+      "centre", "circular arc to X Y around the centre CX CY; X Y = the start: a full circle");
+  sense(path_centre);
+  end_point(path_centre);
+  path_centre->add_option("CX", pa.point_x, "centre X, steps")->type_name("STEPS")->required();
+  path_centre->add_option("CY", pa.point_y, "centre Y, steps")->type_name("STEPS")->required();
+  path_options(path_centre);
+  auto* path_radius = path_move(
+      "radius", "circular arc to X Y of radius R: R > 0 the shorter arc, R < 0 the longer one");
+  sense(path_radius);
+  end_point(path_radius);
+  path_radius->add_option("R", pa.radius, "signed radius, steps")->type_name("STEPS")->required();
+  path_options(path_radius);
+  auto* path_via =
+      path_move("via", "circular arc to X Y through the via point VX VY (its sense follows)");
+  end_point(path_via);
+  path_via->add_option("VX", pa.point_x, "via point X, steps")->type_name("STEPS")->required();
+  path_via->add_option("VY", pa.point_y, "via point Y, steps")->type_name("STEPS")->required();
+  path_options(path_via);
+  auto* path_wait =
+      verb(path->add_subcommand("wait", "waits until both axes have stopped"), Verb::kPathWait);
+  path_wait->add_option("--max", cmd.wait_seconds, "give up after this many seconds (60)")
+      ->check(CLI::Range(0.0, 1e6));
+
   // ---- simulator panel ----
   auto* panel = app.add_subcommand("panel", "simulator panel: show, force or release inputs");
   panel->add_subcommand("show", "positions, outputs and forced inputs");

@@ -193,6 +193,41 @@ TEST_F(Ctl3602, ACommandTheModuleRefusesExitsOneAndNamesTheBit) {
   EXPECT_FALSE(status(1).has(m2::status_msw::kCommandError));
 }
 
+// The interpolated moves (path ...): both axes on one path, exact end points and counts; a held
+// path resumes to its end; a geometry the module refuses exits 1 naming the bits.
+TEST_F(Ctl3602, PathLineFullCircleHeldArcAndARefusedRadius) {
+  ctl("path line 3000 -4000 -s 20000 -a 100 -d 100");
+  ctl("path wait --max 20");
+  EXPECT_EQ(status(0).position, 3'000);
+  EXPECT_EQ(status(1).position, -4'000);
+  ctl("path centre cw 0 0 1000 0 -s 20000 -a 100 -d 100");  // a full circle, r = 1000
+  ctl("path wait --max 20");
+  EXPECT_EQ(status(0).position, 3'000);
+  EXPECT_EQ(status(1).position, -4'000);
+  // A half circle of radius 5000 (15,708 steps at 5,000 steps/s), held on axis 1 and resumed.
+  ctl("path via 10000 0 5000 5000 -s 5000 -a 100 -d 100");
+  std::this_thread::sleep_for(milliseconds(300));
+  ctl("--axis 1 hold");
+  ctl("path wait --max 20");
+  EXPECT_TRUE(status(0).has(m2::status_msw::kHoldState));
+  EXPECT_NE(status(0).position, 13'000);
+  ctl("--axis 1 resume -s 20000 -a 100 -d 100");
+  ctl("path wait --max 20");
+  EXPECT_EQ(status(0).position, 13'000);
+  EXPECT_EQ(status(1).position, -4'000);
+  // |R| < |E - S| / 2: no such circle (3602-CE-I7), reported on axis 1.
+  const CtlRun r = ctl("path radius ccw 1000 0 10 -s 20000 -a 100 -d 100", 1);
+  EXPECT_NE(r.err.find("Command Error"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("3602 axis 1 in COMMAND mode"), std::string::npos) << r.out;
+  ctl("--axis 1 reset");
+  EXPECT_FALSE(status(0).has(m2::status_msw::kCommandError));
+  const Vcd vcd = stop_and_read_trace();
+  // Line |dx|, |dy|; a full circle crosses 4 r integers per axis; the half circle from its left
+  // end over the top: 2 r in X, r up and r down in Y.
+  EXPECT_EQ(vcd.rising("axis1.step").size(), 3'000u + 4'000u + 10'000u);
+  EXPECT_EQ(vcd.rising("axis2.step").size(), 4'000u + 4'000u + 10'000u);
+}
+
 // ---- 3202 --------------------------------------------------------------------------------------
 
 class Ctl3202 : public CtlDaemon {

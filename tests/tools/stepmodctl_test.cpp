@@ -62,7 +62,9 @@ TEST(Stepmodctl, A3202RefusesWhatItLacksAndABadChannel) {
       "blend program --file /nonexistent/profile.txt",   // unreadable
       "blend program --file /dev/null --segment 1:2:3",  // one source
       "blend program --segment 100:1000:1000 --segment 100:x:1000 --final-decel 1",
-      "resume -a 1000",  // all three or none
+      "resume -a 1000",                         // all three or none
+      "path line 1 2 -s 1000 -a 1000 -d 1000",  // no interpolated moves
+      "path wait",
   };
   for (const char* args : bad) {
     const CtlRun r = stepmodctl("-n " + n + " --timeout 200 -c 2 " + args);
@@ -123,12 +125,76 @@ TEST(Stepmodctl, A3602RefusesWhatItLacksAndWhatItsWordsCannotCarry) {
   EXPECT_EQ(outputs_of(n), ImageWords{});
 }
 
+// An interpolated move writes the whole block, data first with the command bits clear (nobody
+// scans this image: the bits never follow, exit 3).
+TEST(Stepmodctl, A3602PathWritesTheInterpolatedBlockDataFirst) {
+  const std::string n = image_name("3602path");
+  ipc::ShmImage img(n, {ModuleType::k3602, 2, 2, 16, 16});
+  const CtlRun r = stepmodctl(
+      "-n " + n + " --timeout 200 path radius ccw -- 70000 -3 -40000 -s 5000 -a 10 -d 20");
+  EXPECT_EQ(r.exit_status, 2) << r.err;  // options after "--" are positional: a usage error
+  const CtlRun ok = stepmodctl("-n " + n +
+                               " --timeout 200 path radius ccw 70000 -3 -40000 -s 70000 -a 10 "
+                               "-d 20 --scurve trap");
+  EXPECT_EQ(ok.exit_status, 3) << ok.err;
+  const ImageWords w = outputs_of(n);
+  EXPECT_EQ(w.w[0], 0);
+  EXPECT_EQ(w.w[1], 3);  // S-curve + trapezoidal (bits 0, 1); no command bits yet
+  EXPECT_EQ(w.w[2], 1);  // 70,000 = 16#0001 / 16#1170
+  EXPECT_EQ(w.w[3], 0x1170);
+  EXPECT_EQ(w.w[4], 10);
+  EXPECT_EQ(w.w[5], 20);
+  EXPECT_EQ(w.w[6], 1);  // X
+  EXPECT_EQ(w.w[7], 0x1170);
+  EXPECT_EQ(w.w[8], 0);  // axis 2's command words: reserved
+  EXPECT_EQ(w.w[9], 0);
+  EXPECT_EQ(w.w[10], -1);  // Y = -3: 16#FFFF / 16#FFFD
+  EXPECT_EQ(w.w[11], -3);
+  EXPECT_EQ(w.w[12], -1);  // R = -40,000: 16#FFFF / 16#63C0
+  EXPECT_EQ(w.w[13], static_cast<std::int16_t>(0x63C0));
+  EXPECT_EQ(w.w[14], 0);  // the radius method leaves words 14/15 reserved
+  EXPECT_EQ(w.w[15], 0);
+}
+
+TEST(Stepmodctl, A3602PathBadInputIsAUsageErrorAndWritesNothing) {
+  const std::string n = image_name("3602pathbad");
+  ipc::ShmImage img(n, {ModuleType::k3602, 2, 2, 16, 16});
+  const char* bad[] = {
+      "path line 100 -s 1000 -a 10 -d 10",                    // no Y
+      "path line 100 200",                                    // no profile
+      "path line 100 200 -s 1000 -a 10",                      // no decel
+      "path line 4294967296 0 -s 1000 -a 10 -d 10",           // beyond int32
+      "path line 0x 0 -s 1000 -a 10 -d 10",                   // not a number
+      "path line 1 2 -s 1000 -a 40000 -d 10",                 // accel beyond a 16-bit word
+      "path line 1 2 -s 1000 -a 10 -d 10 --scurve smooth",    // accel type
+      "path centre 100 0 50 0 -s 1000 -a 10 -d 10",           // no sense
+      "path centre up 0 0 50 0 -s 1000 -a 10 -d 10",          // not cw / ccw
+      "path centre cw 0 0 50 -s 1000 -a 10 -d 10",            // no CY
+      "path radius cw 100 0 -s 1000 -a 10 -d 10",             // no R
+      "path radius cw 100 0 2147483648 -s 1000 -a 10 -d 10",  // R beyond int32
+      "path via 100 0 50 -s 1000 -a 10 -d 10",                // no VY
+      "path via cw 100 0 50 50 -s 1000 -a 10 -d 10",          // a via arc has no sense option
+      "path spiral 1 2 -s 1000 -a 10 -d 10",                  // no such method
+      "--axis 2 path line 1 2 -s 1000 -a 10 -d 10",           // commanded on axis 1
+      "--axis 2 path wait",                                   // both axes
+      "path wait --max -1",                                   // negative
+  };
+  for (const char* args : bad) {
+    const CtlRun r = stepmodctl("-n " + n + " --timeout 200 " + args);
+    EXPECT_EQ(r.exit_status, 2) << args << ": " << r.err;
+    EXPECT_FALSE(r.err.empty()) << args;
+  }
+  EXPECT_EQ(outputs_of(n), ImageWords{});
+}
+
 TEST(Stepmodctl, A3602OnlyOptionOnA3601IsAUsageErrorAndWritesNothing) {
   const std::string n = image_name("3601axis");
   ipc::ShmImage img(n, {ModuleType::k3601, 1, 2, 8, 8});
   EXPECT_EQ(stepmodctl("-n " + n + " --axis 2 stop").exit_status, 2);
   EXPECT_EQ(stepmodctl("-n " + n + " configure --home --cw-estop").exit_status, 2);
   EXPECT_EQ(stepmodctl("-n " + n + " gpo on").exit_status, 2);
+  EXPECT_EQ(stepmodctl("-n " + n + " path line 1 2 -s 1000 -a 10 -d 10").exit_status, 2);
+  EXPECT_EQ(stepmodctl("-n " + n + " path wait").exit_status, 2);
   EXPECT_EQ(stepmodctl("-n " + n +
                        " blend program --segment 1:1000:10 --segment 1:1000:10 "
                        "--final-decel 20000")
