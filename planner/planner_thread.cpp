@@ -7,11 +7,15 @@
 
 namespace stepmod::planner {
 
-void PlannerThread::start() {
-  if (thread_.joinable()) return;
+int PlannerThread::start(int fifo_priority) {
+  if (thread_.joinable()) return 0;
   stop_.store(false, std::memory_order_relaxed);
   thread_ = std::thread([this] { run(); });
   pthread_setname_np(thread_.native_handle(), "stepmod-plan");
+  if (fifo_priority <= 0) return 0;
+  sched_param sp{};
+  sp.sched_priority = fifo_priority;
+  return pthread_setschedparam(thread_.native_handle(), SCHED_FIFO, &sp);
 }
 
 void PlannerThread::stop() noexcept {
