@@ -241,5 +241,31 @@ TEST(PathArc, RandomLinesAndArcsEndExactlyWithinOneStep) {
   }
 }
 
+TEST(PathArc, ShortStronglySpiralledArcsEndExactlyWithinOneStep) {
+  // End points a few steps from the start, centres up to 60 steps away whose distances to S and
+  // E round alike (the module's integer world): |r1 - r0| up to a step over a short sweep, both
+  // the short and the long way round.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  for (int n = 0; n < 200;) {
+    const double cx = 60 * uni(rng), cy = 60 * uni(rng);
+    const std::int64_t ex = std::llround(4 * uni(rng)), ey = std::llround(4 * uni(rng));
+    const double r0 = std::hypot(cx, cy);
+    const double r1 = std::hypot(static_cast<double>(ex) - cx, static_cast<double>(ey) - cy);
+    if (std::llround(r0) != std::llround(r1) || (ex == 0 && ey == 0)) continue;
+    double sweep =
+        std::remainder(std::atan2(static_cast<double>(ey) - cy, static_cast<double>(ex) - cx) -
+                           std::atan2(-cy, -cx),
+                       2 * kPi);
+    if (n % 2 == 1) sweep += sweep > 0 ? -2 * kPi : 2 * kPi;
+    PathSpec p = arc(cx, cy, sweep, 1'000, 50'000, 500'000, 500'000);
+    p.end_x = ex;
+    p.end_y = ey;
+    p.sweep = sweep;
+    expect_arc(p);
+    ++n;
+  }
+}
+
 }  // namespace
 }  // namespace stepmod::planner
