@@ -117,8 +117,14 @@ Outcome Plc3202::home(unsigned ch, bool cw, const Profile& p) {
 }
 
 Outcome Plc3202::hold(unsigned ch) {
-  return edge_command(ch, m3202::command_words(m::cmd_bit::kHold, 0, 0, 0, 0), m::cmd_bit::kHold,
-                      m::status_bit::kCommandError);
+  // Hold ignores the parameters: leave them, so that a Resume without new ones finds the held
+  // move's speed and rates (zeros would make it an Invalid Profile).
+  ChannelWords w{};
+  const unsigned b = m::channel_base(ch);
+  const ImageWords now = port_.outputs();
+  for (unsigned i = 0; i < m::kWordsPerChannel; ++i) w[i] = now.w[b + i];
+  w[m::out_word::kCommand] = static_cast<std::int32_t>(m::cmd_bit::kHold);
+  return edge_command(ch, w, m::cmd_bit::kHold, m::status_bit::kCommandError);
 }
 
 Outcome Plc3202::resume(unsigned ch, const std::optional<Profile>& p) {

@@ -5,6 +5,8 @@
 // one axis can be configured or commanded while the other runs (digest 4).
 #include <chrono>
 #include <cstdint>
+#include <functional>
+#include <optional>
 
 #include "plc/plc_3601.hpp"  // Sequencing
 #include "plc/port.hpp"
@@ -25,12 +27,30 @@ class Plc3602 {
   Outcome configure(unsigned axis, std::uint16_t cfg_msw, std::uint16_t cfg_lsw,
                     std::int32_t start_speed, std::int16_t homing_timeout_s = 0);
   Outcome move(unsigned axis, bool absolute, std::int32_t target, const Profile& p);
+  // Find Home CW/CCW (constant acceleration only: LSW bit 0 must be 0; words 2/3 0). The
+  // backplane proximity bit (command LSW bit 6) is kept as the PLC left it. Errors: Command
+  // Error, Invalid Profile, Home Invalid.
+  Outcome home(unsigned axis, bool cw, const Profile& p);
+  // Jog (level-held bit) for `duration`, released, then waited until stopped. `registration` > 0
+  // makes it a registration move of that many steps after the stop trigger (digest 4.6 bit 7/8).
+  Outcome jog(unsigned axis, bool cw, const Profile& p, std::chrono::milliseconds duration,
+              std::int32_t registration = 0);
+  // Hold Move: the parameter words stay as they are (the module ignores them).
+  Outcome hold(unsigned axis);
+  // Resume Move; without a profile the speed/accel/decel words of the held move stay.
+  Outcome resume(unsigned axis, const std::optional<Profile>& p);
   Outcome preset_position(unsigned axis, std::int32_t position);
   Outcome reset_errors(unsigned axis);
   Outcome immediate_stop(unsigned axis);
+  // Set Minimum Registration Distance: MSW 0, LSW bit 2 (0->1) with the distance in words 2/3.
+  Outcome set_min_registration(unsigned axis, std::int32_t distance);
+  // Blend programming handshake (digest 4.5, 7.10): program bit held, one transmit edge per
+  // block, each acknowledged by the axis' Blend Block Acknowledge.
+  Outcome blend_program(unsigned axis, const BlendProfile& b);
+  Outcome blend_run(unsigned axis, bool cw);
   // The general-purpose output (command LSW bit 7): a level, kept with every later command.
   Outcome set_gpo(unsigned axis, bool on);
-  // Waits until `axis` is not moving.
+  // Waits until `axis` is neither moving nor running a blend.
   Outcome wait_idle(unsigned axis, std::chrono::nanoseconds timeout);
   // An edge-triggered command of `axis`: MSW/LSW and parameters as for put_command (the GPO bit
   // is kept as it is), held for hold_scans, the MSW released, release_scans waited.
@@ -39,6 +59,11 @@ class Plc3602 {
 
  private:
   Outcome finish(unsigned axis, std::uint16_t error_mask, bool timed_out, const char* what);
+  // An edge-triggered MSW bit with the axis' other words edited by `edit` (GPO bit kept).
+  Outcome edge(unsigned axis, std::uint16_t msw, std::uint16_t error_mask, const char* what,
+               const std::function<void(ImageWords&, unsigned base)>& edit);
+  bool release_msw(unsigned axis);
+  bool set_lsw(unsigned axis, std::uint16_t lsw);
   std::uint16_t gpo_bit(unsigned axis) const;
 
   Port& port_;

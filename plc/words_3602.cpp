@@ -50,4 +50,43 @@ std::uint16_t accel_bits(AccelType t) {
   return 0;
 }
 
+void put_axis(ImageWords& w, unsigned axis, const AxisWords& a) {
+  const unsigned b = base(axis);
+  for (unsigned i = 0; i < a.size(); ++i) w.w[b + i] = a[i];
+}
+
+std::vector<AxisWords> blend_blocks(const BlendProfile& b) {
+  constexpr std::uint16_t kFinalValue = 0x07FF;  // bits 13..11 must stay 0
+  std::vector<AxisWords> blocks;
+  AxisWords first{};
+  first[2] = static_cast<std::int32_t>(b.segments.size());
+  std::uint16_t pairs_lo = 0;
+  std::uint16_t pairs_hi = 0;
+  for (std::size_t i = 0; i < b.segments.size() && i < 16; ++i) {
+    const std::uint16_t bits = accel_bits(b.segments[i].type);
+    if (i < 8) {
+      pairs_lo = static_cast<std::uint16_t>(pairs_lo | bits << (2 * i));
+    } else {
+      pairs_hi = static_cast<std::uint16_t>(pairs_hi | bits << (2 * (i - 8)));
+    }
+  }
+  first[3] = static_cast<std::int16_t>(pairs_hi);
+  first[4] = static_cast<std::int16_t>(pairs_lo);
+  first[5] =
+      static_cast<std::int16_t>(accel_bits(b.final_type) << 14 | (b.final_decel & kFinalValue));
+  blocks.push_back(first);
+  for (const BlendSegment& s : b.segments) {
+    AxisWords blk{};
+    const auto length = ipc::codec::encode_3602(s.length);
+    const auto speed = ipc::codec::encode_3602(s.speed);
+    blk[m::out_word::kTargetMsw] = length.msw;
+    blk[m::out_word::kTargetLsw] = length.lsw;
+    blk[m::out_word::kSpeedMsw] = speed.msw;
+    blk[m::out_word::kSpeedLsw] = speed.lsw;
+    blk[m::out_word::kAccel] = static_cast<std::int16_t>(s.accel);
+    blocks.push_back(blk);
+  }
+  return blocks;
+}
+
 }  // namespace stepmod::plc::m3602

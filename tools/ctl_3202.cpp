@@ -1,112 +1,113 @@
-#include "tools/ctl_3202.hpp"
-
-#include <fstream>
+// stepmodctl's 3202 dialect: two channels (--channel 1|2), native DINTs (digest 2.3) and rates
+// in steps/s^2 (A31): the options are passed as given and the module judges them. The blend
+// profile is a 52-DINT message through the image's mailbox (INTERFACE.md 3).
+#include "module/m3202/blend_message_3202.hpp"
+#include "module/m3202/words_3202.hpp"
+#include "plc/plc_3202.hpp"
+#include "tools/ctl_args.hpp"
+#include "tools/ctl_blend.hpp"
+#include "tools/ctl_dialects.hpp"
 
 namespace stepmod::tools::ctl {
 
 namespace {
 
-std::int32_t number(const std::string& s, const std::string& what) {
-  std::string t = s;
-  bool neg = false;
-  if (!t.empty() && (t[0] == '-' || t[0] == '+')) {
-    neg = t[0] == '-';
-    t.erase(0, 1);
+constexpr Limits kDint{INT32_MIN, INT32_MAX, "the 3202's DINT"};
+constexpr ProfileLimits kProfile{kDint, kDint};
+
+std::uint32_t configuration_bits(const ConfigureArgs& a) {
+  namespace cb = module::m3202::cfg_bit;
+  if (a.cw_estop || a.ccw_estop || !a.homing_timeout.empty()) {
+    throw UsageError("--cw-estop, --ccw-estop and --homing-timeout are the 3602's");
   }
-  int base = 10;
-  if (t.rfind("0x", 0) == 0 || t.rfind("0X", 0) == 0) {
-    base = 16;
-    t.erase(0, 2);
-  } else if (t.rfind("16#", 0) == 0) {
-    base = 16;
-    t.erase(0, 3);
-  }
-  std::size_t used = 0;
-  long long v = 0;
-  try {
-    v = std::stoll(t, &used, base);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (t.empty() || used != t.size() || v > INT32_MAX || -v < INT32_MIN) {
-    throw BlendSyntaxError(what + ": '" + s + "' is not a 32-bit number");
-  }
-  return static_cast<std::int32_t>(neg ? -v : v);
+  std::uint32_t bits = 0;
+  bits |= a.capture ? cb::kCaptureUsed : 0;
+  bits |= a.external ? cb::kExternalUsed : 0;
+  bits |= a.home ? cb::kHomeUsed : 0;
+  bits |= a.estop ? cb::kEStopUsed : 0;
+  bits |= a.cw_limit ? cb::kCwLimitUsed : 0;
+  bits |= a.ccw_limit ? cb::kCcwLimitUsed : 0;
+  bits |= a.proximity ? cb::kBackplaneProximity : 0;
+  bits |= a.encoder ? cb::kQuadratureEncoder : 0;
+  bits |= a.diagnostic ? cb::kDiagnosticFeedback : 0;
+  bits |= a.cw_ccw ? 0 : cb::kStepDirOutput;
+  bits |= a.marker ? cb::kMarkerHoming : 0;
+  bits |= a.disable ? cb::kDisable : 0;
+  // Active levels in bits 16..21: active high unless named (digest 5.2).
+  std::uint32_t levels = cb::kActiveLevels;
+  for (const auto& in : a.active_low) levels &= ~(1u << (cb::kActiveLevelShift + input_index(in)));
+  return bits | levels;
 }
 
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
-}
-
-// A comment starts with '#' at the start of the line or after a blank: 16#FF stays a number.
-std::string strip_comment(const std::string& line) {
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    if (line[i] == '#' && (i == 0 || line[i - 1] == ' ' || line[i - 1] == '\t')) {
-      return line.substr(0, i);
-    }
+plc::Outcome program_blend(const Command& c, plc::Plc3202& plc, ipc::Client& client,
+                           std::chrono::milliseconds timeout) {
+  const plc::BlendProfile b =
+      blend_from_options(c.blend_file, c.segments, c.final_decel, c.final_type);
+  const auto data = plc::m3202::blend_message(static_cast<std::int32_t>(c.unit + 1), b);
+  const auto result = client.send_message(data, timeout);
+  plc::Outcome o = plc.status(c.unit);
+  if (!result) {
+    o.ok = false;
+    o.timed_out = true;
+    o.message = "blend: the module did not take the message (is stepmodd running?)";
+  } else if (*result != module::m3202::kMessageAccepted) {
+    o.ok = false;
+    o.message = "blend: message refused (result " + std::to_string(*result) +
+                "; see Invalid Profile / Command Error)";
   }
-  return line;
+  return o;
 }
 
 }  // namespace
 
-plc::AccelType parse_accel_type(const std::string& s) {
-  if (s.empty() || s == "const" || s == "constant") return plc::AccelType::kConstant;
-  if (s == "tri" || s == "triangular") return plc::AccelType::kTriangularS;
-  if (s == "trap" || s == "trapezoidal") return plc::AccelType::kTrapezoidalS;
-  throw BlendSyntaxError("acceleration type must be const, tri or trap, not '" + s + "'");
-}
-
-plc::BlendSegment parse_blend_segment(const std::string& s) {
-  std::vector<std::string> f;
-  std::size_t start = 0;
-  for (std::size_t i = 0; i <= s.size(); ++i) {
-    if (i == s.size() || s[i] == ':') {
-      f.push_back(s.substr(start, i - start));
-      start = i + 1;
+plc::Outcome run_3202(const Command& c, plc::Port& port, ipc::Client& client,
+                      std::chrono::milliseconds timeout) {
+  plc::Plc3202 plc(port, timeout);
+  const unsigned ch = c.unit;
+  switch (c.verb) {
+    case Verb::kConfigure: {
+      const std::uint32_t bits = configuration_bits(c.configure);
+      return plc.configure(ch, bits,
+                           parse_limited(c.configure.start_speed, "--start-speed", kDint));
     }
-  }
-  if (f.size() < 3 || f.size() > 4) {
-    throw BlendSyntaxError("segment '" + s + "': expected LENGTH:SPEED:ACCEL[:tri|trap]");
-  }
-  return {number(f[0], "LENGTH"), number(f[1], "SPEED"), number(f[2], "ACCEL"),
-          parse_accel_type(f.size() == 4 ? f[3] : "")};
-}
-
-plc::BlendProfile read_blend_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw BlendSyntaxError(path + ": cannot be read");
-  plc::BlendProfile b;
-  bool have_final = false;
-  std::string line;
-  for (unsigned n = 1; std::getline(in, line); ++n) {
-    line = trim(strip_comment(line));
-    if (line.empty()) continue;
-    const auto eq = line.find('=');
-    const std::string where = path + ":" + std::to_string(n);
-    if (eq == std::string::npos) throw BlendSyntaxError(where + ": expected key = value");
-    const std::string key = trim(line.substr(0, eq));
-    const std::string value = trim(line.substr(eq + 1));
-    try {
-      if (key == "segment") {
-        b.segments.push_back(parse_blend_segment(value));
-      } else if (key == "final_decel") {
-        b.final_decel = number(value, "final_decel");
-        have_final = true;
-      } else if (key == "final_type") {
-        b.final_type = parse_accel_type(value);
-      } else {
-        throw BlendSyntaxError("unknown key '" + key + "' (segment, final_decel, final_type)");
-      }
-    } catch (const BlendSyntaxError& e) {
-      throw BlendSyntaxError(where + ": " + e.what());
+    case Verb::kMove:
+      return plc.move(ch, c.kind == "abs", parse_limited(c.value, "TARGET", kDint),
+                      parse_profile(c.profile, kProfile), c.encoder_move);
+    case Verb::kJog: {
+      if (!c.registration.empty()) throw UsageError("the 3202 has no registration move");
+      const plc::Profile p = parse_profile(c.profile, kProfile);
+      return plc.jog(ch, parse_direction(c.direction), p, millis(c.jog_seconds));
     }
+    case Verb::kHome: {
+      const bool cw = parse_direction(c.direction);
+      return plc.home(ch, cw, parse_profile(c.profile, kProfile));
+    }
+    case Verb::kHold:
+      return plc.hold(ch);
+    case Verb::kResume:
+      return plc.resume(ch, parse_optional_profile(c.profile, kProfile));
+    case Verb::kStop:
+      return plc.immediate_stop(ch);
+    case Verb::kPreset:
+      return plc.preset_position(ch, parse_limited(c.value, "POSITION", kDint));
+    case Verb::kPresetEncoder:
+      return plc.preset_encoder(ch, c.value.empty() ? 0 : parse_limited(c.value, "VALUE", kDint));
+    case Verb::kReset:
+      return plc.reset_errors(ch);
+    case Verb::kBlendProgram:
+      return program_blend(c, plc, client, timeout);
+    case Verb::kBlendRun:
+      return plc.blend_run(ch, parse_direction(c.direction));
+    case Verb::kWaitIdle:
+      return plc.wait_idle(ch, millis(c.wait_seconds));
+    case Verb::kMinRegistration:
+      throw UsageError("the 3202 has no registration move: no min-registration");
+    case Verb::kFollow:
+      throw UsageError("the 3202 has no encoder follower");
+    case Verb::kGpo:
+      break;
   }
-  if (b.segments.empty()) throw BlendSyntaxError(path + ": no segment");
-  if (!have_final) throw BlendSyntaxError(path + ": no final_decel");
-  return b;
+  throw UsageError("the 3202 has no general-purpose output (gpo is the 3602's)");
 }
 
 }  // namespace stepmod::tools::ctl

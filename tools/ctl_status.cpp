@@ -7,6 +7,7 @@
 #include "module/m3202/words_3202.hpp"
 #include "module/m3601/words_3601.hpp"
 #include "module/m3602/words_3602.hpp"
+#include "tools/ctl_args.hpp"
 
 namespace stepmod::tools::ctl {
 namespace {
@@ -180,6 +181,27 @@ std::string format_health(const ipc::Health& h) {
   if (h.late_faults > 0) o << ", worst " << h.worst_late_us << " us late";
   o << "\n";
   return o.str();
+}
+
+std::string format_panel(const ipc::SimPanelClient& p) {
+  std::string s;
+  for (unsigned a = 0; a < p.axes(); ++a) {
+    const ipc::PanelAxis x = p.read(a);
+    s += "axis " + std::to_string(a + 1) + ": position " + std::to_string(x.position) +
+         "  encoder " + std::to_string(x.encoder) +
+         "  outputs step/cw=" + std::to_string(x.outputs & 1) +
+         " dir/ccw=" + std::to_string((x.outputs >> 1) & 1) +
+         " gpo=" + std::to_string((x.outputs >> 2) & 1) + "\n  forced:";
+    bool any = false;
+    for (unsigned i = 0; i < 6; ++i) {
+      if (x.force_mask & (1u << i)) {
+        s += std::string(" ") + kInputNames[i] + "=" + std::to_string((x.force_levels >> i) & 1);
+        any = true;
+      }
+    }
+    s += any ? "\n" : " none\n";
+  }
+  return s;
 }
 
 std::string format_words(const ImageWords& w, unsigned count, unsigned word_bytes) {

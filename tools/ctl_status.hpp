@@ -7,6 +7,7 @@
 
 #include "core/module_shape.hpp"
 #include "ipc/health.hpp"
+#include "ipc/sim_panel.hpp"
 #include "plc/bit_names.hpp"
 
 namespace stepmod::tools::ctl {
@@ -19,6 +20,10 @@ std::string format_status(ModuleType type, const ImageWords& in);
 // The daemon health words (INTERFACE.md 3.3): flags by name, late-edge fault count and the
 // worst lateness.
 std::string format_health(const ipc::Health& h);
+
+// The simulator panel (INTERFACE.md 4): per axis the motor position, encoder count, output
+// levels and forced inputs.
+std::string format_panel(const ipc::SimPanelClient& p);
 
 // One line per word: index, decimal, hex (word-size digits).
 std::string format_words(const ImageWords& w, unsigned count, unsigned word_bytes);

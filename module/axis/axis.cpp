@@ -87,6 +87,7 @@ void Axis::enter_command_mode() {
   st_.capture = 0;
   st_.status = Latches{};
   st_.status.position_invalid = true;
+  st_.hold_coordinated = false;
   held_target_ = 0;
 }
 
@@ -98,6 +99,17 @@ void Axis::poll_motion_end() {
   if (st_.moving() && st_.stop_cause != StopCause::kImmediate &&
       st_.stop_cause != StopCause::kFault && st_.motion.late_faulted()) {
     st_.immediate_stop(StopCause::kImmediate);
+  }
+  if (st_.activity == Activity::kCoordinated) {
+    // Its coordinator ends it (end_coordinated). The direction bits follow the axis' own steps:
+    // on a path an axis reverses (arcs) or never steps at all (a line along the other axis).
+    const std::int64_t steps = st_.motion.steps();
+    if (steps != coordinated_steps_) {
+      st_.dir = steps > coordinated_steps_ ? planner::Direction::kCw : planner::Direction::kCcw;
+      coordinated_stepped_ = true;
+      coordinated_steps_ = steps;
+    }
+    return;
   }
   if (st_.activity == Activity::kIdle || st_.activity == Activity::kFollower || st_.motion.busy()) {
     return;
@@ -143,6 +155,48 @@ void Axis::poll_motion_end() {
   }
 }
 
+bool Axis::inputs_block_start(std::optional<planner::Direction> dir) {
+  if (dir) return st_.inputs_block_start(*dir);
+  if (!st_.estop_active()) return false;
+  st_.status.input_error = true;
+  return true;
+}
+
+void Axis::begin_coordinated(planner::Ramp decel) {
+  st_.clear_move_outcome();
+  st_.activity = Activity::kCoordinated;
+  st_.stop_cause = StopCause::kNone;
+  st_.move_decel = decel;
+  coordinated_steps_ = st_.motion.steps();
+  coordinated_stepped_ = false;
+}
+
+void Axis::stop_coordinated(StopCause cause) {
+  if (st_.activity != Activity::kCoordinated) return;
+  if (cause == StopCause::kImmediate || cause == StopCause::kFault) {
+    st_.immediate_stop(cause);  // 3602-PI-04 / PI-07: both axes' positions invalid
+  } else if (st_.stop_cause == StopCause::kNone) {
+    st_.stop_cause = cause;
+  }
+}
+
+void Axis::end_coordinated(CoordinatedEnd end) {
+  if (st_.activity != Activity::kCoordinated) return;
+  st_.activity = Activity::kIdle;
+  st_.stop_cause = StopCause::kNone;
+  switch (end) {
+    case CoordinatedEnd::kComplete:
+      st_.status.move_complete = true;  // 3602-MC-01: on every axis of the path
+      break;
+    case CoordinatedEnd::kHeld:
+      st_.status.hold = true;  // 3602-HLD-01
+      st_.hold_coordinated = true;
+      break;
+    case CoordinatedEnd::kStopped:
+      break;
+  }
+}
+
 bool Axis::program_blend(const BlendFirstBlock& first,
                          std::span<const BlendSegmentBlock> segments) {
   if (config_mode_ || !st_.configured) {
@@ -161,7 +215,8 @@ AxisStatus Axis::status() const noexcept {
   AxisStatus s;
   const Latches& l = st_.status;
   s.configuration_mode = config_mode_;
-  if (st_.moving() && st_.motion.busy()) {
+  const bool pulsing = st_.activity != Activity::kCoordinated || coordinated_stepped_;
+  if (st_.moving() && st_.motion.busy() && pulsing) {
     // 3601-DIR-01: direction of the pulses being output.
     s.moving_cw = st_.dir == planner::Direction::kCw;
     s.moving_ccw = !s.moving_cw;

@@ -51,6 +51,48 @@ class Axis {
   AxisStatus status() const noexcept;
   bool in_configuration_mode() const noexcept { return config_mode_; }
 
+  // ---- Coordinated motion (the 3602's interpolated moves: module/m3602/interpolated_move.hpp).
+  // A coordinator outside the axis starts the motion on this axis' MotionPort, one part of a
+  // path, and ends it. Meanwhile the axis reports its motion bits from its own feedback, handles
+  // its limits and E-stop as for a move (immediate stop, IE, PI), turns Hold and the External
+  // input into a stop of the whole path along it (MotionPort::hold_path), and leaves the
+  // outcome (MC, Hold) to the coordinator, which knows when every axis of the path has ended.
+  //
+  // Configured, enabled and in command mode: the axis can take part in a coordinated motion.
+  bool commandable() const noexcept { return st_.configured && !st_.cfg.disabled && !config_mode_; }
+  const AxisConfig& config() const noexcept { return st_.cfg; }
+  // A motion is in progress (digest 7.16), coordinated or not.
+  bool moving() const noexcept { return st_.moving(); }
+  // A15 at a coordinated start heading `dir` on this axis (nullopt: not moving): an active
+  // E-stop, or the end limit toward `dir` -> Input Error, true (the motion must not start).
+  bool inputs_block_start(std::optional<planner::Direction> dir);
+  // The coordinator has started this axis' part of the motion (or resumed it): a new motion's
+  // outcome is cleared (MC, Hold, IE), the axis is moving until end_coordinated.
+  void begin_coordinated(planner::Ramp decel);
+  // Why the coordinated motion is stopping early (kNone: it runs to its end).
+  StopCause stop_cause() const noexcept { return st_.stop_cause; }
+  // The coordinator stops this axis' part: kImmediate / kFault cut it at once (PI); kHold /
+  // kExternal mark the controlled stop another axis asked the path for.
+  void stop_coordinated(StopCause cause);
+  // Every axis of the motion has ended: the outcome on this axis.
+  enum class CoordinatedEnd : std::uint8_t { kComplete, kHeld, kStopped };
+  void end_coordinated(CoordinatedEnd end);
+  // A coordinated command refused: Command Error (with Invalid Profile for a profile error).
+  void reject_coordinated(bool invalid_profile) noexcept {
+    if (invalid_profile) {
+      st_.reject_profile();
+    } else {
+      st_.reject();
+    }
+  }
+  // A Resume of a held coordinated motion, accepted by this axis' rules (Hold state, the profile
+  // in range and >= Vs): the new vector profile, once, for the coordinator.
+  std::optional<Profile> take_coordinated_resume() noexcept {
+    auto p = coordinated_resume_;
+    coordinated_resume_.reset();
+    return p;
+  }
+
  private:
   // Modes (digest 7.15).
   void take_configuration(const std::optional<AxisConfig>& configuration);
@@ -83,6 +125,11 @@ class Axis {
   std::optional<AxisConfig> pending_;  // last configuration accepted in configuration mode
   std::int64_t held_target_ = 0;       // Hold/Resume: the held move's absolute target
   std::int64_t move_target_ = 0;       // absolute target of the running abs/rel move
+  // Coordinated motion: the step count at the last scan and whether the motion has stepped (the
+  // direction bits come from the axis' own steps), and a Resume for the coordinator.
+  std::int64_t coordinated_steps_ = 0;
+  bool coordinated_stepped_ = false;
+  std::optional<Profile> coordinated_resume_;
   // The previous scan's command image: edges are found against it (digest 7.16). After the scan
   // it is this scan's image, which the status reads.
   AxisCommand prev_;

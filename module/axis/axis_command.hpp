@@ -47,6 +47,22 @@ class CommandSet {
     r.bits_ = bits_ & ~before.bits_;
     return r;
   }
+  // Set algebra, for commands a coordinator keeps from an axis (module/m3602/interpolated_move).
+  CommandSet minus(const CommandSet& o) const noexcept {
+    CommandSet r;
+    r.bits_ = bits_ & ~o.bits_;
+    return r;
+  }
+  CommandSet common(const CommandSet& o) const noexcept {
+    CommandSet r;
+    r.bits_ = bits_ & o.bits_;
+    return r;
+  }
+  CommandSet with(const CommandSet& o) const noexcept {
+    CommandSet r;
+    r.bits_ = bits_ | o.bits_;
+    return r;
+  }
   CommandSet without(CommandKind a, CommandKind b) const noexcept {
     CommandSet r = *this;
     r.bits_.reset(index(a));

@@ -1,9 +1,27 @@
 // Command mode: the scan's order, the command edges (digest 7.16) and the plain commands of the
 // 3601 manual Ch.4 (absolute/relative move, Hold, Resume, Immediate Stop, Preset Position, Reset
 // Errors). Every rejection names the checklist item of digest 6.1 it implements.
+#include <cstdint>
+#include <limits>
+
 #include "module/axis/axis.hpp"
 
 namespace stepmod::module::axis {
+namespace {
+
+// Whether a position fits the modules' signed 32-bit registers (A32).
+constexpr bool fits_int32(std::int64_t v) noexcept {
+  return v >= std::numeric_limits<std::int32_t>::min() &&
+         v <= std::numeric_limits<std::int32_t>::max();
+}
+// Whether a step count fits: its magnitude, either way (a count of 2^31 does not, CW or CCW; the
+// interpolated path draws the same line, tests/module/interp_3602_test.cpp on branch interp).
+constexpr bool count_fits_int32(std::int64_t steps) noexcept {
+  return steps >= -std::int64_t{std::numeric_limits<std::int32_t>::max()} &&
+         steps <= std::numeric_limits<std::int32_t>::max();
+}
+
+}  // namespace
 
 // One command-mode scan: level commands and runtime monitors first (a released manual command
 // stops the axis even while CE is set), then the command edges.
@@ -147,10 +165,19 @@ void Axis::command_move(const AxisCommand& c, bool absolute) {
     return;
   }
   const std::int64_t steps = absolute ? *c.target - st_.position() : *c.target;
+  const std::int64_t end = absolute ? *c.target : st_.position() + *c.target;
+  // 3601/3602-IP-03 "profile overflows internal registers" (A32): IP + CE when the planned step
+  // count or the position at the end does not fit the firmware's signed 32-bit registers. Only
+  // the 3602 gets there in practice: an absolute move from far outside the +-2^30 box of its
+  // targets and presets, or a relative move past 2^31 - 1; elsewhere the ranges refuse it first.
+  if (!count_fits_int32(steps) || !fits_int32(end)) {
+    st_.reject_profile();
+    return;
+  }
   const planner::Direction dir = steps < 0 ? planner::Direction::kCcw : planner::Direction::kCw;
   if (st_.inputs_block_start(dir)) return;
   st_.clear_move_outcome();
-  move_target_ = absolute ? *c.target : st_.position() + *c.target;
+  move_target_ = end;
   if (steps == 0) {
     st_.status.move_complete = true;  // already at the target: nothing to output
     return;
@@ -171,6 +198,14 @@ void Axis::command_hold(Nanos now) {
     if (st_.stop_cause == StopCause::kNone) {
       st_.stop_cause = StopCause::kHold;  // 3601-HLD-01
       st_.motion.stop(st_.move_decel, now);
+    }
+    return;
+  }
+  if (st_.activity == Activity::kCoordinated) {
+    // A coordinated motion stops along its path, all of its axes (3602-HLD-01, digest 7.14).
+    if (st_.stop_cause == StopCause::kNone) {
+      st_.stop_cause = StopCause::kHold;
+      st_.motion.hold_path(st_.move_decel);
     }
     return;
   }
@@ -197,6 +232,10 @@ void Axis::command_resume(const AxisCommand& c) {
   }
   const auto profile = st_.read_profile(c, true);
   if (!profile) return;
+  if (st_.hold_coordinated) {
+    coordinated_resume_ = profile;  // its coordinator continues the path (A39)
+    return;
+  }
   const std::int64_t remaining = held_target_ - st_.position();
   const planner::Direction dir = remaining < 0 ? planner::Direction::kCcw : planner::Direction::kCw;
   if (st_.inputs_block_start(dir)) return;

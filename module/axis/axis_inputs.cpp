@@ -59,7 +59,8 @@ void Axis::on_input(const gpio::InputEvent& e) {
     // move only at the limit in its direction of travel, so that it can be driven off a limit.
     const bool in_travel_direction = cw_limit == (st_.dir == planner::Direction::kCw);
     const bool either_limit = st_.activity == Activity::kMove || st_.activity == Activity::kBlend ||
-                              st_.activity == Activity::kEncoderMove;  // digest 7.7
+                              st_.activity == Activity::kEncoderMove ||
+                              st_.activity == Activity::kCoordinated;  // digest 7.7
     if (either_limit || in_travel_direction) st_.fault_stop();         // blends too (3601-IE-02)
     return;
   }
@@ -69,7 +70,11 @@ void Axis::on_input(const gpio::InputEvent& e) {
     // 3601-HLD-02: a controlled stop to the Hold state for absolute/relative moves; a
     // controlled stop (Stopped) for manual moves (digest 7.6).
     st_.stop_cause = StopCause::kExternal;
-    st_.motion.stop(st_.move_decel, e.t);  // the ramp starts at the edge (issue 12 item 9)
+    if (st_.activity == Activity::kCoordinated) {
+      st_.motion.hold_path(st_.move_decel);  // the whole path stops along it (digest 7.6)
+    } else {
+      st_.motion.stop(st_.move_decel, e.t);  // the ramp starts at the edge (issue 12 item 9)
+    }
   }
 }
 

@@ -76,9 +76,13 @@ bool AxisState::inputs_block_start(planner::Direction d) {
 void AxisState::clear_move_outcome() noexcept {
   status.move_complete = false;
   status.hold = false;
+  hold_coordinated = false;
   status.stopped = false;
   status.at_home = false;
-  status.input_error = false;
+  // 3602-IE-C1: "if none of the inputs are active when the command is issued".
+  const bool inputs_active = estop_active() || limit_active(planner::Direction::kCw) ||
+                             limit_active(planner::Direction::kCcw);
+  if (!rules.input_error_kept_while_inputs_active || !inputs_active) status.input_error = false;
 }
 
 void AxisState::immediate_stop(StopCause cause) {

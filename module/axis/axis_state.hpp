@@ -25,6 +25,8 @@ enum class Activity : std::uint8_t {
   kHoming,       // Find Home + / - (homing.cpp)
   kBlend,        // blend move (blend.cpp)
   kFollower,     // encoder follower (follower.cpp)
+  kCoordinated,  // one axis of a coordinated motion (the 3602's interpolated moves): started and
+                 // ended by its coordinator (Axis, "Coordinated motion")
 };
 
 // Why a motion is ending early; decides the status bits when it has ended.
@@ -67,6 +69,8 @@ struct AxisState {
   StopCause stop_cause = StopCause::kNone;
   planner::Direction dir = planner::Direction::kCw;
   planner::Ramp move_decel;  // the running motion's decel (controlled stops)
+  // The Hold state belongs to a coordinated motion: its coordinator resumes it (Axis).
+  bool hold_coordinated = false;
 
   std::int64_t origin = 0;   // pulse count at which the reported position is 0
   std::int64_t encoder = 0;  // encoder register (X4 counts, or own steps with diagnostic feedback)

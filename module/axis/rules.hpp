@@ -69,6 +69,9 @@ struct ModuleRules {
   // Hold during the deceleration of an absolute/relative move is ignored, no CE (3202 manual
   // Ch.4 "Hold Move" note 2, 3202-CE-07); the 3601 and 3602 manuals say nothing: they hold.
   bool hold_ignored_while_decelerating = false;
+  // Input Error is cleared by the next move command only if no E-stop or end-limit input is active
+  // at that moment (3602-IE-C1, manual Ch.9 bit 11); 3601-IE-C1 clears it whenever a move starts.
+  bool input_error_kept_while_inputs_active = false;
 };
 
 inline constexpr ModuleRules kRules3601{
@@ -131,6 +134,7 @@ inline constexpr ModuleRules kRules3602{
     .homing_home_with_limit_is_error = true,
     .registration_external_always_error = false,
     .powers_up_with_configuration_error = true,
+    .input_error_kept_while_inputs_active = true,
 };
 
 inline constexpr ModuleRules kRules3202{

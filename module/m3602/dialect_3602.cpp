@@ -133,7 +133,77 @@ bool word_rules_broken(const ImageWords& out, const axis::AxisCommand& c,
   }
 }
 
+// Interpolated block (digest 4.7 table, 4.8): the method from LSW bits 14..10; any pattern the
+// table does not list is a Command Error (A34).
+struct MethodPattern {
+  std::uint16_t bits;
+  InterpolationMethod method;
+  bool ccw;
+};
+constexpr MethodPattern kMethodPatterns[] = {
+    {cmd_lsw::kLinear, InterpolationMethod::kLinear, false},
+    {cmd_lsw::kViaPoint, InterpolationMethod::kViaPoint, false},
+    {cmd_lsw::kCwCircular, InterpolationMethod::kCentre, false},
+    {cmd_lsw::kCcwCircular, InterpolationMethod::kCentre, true},
+    {cmd_lsw::kRadiusMethod | cmd_lsw::kCwCircular, InterpolationMethod::kRadius, false},
+    {cmd_lsw::kRadiusMethod | cmd_lsw::kCcwCircular, InterpolationMethod::kRadius, true},
+};
+
+// Every coordinate of the block: +-1,073,741,823 (digest 4.8, the 3602's target range).
+bool coordinate_in_range(std::int32_t v) noexcept {
+  return v >= axis::kRules3602.target_min && v <= axis::kRules3602.target_max;
+}
+
+InterpolationFault interpolation_fault(const ImageWords& out, const InterpolatedCommand& c,
+                                       std::uint16_t lsw, bool pattern_valid) noexcept {
+  if (!pattern_valid || (lsw & ~cmd_lsw::kInterpolatedAllowed) != 0) {
+    return InterpolationFault::kPattern;  // 3602-CE-I6, A34
+  }
+  if (out.w[interp_word::kMsw] != 0) return InterpolationFault::kCommandBits;  // 3602-CE-03
+  // 3602-CE-I5 / IP-18: axis 2's command words, and the words the method leaves unused.
+  bool reserved_clear = words_zero(out, interp_word::kAxis2Msw, interp_word::kAxis2Lsw);
+  if (c.method == InterpolationMethod::kLinear) {
+    reserved_clear = reserved_clear && words_zero(out, interp_word::kPointXMsw, 15);
+  } else if (c.method == InterpolationMethod::kRadius) {
+    reserved_clear = reserved_clear && words_zero(out, interp_word::kPointYMsw, 15);
+  }
+  if (!reserved_clear) return InterpolationFault::kReserved;
+  bool in_range = coordinate_in_range(c.end_x) && coordinate_in_range(c.end_y);
+  if (c.method == InterpolationMethod::kViaPoint || c.method == InterpolationMethod::kCentre) {
+    in_range = in_range && coordinate_in_range(c.point_x) && coordinate_in_range(c.point_y);
+  }
+  // A35: the radius word takes any int32 but -2^31 (the geometry then bounds it).
+  if (c.method == InterpolationMethod::kRadius) in_range = in_range && c.radius != INT32_MIN;
+  return in_range ? InterpolationFault::kNone : InterpolationFault::kRange;
+}
+
 }  // namespace
+
+std::optional<InterpolatedCommand> interpolated_from_words(const ImageWords& out) noexcept {
+  const auto lsw = static_cast<std::uint16_t>(out.w[interp_word::kLsw]);
+  if ((lsw & cmd_lsw::kInterpolation) == 0) return std::nullopt;
+  InterpolatedCommand c;
+  bool pattern_valid = false;
+  for (const MethodPattern& p : kMethodPatterns) {
+    if ((lsw & cmd_lsw::kInterpolationMethod) == p.bits) {
+      pattern_valid = true;
+      c.method = p.method;
+      c.ccw = p.ccw;
+    }
+  }
+  c.absolute = (lsw & cmd_lsw::kAbsoluteCoordinates) != 0;
+  c.shape = shape_from_lsw(lsw);
+  c.speed = split(out, interp_word::kSpeedMsw);
+  c.accel = word(out, interp_word::kAccel) * kAccelUnit;
+  c.decel = word(out, interp_word::kDecel) * kAccelUnit;
+  c.end_x = split(out, interp_word::kEndXMsw);
+  c.end_y = split(out, interp_word::kEndYMsw);
+  c.point_x = split(out, interp_word::kPointXMsw);
+  c.point_y = split(out, interp_word::kPointYMsw);
+  c.radius = c.point_x;  // the radius method's words 12 / 13
+  c.fault = interpolation_fault(out, c, lsw, pattern_valid);
+  return c;
+}
 
 axis::AxisCommand command_from_words(const ImageWords& out) noexcept {
   const auto msw = static_cast<std::uint16_t>(out.w[out_word::kMsw]);
@@ -205,6 +275,7 @@ void status_to_words(const axis::AxisStatus& s, const StatusExtras& x, ImageWord
   if (s.blend_running) lsw |= status_lsw::kBlendRunning;
   if (s.blend_acknowledge) lsw |= status_lsw::kBlendAcknowledge;
   if (s.min_registration_set) lsw |= status_lsw::kMinRegistrationSet;
+  if (x.interpolating) lsw |= status_lsw::kInterpolatedRunning;
   if (s.proximity_echo) lsw |= status_lsw::kProximityEcho;
   if (x.gpo) lsw |= status_lsw::kGpo;
 

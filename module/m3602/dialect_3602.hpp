@@ -4,10 +4,12 @@
 // one axis' eight words (b+0 .. b+7 moved to 0..7); module_3602 splits and joins the image.
 // Configuration words -> AxisConfig is config_3602.hpp.
 #include <cstdint>
+#include <optional>
 
 #include "core/module_shape.hpp"
 #include "module/axis/axis_command.hpp"
 #include "module/axis/axis_status.hpp"
+#include "module/m3602/interpolated_command.hpp"
 
 namespace stepmod::module::m3602 {
 
@@ -16,13 +18,19 @@ namespace stepmod::module::m3602 {
 // interpolation bits (3602-CE-03) set AxisCommand::words_invalid.
 axis::AxisCommand command_from_words(const ImageWords& out) noexcept;
 
+// The interpolated move block in all sixteen output words of the module (digest 4.8; `out` is
+// the whole image, word 0 = axis 1's MSW): nullopt when axis 1's command LSW bits 9..14 are all
+// 0 (no interpolated command), else the decoded command with its word-level fault.
+std::optional<InterpolatedCommand> interpolated_from_words(const ImageWords& out) noexcept;
+
 // Whether the command LSW asks for the general-purpose output on (bit 7, a level).
 bool gpo_from_words(const ImageWords& out) noexcept;
 
 // What the status words say besides the shared axis' status.
 struct StatusExtras {
-  bool axis_enabled = false;  // 3602-EN-01: configured and not disabled
-  bool gpo = false;           // 3602-LSW-01: echo of command LSW bit 7
+  bool axis_enabled = false;   // 3602-EN-01: configured and not disabled
+  bool interpolating = false;  // 3602-LSW-01: axis 1 runs an interpolated move (LSW bit 11)
+  bool gpo = false;            // 3602-LSW-01: echo of command LSW bit 7
 };
 
 // Command mode input words of one axis (digest 4.9-4.11). Position and capture are int32 that

@@ -78,7 +78,7 @@ inline constexpr std::array<NamedBit, 14> kCommandMswBits = {{
 }};
 
 // Command bits LSW (digest 4.7).
-inline constexpr std::array<NamedBit, 12> kCommandLswBits = {{
+inline constexpr std::array<NamedBit, 13> kCommandLswBits = {{
     {0, "S-Curve Acceleration (0 = constant)"},
     {1, "Trapezoidal S-Curve (0 = triangular)"},
     {2, "Program Minimum Registration Distance"},
@@ -91,6 +91,7 @@ inline constexpr std::array<NamedBit, 12> kCommandLswBits = {{
     {11, "Via-Point Circular Move"},
     {12, "CW Circular Move"},
     {13, "CCW Circular Move"},
+    {14, "Radius Method (with CW / CCW)"},
 }};
 
 // Status bits MSW (digest 4.10).
@@ -228,9 +229,40 @@ inline constexpr std::uint16_t kBlendTransmit = field(kCommandLswBits, "Blend Mo
 inline constexpr std::uint16_t kBackplaneProximity =
     field(kCommandLswBits, "Backplane Home Proximity");
 inline constexpr std::uint16_t kGpo = field(kCommandLswBits, "General-Purpose Output");
-// Bits 9..13 (and 14, the radius qualifier the table leaves unnamed): interpolated moves (part 2).
-inline constexpr std::uint16_t kInterpolation = 0x7E00;
+// Interpolated moves (digest 4.7): bit 9 selects the coordinate system, bits 10..14 the method.
+inline constexpr std::uint16_t kAbsoluteCoordinates =
+    field(kCommandLswBits, "Absolute Interpolated Coordinates");
+inline constexpr std::uint16_t kLinear = field(kCommandLswBits, "Linear Interpolated Move");
+inline constexpr std::uint16_t kViaPoint = field(kCommandLswBits, "Via-Point Circular Move");
+inline constexpr std::uint16_t kCwCircular = field(kCommandLswBits, "CW Circular Move");
+inline constexpr std::uint16_t kCcwCircular = field(kCommandLswBits, "CCW Circular Move");
+inline constexpr std::uint16_t kRadiusMethod =
+    field(kCommandLswBits, "Radius Method (with CW / CCW)");
+inline constexpr std::uint16_t kInterpolationMethod =
+    kLinear | kViaPoint | kCwCircular | kCcwCircular | kRadiusMethod;
+// Bits 9..14: any of them set makes the LSW an interpolated command (3602-CE-03 with an MSW bit).
+inline constexpr std::uint16_t kInterpolation = kAbsoluteCoordinates | kInterpolationMethod;
+static_assert(kInterpolation == 0x7E00);
+// What else an interpolated command's LSW may hold: the acceleration type and the GPO level.
+inline constexpr std::uint16_t kInterpolatedAllowed =
+    kInterpolation | kSCurve | kTrapezoidalS | kGpo;
 }  // namespace cmd_lsw
+
+// The interpolated move block (digest 4.8, Tables 9.23-9.26): all sixteen output words of the
+// module, indices from word 0 of axis 1. Axis 2's command words 8 / 9 must be 0.
+namespace interp_word {
+inline constexpr unsigned kMsw = out_word::kMsw;  // 16#0000
+inline constexpr unsigned kLsw = out_word::kLsw;  // bits 9..14, accel type, GPO
+inline constexpr unsigned kSpeedMsw = 2;          // vector speed, 2 / 3
+inline constexpr unsigned kAccel = 4;             // vector accel, steps/ms/s
+inline constexpr unsigned kDecel = 5;             // vector decel
+inline constexpr unsigned kEndXMsw = 6;           // end point X, 6 / 7
+inline constexpr unsigned kAxis2Msw = kWordsPerAxis + out_word::kMsw;  // 8: reserved, 0
+inline constexpr unsigned kAxis2Lsw = kWordsPerAxis + out_word::kLsw;  // 9: reserved, 0
+inline constexpr unsigned kEndYMsw = 10;                               // end point Y, 10 / 11
+inline constexpr unsigned kPointXMsw = 12;  // via X / centre X / signed radius, 12 / 13
+inline constexpr unsigned kPointYMsw = 14;  // via Y / centre Y, 14 / 15 (radius: reserved, 0)
+}  // namespace interp_word
 
 namespace status_msw {
 using detail::field;
@@ -263,6 +295,8 @@ inline constexpr std::uint16_t kBlendRunning = field(kStatusLswBits, "Blend Move
 inline constexpr std::uint16_t kBlendAcknowledge = field(kStatusLswBits, "Blend Block Acknowledge");
 inline constexpr std::uint16_t kMinRegistrationSet =
     field(kStatusLswBits, "Min. Registration Distance Set");
+inline constexpr std::uint16_t kInterpolatedRunning =
+    field(kStatusLswBits, "Interpolated Move Running");
 inline constexpr std::uint16_t kProximityEcho =
     field(kStatusLswBits, "Backplane Home Proximity Echo");
 inline constexpr std::uint16_t kGpo = field(kStatusLswBits, "General-Purpose Output");

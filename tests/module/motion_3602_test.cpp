@@ -179,6 +179,41 @@ TEST_F(Motion3602, IE_02_PI_04_IE_C1_LimitDuringAMoveThenTheNextMoveClearsIE) {
   EXPECT_FALSE(status(kAxis2, kCommandError));
 }
 
+// 3602-IE-C1, every clause (manual Ch.9 bit 11: "latched but you do not have to issue a Clear
+// Errors command block ... The next move command will clear this bit automatically if none of
+// the inputs are active when the command is issued"):
+TEST_F(Motion3602, IE_C1_LatchedClearedByTheNextMoveOnlyWithNoInputActive) {
+  set_command(kAxis1, cmd::kRelativeMove, {.target = 20'000});
+  vm_.scans(3);
+  word(kAxis1, m2::out_word::kMsw) = 0;
+  vm_.run_for(300 * kNsPerMs);
+  force(kAxis1, InputLine::kCwLimit, true);
+  ASSERT_TRUE(wait_idle(kAxis1));
+  ASSERT_TRUE(status(kAxis1, kInputError));
+  // Latched: the input going inactive again leaves it set.
+  force(kAxis1, InputLine::kCwLimit, false);
+  vm_.scans(20);
+  EXPECT_TRUE(status(kAxis1, kInputError));
+  // A move command issued while an input is active (the CW limit again; the move goes CCW, away
+  // from it, and runs) does not clear it, not even when that move completes.
+  force(kAxis1, InputLine::kCwLimit, true);
+  const std::int64_t at = motor(kAxis1);
+  command(kAxis1, cmd::kRelativeMove, {.target = -500});
+  EXPECT_TRUE(status(kAxis1, kInputError));
+  EXPECT_FALSE(status(kAxis1, kCommandError));
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_EQ(motor(kAxis1), at - 500);
+  EXPECT_TRUE(status(kAxis1, kInputError));
+  // No Reset Errors: with no input active, the next move command clears it.
+  force(kAxis1, InputLine::kCwLimit, false);
+  command(kAxis1, cmd::kRelativeMove, {.target = -100});
+  EXPECT_FALSE(status(kAxis1, kInputError));
+  EXPECT_FALSE(status(kAxis1, kCommandError));
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_EQ(motor(kAxis1), at - 600);
+  EXPECT_TRUE(status(kAxis1, kMoveComplete));
+}
+
 TEST_F(Motion3602, IE_05_JogTowardAnActiveLimit) {
   force(kAxis1, InputLine::kCwLimit, true);
   EXPECT_TRUE(lsw_status(kAxis1, m2::status_lsw::kCwActive));
@@ -319,12 +354,38 @@ TEST_F(Motion3602, CE_R1_NegativeMinimumRegistrationDistance) {
   EXPECT_FALSE(lsw_status(kAxis1, m2::status_lsw::kMinRegistrationSet));
 }
 
+// 3602-CE-08, second clause: Hold during a registration move -> CE; the axis is not held (no
+// Hold state). Writing the Hold word drops the level-held jog bit, so the motion stops as at a
+// release, controlled.
 TEST_F(Motion3602, CE_R2_CE_08_HoldDuringARegistration) {
+  command(kAxis1, cmd::kPresetPosition, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
   set_command(kAxis1, cmd::kJogCw, {.target = 6'000, .speed = 10'000});
   vm_.run_for(200 * kNsPerMs);
   set_command(kAxis1, cmd::kHold, {.target = 6'000, .speed = 10'000});
   vm_.scans(3);
   EXPECT_TRUE(status(kAxis1, kCommandError));
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_FALSE(status(kAxis1, kHoldState));
+  EXPECT_FALSE(status(kAxis1, kPositionInvalid));  // a controlled stop
+}
+
+// 3602-CE-08's note, A5: Hold during a jog is not in the list; the choice is CE plus the
+// controlled stop that follows because the Hold word clears the jog bit (as on the 3601/3202).
+TEST_F(Motion3602, CE_08_HoldDuringAJogIsCommandErrorAndAControlledStop) {
+  command(kAxis1, cmd::kPresetPosition, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  set_command(kAxis1, cmd::kJogCw, {.target = 0, .speed = 5'000});
+  vm_.run_for(500 * kNsPerMs);
+  const std::int64_t at_hold = motor(kAxis1);
+  set_command(kAxis1, cmd::kHold);
+  vm_.scans(3);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  ASSERT_TRUE(wait_idle(kAxis1));
+  EXPECT_FALSE(status(kAxis1, kHoldState));
+  EXPECT_FALSE(status(kAxis1, kPositionInvalid));
+  // Controlled: from 5,000 to Vs 1,000 steps/s at 10 steps/ms/s takes 1,200 steps (an immediate
+  // stop would take none).
+  EXPECT_GE(motor(kAxis1) - at_hold, 1'000);
+  EXPECT_EQ(position(kAxis1), motor(kAxis1));
 }
 
 // Blend: program 2 segments (first block + 2 segment blocks, handshake on LSW bits 4/5 and status
@@ -447,7 +508,8 @@ TEST_F(Motion3602, CE_B3_RunBlendWithReservedWordsNonZero) {
   EXPECT_EQ(motor(kAxis1), 0);
 }
 
-TEST_F(Motion3602, CE_B5_HoldDuringABlendFinishesItThenSelfClears) {
+// 3602-CE-08, first clause: Hold during a blend (CE-B5: the blend runs on, CE clears at its end).
+TEST_F(Motion3602, CE_B5_CE_08_HoldDuringABlendFinishesItThenSelfClears) {
   const std::array<std::int16_t, 6> first = {2, 0, 0, 10, 0, 0};
   ASSERT_TRUE(
       program_blend(kAxis1, {first, segment(20'000, 10'000, 20), segment(20'000, 5'000, 20)}));

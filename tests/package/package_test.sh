@@ -38,13 +38,16 @@ echo "$deb"
 dpkg-deb -c "$deb" | awk '{print $6}' >"$tmp/files"
 for f in ./usr/bin/stepmodd ./usr/bin/stepmodctl ./usr/include/stepmod/stepmod_image.h \
          ./usr/lib/systemd/system/stepmodd@.service ./usr/lib/udev/rules.d/60-stepmod-gpio.rules \
-         ./etc/stepmod/3601-sim.toml ./etc/security/limits.d/stepmod.conf \
+         ./etc/stepmod/3601-sim.toml ./etc/stepmod/3602-sim.toml ./etc/stepmod/3202-sim.toml \
+         ./usr/share/doc/stepmod/examples/3602-sim.toml ./etc/security/limits.d/stepmod.conf \
          ./usr/share/man/man8/stepmodd.8.gz ./usr/share/man/man1/stepmodctl.1.gz; do
   grep -qx "$f" "$tmp/files" || fail "$f not in the package"
 done
 dpkg-deb -f "$deb" Depends | grep -q adduser || fail "Depends lacks adduser"
 dpkg-deb -e "$deb" "$tmp/control"
-grep -qx /etc/stepmod/3601-sim.toml "$tmp/control/conffiles" || fail "examples are not conffiles"
+for f in 3601-sim 3601-board 3602-sim 3202-sim; do
+  grep -qx "/etc/stepmod/$f.toml" "$tmp/control/conffiles" || fail "example $f is not a conffile"
+done
 
 step "dpkg -i"
 had_gpio=0

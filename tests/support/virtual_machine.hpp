@@ -49,6 +49,17 @@ class VirtualMachine {
     stall_to_ = from + length;
   }
 
+  // Test seam (A32, 3602-IP-03): sets `axis`' net step count, the pulse thread's feedback that
+  // the position is reckoned from, as if that many steps had been output. Positions near 2^31
+  // take ~10^9 steps to reach (18 min at 1 MHz even in virtual time's edge-by-edge run); this
+  // puts the axis there at rest. The step history (capture, registration) does not follow: use
+  // it with the axis idle and for commands that need no capture. The daemon has no such call.
+  void set_step_count(unsigned axis, std::int64_t steps) {
+    // The feedback is the stack's own (non-const) object; only the pulse thread writes it, and
+    // in virtual time the pulse thread is this thread.
+    const_cast<rt::AxisFeedback&>(stack_->feedback(axis)).steps.store(steps);
+  }
+
   // Step (leading) edges written so far, per axis, and their times.
   const std::vector<Nanos>& step_times(unsigned axis) const { return step_times_[axis]; }
 

@@ -1,47 +1,21 @@
 // The stepmodctl program against images nobody scans: the command dialect is chosen from the
-// image header (3602/3202: exit 4, not implemented yet), and bad input never writes a word.
-#include <sys/wait.h>
+// image header, a command writes only its axis' / channel's words, and bad input never writes a
+// word (exit 2). tests/integration/stepmodctl_daemon_test.cpp runs it against a real daemon.
 #include <unistd.h>
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "ipc/client.hpp"
 #include "ipc/shm_image.hpp"
+#include "tests/support/ctl_run.hpp"
 
 namespace stepmod::tools {
 namespace {
 
-struct CtlRun {
-  int exit_status = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-CtlRun stepmodctl(const std::string& args) {
-  const std::string base = "/tmp/stepmodctl-test-" + std::to_string(::getpid());
-  const std::string cmd =
-      std::string(STEPMODCTL_PATH) + " " + args + " >" + base + ".out 2>" + base + ".err";
-  CtlRun r;
-  const int rc = std::system(cmd.c_str());
-  r.exit_status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-  r.out = slurp(base + ".out");
-  r.err = slurp(base + ".err");
-  std::remove((base + ".out").c_str());
-  std::remove((base + ".err").c_str());
-  return r;
-}
+using testing::CtlRun;
+using testing::stepmodctl;
 
 std::string image_name(const char* tag) {
   return std::string("ctl-") + tag + "-" + std::to_string(::getpid());
@@ -79,19 +53,74 @@ TEST(Stepmodctl, A3202RefusesWhatItLacksAndABadChannel) {
   EXPECT_EQ(reg.exit_status, 2) << reg.err;
   const CtlRun channel = stepmodctl("-n " + n + " -c 3 stop");
   EXPECT_EQ(channel.exit_status, 2) << channel.err;
+  const char* bad[] = {
+      "min-registration 100",                            // no registration move
+      "gpo on",                                          // no GPO
+      "configure --cw-estop",                            // the 3602's
+      "configure --active-low brake",                    // no such input
+      "move abs 4294967296 -s 1000 -a 1000 -d 1000",     // beyond a DINT
+      "blend program --file /nonexistent/profile.txt",   // unreadable
+      "blend program --file /dev/null --segment 1:2:3",  // one source
+      "blend program --segment 100:1000:1000 --segment 100:x:1000 --final-decel 1",
+      "resume -a 1000",  // all three or none
+  };
+  for (const char* args : bad) {
+    const CtlRun r = stepmodctl("-n " + n + " --timeout 200 -c 2 " + args);
+    EXPECT_EQ(r.exit_status, 2) << args << ": " << r.err;
+    EXPECT_FALSE(r.err.empty()) << args;
+  }
   EXPECT_EQ(outputs_of(n), ImageWords{});
 }
 
-TEST(Stepmodctl, CommandsOnA3602NotImplementedYetSayItStatusDecodes) {
+TEST(Stepmodctl, A3602CommandWritesOnlyItsAxisWordsStatusDecodesBoth) {
   const std::string n = image_name("3602");
   ipc::ShmImage img(n, {ModuleType::k3602, 2, 2, 16, 16});
-  const CtlRun stop = stepmodctl("-n " + n + " --axis 2 home + -s 5000 -a 10 -d 10");
-  EXPECT_EQ(stop.exit_status, 4) << stop.err;
-  EXPECT_NE(stop.err.find("3602"), std::string::npos) << stop.err;
-  EXPECT_EQ(outputs_of(n), ImageWords{});
+  // Nobody scans this image: the words are written, then the wait times out (exit 3).
+  const CtlRun r = stepmodctl("-n " + n + " --timeout 200 --axis 2 home + -s 5000 -a 10 -d 20");
+  EXPECT_EQ(r.exit_status, 3) << r.err;
+  const ImageWords w = outputs_of(n);
+  for (unsigned i = 0; i < 8; ++i) EXPECT_EQ(w.w[i], 0) << "axis 1 word " << i;
+  EXPECT_EQ(w.w[8], 0);  // the edge-triggered bit is released after the wait
+  EXPECT_EQ(w.w[10], 0);
+  EXPECT_EQ(w.w[11], 0);  // Find Home: words 2/3 reserved 0
+  EXPECT_EQ(w.w[12], 0);
+  EXPECT_EQ(w.w[13], 5'000);  // binary split: MSW 0, LSW 5000
+  EXPECT_EQ(w.w[14], 10);
+  EXPECT_EQ(w.w[15], 20);
   const CtlRun status = stepmodctl("-n " + n + " status");
   EXPECT_EQ(status.exit_status, 0) << status.err;
+  EXPECT_NE(status.out.find("3602 axis 1 in COMMAND mode"), std::string::npos) << status.out;
   EXPECT_NE(status.out.find("3602 axis 2 in COMMAND mode"), std::string::npos) << status.out;
+}
+
+TEST(Stepmodctl, A3602RefusesWhatItLacksAndWhatItsWordsCannotCarry) {
+  const std::string n = image_name("3602bad");
+  ipc::ShmImage img(n, {ModuleType::k3602, 2, 2, 16, 16});
+  const char* bad[] = {
+      "follow +",                                     // no encoder follower
+      "preset-encoder 5",                             // no encoder
+      "move rel 5 -s 1000 -a 10 -d 10 --encoder",     // no encoder move
+      "--axis 3 stop",                                // two axes
+      "--axis 1 --channel 2 stop",                    // contradicting unit
+      "move abs 4294967296 -s 1000 -a 10 -d 10",      // beyond int32
+      "move abs 5 -s 1000 -a 40000 -d 10",            // accel beyond a 16-bit word
+      "move abs 12x -s 1000 -a 10 -d 10",             // not a number
+      "configure --estop",                            // no E-stop terminal
+      "configure --cw-limit --cw-estop",              // limit or E-stop
+      "configure --active-low estop",                 // no estop input
+      "jog + -s 1000 -a 10 -d 10 --registration 0x",  // not a number
+      "blend program --segment 100:1000:10 --segment 100:1000:10 --final-decel 3000",  // > 2047
+      "blend program --segment 100:1000:10",  // no final decel
+      "blend run up",                         // direction
+      "resume -s 1000",                       // all three or none
+      "gpo maybe",                            // on or off
+  };
+  for (const char* args : bad) {
+    const CtlRun r = stepmodctl("-n " + n + " --timeout 200 " + args);
+    EXPECT_EQ(r.exit_status, 2) << args << ": " << r.err;
+    EXPECT_FALSE(r.err.empty()) << args;
+  }
+  EXPECT_EQ(outputs_of(n), ImageWords{});
 }
 
 TEST(Stepmodctl, A3602OnlyOptionOnA3601IsAUsageErrorAndWritesNothing) {
@@ -99,6 +128,12 @@ TEST(Stepmodctl, A3602OnlyOptionOnA3601IsAUsageErrorAndWritesNothing) {
   ipc::ShmImage img(n, {ModuleType::k3601, 1, 2, 8, 8});
   EXPECT_EQ(stepmodctl("-n " + n + " --axis 2 stop").exit_status, 2);
   EXPECT_EQ(stepmodctl("-n " + n + " configure --home --cw-estop").exit_status, 2);
+  EXPECT_EQ(stepmodctl("-n " + n + " gpo on").exit_status, 2);
+  EXPECT_EQ(stepmodctl("-n " + n +
+                       " blend program --segment 1:1000:10 --segment 1:1000:10 "
+                       "--final-decel 20000")
+                .exit_status,
+            2);  // beyond bits 13..0 of word 5
   EXPECT_EQ(outputs_of(n), ImageWords{});
 }
 

@@ -3,7 +3,8 @@
 // the gpio-sim board (scripts/vm/guest/board-setup.sh: BOARD_CHIP, GPIO_SIM_DIR, AX1_STEP, ...
 // in the environment), starts stepmodd (gpiod backend, --trace), drives it as a PLC does
 // (ipc::Client), drives the inputs through sim_gpioN/pull, samples the outputs through
-// sim_gpioN/value and checks everything against the daemon's VCD.
+// sim_gpioN/value and checks everything against the daemon's VCD (helpers shared with
+// modules_vm_test, the 3202/3602 cases: tests/vm/vm_harness.hpp).
 //
 //   daemon_vm_test errors     missing chip, line out of range, line in use: exit 1 naming them
 //   daemon_vm_test move       relative move: sampled outputs = VCD, exact pulse count
@@ -50,8 +51,7 @@
 #include "plc/plc_3601.hpp"
 #include "plc/shm_port.hpp"
 #include "tests/support/vcd_reader.hpp"
-
-extern char** environ;
+#include "tests/vm/vm_harness.hpp"
 
 namespace {
 
@@ -59,102 +59,7 @@ namespace m = stepmod::module::m3601;
 namespace st = m::status_msw;
 namespace cmd = m::cmd_msw;
 namespace cfg = m::cfg_msw;
-using std::chrono::milliseconds;
-using stepmod::testing::Vcd;
-using stepmod::testing::VcdChange;
-
-// ---- reporting ------------------------------------------------------------------------------
-
-struct Failure : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-struct Skip : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-std::string fmt(const char* f, ...) __attribute__((format(printf, 1, 2)));
-std::string fmt(const char* f, ...) {
-  char buf[1024];
-  va_list ap;
-  va_start(ap, f);
-  std::vsnprintf(buf, sizeof buf, f, ap);
-  va_end(ap);
-  return buf;
-}
-void info(const std::string& s) {
-  std::printf("%s\n", s.c_str());
-}
-[[noreturn]] void fail(const std::string& s) {
-  throw Failure(s);
-}
-void check(bool cond, const std::string& what) {
-  if (!cond) fail(what);
-}
-
-std::int64_t now_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return std::int64_t{ts.tv_sec} * 1'000'000'000 + ts.tv_nsec;
-}
-void sleep_ms(int ms) {
-  std::this_thread::sleep_for(milliseconds(ms));
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// ---- the board (environment of the VM case) -------------------------------------------------
-
-std::string env(const char* name) {
-  const char* v = std::getenv(name);
-  if (v == nullptr || *v == '\0')
-    fail(fmt("%s not set (run inside the test VM, . /vm/lib.sh)", name));
-  return v;
-}
-// Line offset of `key` of axis 1 on the board: AX1_STEP, ...
-unsigned line(const std::string& key) {
-  std::string var = "AX1_";
-  for (char c : key) var.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
-  return static_cast<unsigned>(std::stoul(env(var.c_str())));
-}
-
-// sim_gpioN/value and /pull of the gpio-sim chip.
-class SimLine {
- public:
-  explicit SimLine(unsigned offset) : offset_(offset) {
-    const std::string dir = env("GPIO_SIM_DIR") + "/sim_gpio" + std::to_string(offset);
-    value_fd_ = ::open((dir + "/value").c_str(), O_RDONLY | O_CLOEXEC);
-    pull_fd_ = ::open((dir + "/pull").c_str(), O_WRONLY | O_CLOEXEC);
-    if (value_fd_ < 0 || pull_fd_ < 0) fail("cannot open " + dir + "/{value,pull}");
-  }
-  ~SimLine() {
-    ::close(value_fd_);
-    ::close(pull_fd_);
-  }
-  SimLine(const SimLine&) = delete;
-  SimLine& operator=(const SimLine&) = delete;
-  int value() const {
-    char c = 0;
-    if (::pread(value_fd_, &c, 1, 0) != 1) fail(fmt("reading sim_gpio%u/value", offset_));
-    return c == '1' ? 1 : 0;
-  }
-  void pull(bool up) const {
-    const char* s = up ? "pull-up" : "pull-down";
-    if (::pwrite(pull_fd_, s, std::strlen(s), 0) < 0) {
-      fail(fmt("writing sim_gpio%u/pull: %s", offset_, std::strerror(errno)));
-    }
-  }
-  unsigned offset() const { return offset_; }
-
- private:
-  unsigned offset_;
-  int value_fd_ = -1;
-  int pull_fd_ = -1;
-};
+using namespace stepmod::vmtest;  // NOLINT: the harness is this program's vocabulary
 
 // ---- the config ------------------------------------------------------------------------------
 
@@ -193,129 +98,11 @@ std::string write_config(const ConfigOptions& o, const std::string& path) {
   return path;
 }
 
-// ---- stepmodd as a child process ---------------------------------------------------------------
-
-class Daemon {
+// stepmodd as a 3601 on the config these options describe.
+class Daemon3601 : public Daemon {
  public:
-  Daemon(const ConfigOptions& o, const std::string& tag, bool trace = true)
-      : name_(o.name),
-        config_(write_config(o, "/tmp/" + tag + ".toml")),
-        trace_("/tmp/" + tag + ".vcd"),
-        log_("/tmp/" + tag + ".log") {
-    ::unlink(trace_.c_str());
-    ::unlink(log_.c_str());
-    remove_image();  // of a daemon killed by an earlier case
-    std::vector<std::string> args{"stepmodd", "--config", config_};
-    if (trace) {
-      args.push_back("--trace");
-      args.push_back(trace_);
-    }
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, log_.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-    posix_spawn_file_actions_adddup2(&fa, 1, 2);
-    std::vector<char*> argv;
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    const int rc = posix_spawnp(&pid_, "stepmodd", &fa, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&fa);
-    if (rc != 0) fail(fmt("cannot start stepmodd: %s", std::strerror(rc)));
-    started_ = now_ns();
-  }
-  ~Daemon() {
-    if (pid_ > 0) {
-      ::kill(pid_, SIGKILL);
-      ::waitpid(pid_, nullptr, 0);
-      remove_image();  // a killed daemon cannot remove it
-    }
-  }
-  void remove_image() const {
-    ::unlink(("/dev/shm/stepmod." + name_).c_str());
-    ::unlink(("/dev/shm/stepmod." + name_ + ".sim").c_str());
-  }
-  Daemon(const Daemon&) = delete;
-  Daemon& operator=(const Daemon&) = delete;
-
-  // Waits for the image and the first scans; fails with the daemon's log if it exits.
-  void wait_ready(int timeout_ms = 20'000) {
-    const std::string shm = "/dev/shm/stepmod." + name_;
-    const std::int64_t end = now_ns() + std::int64_t{timeout_ms} * 1'000'000;
-    while (now_ns() < end) {
-      struct stat s {};
-      if (::stat(shm.c_str(), &s) == 0 && s.st_size == 4096) {
-        try {
-          stepmod::ipc::Client c(name_);
-          if (c.wait_scans(3, milliseconds(5'000))) {
-            info(fmt("stepmodd up after %lld ms",
-                     static_cast<long long>((now_ns() - started_) / 1'000'000)));
-            return;
-          }
-        } catch (const std::exception&) {
-          // created but not yet published (magic written last): try again
-        }
-      }
-      if (exited())
-        fail(fmt("stepmodd exited with status %d before it was ready: %s", status_,
-                 last_log_line().c_str()));
-      sleep_ms(10);
-    }
-    fail("stepmodd not ready in time: " + last_log_line());
-  }
-  bool exited() {
-    if (pid_ <= 0) return true;
-    int s = 0;
-    if (::waitpid(pid_, &s, WNOHANG) == pid_) {
-      status_ = WIFEXITED(s) ? WEXITSTATUS(s) : 128 + WTERMSIG(s);
-      pid_ = -1;
-      exit_time_ = now_ns();
-      return true;
-    }
-    return false;
-  }
-  // Waits for the exit (after a signal or on its own); the exit status, -1 on timeout.
-  int wait_exit(int timeout_ms = 10'000) {
-    const std::int64_t end = now_ns() + std::int64_t{timeout_ms} * 1'000'000;
-    while (now_ns() < end) {
-      if (exited()) return status_;
-      std::this_thread::sleep_for(std::chrono::microseconds(200));
-    }
-    return -1;
-  }
-  void signal(int sig) {
-    if (pid_ > 0) ::kill(pid_, sig);
-  }
-  int terminate(int timeout_ms = 10'000) {
-    signal(SIGTERM);
-    return wait_exit(timeout_ms);
-  }
-  std::string log() const { return read_text(log_); }
-  std::string last_log_line() const {
-    std::string l = log();
-    while (!l.empty() && l.back() == '\n') l.pop_back();
-    const auto p = l.rfind('\n');
-    return p == std::string::npos ? l : l.substr(p + 1);
-  }
-  void print_log() const {
-    std::istringstream in(log());
-    for (std::string l; std::getline(in, l);) info("  stepmodd: " + l);
-  }
-  Vcd trace() const { return stepmod::testing::read_vcd(trace_); }
-  // SIGTERM, the daemon's log into the case output, exit status 0 required, then its trace.
-  Vcd stop_and_trace() {
-    const int rc = terminate();
-    print_log();
-    check(rc == 0, fmt("stepmodd exit status %d", rc));
-    return trace();
-  }
-  const std::string& name() const { return name_; }
-  std::int64_t exit_time() const { return exit_time_; }
-
- private:
-  std::string name_, config_, trace_, log_;
-  pid_t pid_ = -1;
-  int status_ = -1;
-  std::int64_t started_ = 0;
-  std::int64_t exit_time_ = 0;
+  Daemon3601(const ConfigOptions& o, const std::string& tag, bool trace = true)
+      : Daemon(o.name, write_config(o, "/tmp/" + tag + ".toml"), tag, trace) {}
 };
 
 // ---- the PLC side -----------------------------------------------------------------------------
@@ -383,231 +170,6 @@ std::string status_names(std::uint16_t s) {
   return stepmod::plc::set_bit_names(s, m::kStatusMswBits);
 }
 
-// ---- sampling the outputs through sysfs
-// ----------------------------------------------------------
-
-struct Sample {
-  std::int64_t t0, t1;  // CLOCK_MONOTONIC before and after reading the values
-  std::uint8_t step, dir;
-};
-
-class Sampler {
- public:
-  // Samples every `period_ns` (sleeping in between, so that it does not take the one emulated
-  // CPU away from the daemon's threads); period 0: as fast as it can.
-  Sampler(unsigned step, unsigned dir, std::int64_t period_ns = 100'000) : step_(step), dir_(dir) {
-    samples_.reserve(2'000'000);
-    th_ = std::thread([this, period_ns] {
-      // Real-time, below the pulse thread (80): a woken sampler runs at once instead of waiting
-      // for a time slice; it sleeps most of the time, so the daemon's other threads still run.
-      sched_param sp{};
-      sp.sched_priority = 10;
-      pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp);
-      while (!stop_.load(std::memory_order_relaxed) && samples_.size() < samples_.capacity()) {
-        Sample s{};
-        s.t0 = now_ns();
-        s.step = static_cast<std::uint8_t>(step_.value());
-        s.dir = static_cast<std::uint8_t>(dir_.value());
-        s.t1 = now_ns();
-        samples_.push_back(s);
-        if (period_ns > 0) {
-          const timespec ts{0, static_cast<long>(period_ns)};
-          clock_nanosleep(CLOCK_MONOTONIC, 0, &ts, nullptr);
-        }
-      }
-    });
-  }
-  ~Sampler() { stop(); }
-  Sampler(const Sampler&) = delete;
-  Sampler& operator=(const Sampler&) = delete;
-  const std::vector<Sample>& stop() {
-    stop_ = true;
-    if (th_.joinable()) th_.join();
-    return samples_;
-  }
-
- private:
-  SimLine step_, dir_;
-  std::atomic<bool> stop_{false};
-  std::vector<Sample> samples_;
-  std::thread th_;
-};
-
-// ---- VCD helpers --------------------------------------------------------------------------------
-
-// The changes of a wire after its initial value (the $dumpvars entry at #0, which read_vcd lists
-// as the first change). stepmodd writes only real changes, so these alternate.
-std::vector<VcdChange> wire(const Vcd& v, const std::string& name) {
-  const auto it = v.wires.find(name);
-  if (it == v.wires.end() || it->second.empty()) return {};
-  return {it->second.begin() + 1, it->second.end()};
-}
-// Level of a wire at VCD time t (changes at exactly t count), given its initial level.
-int level_at(const std::vector<VcdChange>& w, std::int64_t t, int initial = 0) {
-  int l = initial;
-  for (const VcdChange& c : w) {
-    if (c.t > t) break;
-    l = c.level;
-  }
-  return l;
-}
-// Number of rising edges of `steps` at or before t.
-std::int64_t count_until(const std::vector<std::int64_t>& rising, std::int64_t t) {
-  return std::upper_bound(rising.begin(), rising.end(), t) - rising.begin();
-}
-
-// The VCD's time 0 is the daemon's start (CLOCK_MONOTONIC). A pull change on an input is stamped
-// by the kernel while the sysfs write runs: [before, after] of our clock brackets its VCD time,
-// which gives the VCD's origin within that bracket.
-struct Alignment {
-  std::int64_t lo = 0, hi = 0;  // monotonic = vcd + offset, offset in [lo, hi]
-};
-struct PullMark {
-  std::int64_t before, after;
-  bool up;
-};
-PullMark pull_marked(const SimLine& l, bool up) {
-  PullMark p{now_ns(), 0, up};
-  l.pull(up);
-  p.after = now_ns();
-  return p;
-}
-// Several marks: the origin lies in every bracket, so in their intersection.
-Alignment align_all(const Vcd& v, const std::string& wire_name,
-                    const std::vector<PullMark>& marks) {
-  const auto w = wire(v, wire_name);
-  check(w.size() >= marks.size(),
-        fmt("VCD: %s has %zu changes, drove %zu", wire_name.c_str(), w.size(), marks.size()));
-  Alignment a{INT64_MIN, INT64_MAX};
-  for (std::size_t i = 0; i < marks.size(); ++i) {
-    check(w[i].level == (marks[i].up ? 1 : 0), "VCD: mark edges of the wrong polarity");
-    a.lo = std::max(a.lo, marks[i].before - w[i].t);
-    a.hi = std::min(a.hi, marks[i].after - w[i].t);
-  }
-  check(a.lo <= a.hi, fmt("VCD: the %zu mark edges' times are not all inside their sysfs writes "
-                          "(not the kernel's timestamps?)",
-                          marks.size()));
-  return a;
-}
-Alignment align(const Vcd& v, const std::string& wire_name, const PullMark& p, std::size_t index) {
-  const auto w = wire(v, wire_name);
-  check(index < w.size(), fmt("VCD: %s has %zu changes, no change #%zu to align with",
-                              wire_name.c_str(), w.size(), index));
-  check(w[index].level == (p.up ? 1 : 0), "VCD: alignment edge of the wrong polarity");
-  return {p.before - w[index].t, p.after - w[index].t};
-}
-
-// Sampled levels against the VCD: every sample whose VCD-time window [t0, t1] (widened by the
-// alignment uncertainty and `slack`) holds no change of the wire must show the VCD's level.
-struct Agreement {
-  std::size_t compared = 0, ambiguous = 0, mismatched = 0;
-  std::string first_mismatch;
-};
-Agreement compare(const std::vector<Sample>& samples, const Vcd& v, const Alignment& a,
-                  std::int64_t slack, bool dir) {
-  const auto w = wire(v, dir ? "axis1.dir" : "axis1.step");
-  Agreement r;
-  std::size_t i = 0;  // first change after the window start
-  for (const Sample& s : samples) {
-    const std::int64_t from = s.t0 - a.hi - slack;
-    const std::int64_t to = s.t1 - a.lo + slack;
-    while (i < w.size() && w[i].t < from) ++i;
-    if (i < w.size() && w[i].t <= to) {
-      ++r.ambiguous;
-      continue;
-    }
-    const int expect = i == 0 ? 0 : w[i - 1].level;
-    const int got = dir ? s.dir : s.step;
-    ++r.compared;
-    if (got != expect) {
-      if (r.mismatched++ == 0) {
-        r.first_mismatch = fmt("sample at vcd %lld..%lld ns reads %d, VCD says %d",
-                               static_cast<long long>(s.t0 - a.hi),
-                               static_cast<long long>(s.t1 - a.lo), got, expect);
-      }
-    }
-  }
-  return r;
-}
-
-// VCD pulses the sampler cannot have missed: a sample lies wholly inside the pulse's high phase
-// and another wholly inside the low phase before it (in monotonic time, given the alignment and
-// `slack`). Each of them gives one sampled rising edge; pulses made shorter than the sampling
-// interval (a late leading edge pulls the trailing one in) can be missed.
-std::size_t observable_pulses(const std::vector<Sample>& samples, const Vcd& v, const Alignment& a,
-                              std::int64_t slack) {
-  const auto w = wire(v, "axis1.step");
-  // Is there a sample with [t0, t1] inside (from, to) (monotonic)?
-  const auto inside = [&](std::int64_t from, std::int64_t to) {
-    auto it = std::lower_bound(samples.begin(), samples.end(), from,
-                               [](const Sample& x, std::int64_t t) { return x.t0 <= t; });
-    for (; it != samples.end() && it->t0 < to; ++it) {
-      if (it->t1 < to) return true;
-    }
-    return false;
-  };
-  std::size_t n = 0;
-  std::int64_t prev_fall = INT64_MIN / 2;
-  for (std::size_t i = 0; i + 1 < w.size(); ++i) {
-    if (w[i].level != 1 || w[i + 1].level != 0) continue;
-    const std::int64_t r = w[i].t, f = w[i + 1].t;
-    const bool low = inside(prev_fall + a.hi + slack, r + a.lo - slack);
-    const bool high = inside(r + a.hi + slack, f + a.lo - slack);
-    if (low && high) ++n;
-    prev_fall = f;
-  }
-  return n;
-}
-
-std::size_t sampled_rising(const std::vector<Sample>& samples) {
-  std::size_t n = 0;
-  for (std::size_t i = 1; i < samples.size(); ++i) {
-    if (samples[i - 1].step == 0 && samples[i].step == 1) ++n;
-  }
-  return n;
-}
-
-// Longest gap between consecutive samples (to know sampling could not miss a pulse).
-std::int64_t max_sample_gap(const std::vector<Sample>& s, std::int64_t from, std::int64_t to) {
-  std::int64_t g = 0;
-  for (std::size_t i = 1; i < s.size(); ++i) {
-    if (s[i].t0 < from || s[i - 1].t1 > to) continue;
-    g = std::max(g, s[i].t1 - s[i - 1].t0);
-  }
-  return g;
-}
-
-// "pulse thread: N edges written, lateness p50 X ns, p99.9 Y ns, max Z ns" from the log.
-std::string lateness_line(const std::string& log) {
-  const auto p = log.find("lateness");
-  if (p == std::string::npos) return "(no lateness line)";
-  const auto e = log.find('\n', p);
-  return log.substr(p, e == std::string::npos ? std::string::npos : e - p);
-}
-long long lateness_max_ns(const std::string& log) {
-  const auto p = log.find("lateness");
-  if (p == std::string::npos) return -1;
-  const auto q = log.find("max ", p);
-  if (q == std::string::npos) return -1;
-  return std::atoll(log.c_str() + q + 4);
-}
-
-// ---- libgpiod: is a line free?
-// -------------------------------------------------------------------
-
-std::string line_user(unsigned offset) {
-  gpiod_chip* chip = gpiod_chip_open_lookup(env("BOARD_CHIP").c_str());
-  if (chip == nullptr) fail("cannot open " + env("BOARD_CHIP"));
-  gpiod_line* l = gpiod_chip_get_line(chip, offset);
-  std::string who;
-  if (l != nullptr && gpiod_line_is_used(l)) {
-    const char* c = gpiod_line_consumer(l);
-    who = c != nullptr ? c : "?";
-  }
-  gpiod_chip_close(chip);
-  return who;
-}
-
 constexpr std::uint16_t kMotionBits =
     st::kMovingCw | st::kMovingCcw | st::kAccelerating | st::kDecelerating;
 
@@ -615,7 +177,7 @@ constexpr std::uint16_t kMotionBits =
 // errors: the gpiod backend's errors, through stepmodd: exit status 1 and a message naming them.
 
 int run_to_exit(const ConfigOptions& o, const std::string& tag, std::string& log) {
-  Daemon d(o, tag, false);
+  Daemon3601 d(o, tag, false);
   const int rc = d.wait_exit(20'000);
   log = d.log();
   return rc;
@@ -681,7 +243,7 @@ std::string case_errors() {
   // A second stepmodd on the lines of a running one (another module name, same board).
   {
     ConfigOptions first;
-    Daemon a(first, "first");
+    Daemon3601 a(first, "first");
     a.wait_ready();
     ConfigOptions second;
     second.name = "vm2";
@@ -691,7 +253,7 @@ std::string case_errors() {
     const int rc = a.terminate();
     check(rc == 0, fmt("first stepmodd exit status %d", rc));
     // And once it has gone, the second one starts.
-    Daemon b(second, "second");
+    Daemon3601 b(second, "second");
     b.wait_ready();
     check(b.terminate() == 0, "second stepmodd did not exit 0");
   }
@@ -708,7 +270,7 @@ std::string case_move() {
   constexpr std::int64_t kSlack = 20'000;  // write of a line vs its VCD time, ns
   ConfigOptions o;
   o.step_pulse_ns = 1'000'000;  // 1 ms high (the most a config allows) of a 4 ms period
-  Daemon d(o, "move");
+  Daemon3601 d(o, "move");
   d.wait_ready();
   Plc plc(d.name());
   plc.configure(0, kSpeed);  // capture not used: its line carries the time marks
@@ -801,7 +363,7 @@ std::string case_move() {
 
 std::string case_estop() {
   ConfigOptions o;
-  Daemon d(o, "estop");
+  Daemon3601 d(o, "estop");
   d.wait_ready();
   Plc plc(d.name());
   plc.configure(cfg::kEStopUsed | cfg::kCwLimitUsed | cfg::kCcwLimitUsed, 500);
@@ -866,7 +428,7 @@ std::string case_capture() {
   ConfigOptions o;
   o.step_pulse_ns = 200'000;
   for (const char* k : {"enc_a", "enc_b", "enc_z"}) o.lines[k] = -1;  // no encoder wired
-  Daemon d(o, "capture");
+  Daemon3601 d(o, "capture");
   d.wait_ready();
   Plc plc(d.name());
   plc.configure(cfg::kCaptureUsed, kSpeed);
@@ -927,7 +489,7 @@ std::string case_burst() {
   constexpr int kSteps = 1'000, kSpeed = 500, kEdges = 400, kBursts = 3;
   ConfigOptions o;
   o.step_pulse_ns = 200'000;
-  Daemon d(o, "burst");
+  Daemon3601 d(o, "burst");
   d.wait_ready();
   Plc plc(d.name());
   plc.configure(cfg::kCaptureUsed, kSpeed);
@@ -1025,7 +587,7 @@ std::string case_sigterm() {
   std::vector<Sample> samples;
   std::int64_t t_term = 0, t_exit = 0;
   {
-    Daemon d(o, "sigterm");
+    Daemon3601 d(o, "sigterm");
     d.wait_ready();
     Plc plc(d.name());
     plc.configure(0, 500);
@@ -1082,7 +644,7 @@ std::string case_sigterm() {
   SimLine(dir_off).pull(false);
   check(SimLine(step_off).value() == 0 && SimLine(dir_off).value() == 0,
         "released lines do not follow the pull");
-  Daemon again(o, "sigterm2");
+  Daemon3601 again(o, "sigterm2");
   again.wait_ready();
   check(line_user(step_off) == "stepmod", "second stepmodd: step line not requested by 'stepmod'");
   check(again.terminate() == 0, "second stepmodd did not exit 0");
@@ -1157,7 +719,7 @@ std::string case_homing() {
   constexpr int kVs = 100, kVp = 300;
   ConfigOptions o;
   o.step_pulse_ns = 1'000'000;
-  Daemon d(o, "homing");
+  Daemon3601 d(o, "homing");
   d.wait_ready();
   Plc plc(d.name());
   plc.configure(0, kVs);

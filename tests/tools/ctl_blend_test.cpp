@@ -1,5 +1,5 @@
-// stepmodctl's 3202 blend profile input: options and the readable file.
-#include "tools/ctl_3202.hpp"
+// stepmodctl's blend profile input (every module): options and the readable file.
+#include "tools/ctl_blend.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,7 +17,7 @@ std::string write_temp(const std::string& text) {
   return path;
 }
 
-TEST(Ctl3202, BlendFileReadsSegmentsAndFinalDeceleration) {
+TEST(CtlBlend, BlendFileReadsSegmentsAndFinalDeceleration) {
   const std::string p = write_temp(
       "# two segments\nsegment = 6000:5000:100000:tri\nsegment = 0x10:16#20:1000\n"
       "final_decel = 100000\nfinal_type = trap   # trapezoidal\n");
@@ -33,19 +33,19 @@ TEST(Ctl3202, BlendFileReadsSegmentsAndFinalDeceleration) {
   EXPECT_EQ(b.final_type, plc::AccelType::kTrapezoidalS);
 }
 
-TEST(Ctl3202, BlendFileErrorsNameTheLine) {
+TEST(CtlBlend, BlendFileErrorsNameTheLine) {
   const std::string p = write_temp("segment = 1:2:3\nspeed = 5\n");
   try {
     read_blend_file(p);
     ADD_FAILURE() << "no error";
-  } catch (const BlendSyntaxError& e) {
+  } catch (const UsageError& e) {
     EXPECT_NE(std::string(e.what()).find(":2: unknown key 'speed'"), std::string::npos) << e.what();
   }
   std::remove(p.c_str());
-  EXPECT_THROW(read_blend_file("/nonexistent/blend.txt"), BlendSyntaxError);
-  EXPECT_THROW(parse_blend_segment("1:2"), BlendSyntaxError);
-  EXPECT_THROW(parse_blend_segment("1:2:x"), BlendSyntaxError);
-  EXPECT_THROW(parse_blend_segment("1:2:3:wave"), BlendSyntaxError);
+  EXPECT_THROW(read_blend_file("/nonexistent/blend.txt"), UsageError);
+  EXPECT_THROW(parse_blend_segment("1:2"), UsageError);
+  EXPECT_THROW(parse_blend_segment("1:2:x"), UsageError);
+  EXPECT_THROW(parse_blend_segment("1:2:3:wave"), UsageError);
 }
 
 }  // namespace

@@ -1,22 +1,17 @@
 #pragma once
-// stepmodctl's 3202 helpers: the blend profile from options or from a readable file, and the
-// configuration bits from the configure flags. The commands themselves are plc/plc_3202.hpp.
-#include <cstdint>
-#include <stdexcept>
+// stepmodctl's blend profile input, the same for every module: segments from options or a
+// readable file. The ranges each module's words can carry are checked by its dialect
+// (tools/ctl_36xx.cpp, ctl_3202.cpp); here only "is it a 32-bit number".
 #include <string>
 #include <vector>
 
 #include "plc/profile.hpp"
+#include "tools/ctl_args.hpp"
 
 namespace stepmod::tools::ctl {
 
-struct BlendSyntaxError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
 // One segment "LENGTH:SPEED:ACCEL[:const|tri|trap]" (numbers decimal, 0x.. or 16#..).
 plc::BlendSegment parse_blend_segment(const std::string& s);
-plc::AccelType parse_accel_type(const std::string& s);
 
 // A blend profile file: one "key = value" per line; '#' at the start of a line or after a blank
 // starts a comment (16#.. stays a number):
@@ -24,5 +19,10 @@ plc::AccelType parse_accel_type(const std::string& s);
 //   final_decel = 100000
 //   final_type = trap                 (const, tri or trap; default const)
 plc::BlendProfile read_blend_file(const std::string& path);
+
+// `blend program`'s options: the file if one is named (then no --segment), else the segments.
+plc::BlendProfile blend_from_options(const std::string& file,
+                                     const std::vector<std::string>& segments,
+                                     const std::string& final_decel, const std::string& final_type);
 
 }  // namespace stepmod::tools::ctl

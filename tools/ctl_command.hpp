@@ -1,0 +1,70 @@
+#pragma once
+// One stepmodctl command as parsed from the command line, before any module dialect judges it:
+// the verb and its options as the user wrote them (numbers still text, so each dialect checks
+// them against what its own words can carry). stepmodctl.cpp fills it; tools/ctl_3601.cpp,
+// ctl_3602.cpp and ctl_3202.cpp turn it into the PLC library's calls (plc/).
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace stepmod::tools::ctl {
+
+enum class Verb {
+  kConfigure,
+  kMove,
+  kJog,
+  kHome,
+  kHold,
+  kResume,
+  kStop,
+  kPreset,
+  kPresetEncoder,
+  kReset,
+  kMinRegistration,
+  kBlendProgram,
+  kBlendRun,
+  kFollow,
+  kWaitIdle,
+  kGpo,
+};
+
+// configure's flags, one per configuration bit of some module.
+struct ConfigureArgs {
+  bool capture = false, external = false, home = false, estop = false, cw_limit = false,
+       ccw_limit = false, proximity = false, encoder = false, diagnostic = false, cw_ccw = false,
+       marker = false;
+  bool cw_estop = false, ccw_estop = false, disable = false;  // 3602 / 3202
+  std::vector<std::string> active_low;                        // input names (ctl_args.hpp)
+  std::string start_speed = "1000";
+  std::string homing_timeout;  // 3602 only; empty: not given
+};
+
+// --speed/--accel/--decel/--scurve; empty text: not given.
+struct ProfileArgs {
+  std::string speed, accel, decel, scurve;
+  bool given() const { return !speed.empty() || !accel.empty() || !decel.empty(); }
+};
+
+struct Command {
+  Verb verb = Verb::kConfigure;
+  unsigned unit = 0;  // axis (3602) or channel (3202), 0-based; 0 on a 3601
+  ConfigureArgs configure;
+  std::string kind;           // move: abs | rel
+  std::string value;          // TARGET / POSITION / VALUE (empty: 0) / DISTANCE
+  bool encoder_move = false;  // move --encoder
+  ProfileArgs profile;
+  std::string direction;     // jog / home / blend run: + or -
+  double jog_seconds = 1.0;  // jog --for
+  double wait_seconds = 60;  // wait-idle --max
+  std::string registration;  // jog --registration (empty: a plain jog)
+  // blend program
+  std::vector<std::string> segments;
+  std::string final_decel, final_type, blend_file;
+  // follow
+  std::string follow_sense;
+  std::int32_t follow_multiplier = 1, follow_divisor = 1, follow_accel = 0, follow_decel = 0;
+  bool gpo_on = false;
+};
+
+}  // namespace stepmod::tools::ctl

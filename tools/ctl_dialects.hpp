@@ -1,0 +1,26 @@
+#pragma once
+// stepmodctl's module dialects: a parsed command (ctl_command.hpp) → the PLC library's calls
+// for the module the image belongs to. Each checks every option against its module's words
+// first and throws UsageError before anything is written; then it runs the command over `port`
+// and returns its outcome. One file per module: ctl_3601.cpp, ctl_3602.cpp, ctl_3202.cpp.
+#include <chrono>
+
+#include "ipc/client.hpp"
+#include "plc/port.hpp"
+#include "plc/profile.hpp"
+#include "tools/ctl_command.hpp"
+
+namespace stepmod::tools::ctl {
+
+plc::Outcome run_3601(const Command& c, plc::Port& port, std::chrono::milliseconds timeout);
+plc::Outcome run_3602(const Command& c, plc::Port& port, std::chrono::milliseconds timeout);
+// The 3202's blend profile travels as a message through the image's mailbox (`client`).
+plc::Outcome run_3202(const Command& c, plc::Port& port, ipc::Client& client,
+                      std::chrono::milliseconds timeout);
+
+// The seconds of jog --for / wait-idle --max as a duration.
+inline std::chrono::milliseconds millis(double seconds) {
+  return std::chrono::milliseconds(static_cast<long>(seconds * 1000));
+}
+
+}  // namespace stepmod::tools::ctl
