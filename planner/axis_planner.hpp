@@ -43,7 +43,8 @@ class AxisPlanner {
   bool active() const noexcept { return m_.active; }            // a motion is still being planned
   std::uint32_t epoch() const noexcept { return m_.epoch; }     // newest motion's epoch
   std::int64_t planned_steps() const noexcept { return m_.k; }  // steps generated so far
-  // Speed at the newest planned step (steps/s), 0 when idle.
+  // Speed at the newest planned step (steps/s; a path motion: the path's vector speed), 0 when
+  // idle.
   double frontier_speed() const noexcept;
   // Steps of the newest motion planned at or before t (from the recent history).
   std::int64_t planned_steps_at(Nanos t) const noexcept;
