@@ -321,12 +321,19 @@ void AxisPlanner::stop_after(std::uint32_t epoch, const StopAfterSpec& c) noexce
   replan_to_end(end, profile_.decel(), false);
 }
 
-void AxisPlanner::path_step_once() noexcept {
+bool AxisPlanner::path_step_once(Nanos horizon) noexcept {
   Motion& m = m_;
+  Nanos ns = m.origin + to_ns(path_.peek().t);
+  if (ns < m.tk_ns) ns = m.tk_ns;
+  if (ns > horizon) {
+    // An axis that crawls near its coordinate's reversal may wait long for its next crossing:
+    // planned now, that step could not be replanned by a hold any more.
+    out_.end_pulse(ns);
+    path_next_ns_ = ns;
+    return false;
+  }
   const std::int64_t k = m.k + 1;
   const PathSource::Step st = path_.take();
-  Nanos ns = m.origin + to_ns(st.t);
-  if (ns < m.tk_ns) ns = m.tk_ns;
   if (st.dir != m.dir) {
     // The coordinate reversed (an arc's extreme): the open pulse ends, the direction line turns
     // and settles before this step.
@@ -341,6 +348,7 @@ void AxisPlanner::path_step_once() noexcept {
     out_.end(ns);
     m.active = false;
   }
+  return true;
 }
 
 void AxisPlanner::step_once() noexcept {
@@ -370,13 +378,19 @@ Nanos AxisPlanner::fill(Nanos now) noexcept {
     if (m_.follow) {
       if (!follow_step()) break;  // at rest on the target: the next target wakes us
     } else if (m_.path) {
-      path_step_once();
+      if (!path_step_once(horizon)) break;  // its next step lies beyond the horizon
     } else {
       step_once();
     }
     out_.flush(horizon);
   }
-  if (out_.staged_empty()) return now + kIdleServiceInterval;
+  if (out_.staged_empty()) {
+    if (m_.active && m_.path && !m_.held) {
+      // The path's next step, left unplanned: plan it when half the lookahead is left before it.
+      return std::max(now + kCutPollNs, path_next_ns_ - opt_.lookahead_ns / 2);
+    }
+    return now + kIdleServiceInterval;
+  }
   const Nanos head = out_.head_t();
   if (head > horizon) {
     // Come back when half the lookahead is left before it: refills happen in batches.

@@ -43,7 +43,8 @@ class AxisPlanner {
   bool active() const noexcept { return m_.active; }            // a motion is still being planned
   std::uint32_t epoch() const noexcept { return m_.epoch; }     // newest motion's epoch
   std::int64_t planned_steps() const noexcept { return m_.k; }  // steps generated so far
-  // Speed at the newest planned step (steps/s), 0 when idle.
+  // Speed at the newest planned step (steps/s; a path motion: the path's vector speed), 0 when
+  // idle.
   double frontier_speed() const noexcept;
   // Steps of the newest motion planned at or before t (from the recent history).
   std::int64_t planned_steps_at(Nanos t) const noexcept;
@@ -62,10 +63,16 @@ class AxisPlanner {
   bool follows_path(std::uint32_t epoch) const noexcept {
     return path_state_ != PathState::kNone && epoch == last_motion_epoch_;
   }
-  // The newest step this axis has planned of its path (none: min).
+  // The newest step this axis has planned of the path it follows (none: min), also when that
+  // was its last: a path step is planned (committed to the emitter) only once it lies within the
+  // lookahead, so this is never more than a lookahead ahead of the time it was planned at.
   Nanos path_frontier() const noexcept {
-    return m_.active && m_.path ? m_.tk_ns : std::numeric_limits<Nanos>::min();
+    return m_.path && path_state_ != PathState::kNone && m_.k > 0
+               ? m_.tk_ns
+               : std::numeric_limits<Nanos>::min();
   }
+  // The axis is still planning the steps of a path motion.
+  bool path_active() const noexcept { return m_.active && m_.path; }
   // Stops the path along it from time t (>= every step either axis has planned): the path's
   // profile ramps down to vs with `ramp` from t, this axis makes the steps up to the point where
   // it stops and the path stays resumable from there.
@@ -113,7 +120,9 @@ class AxisPlanner {
   // Replans the profile from the newest step to end on step `end` (ProfileSource::replan_to_end).
   void replan_to_end(std::int64_t end, const Ramp& ramp, bool exact_ramp) noexcept;
   void step_once() noexcept;
-  void path_step_once() noexcept;
+  // Plans the path's next step if it lies within `horizon`; false (and the open pulse ended) if
+  // it lies beyond: it stays unplanned, so a hold can still replan it (path_wake_ns_).
+  bool path_step_once(Nanos horizon) noexcept;
   // Sets up a path start or resume in `m`; false: it makes no step (a resume without a path).
   void prepare_path(const Command& c, Motion& m) noexcept;
   // Another motion or an abort: the path this axis followed cannot be resumed any more (on
@@ -151,6 +160,7 @@ class AxisPlanner {
   PathState path_state_ = PathState::kNone;
   std::uint32_t path_id_ = 0;  // the group id of the newest path motion
   PathBook* book_ = nullptr;
+  Nanos path_next_ns_ = 0;  // the path's next step, left unplanned beyond the horizon
 };
 
 }  // namespace stepmod::planner

@@ -70,12 +70,15 @@ void EdgeEmitter::turn(Direction dir) noexcept {
                                           (base_flags_ & rt::edge_flag::kReplacement));
 }
 
+void EdgeEmitter::end_pulse(Nanos t_next) noexcept {
+  if (!pulse_open_) return;
+  const Nanos w = std::max<Nanos>(1, std::min(timing_.step_pulse_ns, (t_next - step_t_) / 2));
+  stage(make_edge(step_t_ + w, line_, 0, 0, step_flags_));
+  pulse_open_ = false;
+}
+
 Nanos EdgeEmitter::reverse(Direction dir, Nanos t_next, rt::Phase phase) noexcept {
-  if (pulse_open_) {
-    const Nanos w = std::max<Nanos>(1, std::min(timing_.step_pulse_ns, (t_next - step_t_) / 2));
-    stage(make_edge(step_t_ + w, line_, 0, 0, step_flags_));
-    pulse_open_ = false;
-  }
+  end_pulse(t_next);
   turn(dir);
   if (!direction_pending()) return t_next;  // CW/CCW format: the other line, no set-up
   const Nanos td = std::max(last_t_, t_next - timing_.dir_setup_ns);

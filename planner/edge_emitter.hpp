@@ -54,6 +54,9 @@ class EdgeEmitter {
   // Step k of the motion at t: ends the previous step's pulse (its full width, or half the
   // period if shorter) and starts this one; the pulse stays open until the next step or end().
   void step(Nanos t, rt::Phase phase, std::int64_t k) noexcept;
+  // Ends the open pulse now (its full width, or half the time to the next step at t_next if
+  // shorter): the next step is not planned yet (a path axis waiting for its next crossing).
+  void end_pulse(Nanos t_next) noexcept;
   // The motion turns between two steps (a path coordinate's reversal): the open pulse ends (its
   // full width, or half the time to the next step if shorter), later steps pulse the line of
   // `dir`, and in step/direction format the direction line changes. Returns the earliest time of

@@ -14,8 +14,11 @@
 //         in the integer world, where |r1 - r0| < 1).
 // A coordinate of an arc reverses where theta - off_q is a multiple of pi (the extremes of the
 // circle through the point; the spiral moves the true extreme by (r1 - r0) / (r |sweep|) rad,
-// which changes the coordinate there by less than 1e-6 step for r >= 1). Between two reversals
-// it is monotone: a *segment*. The segments are found once per path (at most 4 for a full turn).
+// where the coordinate differs from its value at the circle's extreme by
+// (r1 - r0)^2 / (2 r sweep^2): with |r1 - r0| < 1, below 0.01 step once r sweep^2 > 50, e.g. a
+// quarter turn of radius 20; only arcs a few steps long can spiral more, and they still end
+// exactly). Between two reversals the coordinate is monotone: a *segment*. The segments are
+// found once per path (at most 3 for a full turn).
 #include <array>
 #include <cstddef>
 #include <cstdint>

@@ -28,7 +28,10 @@
 //
 // Hold (PathHold): from a time T both axes replan s(t) alike (the law up to T kept, then the
 // ramp down to vs), so both stop at the same point of the path; resume continues from there to
-// the path's end with a new profile. Progress (the newest step's time) belongs to the caller.
+// the path's end with a new profile. T is at or after every step either axis has planned, and the
+// axis planner plans a path step only once it lies within the lookahead (peek() before take()),
+// so T is never more than a lookahead away even when an axis waits long for its next crossing.
+// Progress (the newest step's time) belongs to the caller.
 #include <cstddef>
 #include <cstdint>
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <limits>
 
 #include "planner/axis_planner.hpp"
 #include "planner/wakeup.hpp"
@@ -60,7 +59,7 @@ void Planner::apply(const Command& c, Nanos now) {
     // its Hold state, when both have stopped): the axes are not at the stop point the resume
     // would start from, so the path is given up rather than jump there.
     for (auto& a : axes_) {
-      if (a->path_id() == paths_.held && a->path_frontier() != std::numeric_limits<Nanos>::min()) {
+      if (a->path_id() == paths_.held && a->path_active()) {
         paths_.broken = paths_.held;
         paths_.held = 0;
         break;

@@ -215,7 +215,7 @@ TEST(PathArc, CwCcwPulseFormatTurnsOnTheOtherLine) {
 TEST(PathArc, RandomLinesAndArcsEndExactlyWithinOneStep) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
-  for (int i = 0; i < 150; ++i) {
+  for (int i = 0; i < 100; ++i) {
     const double rad = 1.0 + 3'000.0 * uni(rng) * uni(rng);
     const double a0 = 2 * kPi * uni(rng);
     const double sweep = (uni(rng) < 0.5 ? -1 : 1) * (0.05 + (2 * kPi - 0.05) * uni(rng));
@@ -238,6 +238,32 @@ TEST(PathArc, RandomLinesAndArcsEndExactlyWithinOneStep) {
       expect_arc(
           arc(-rad * std::cos(a0), -rad * std::sin(a0), sweep, 1'000, 40'000, 400'000, 400'000));
     }
+  }
+}
+
+TEST(PathArc, ShortStronglySpiralledArcsEndExactlyWithinOneStep) {
+  // End points a few steps from the start, centres up to 60 steps away whose distances to S and
+  // E round alike (the module's integer world): |r1 - r0| up to a step over a short sweep, both
+  // the short and the long way round.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  for (int n = 0; n < 200;) {
+    const double cx = 60 * uni(rng), cy = 60 * uni(rng);
+    const std::int64_t ex = std::llround(4 * uni(rng)), ey = std::llround(4 * uni(rng));
+    const double r0 = std::hypot(cx, cy);
+    const double r1 = std::hypot(static_cast<double>(ex) - cx, static_cast<double>(ey) - cy);
+    if (std::llround(r0) != std::llround(r1) || (ex == 0 && ey == 0)) continue;
+    double sweep =
+        std::remainder(std::atan2(static_cast<double>(ey) - cy, static_cast<double>(ex) - cx) -
+                           std::atan2(-cy, -cx),
+                       2 * kPi);
+    if (n % 2 == 1) sweep += sweep > 0 ? -2 * kPi : 2 * kPi;
+    PathSpec p = arc(cx, cy, sweep, 1'000, 50'000, 500'000, 500'000);
+    p.end_x = ex;
+    p.end_y = ey;
+    p.sweep = sweep;
+    expect_arc(p);
+    ++n;
   }
 }
 

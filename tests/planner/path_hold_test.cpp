@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <random>
 #include <vector>
 
 #include "path_test_util.hpp"
@@ -211,6 +212,71 @@ TEST(PathHold, AnAxisWithoutStepsIsHeldAndResumedWithTheOther) {
   EXPECT_EQ(net(r, 0), 0);
   EXPECT_EQ(net(r, 1), -20'000);
   EXPECT_GT(test::steps_of(r, 1, 2), 0);
+}
+
+TEST(PathHold, AnAxisWhoseNextCrossingIsFarAwayMakesNoStepAfterTheHold) {
+  // Y's only step is the end point's: with the path held halfway, Y must not make it until the
+  // resume (a step planned long before its time could not be replanned by the hold).
+  PathRig r;
+  const PathSpec p = line(4'000, 1, 1'000, 20'000, 200'000, 200'000);
+  ASSERT_TRUE(r.start(p));
+  r.run_for(100 * kNsPerMs);
+  ASSERT_TRUE(r.ports[0]->hold_path(kHoldRamp));
+  ASSERT_TRUE(r.run_until_done());
+  EXPECT_LT(net(r, 0), 4'000);
+  EXPECT_EQ(test::steps_of(r, 1, 1), 0);
+  ASSERT_TRUE(
+      r.resume(20'000, Ramp{200'000, AccelShape::kConstant}, Ramp{200'000, AccelShape::kConstant}));
+  ASSERT_TRUE(r.run_until_done());
+  EXPECT_EQ(test::steps_of(r, 1, 2), 1);
+  EXPECT_EQ(net(r, 0), 4'000);
+  // Every pulse keeps its width, also the ones followed by a long wait.
+  for (unsigned a = 0; a < 2; ++a) {
+    Nanos rise = -1;
+    for (const rt::Edge& e : r.edges[a]) {
+      if (e.line != OutputLine::kStep) continue;
+      if (e.level == 1) rise = e.t;
+      if (e.level == 0 && rise >= 0) {
+        EXPECT_LE(e.t - rise, AxisTiming{}.step_pulse_ns) << "axis " << a;
+        rise = -1;
+      }
+    }
+  }
+}
+
+TEST(PathHold, RandomHoldsAndResumesEndExactlyWithinOneStep) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  for (int i = 0; i < 60; ++i) {
+    SCOPED_TRACE(::testing::Message() << "case " << i);
+    const double rad = 2 + 800 * uni(rng);
+    const double a0 = 2 * kPi * uni(rng);
+    const double sweep = (uni(rng) < 0.5 ? -1 : 1) * 2 * kPi * std::max(0.02, uni(rng));
+    const PathSpec p =
+        i % 4 == 0 ? line(std::llround(3'000 * (uni(rng) - 0.5)),
+                          std::llround(3'000 * (uni(rng) - 0.5)), 500, 30'000, 3e5, 3e5)
+                   : arc(-rad * std::cos(a0), -rad * std::sin(a0), sweep, 500, 30'000, 3e5, 3e5);
+    PathRig r;
+    ASSERT_TRUE(r.start(p));
+    for (int h = 0; h < 1 + i % 3; ++h) {
+      r.run_for(static_cast<Nanos>(uni(rng) * 80) * kNsPerMs);
+      ASSERT_TRUE(r.ports[h % 2]->hold_path(Ramp{1e5 + 1e6 * uni(rng), AccelShape::kConstant}));
+      ASSERT_TRUE(r.run_until_done());
+      ASSERT_TRUE(r.resume(10'000 + 40'000 * uni(rng), Ramp{3e5, AccelShape::kTriangularS},
+                           Ramp{3e5, AccelShape::kTrapezoidalS}));
+    }
+    ASSERT_TRUE(r.run_until_done());
+    EXPECT_EQ(net(r, 0), p.end_x);
+    EXPECT_EQ(net(r, 1), p.end_y);
+    EXPECT_LT(test::max_path_error(test::rebuild(r), p), 1.0);
+    if (p.shape == PathShape::kArc) {
+      std::int64_t sx = 0, sy = 0;
+      for (const rt::Edge& e : r.edges[0]) sx += e.dpos != 0;
+      for (const rt::Edge& e : r.edges[1]) sy += e.dpos != 0;
+      EXPECT_EQ(sx, test::arc_crossings(p, false));
+      EXPECT_EQ(sy, test::arc_crossings(p, true));
+    }
+  }
 }
 
 TEST(PathHold, TwoHoldsAndResumesOfAFullCircleEndExactlyOnItsStart) {
