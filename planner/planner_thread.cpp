@@ -7,15 +7,11 @@
 
 namespace stepmod::planner {
 
-int PlannerThread::start(int fifo_priority) {
-  if (thread_.joinable()) return 0;
+void PlannerThread::start() {
+  if (thread_.joinable()) return;
   stop_.store(false, std::memory_order_relaxed);
   thread_ = std::thread([this] { run(); });
   pthread_setname_np(thread_.native_handle(), "stepmod-plan");
-  if (fifo_priority <= 0) return 0;
-  sched_param sp{};
-  sp.sched_priority = fifo_priority;
-  return pthread_setschedparam(thread_.native_handle(), SCHED_FIFO, &sp);
 }
 
 void PlannerThread::stop() noexcept {

@@ -15,12 +15,7 @@ class PlannerThread {
   PlannerThread(const PlannerThread&) = delete;
   PlannerThread& operator=(const PlannerThread&) = delete;
 
-  // fifo_priority > 0: the thread runs SCHED_FIFO at that priority. The pulse thread lives on
-  // what this thread puts in the rings: as a normal thread it waits behind every busy process on
-  // a loaded machine (seen: step output stalled for 0.8 s on a VM at load 6, and a path's axes
-  // going out in turns). Returns 0, or the errno of a refused priority (the thread then runs as a
-  // normal thread).
-  int start(int fifo_priority = 0);
+  void start();
   // Wakes the thread and joins it. Idempotent.
   void stop() noexcept;
   bool running() const noexcept { return thread_.joinable(); }

@@ -182,16 +182,8 @@ bool Daemon::run(const std::atomic<bool>& stop) {
     spdlog::warn("cannot pin the pulse thread to CPU {} ({})", po.cpu,
                  std::strerror(st.affinity_errno));
   }
-  // The planner thread refills the pulse thread's rings a few ms ahead: real-time as well, below
-  // the pulse and control threads (its work per wake-up is bounded by the lookahead).
   planner::PlannerThread planner(d.stack->planner());
-  const int planner_priority = std::max(1, d.config.rt_priority - 20);
-  if (const int rc = planner.start(planner_priority); rc != 0) {
-    spdlog::warn(
-        "planner thread: SCHED_FIFO priority {} refused ({}); the pulse thread may run out of "
-        "edges under load",
-        planner_priority, std::strerror(rc));
-  }
+  planner.start();
 
   spdlog::info("module {} '{}' running: /dev/shm/stepmod.{}, {} backend, scan {} us",
                static_cast<unsigned>(d.config.type), d.config.name, d.config.name,
