@@ -371,7 +371,10 @@ void AxisPlanner::step_once() noexcept {
 Nanos AxisPlanner::fill(Nanos now) noexcept {
   check_abort();
   now_ = std::max(now_, now);
-  if (!resolve_cut(false)) return now + kCutPollNs;  // which edges to push is not known yet
+  if (!resolve_cut(false)) {
+    publish_refill(0);  // which edges to push is not known yet: they may come any time
+    return now + kCutPollNs;
+  }
   const Nanos horizon = now + opt_.lookahead_ns;
   out_.flush(horizon);
   while (m_.active && !m_.held && out_.staged_empty()) {
@@ -387,17 +390,26 @@ Nanos AxisPlanner::fill(Nanos now) noexcept {
   if (out_.staged_empty()) {
     if (m_.active && m_.path && !m_.held) {
       // The path's next step, left unplanned: plan it when half the lookahead is left before it.
+      // A turn writes the direction line up to dir_setup_ns before that step (reverse()).
+      const bool turns = path_.peek().dir != m_.dir;
+      publish_refill(turns ? path_next_ns_ - timing_.dir_setup_ns : path_next_ns_);
       return std::max(now + kCutPollNs, path_next_ns_ - opt_.lookahead_ns / 2);
     }
+    publish_refill(0);  // nothing planned ahead (idle, or a follow motion waiting for a target)
     return now + kIdleServiceInterval;
   }
   const Nanos head = out_.head_t();
+  publish_refill(head);  // staged edges go out in time order: none before the head
   if (head > horizon) {
     // Come back when half the lookahead is left before it: refills happen in batches.
     return head - opt_.lookahead_ns / 2;
   }
   // Ring full: about half of what it holds has run by the midpoint to its newest edge.
   return now + std::max<Nanos>(10 * kNsPerUs, (out_.last_pushed_t() - now) / 2);
+}
+
+void AxisPlanner::publish_refill(Nanos t) noexcept {
+  if (control_ != nullptr) control_->refill_at.store(t, std::memory_order_release);
 }
 
 void AxisPlanner::follow_update(std::uint32_t epoch, const FollowSpec& f) noexcept {

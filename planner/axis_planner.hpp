@@ -123,6 +123,9 @@ class AxisPlanner {
   // Plans the path's next step if it lies within `horizon`; false (and the open pulse ended) if
   // it lies beyond: it stays unplanned, so a hold can still replan it (path_wake_ns_).
   bool path_step_once(Nanos horizon) noexcept;
+  // Tells the pulse thread (rt::AxisControl::refill_at) that this axis' next refilled edge lies
+  // at or after t (0: unknown), so that it need not poll an empty ring before then.
+  void publish_refill(Nanos t) noexcept;
   // Sets up a path start or resume in `m`; false: it makes no step (a resume without a path).
   void prepare_path(const Command& c, Motion& m) noexcept;
   // Another motion or an abort: the path this axis followed cannot be resumed any more (on

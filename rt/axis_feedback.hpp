@@ -49,6 +49,14 @@ struct AxisControl {
   // Controlled stop at its trigger: between the planner thread and the pulse thread (not the
   // module): replaces a motion's queued edges from a time on (rt/edge_cut.hpp).
   EdgeCut cut;
+  // Planner -> pulse thread: the planner's next edge for this axis (pushed by a refill, not by a
+  // command) lies at or after this time (0: any time). While the axis' ring is empty in the
+  // middle of a motion, the pulse thread need not poll for that edge before then: a path axis
+  // waits for its next crossing with an empty ring by design (planner/path_source.hpp), and the
+  // 50 us poll of a starved ring cost a one-CPU VM its whole CPU (a circle's edges 170 ms late).
+  // Stored (release) after the edges pushed before it; read (acquire) before the ring is peeked.
+  // Edges a command causes sooner come with the doorbell (PulseThread::ring).
+  std::atomic<std::int64_t> refill_at{0};
 };
 
 // Time -> step count, for events stamped in the past (capture input, registration trigger).

@@ -31,6 +31,7 @@ Nanos PulseEngine::next_due() noexcept {
   Nanos best = kNever;
   int best_axis = -1;
   bool starved = false;
+  Nanos dry_until = kNever;
   for (unsigned axis = 0; axis < axes_.size(); ++axis) {
     const AxisLink& link = axes_[axis];
     if (link.control != nullptr &&
@@ -43,8 +44,15 @@ Nanos PulseEngine::next_due() noexcept {
     drop_stale(axis);
     if (link.control != nullptr) link.control->cut.before_next(*link.edges);  // edge_cut.hpp
     drop_beyond_limit(axis);
+    // Before the peek (AxisControl::refill_at): a promise that came with a refill also makes the
+    // edges pushed before it visible.
+    const Nanos refill_at =
+        link.control != nullptr ? link.control->refill_at.load(std::memory_order_acquire) : 0;
     const Edge* e = link.edges->peek();
-    if (e == nullptr && in_motion_[axis] != 0) starved = true;
+    if (e == nullptr && in_motion_[axis] != 0) {
+      starved = true;
+      dry_until = std::min(dry_until, refill_at);
+    }
     // Strictly earlier only: on a tie the lower axis goes first, a stable order for tests.
     if (e != nullptr) {
       const Nanos t = due(axis, *e);
@@ -56,6 +64,7 @@ Nanos PulseEngine::next_due() noexcept {
   }
   next_axis_ = best_axis;
   starved_ = starved;
+  dry_until_ = dry_until;
   return best;
 }
 

@@ -43,6 +43,10 @@ class PulseEngine {
   // As of the last next_due(): some axis is in a motion (its last executed motion edge was not
   // the motion's last) and has no edge queued: the planner is behind, an edge may come any time.
   bool starved() const noexcept { return starved_; }
+  // As of the last next_due(): the earliest time at which an axis whose ring is empty in the
+  // middle of a motion may get its next edge (AxisControl::refill_at); kNever if no such axis.
+  // Until then (less the spin) its empty ring is by plan: starved() may poll from then on.
+  Nanos dry_until() const noexcept { return dry_until_; }
 
   LatenessStats& stats() noexcept { return stats_; }
   const LatenessStats& stats() const noexcept { return stats_; }
@@ -87,6 +91,7 @@ class PulseEngine {
   LatenessStats stats_;
   int next_axis_ = -1;  // axis of the edge next_due() found
   bool starved_ = false;
+  Nanos dry_until_ = kNever;
   std::atomic<std::uint64_t> trace_dropped_{0};
   // Per axis: the line of a step pulse whose leading edge was written and whose trailing edge
   // was not yet (kNoPulse if none): the line an immediate stop must bring low.

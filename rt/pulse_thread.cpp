@@ -189,6 +189,7 @@ void PulseThread::loop() noexcept {
   std::uint64_t loops = 0;
   std::uint64_t edges = 0;
   std::uint64_t sleeps = 0;
+  std::uint64_t starved_polls = 0;
   std::uint32_t bell = doorbell_.load(std::memory_order_acquire);
   Nanos awake_until = 0;
   // Off-CPU budget (see pulse_thread.hpp): once per window, the thread's CPU time (a clock
@@ -229,11 +230,17 @@ void PulseThread::loop() noexcept {
     const Nanos spin_eff = std::min(spin_ns, spin_cap);
     if (t == kNever || t - now > spin_eff) {
       // Poll for new work while a producer said some may come, or while a motion is starved
-      // (its ring ran dry before its last edge); otherwise wait for the edge or a ring().
-      const bool poll = now < awake_until || engine_.starved();
+      // (its ring ran dry before its last edge) and the planner's next edge for it may be due
+      // (AxisControl::refill_at, less the spin: it is an edge time); otherwise wait for the
+      // edge, the time the planner named, or a ring().
+      const Nanos dry_wake = engine_.starved() ? engine_.dry_until() - spin_eff : kNever;
+      const bool starved = engine_.starved() && dry_wake <= now;
+      const bool poll = now < awake_until || starved;
+      if (starved) starved_polls_.store(++starved_polls, std::memory_order_relaxed);
       Nanos wake = now + (poll ? max_sleep_ns : quiet_sleep_ns);
       const bool for_edge = t != kNever && t - spin_eff <= wake;
       if (for_edge) wake = t - spin_eff;
+      if (!poll && dry_wake < wake) wake = dry_wake;  // not polling: dry_wake > now
       futex_sleep_until(doorbell_, bell, wake);
       sleeps_.store(++sleeps, std::memory_order_relaxed);
       const Nanos woke = monotonic_now();

@@ -11,7 +11,9 @@
 //    clock_nanosleep). A producer that calls ring() after queueing work (the daemon: after a
 //    scan that submitted a command) wakes it. With quiet_sleep_ns > max_sleep_ns, the thread
 //    only polls every max_sleep_ns for awake_ns after a ring, or while an axis is in a motion
-//    whose ring has run dry; otherwise it sleeps up to quiet_sleep_ns (or to its next edge).
+//    whose ring has run dry and the time the planner named for its next edge has come (less the
+//    spin; AxisControl::refill_at); otherwise it sleeps up to quiet_sleep_ns (or to its next
+//    edge, or to that named time).
 //    The default (quiet_sleep_ns = max_sleep_ns) keeps the plain bounded poll for producers that
 //    never ring.
 //  * Adaptive spin. The thread measures how late its own wake-ups are (the distribution over its
@@ -106,6 +108,11 @@ class PulseThread {
   std::uint64_t edges() const noexcept { return edges_.load(std::memory_order_relaxed); }
   // Any thread: sleeps so far and the spin the adaptive estimate uses now (diagnostics).
   std::uint64_t sleeps() const noexcept { return sleeps_.load(std::memory_order_relaxed); }
+  // Of those, the short polls (max_sleep_ns) of a starved ring: the planner had not said when
+  // its next edge comes, or that time had come (AxisControl::refill_at).
+  std::uint64_t starved_polls() const noexcept {
+    return starved_polls_.load(std::memory_order_relaxed);
+  }
   Nanos spin_now() const noexcept { return spin_now_.load(std::memory_order_relaxed); }
   // Any thread: the 99th percentile of the recent wake-up lateness (0 until measured).
   Nanos wake_p99() const noexcept { return wake_p99_.load(std::memory_order_relaxed); }
@@ -134,6 +141,7 @@ class PulseThread {
   std::atomic<std::uint64_t> loops_{0};
   std::atomic<std::uint64_t> edges_{0};
   std::atomic<std::uint64_t> sleeps_{0};
+  std::atomic<std::uint64_t> starved_polls_{0};
   std::atomic<Nanos> spin_now_{0};
   std::atomic<Nanos> wake_p99_{0};
 };

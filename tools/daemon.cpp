@@ -221,6 +221,10 @@ bool Daemon::run(const std::atomic<bool>& stop) {
   const auto stats = d.stack->engine().stats().snapshot();
   spdlog::info("pulse thread: {} edges written, lateness p50 {} ns, p99.9 {} ns, max {} ns",
                stats.count, stats.percentile(0.5), stats.percentile(0.999), stats.max);
+  // How often each real-time thread woke: the cost of a motion on a slow CPU is mostly there.
+  spdlog::info(
+      "wake-ups: pulse thread {} loops, {} sleeps ({} starved polls); planner thread {} passes",
+      pulse.loops(), pulse.sleeps(), pulse.starved_polls(), planner.loops());
   if (d.trace) {
     d.trace->stop(d.stack->engine().trace_dropped(), d.input_trace_dropped.load());
     if (d.trace_dropped() > 0) {

@@ -455,5 +455,29 @@ TEST(PulseEngineLateGuard, OneAxisFaultLeavesTheOtherAxisRunning) {
   EXPECT_EQ(rig.fb(0).steps.load(), 0);
 }
 
+// ---- An empty ring in the middle of a motion (AxisControl::refill_at) ------------------------
+
+TEST(PulseEngineDryRing, RefillTimeTheMotionWaitsForIsReportedUntilItsNextEdgeComes) {
+  Rig rig(2);
+  push_step(rig.ring(0), 100'000, kWidth, 1);  // not the motion's last step
+  push_step(rig.ring(1), 100'000, kWidth, 1, +1, 0, /*last=*/true);
+  EXPECT_EQ(rig.run_all(), 4u);
+  // Axis 0 is in its motion with nothing queued; axis 1's motion has ended.
+  EXPECT_EQ(rig.engine->next_due(), kNever);
+  EXPECT_TRUE(rig.engine->starved());
+  EXPECT_EQ(rig.engine->dry_until(), 0);  // no time named: its edge may come any time
+  rig.ctl(0).refill_at.store(5'000'000, std::memory_order_release);
+  rig.ctl(1).refill_at.store(1'000'000, std::memory_order_release);  // not in a motion: ignored
+  EXPECT_EQ(rig.engine->next_due(), kNever);
+  EXPECT_TRUE(rig.engine->starved());
+  EXPECT_EQ(rig.engine->dry_until(), 5'000'000);
+  push_step(rig.ring(0), 5'000'000, kWidth, 1, +1, 0, /*last=*/true);
+  EXPECT_EQ(rig.engine->next_due(), 5'000'000);
+  EXPECT_FALSE(rig.engine->starved());
+  EXPECT_EQ(rig.engine->dry_until(), kNever);
+  EXPECT_EQ(rig.run_all(), 2u);
+  EXPECT_FALSE(rig.engine->starved());  // ended: an empty ring is no wait
+}
+
 }  // namespace
 }  // namespace stepmod::rt
