@@ -135,7 +135,7 @@ double PathLaw::arc_u(const Segment& sg, double n, double u) const noexcept {
 
 double PathLaw::solve(std::size_t i, double n, double u_lo) const noexcept {
   const Segment& sg = seg_[i];
-  double u;
+  double u = 0.0;
   if (shape_ == PathShape::kLine) {
     u = n * inv_end_;
   } else {

@@ -151,7 +151,7 @@ class StepSolver {
       const double v = l.end_speed() > 1e-3 ? l.end_speed() : 1e-3;
       return p.t0 + p.dur + (k - p.s1) / v;
     }
-    double tau;
+    double tau = 0.0;
     switch (p.kind) {
       case JerkPhase::kCruise:
         tau = x * p.inv_v0;

@@ -110,8 +110,8 @@ void InterpolatedMove::command(const InterpolatedCommand& c) {
   // The vector profile: 3602-CE-05 / IP-02 ranges, 3602-CE-06 / IP-01 Vp >= Vs of axis 1 (A37).
   const axis::ModuleRules& rules = axis::kRules3602;
   const std::int32_t vs = x_.config().starting_speed;
-  const auto rate_ok = [&rules](std::int64_t r) {
-    return r >= rules.accel_min && r <= rules.accel_max;
+  const auto rate_ok = [](std::int64_t r) {
+    return r >= axis::kRules3602.accel_min && r <= axis::kRules3602.accel_max;
   };
   if (c.speed < 1 || c.speed > rules.speed_max || c.speed < vs || !rate_ok(c.accel) ||
       !rate_ok(c.decel)) {
