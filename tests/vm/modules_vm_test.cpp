@@ -257,12 +257,23 @@ std::string case_3202() {
   const std::int64_t after = static_cast<std::int64_t>(r1.size()) - count_until(r1, es.front().t);
   const std::int64_t r2_after =
       static_cast<std::int64_t>(r2.size()) - count_until(r2, es.front().t);
-  info(fmt("after the E-stop edge: axis1 %lld pulses, axis2 %lld pulses",
-           static_cast<long long>(after), static_cast<long long>(r2_after)));
-  // Immediate, not controlled (counted in steps: the guest stalls for tens of ms now and then).
-  check(after < kControlledStopSteps,
-        fmt("axis1: %lld steps after the E-stop edge, a controlled stop takes %lld",
-            static_cast<long long>(after), static_cast<long long>(kControlledStopSteps)));
+  // The interval between axis 1's last two pulses: how its train ended (see below).
+  const std::int64_t last_interval = r1.size() >= 2 ? r1.back() - r1[r1.size() - 2] : 0;
+  info(fmt("after the E-stop edge: axis1 %lld pulses (last interval %lld us), axis2 %lld pulses",
+           static_cast<long long>(after), static_cast<long long>(last_interval / 1000),
+           static_cast<long long>(r2_after)));
+  // Immediate, not controlled. Counted in steps, not time: the guest stalls for up to ~200 ms
+  // now and then (this case's own log showed a 195 ms maximum lateness), and after a stall at the
+  // edge the FIFO pulse thread writes its late steps (within late_limit_us) before the control
+  // thread reads the E-stop: 195 ms at 400 steps/s is 78 steps, more than the 75 of a controlled
+  // stop. So when the count alone cannot tell, the end of the train does: a controlled stop ends
+  // at the starting speed of 100 steps/s (last interval 10 ms), an immediate one at speed (2.5 ms,
+  // less after a stall's catch-up).
+  check(after < kControlledStopSteps || last_interval < 5'000'000,
+        fmt("axis1: %lld steps after the E-stop edge (a controlled stop takes %lld) and a last "
+            "step interval of %lld us (a controlled stop ends at 10,000 us)",
+            static_cast<long long>(after), static_cast<long long>(kControlledStopSteps),
+            static_cast<long long>(last_interval / 1000)));
   check(r2_after > 0, "axis2 made no pulse after channel 1's E-stop");
   check(wire(v, "axis2.estop").empty(), "VCD: axis2's E-stop changed");
 
