@@ -102,7 +102,7 @@ Outcome Plc3202::jog(unsigned ch, bool cw, const Profile& p, std::chrono::millis
   if (!scanned || !port_.wait_scans(seq_.release_scans)) {
     return finish(ch, kCommandErrors, true, "jog");
   }
-  const Outcome idle = wait_idle(ch, timeout_ + std::chrono::seconds(30));
+  Outcome idle = wait_idle(ch, timeout_ + std::chrono::seconds(30));
   if (idle.timed_out) return idle;
   return finish(ch, kCommandErrors, false, "jog");
 }

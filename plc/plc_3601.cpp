@@ -125,7 +125,7 @@ Outcome Plc3601::jog(bool cw, const Profile& p, std::chrono::milliseconds durati
   if (!scanned || !port_.wait_scans(seq_.release_scans)) {
     return finish(kCommandErrors, true, "jog");
   }
-  const Outcome idle = wait_idle(timeout_ + std::chrono::seconds(30));
+  Outcome idle = wait_idle(timeout_ + std::chrono::seconds(30));
   if (idle.timed_out) return idle;
   return finish(kCommandErrors, false, "jog");
 }

@@ -142,7 +142,7 @@ Outcome Plc3602::jog(unsigned axis, bool cw, const Profile& p, std::chrono::mill
   if (!scanned || !port_.wait_scans(seq_.release_scans)) {
     return finish(axis, kCommandErrors, true, "jog");
   }
-  const Outcome idle = wait_idle(axis, timeout_ + std::chrono::seconds(30));
+  Outcome idle = wait_idle(axis, timeout_ + std::chrono::seconds(30));
   if (idle.timed_out) return idle;
   return finish(axis, kCommandErrors, false, "jog");
 }
