@@ -1,5 +1,9 @@
 #include "ipc/modbus_map.hpp"
 
+#include <sched.h>
+
+#include "core/clock.hpp"
+
 namespace stepmod::ipc {
 namespace {
 
@@ -13,10 +17,30 @@ ModbusResult fail(ModbusResult r, ModbusException e) {
   return r;
 }
 
-// Attempts of a consistent input snapshot before answering "busy": the module holds the input
-// seqlock for a few stores once per scan, so this is never reached unless the daemon is stuck
-// in the middle of a publication.
-constexpr unsigned kReadTries = 1000;
+// A consistent snapshot, or "busy" only for a writer stuck in the middle of a publication. The
+// module holds the input seqlock for a few stores once per scan, but on a loaded machine its
+// control thread can be preempted inside that window for milliseconds: under ThreadSanitizer
+// 1,000 immediate retries all found the sequence odd and mbpoll got "busy" for a healthy daemon.
+// So: a few immediate tries, then one every 100 us, and "busy" after 200 ms without a consistent
+// read (well inside a Modbus master's usual 0.5 s or more response timeout). Only the Modbus
+// thread waits here; the control thread never does (the server is not on its path).
+constexpr unsigned kSpinTries = 64;
+constexpr Nanos kRetryEvery = 100 * kNsPerUs;
+constexpr Nanos kBusyAfter = 200 * kNsPerMs;
+
+template <class Attempt>
+bool until_consistent(Attempt attempt) noexcept {
+  for (unsigned t = 0; t < kSpinTries; ++t) {
+    if (attempt()) return true;
+    if (t % 16 == 15) sched_yield();
+  }
+  const Nanos give_up = monotonic_now() + kBusyAfter;
+  while (monotonic_now() < give_up) {
+    sleep_until(monotonic_now() + kRetryEvery);
+    if (attempt()) return true;
+  }
+  return false;
+}
 
 }  // namespace
 
@@ -89,18 +113,16 @@ ModbusResult ModbusMap::read_inputs(ModbusResult r) const noexcept {
   std::int32_t in[STEPMOD_MAX_WORDS] = {};
   std::uint32_t health = 0;
   std::uint32_t late = 0;
-  bool ok = false;
-  for (unsigned t = 0; t < kReadTries && !ok; ++t) {
-    if (t > 0 && t % 32 == 0) sched_yield();
+  const bool ok = until_consistent([&] {
     const std::uint32_t s0 = __atomic_load_n(&img_.input_seq, __ATOMIC_ACQUIRE);
-    if (s0 & 1u) continue;
+    if (s0 & 1u) return false;
     for (unsigned i = 0; i < input_words_; ++i) {
       in[i] = stepmod_word_load(&img_.input_image, word_bytes_, i);
     }
     health = __atomic_load_n(&img_.health_flags, __ATOMIC_ACQUIRE);
     late = __atomic_load_n(&img_.late_faults, __ATOMIC_ACQUIRE);
-    ok = __atomic_load_n(&img_.input_seq, __ATOMIC_RELAXED) == s0;
-  }
+    return __atomic_load_n(&img_.input_seq, __ATOMIC_RELAXED) == s0;
+  });
   if (!ok) return fail(r, ModbusException::kServerDeviceBusy);
 
   if (words) {
@@ -128,10 +150,11 @@ ModbusResult ModbusMap::read_holding(ModbusResult r) const noexcept {
     return fail(r, ModbusException::kIllegalDataAddress);
   }
   std::int32_t out[STEPMOD_MAX_WORDS] = {};
-  if (!stepmod_seq_read(&img_.output_seq, &img_.output_image, word_bytes_, output_words_, out,
-                        kReadTries)) {
-    return fail(r, ModbusException::kServerDeviceBusy);
-  }
+  const bool ok = until_consistent([&] {
+    return stepmod_seq_read(&img_.output_seq, &img_.output_image, word_bytes_, output_words_, out,
+                            1) != 0;
+  });
+  if (!ok) return fail(r, ModbusException::kServerDeviceBusy);
   for (unsigned i = 0; i < r.count; ++i) r.values[i] = reg_of(out, r.address + i);
   return r;
 }
