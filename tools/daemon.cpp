@@ -284,15 +284,21 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     if (supervisor.tripped()) personality.plc_stopped(now);
     // The 3202's blend message (INTERFACE.md 3): handed over before the scan that reports it. Not
     // while the PLC is lost: like the frozen words, nothing new is acted on until it is back.
+    std::optional<ipc::BlendMessage> message;
+    std::int32_t message_result = 0;
     if (!supervisor.plc_lost()) {
-      if (const auto msg = image->pending_message()) {
-        image->finish_message(msg->seq, personality.on_message(msg->data, now));
-      }
+      message = image->pending_message();
+      if (message) message_result = personality.on_message(message->data, now);
     }
     personality.scan(out, in, now);
     kick();
     notice_cpu_need(now);
     image->publish_inputs(in, health(supervisor.flags()));
+    // Done only once the status that shows the message's effect is published: a PLC that reads
+    // the status bits when its message is done (INTERFACE.md 3: an error is in the status bits)
+    // finds them. Marked done before this publication, a refused message was seen done with
+    // Invalid Profile still clear (a loaded machine preempted the control thread in between).
+    if (message) image->finish_message(message->seq, message_result);
     if (pulse != nullptr) watchdog.scan(now, pulse->loops());
     next_scan += config.scan_ns;
     if (next_scan <= now) next_scan = now + config.scan_ns;  // overrun: skip, never burst

@@ -188,6 +188,7 @@ TEST(PulseThread, ExecutesScheduleAtAboutTheRightTimes) {
   // Per axis, the writes are that axis' schedule in order, never early. Across axes only the
   // write times are ordered: a late rise delays its own fall (full pulse width), which may then
   // come after the other axis' next edge.
+  std::vector<Nanos> due(w.size(), 0);  // each write's scheduled time
   for (unsigned axis = 0; axis < 2; ++axis) {
     std::vector<Due> mine;
     for (const Due& d : schedule) {
@@ -200,6 +201,7 @@ TEST(PulseThread, ExecutesScheduleAtAboutTheRightTimes) {
       EXPECT_EQ(w[i].level, mine[k].level) << axis << ":" << k;
       EXPECT_GE(w[i].t, mine[k].t) << axis << ":" << k;       // never stamped early
       EXPECT_GE(w[i].real_t, mine[k].t) << axis << ":" << k;  // and never actually early
+      due[i] = mine[k].t;
       ++k;
     }
     EXPECT_EQ(k, mine.size());
@@ -210,7 +212,18 @@ TEST(PulseThread, ExecutesScheduleAtAboutTheRightTimes) {
   const auto s = rig.engine->stats().snapshot();
   EXPECT_EQ(s.count, schedule.size());
   EXPECT_EQ(s.early, 0u);
-  EXPECT_LT(s.percentile(0.5), 2 * kNsPerMs);
+  // On time, measured so that a loaded machine cannot fail it: how long each write took beyond
+  // the later of its due time and the write before it. A thread that keeps its deadlines has
+  // a few us of this per edge; a stall adds to the one edge whose wait spans it (the late edges
+  // after it are written back to back), where lateness from the schedule counts it on every
+  // edge due in it: a TSan run beside daemon tests once started this 50 ms schedule with a
+  // p50 lateness of 53 ms. A deadline bug (a wrong sleep target, a unit) is late on every edge.
+  std::vector<Nanos> excess;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    excess.push_back(w[i].real_t - std::max(due[i], i == 0 ? due[i] : w[i - 1].real_t));
+  }
+  std::nth_element(excess.begin(), excess.begin() + excess.size() / 2, excess.end());
+  EXPECT_LT(excess[excess.size() / 2], 2 * kNsPerMs);
   // For the record (--gtest_output=xml): what this machine achieved.
   RecordProperty("lateness_p50_ns", std::to_string(s.percentile(0.5)));
   RecordProperty("lateness_p99_ns", std::to_string(s.percentile(0.99)));
