@@ -50,7 +50,7 @@ backend = "sim"
 
 [rt]
 priority = 80
-late_limit_us = 200000  # a shared, loaded test VM; the guard has its own tests
+late_limit_us = 1000000  # the maximum: a shared, loaded test VM; the guard has its own tests
 )" + axes;
 }
 

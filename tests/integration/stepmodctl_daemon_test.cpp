@@ -38,7 +38,7 @@ std::string example(const char* file) {
     t.replace(at, end - at, to);
   };
   replace("name = \"stepmod\"", "name = \"{NAME}\"");
-  replace("late_limit_us = ", "late_limit_us = 200000");
+  replace("late_limit_us = ", "late_limit_us = 1000000");
   return t;
 }
 
@@ -111,18 +111,20 @@ TEST_F(Ctl3602, JogHoldResumeExactStepCounts) {
   ctl("--axis 2 jog - -s 5000 -a 100 -d 100 --for 0.3");
   const std::int32_t jogged2 = status(1).position;
   EXPECT_LT(jogged2, 0);
-  ctl("--axis 1 move rel 40000 -s 10000 -a 100 -d 100");
+  // 8 s at 10,000 steps/s: the Hold (another stepmodctl process, 0.5 s later) comes before the
+  // end even when starting a process takes seconds (TSan on a loaded machine: more than 2.4 s).
+  ctl("--axis 1 move rel 80000 -s 10000 -a 100 -d 100");
   std::this_thread::sleep_for(milliseconds(500));
   ctl("--axis 1 hold");
   ctl("--axis 1 wait-idle --max 20");
-  EXPECT_TRUE(status(0).has(m2::status_msw::kHoldState));
-  EXPECT_LT(status(0).position, jogged + 40'000);
+  EXPECT_TRUE(status(0).has(m2::status_msw::kHoldState)) << daemon_->log();
+  EXPECT_LT(status(0).position, jogged + 80'000);
   ctl("--axis 1 resume -s 20000 -a 200 -d 200 --scurve tri");
   ctl("--axis 1 wait-idle --max 20");
-  EXPECT_EQ(status(0).position, jogged + 40'000);
+  EXPECT_EQ(status(0).position, jogged + 80'000) << ctl("status").out << daemon_->log();
   EXPECT_TRUE(status(0).has(m2::status_msw::kMoveComplete));
   const Vcd vcd = stop_and_read_trace();
-  EXPECT_EQ(vcd.rising("axis1.step").size(), static_cast<std::size_t>(jogged + 40'000));
+  EXPECT_EQ(vcd.rising("axis1.step").size(), static_cast<std::size_t>(jogged + 80'000));
   EXPECT_EQ(vcd.rising("axis2.step").size(), static_cast<std::size_t>(-jogged2));
 }
 
@@ -274,14 +276,17 @@ TEST_F(Ctl3202, EveryChannelCommandOnChannel2LeavesChannel1Alone) {
   ctl("-c 2 jog + -s 5000 -a 100000 -d 100000 --for 0.3");
   const std::int32_t jogged = status(1).position;
   EXPECT_GT(jogged, 0);
-  ctl("-c 2 move rel 30000 -s 10000 -a 100000 -d 100000");
+  // 4 s at 10,000 steps/s (the example's CW limit is at 50,000): the Hold (another stepmodctl
+  // process, 0.5 s later) comes before the end even when starting a process takes seconds (TSan on
+  // a loaded machine: more than 2.5 s).
+  ctl("-c 2 move rel 40000 -s 10000 -a 100000 -d 100000");
   std::this_thread::sleep_for(milliseconds(500));
   ctl("-c 2 hold");
   ctl("-c 2 wait-idle --max 20");
-  EXPECT_LT(status(1).position, jogged + 30'000);
+  EXPECT_LT(status(1).position, jogged + 40'000) << daemon_->log();
   ctl("-c 2 resume");  // the held move's own speed and rates
   ctl("-c 2 wait-idle --max 20");
-  EXPECT_EQ(status(1).position, jogged + 30'000);
+  EXPECT_EQ(status(1).position, jogged + 40'000) << ctl("status").out << daemon_->log();
   ctl("-c 2 preset 100");
   EXPECT_EQ(status(1).position, 100);
   ctl("-c 2 preset-encoder 77");

@@ -83,9 +83,9 @@ name="pkgtest-$$"
 # The installed example as a user starts from, with its own name and a late-edge limit for a shared
 # test machine: the unprivileged daemon has no SCHED_FIFO here, and what is under test is the
 # package, not this machine's timer latency (the guard has its own tests).
-sed -e "s/^name = .*/name = \"$name\"/" -e "s/^late_limit_us = .*/late_limit_us = 200000/" \
+sed -e "s/^name = .*/name = \"$name\"/" -e "s/^late_limit_us = .*/late_limit_us = 1000000/" \
   /etc/stepmod/3601-sim.toml >"$tmp/3601-sim.toml"
-grep -q '^late_limit_us = 200000' "$tmp/3601-sim.toml" || fail "example config has no late_limit_us"
+grep -q '^late_limit_us = 1000000' "$tmp/3601-sim.toml" || fail "example config has no late_limit_us"
 chmod 644 "$tmp/3601-sim.toml"
 setpriv --reuid stepmod --regid stepmod --init-groups /usr/bin/stepmodd --config "$tmp/3601-sim.toml" >"$tmp/daemon.log" 2>&1 &
 daemon_pid=$!
