@@ -90,10 +90,13 @@ TEST_F(Ctl3602, HomeBothAxesAtOnceStatusNamesBoth) {
   ctl("--axis 1 home + -s 10000 -a 100 -d 100");
   ctl("--axis 2 home - -s 10000 -a 100 -d 100");
   for (unsigned ax = 0; ax < 2; ++ax) {
-    for (int i = 0; i < 200 && !status(ax).has(m2::status_msw::kAtHome); ++i) {
+    // Up to 30 s: a homing sequence is several moves and 2-s pauses, and under TSan on a loaded
+    // machine 10 s once found axis 1 still on its way.
+    for (int i = 0; i < 600 && !status(ax).has(m2::status_msw::kAtHome); ++i) {
       std::this_thread::sleep_for(milliseconds(50));
     }
-    EXPECT_TRUE(status(ax).has(m2::status_msw::kAtHome)) << "axis " << ax + 1;
+    EXPECT_TRUE(status(ax).has(m2::status_msw::kAtHome)) << "axis " << ax + 1 << "\n"
+                                                         << ctl("status").out << daemon_->log();
     EXPECT_EQ(status(ax).position, 0) << "axis " << ax + 1;
   }
   const CtlRun s = ctl("status");
