@@ -26,6 +26,7 @@
 #include "planner/planner.hpp"
 #include "rt/axis_feedback.hpp"
 #include "rt/edge.hpp"
+#include "tests/planner/path_ideal.hpp"
 
 namespace {
 
@@ -140,27 +141,6 @@ BENCHMARK(BM_Path_Arc)->Unit(benchmark::kMillisecond);
 
 // --- path error ---
 
-// Distance of (px, py) from the ideal path of path_spec.hpp (line segment, or the spiral arc:
-// radius linear in the angle), written from the contract.
-double distance(const PathSpec& s, double px, double py) {
-  const double ex = static_cast<double>(s.end_x), ey = static_cast<double>(s.end_y);
-  if (s.shape == PathShape::kLine) {
-    const double l2 = ex * ex + ey * ey;
-    if (l2 == 0.0) return std::hypot(px, py);
-    const double u = std::clamp((px * ex + py * ey) / l2, 0.0, 1.0);
-    return std::hypot(px - u * ex, py - u * ey);
-  }
-  const double cx = s.centre_x, cy = s.centre_y;
-  const double r0 = std::hypot(cx, cy), r1 = std::hypot(ex - cx, ey - cy);
-  double d = (std::atan2(py - cy, px - cx) - std::atan2(-cy, -cx)) * (s.sweep > 0 ? 1.0 : -1.0);
-  d = std::fmod(d, 2 * kPi);
-  if (d < 0) d += 2 * kPi;
-  const double ends = std::min(std::hypot(px, py), std::hypot(px - ex, py - ey));
-  if (d > std::fabs(s.sweep)) return ends;
-  const double r = r0 + (r1 - r0) * d / std::fabs(s.sweep);
-  return std::min(ends, std::fabs(std::hypot(px - cx, py - cy) - r));
-}
-
 struct Err {
   double max = 0.0;
   std::int64_t points = 0;
@@ -171,6 +151,7 @@ struct Err {
 // One path: the two step trains merged by time (steps at one instant are one event), the
 // distance of each point, and whether the counts end on the end point.
 void measure(const PathSpec& p, Err& err) {
+  const planner::test::IdealPath ideal(p);  // the path tests' reference, written from the contract
   Rig rig;
   rig.start(p);
   std::array<std::vector<rt::Edge>, 2> st;
@@ -184,7 +165,7 @@ void measure(const PathSpec& p, Err& err) {
                              j < st[1].size() ? st[1][j].t : INT64_MAX);
     while (i < st[0].size() && st[0][i].t == t) x += st[0][i++].dpos;
     while (j < st[1].size() && st[1][j].t == t) y += st[1][j++].dpos;
-    err.max = std::max(err.max, distance(p, static_cast<double>(x), static_cast<double>(y)));
+    err.max = std::max(err.max, ideal.distance(static_cast<double>(x), static_cast<double>(y)));
     ++err.points;
   }
   err.exact_ends += x == p.end_x && y == p.end_y;
