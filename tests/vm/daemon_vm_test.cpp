@@ -817,24 +817,12 @@ std::string case_homing() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  const std::map<std::string, std::string (*)()> cases{
-      {"errors", case_errors},   {"move", case_move},   {"estop", case_estop},
-      {"capture", case_capture}, {"burst", case_burst}, {"sigterm", case_sigterm},
-      {"homing", case_homing}};
-  const auto it = argc == 2 ? cases.find(argv[1]) : cases.end();
-  if (it == cases.end()) {
-    std::fprintf(stderr, "usage: daemon_vm_test errors|move|estop|capture|burst|sigterm|homing\n");
-    return 2;
-  }
-  try {
-    std::printf("ok: %s\n", it->second().c_str());
-    return 0;
-  } catch (const Skip& e) {
-    std::printf("skip: %s\n", e.what());
-    return 77;
-  } catch (const std::exception& e) {
-    std::printf("FAIL: %s\n", e.what());
-    return 1;
-  }
+  return run_case(argc, argv, "daemon_vm_test",
+                  {{"errors", case_errors},
+                   {"move", case_move},
+                   {"estop", case_estop},
+                   {"capture", case_capture},
+                   {"burst", case_burst},
+                   {"sigterm", case_sigterm},
+                   {"homing", case_homing}});
 }

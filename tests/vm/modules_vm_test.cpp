@@ -21,7 +21,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -294,8 +293,22 @@ std::string status_3602(std::uint16_t w) {
   return stepmod::plc::set_bit_names(w, m36::kStatusMswBits);
 }
 
-std::string case_3602() {
+// Both axes ended where commanded, with Move Complete and no error bit; `what` names the motion.
+void check_both_done_3602(const stepmod::plc::m3602::Status& a,
+                          const stepmod::plc::m3602::Status& b, std::int32_t x, std::int32_t y,
+                          const char* what) {
   namespace sm = m36::status_msw;
+  info(fmt("%s: positions %d / %d; status %s / %s", what, a.position, b.position,
+           status_3602(a.msw).c_str(), status_3602(b.msw).c_str()));
+  check(a.position == x && b.position == y,
+        fmt("positions %d / %d, commanded %d / %d", a.position, b.position, x, y));
+  check(a.has(sm::kMoveComplete) && b.has(sm::kMoveComplete), "Move Complete not set on both");
+  constexpr std::uint16_t kErrors = sm::kInputError | sm::kCommandError | sm::kInvalidProfile;
+  check(!a.has(kErrors) && !b.has(kErrors),
+        "error bits: " + status_3602(a.msw) + " / " + status_3602(b.msw));
+}
+
+std::string case_3602() {
   namespace cm = m36::cfg_msw;
   constexpr std::int32_t kSteps1 = 500, kSteps2 = -400;
   constexpr stepmod::plc::Profile kP1{.speed = 250, .accel = 10, .decel = 10};
@@ -355,15 +368,7 @@ std::string case_3602() {
   sleep_ms(20);
   const std::vector<Sample> samples1 = s1.stop();
   const std::vector<Sample> samples2 = s2.stop();
-  const auto a = st(0), b = st(1);
-  info(fmt("both axes: positions %d / %d; status %s / %s", a.position, b.position,
-           status_3602(a.msw).c_str(), status_3602(b.msw).c_str()));
-  check(a.position == kSteps1 && b.position == kSteps2,
-        fmt("positions %d / %d, commanded %d / %d", a.position, b.position, kSteps1, kSteps2));
-  check(a.has(sm::kMoveComplete) && b.has(sm::kMoveComplete), "Move Complete not set on both");
-  check(!a.has(sm::kInputError | sm::kCommandError | sm::kInvalidProfile) &&
-            !b.has(sm::kInputError | sm::kCommandError | sm::kInvalidProfile),
-        "error bits: " + status_3602(a.msw) + " / " + status_3602(b.msw));
+  check_both_done_3602(st(0), st(1), kSteps1, kSteps2, "both axes");
 
   expect_ok(plc.set_gpo(0, false), "GPO 1 off");
   expect_ok(plc.set_gpo(1, true), "GPO 2 on");
@@ -402,7 +407,6 @@ std::string case_3602() {
 // simulated backend (tests/integration/daemon_3602_path_test.cpp).
 
 std::string case_3602_circle() {
-  namespace sm = m36::status_msw;
   namespace pt = stepmod::planner::test;
   using Method = stepmod::plc::PathMove3602::Method;
   // 500 steps/s along the path: at most that per axis, so the configured 1 ms pulses are cut to
@@ -457,15 +461,7 @@ std::string case_3602_circle() {
   const std::vector<Sample> samples1 = s1.stop();
   const std::vector<Sample> samples2 = s2.stop();
   port.wait_scans(3);
-  const auto a = st(0), b = st(1);
-  info(fmt("after the path: positions %d / %d; status %s / %s", a.position, b.position,
-           status_3602(a.msw).c_str(), status_3602(b.msw).c_str()));
-  check(a.position == kLineX && b.position == kLineY,
-        fmt("positions %d / %d, commanded %d / %d", a.position, b.position, kLineX, kLineY));
-  check(a.has(sm::kMoveComplete) && b.has(sm::kMoveComplete), "Move Complete not set on both");
-  check(!a.has(sm::kInputError | sm::kCommandError | sm::kInvalidProfile) &&
-            !b.has(sm::kInputError | sm::kCommandError | sm::kInvalidProfile),
-        "error bits: " + status_3602(a.msw) + " / " + status_3602(b.msw));
+  check_both_done_3602(st(0), st(1), kLineX, kLineY, "after the path");
   const Vcd v = d.stop_and_trace();
 
   // The path from the VCD, checked against the ideal circle and line. A step edge written late
@@ -542,22 +538,6 @@ std::string case_3602_circle() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  const std::map<std::string, std::string (*)()> cases{
-      {"m3202", case_3202}, {"m3602", case_3602}, {"m3602_circle", case_3602_circle}};
-  const auto it = argc == 2 ? cases.find(argv[1]) : cases.end();
-  if (it == cases.end()) {
-    std::fprintf(stderr, "usage: modules_vm_test m3202|m3602|m3602_circle\n");
-    return 2;
-  }
-  try {
-    std::printf("ok: %s\n", it->second().c_str());
-    return 0;
-  } catch (const Skip& e) {
-    std::printf("skip: %s\n", e.what());
-    return 77;
-  } catch (const std::exception& e) {
-    std::printf("FAIL: %s\n", e.what());
-    return 1;
-  }
+  return run_case(argc, argv, "modules_vm_test",
+                  {{"m3202", case_3202}, {"m3602", case_3602}, {"m3602_circle", case_3602_circle}});
 }

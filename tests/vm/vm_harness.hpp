@@ -23,6 +23,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -484,6 +485,31 @@ inline std::string line_user(unsigned offset) {
   }
   gpiod_chip_close(chip);
   return who;
+}
+
+// A VM case program's main: runs the case named by the one argument and prints its last line
+// as cases/README.md wants it: "ok: ..." (exit 0), "skip: ..." (77) or "FAIL: ..." (1); a
+// usage error exits 2.
+inline int run_case(int argc, char** argv, const char* program,
+                    const std::map<std::string, std::string (*)()>& cases) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  const auto it = argc == 2 ? cases.find(argv[1]) : cases.end();
+  if (it == cases.end()) {
+    std::string names;
+    for (const auto& [name, run] : cases) names += (names.empty() ? "" : "|") + name;
+    std::fprintf(stderr, "usage: %s %s\n", program, names.c_str());
+    return 2;
+  }
+  try {
+    std::printf("ok: %s\n", it->second().c_str());
+    return 0;
+  } catch (const Skip& e) {
+    std::printf("skip: %s\n", e.what());
+    return 77;
+  } catch (const std::exception& e) {
+    std::printf("FAIL: %s\n", e.what());
+    return 1;
+  }
 }
 
 }  // namespace stepmod::vmtest
