@@ -121,7 +121,7 @@ class AxisPlanner {
   void replan_to_end(std::int64_t end, const Ramp& ramp, bool exact_ramp) noexcept;
   void step_once() noexcept;
   // Plans the path's next step if it lies within `horizon`; false (and the open pulse ended) if
-  // it lies beyond: it stays unplanned, so a hold can still replan it (path_wake_ns_).
+  // it lies beyond: it stays unplanned, so a hold can still replan it (path_next_ns_).
   bool path_step_once(Nanos horizon) noexcept;
   // Tells the pulse thread (rt::AxisControl::refill_at) that this axis' next refilled edge lies
   // at or after t (0: unknown), so that it need not poll an empty ring before then.

@@ -19,6 +19,13 @@ class Motion3602 : public Rig3602 {
   void reset_errors(unsigned a) {
     command(a, cmd::kResetErrors, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
   }
+  // A relative move of `target` commanded (its bit released after 3 scans) and 300 ms under way.
+  void start_relative_move(unsigned a, std::int32_t target) {
+    set_command(a, cmd::kRelativeMove, {.target = target});
+    vm_.scans(3);
+    word(a, m2::out_word::kMsw) = 0;
+    vm_.run_for(300 * kNsPerMs);
+  }
   void force(unsigned a, InputLine l, bool level) {
     const std::uint32_t bit = 1u << static_cast<unsigned>(l);
     if (level) {
@@ -140,10 +147,7 @@ TEST_F(Motion3602, HLD_01_HoldThenResumeReachesTheTarget) {
 }
 
 TEST_F(Motion3602, HLD_01_ExternalInputHoldsAMove) {
-  set_command(kAxis1, cmd::kRelativeMove, {.target = 20'000});
-  vm_.scans(3);
-  word(kAxis1, m2::out_word::kMsw) = 0;
-  vm_.run_for(300 * kNsPerMs);
+  start_relative_move(kAxis1, 20'000);
   force(kAxis1, InputLine::kExternal, true);
   ASSERT_TRUE(wait_idle(kAxis1));
   EXPECT_TRUE(status(kAxis1, kHoldState));
@@ -152,10 +156,7 @@ TEST_F(Motion3602, HLD_01_ExternalInputHoldsAMove) {
 
 TEST_F(Motion3602, PI_02_ImmediateStopInvalidatesThePosition) {
   command(kAxis1, cmd::kPresetPosition, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
-  set_command(kAxis1, cmd::kRelativeMove, {.target = 20'000});
-  vm_.scans(3);
-  word(kAxis1, m2::out_word::kMsw) = 0;
-  vm_.run_for(300 * kNsPerMs);
+  start_relative_move(kAxis1, 20'000);
   command(kAxis1, cmd::kImmediateStop);
   ASSERT_TRUE(wait_idle(kAxis1, 10 * kNsPerMs));
   EXPECT_TRUE(status(kAxis1, kPositionInvalid));
@@ -164,10 +165,7 @@ TEST_F(Motion3602, PI_02_ImmediateStopInvalidatesThePosition) {
 }
 
 TEST_F(Motion3602, IE_02_PI_04_IE_C1_LimitDuringAMoveThenTheNextMoveClearsIE) {
-  set_command(kAxis2, cmd::kRelativeMove, {.target = -20'000});
-  vm_.scans(3);
-  word(kAxis2, m2::out_word::kMsw) = 0;
-  vm_.run_for(300 * kNsPerMs);
+  start_relative_move(kAxis2, -20'000);
   force(kAxis2, InputLine::kCwLimit, true);  // either limit stops an absolute/relative move
   ASSERT_TRUE(wait_idle(kAxis2));
   EXPECT_TRUE(status(kAxis2, kInputError));
@@ -183,10 +181,7 @@ TEST_F(Motion3602, IE_02_PI_04_IE_C1_LimitDuringAMoveThenTheNextMoveClearsIE) {
 // Errors command block ... The next move command will clear this bit automatically if none of
 // the inputs are active when the command is issued"):
 TEST_F(Motion3602, IE_C1_LatchedClearedByTheNextMoveOnlyWithNoInputActive) {
-  set_command(kAxis1, cmd::kRelativeMove, {.target = 20'000});
-  vm_.scans(3);
-  word(kAxis1, m2::out_word::kMsw) = 0;
-  vm_.run_for(300 * kNsPerMs);
+  start_relative_move(kAxis1, 20'000);
   force(kAxis1, InputLine::kCwLimit, true);
   ASSERT_TRUE(wait_idle(kAxis1));
   ASSERT_TRUE(status(kAxis1, kInputError));

@@ -19,6 +19,7 @@ using test::line;
 using test::PathRig;
 
 constexpr Ramp kHoldRamp{100'000, AccelShape::kConstant};
+constexpr Ramp kResumeRamp{200'000, AccelShape::kConstant};  // accel and decel of a resume
 
 std::int64_t net(const PathRig& r, unsigned axis) {
   std::int64_t n = 0;
@@ -111,8 +112,7 @@ TEST(PathHold, AnotherMoveAfterTheHoldDiscardsThePath) {
   // A plain move on X: the path cannot be resumed on either axis any more.
   ASSERT_NE(r.ports[0]->start_move(test::move(10, 1'000, 1'000, 1e4, 1e4)), 0u);
   ASSERT_TRUE(r.run_until_done());
-  ASSERT_TRUE(
-      r.resume(20'000, Ramp{200'000, AccelShape::kConstant}, Ramp{200'000, AccelShape::kConstant}));
+  ASSERT_TRUE(r.resume(20'000, kResumeRamp, kResumeRamp));
   ASSERT_TRUE(r.run_until_done());
   EXPECT_EQ(test::steps_of(r, 0, r.ports[0]->epoch()), 0);
   EXPECT_EQ(test::steps_of(r, 1, r.ports[1]->epoch()), 0);
@@ -134,8 +134,7 @@ TEST(PathHold, AnAbortOfOneAxisMidPathDiscardsThePath) {
   r.run_for(500 * kNsPerMs);
   EXPECT_TRUE(r.done(1, 1));
   EXPECT_EQ(test::steps_of(r, 0, 1), x_at_abort);  // X planned nothing after its abort
-  ASSERT_TRUE(
-      r.resume(20'000, Ramp{200'000, AccelShape::kConstant}, Ramp{200'000, AccelShape::kConstant}));
+  ASSERT_TRUE(r.resume(20'000, kResumeRamp, kResumeRamp));
   ASSERT_TRUE(r.run_until_done());
   EXPECT_EQ(test::steps_of(r, 0, 2), 0);
   EXPECT_EQ(test::steps_of(r, 1, 2), 0);
@@ -145,8 +144,7 @@ TEST(PathHold, AResumeWithoutAHeldPathEndsAtOnceWithoutAStep) {
   PathRig r;
   ASSERT_TRUE(r.start(line(100, 50)));
   ASSERT_TRUE(r.run_until_done());  // ran to its end: nothing to resume
-  ASSERT_TRUE(
-      r.resume(20'000, Ramp{200'000, AccelShape::kConstant}, Ramp{200'000, AccelShape::kConstant}));
+  ASSERT_TRUE(r.resume(20'000, kResumeRamp, kResumeRamp));
   ASSERT_TRUE(r.run_until_done());
   EXPECT_EQ(test::steps_of(r, 0, 2), 0);
   EXPECT_EQ(test::steps_of(r, 1, 2), 0);
@@ -162,8 +160,7 @@ TEST(PathHold, AResumeBeforeTheHoldHasStoppedBothAxesGivesThePathUp) {
   ASSERT_TRUE(r.ports[0]->hold_path(Ramp{20'000, AccelShape::kConstant}));  // a 1 s ramp
   r.run_for(20 * kNsPerMs);
   ASSERT_FALSE(r.done(0, 1));  // still decelerating
-  ASSERT_TRUE(
-      r.resume(20'000, Ramp{200'000, AccelShape::kConstant}, Ramp{200'000, AccelShape::kConstant}));
+  ASSERT_TRUE(r.resume(20'000, kResumeRamp, kResumeRamp));
   ASSERT_TRUE(r.run_until_done());
   // No jump to the stop point: the resumed motions make no step, the held ones end where they
   // were, and no two steps of an axis share an instant.
@@ -188,8 +185,7 @@ TEST(PathHold, AHoldBeforeTheFirstStepStopsAtTheStartAndResumeRunsTheWholePath) 
   ASSERT_TRUE(r.run_until_done());
   const std::int64_t before = test::steps_of(r, 0, 1) + test::steps_of(r, 1, 1);
   EXPECT_LE(before, 2);  // at most the step or two planned before the hold's time
-  ASSERT_TRUE(
-      r.resume(20'000, Ramp{200'000, AccelShape::kConstant}, Ramp{200'000, AccelShape::kConstant}));
+  ASSERT_TRUE(r.resume(20'000, kResumeRamp, kResumeRamp));
   ASSERT_TRUE(r.run_until_done());
   EXPECT_EQ(net(r, 0), p.end_x);
   EXPECT_EQ(net(r, 1), p.end_y);
@@ -206,8 +202,7 @@ TEST(PathHold, AnAxisWithoutStepsIsHeldAndResumedWithTheOther) {
   ASSERT_TRUE(r.ports[0]->hold_path(kHoldRamp));  // sent on X, which has nothing to do
   ASSERT_TRUE(r.run_until_done());
   EXPECT_GT(net(r, 1), -20'000);
-  ASSERT_TRUE(
-      r.resume(20'000, Ramp{200'000, AccelShape::kConstant}, Ramp{200'000, AccelShape::kConstant}));
+  ASSERT_TRUE(r.resume(20'000, kResumeRamp, kResumeRamp));
   ASSERT_TRUE(r.run_until_done());
   EXPECT_EQ(net(r, 0), 0);
   EXPECT_EQ(net(r, 1), -20'000);
@@ -225,8 +220,7 @@ TEST(PathHold, AnAxisWhoseNextCrossingIsFarAwayMakesNoStepAfterTheHold) {
   ASSERT_TRUE(r.run_until_done());
   EXPECT_LT(net(r, 0), 4'000);
   EXPECT_EQ(test::steps_of(r, 1, 1), 0);
-  ASSERT_TRUE(
-      r.resume(20'000, Ramp{200'000, AccelShape::kConstant}, Ramp{200'000, AccelShape::kConstant}));
+  ASSERT_TRUE(r.resume(20'000, kResumeRamp, kResumeRamp));
   ASSERT_TRUE(r.run_until_done());
   EXPECT_EQ(test::steps_of(r, 1, 2), 1);
   EXPECT_EQ(net(r, 0), 4'000);
