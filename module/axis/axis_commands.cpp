@@ -15,7 +15,7 @@ constexpr bool fits_int32(std::int64_t v) noexcept {
          v <= std::numeric_limits<std::int32_t>::max();
 }
 // Whether a step count fits: its magnitude, either way (a count of 2^31 does not, CW or CCW; the
-// interpolated path draws the same line, tests/module/interp_3602_test.cpp on branch interp).
+// interpolated path draws the same line: tests/module/interp_3602_test.cpp, IP_03).
 constexpr bool count_fits_int32(std::int64_t steps) noexcept {
   return steps >= -std::int64_t{std::numeric_limits<std::int32_t>::max()} &&
          steps <= std::numeric_limits<std::int32_t>::max();
