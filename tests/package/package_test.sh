@@ -49,6 +49,21 @@ for f in 3601-sim 3601-board 3602-sim 3202-sim; do
   grep -qx "/etc/stepmod/$f.toml" "$tmp/control/conffiles" || fail "example $f is not a conffile"
 done
 
+step "copyright, changelog, lintian, the unit's exposure"
+for f in ./usr/share/doc/stepmod/copyright ./usr/share/doc/stepmod/changelog.gz \
+         ./usr/share/man/man5/stepmod.toml.5.gz ./usr/share/doc/stepmod/interface.md; do
+  grep -qx "$f" "$tmp/files" || fail "$f not in the package"
+done
+dpkg-deb -x "$deb" "$tmp/root"
+version=$(dpkg-deb -f "$deb" Version)
+zcat "$tmp/root/usr/share/doc/stepmod/changelog.gz" | head -n 1 | grep -q "^stepmod ($version) " ||
+  fail "the changelog's newest entry is not $version: $(zcat "$tmp/root/usr/share/doc/stepmod/changelog.gz" | head -n 1)"
+head -n 1 "$tmp/root/usr/share/doc/stepmod/copyright" |
+  grep -qx 'Format: https://www.debian.org/doc/packaging-manuals/copyright-format/1.0/' ||
+  fail "copyright is not machine-readable (DEP-5)"
+"$(dirname "$0")/package_lint.sh" "$tmp/out"
+"$(dirname "$0")/unit_exposure.sh" "$tmp/root/usr/lib/systemd/system/stepmodd@.service" "$tmp"
+
 step "dpkg -i"
 had_gpio=0
 getent group gpio >/dev/null && had_gpio=1
