@@ -75,7 +75,8 @@ getent passwd stepmod >/dev/null || fail "no stepmod user"
 id -nG stepmod | tr ' ' '\n' | grep -qx gpio || fail "stepmod is not in the gpio group"
 id -nG stepmod | tr ' ' '\n' | grep -qx stepmod || fail "stepmod has no stepmod group"
 grep -q 'GROUP="gpio"' /usr/lib/udev/rules.d/60-stepmod-gpio.rules || fail "udev rule"
-for page in /usr/share/man/man8/stepmodd.8.gz /usr/share/man/man1/stepmodctl.1.gz; do
+for page in /usr/share/man/man8/stepmodd.8.gz /usr/share/man/man1/stepmodctl.1.gz \
+            /usr/share/man/man5/stepmod.toml.5.gz; do
   zcat "$page" | groff -man -Tutf8 -ww -z 2>"$tmp/groff.log" || fail "$page does not render"
   [ ! -s "$tmp/groff.log" ] || { cat "$tmp/groff.log"; fail "$page: groff warnings"; }
 done
