@@ -65,5 +65,20 @@ TEST(DocsSelfContained, RelativeMarkdownLinksLeadToFiles) {
   }
 }
 
+// The README's test command is what CI runs: .ci/run ends in `exec scripts/test`, and the README
+// tells a newcomer to run that same command.
+TEST(DocsSelfContained, ReadmeTestCommandIsWhatCiRuns) {
+  const std::string ci = read(kRoot / ".ci/run");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(ci, m, std::regex(R"(\nexec ([^\s]+))")))
+      << ".ci/run has no exec line";
+  const std::string command = m[1];
+  const std::string readme = read(kRoot / "README.md");
+  EXPECT_NE(readme.find("\n" + command + " "), std::string::npos)
+      << "README.md does not show CI's test command " << command;
+  EXPECT_EQ(readme.find("build/dev/"), std::string::npos)
+      << "README.md names build/dev/, not a build tree";
+}
+
 }  // namespace
 }  // namespace stepmod::tools
