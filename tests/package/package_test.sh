@@ -104,6 +104,9 @@ name="pkgtest-$$"
 sed -e "s/^name = .*/name = \"$name\"/" -e "s/^late_limit_us = .*/late_limit_us = 1000000/" \
   /etc/stepmod/3601-sim.toml >"$tmp/3601-sim.toml"
 grep -q '^late_limit_us = 1000000' "$tmp/3601-sim.toml" || fail "example config has no late_limit_us"
+# With the Modbus server on (a free port), so that its sockets run under the unit's filters too.
+port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+printf '\n[modbus]\nenabled = true\nlisten = "127.0.0.1:%s"\n' "$port" >>"$tmp/3601-sim.toml"
 chmod 644 "$tmp/3601-sim.toml"
 # As the unit runs it: no new privileges, no capabilities. Under strace when it is there, for the
 # unit's system call filter (syscall_filter.sh below).
@@ -127,6 +130,11 @@ $ctl configure --home --cw-limit --ccw-limit --estop >/dev/null
 $ctl move rel 1500 -s 10000 -a 10 -d 10 >/dev/null
 $ctl wait-idle --max 10 >/dev/null
 $ctl status | grep -Eq '^  position = 1500$' || { $ctl status; fail "position after the move"; }
+# Input register 1000: the module type, over Modbus/TCP.
+if command -v mbpoll >/dev/null; then
+  mbpoll -m tcp -p "$port" -0 -1 -t 3 -r 1000 -c 1 127.0.0.1 | grep -q '^\[1000\]:[[:space:]]*3601' ||
+    fail "Modbus: input register 1000 is not 3601"
+fi
 # Under strace the daemon is strace's child: the signal goes to stepmodd itself.
 stepmodd_pid=$daemon_pid
 [ "${#tracer[@]}" -eq 0 ] || stepmodd_pid=$(pgrep -P "$daemon_pid")
