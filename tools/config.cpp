@@ -251,10 +251,10 @@ class Parser {
     check_keys(*r, p, {"priority", "cpu", "late_limit_us"});
     c.rt_priority = static_cast<int>(get_int(r, p, "priority", 80, 1, 99));
     c.rt_cpu = static_cast<int>(get_int(r, p, "cpu", -1, -1, 1023));
-    // Below a wake-up's latency (tens of us on a VM) every move would fault; above a second a
-    // stall would let a second's worth of steps out at once. No "off": a burst of late steps
-    // is what a motor loses steps on.
-    c.late_limit_ns = get_int(r, p, "late_limit_us", 1'000, 20, 1'000'000) * kNsPerUs;
+    // The longest pause at any speed (late edges slip, never burst: docs/slip.md). 200 ms:
+    // longer than a stock kernel's 50 ms fair-server / RT-throttling pause, short enough that a
+    // stalled board stops its axes within a fraction of a second. No "off".
+    c.late_limit_ns = get_int(r, p, "late_limit_us", 200'000, 20, 1'000'000) * kNsPerUs;
   }
 
   void parse_axes(const toml::table& root, const toml::table* module, Config& c) const {
@@ -291,9 +291,10 @@ class Parser {
                         std::map<int64_t, std::string>& used) const {
     // 1-based like the contract's "axis 1, then axis 2" and the VCD names axis1.step.
     const std::string p = "axis[" + std::to_string(index + 1) + "]";
-    check_keys(t, p,
-               {"step", "dir", "gpo", "capture", "external", "home", "estop", "cw_limit",
-                "ccw_limit", "enc_a", "enc_b", "enc_z", "step_pulse_ns", "dir_setup_ns", "sim"});
+    check_keys(
+        t, p,
+        {"step", "dir", "gpo", "capture", "external", "home", "estop", "cw_limit", "ccw_limit",
+         "enc_a", "enc_b", "enc_z", "step_pulse_ns", "dir_setup_ns", "lag_limit_steps", "sim"});
     AxisConfig a;
     auto line = [&](std::string_view key) -> std::optional<unsigned> {
       const auto v = opt_int(&t, p, key, 0, kMaxLineOffset);
@@ -338,6 +339,10 @@ class Parser {
     }
     a.step_pulse_ns = get_int(&t, p, "step_pulse_ns", 2'000, 100, 1'000'000);
     a.dir_setup_ns = get_int(&t, p, "dir_setup_ns", 5'000, 1, 1'000'000);
+    // Output steps of lag above Vs (docs/slip.md): a motor bridges 1-2 full steps, m..2m
+    // microsteps; 8 = one full step at 8 microsteps.
+    a.lag_limit_steps =
+        static_cast<std::uint32_t>(get_int(&t, p, "lag_limit_steps", 8, 1, 1'000'000));
     a.sim = parse_sim(sub_table(t, p, "sim"), p + ".sim");
     return a;
   }

@@ -34,9 +34,10 @@ encoder_ratio = 0.0
 class DaemonSafety : public ::testing::Test {
  protected:
   void start(const std::string& module_extra = "", const std::string& name = "",
-             const std::string& rt_extra = kRelaxedLateLimit) {
-    daemon_ =
-        std::make_unique<DaemonProcess>(sim_3601_config(module_extra, kSim, rt_extra), true, name);
+             const std::string& rt_extra = kRelaxedLateLimit,
+             const std::string& axis_extra = kRelaxedLagLimit) {
+    daemon_ = std::make_unique<DaemonProcess>(
+        sim_3601_config(module_extra, kSim, rt_extra, axis_extra), true, name);
     ASSERT_TRUE(daemon_->wait_ready()) << daemon_->log();
     plc_ = std::make_unique<RawShmPlc>(daemon_->name());
   }
@@ -69,7 +70,7 @@ std::size_t densest(const std::vector<std::int64_t>& t, std::int64_t window) {
 }
 
 TEST_F(DaemonSafety, SigstopMidMoveIsALateEdgeFaultNeverABurst) {
-  start("", "", kDefaultLateLimit);
+  start("", "", kDefaultLateLimit, "");
   plc_->configure();
   plc_->command(cmd::kPresetPosition, 0);
   // 20,000 steps/s (50 us periods), 200,000 steps: ~10 s if nothing stopped it.
