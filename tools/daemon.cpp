@@ -184,6 +184,16 @@ bool Daemon::run(const std::atomic<bool>& stop) {
   }
   planner::PlannerThread planner(d.stack->planner());
   planner.start();
+  // Real-time below the control thread (issue 18): under CPU hogs a normal-priority planner was
+  // held off for milliseconds, the pulse thread's 4 ms of edges ran dry and the steps paused.
+  if (po.priority > 0) {
+    const int prio = std::max(1, d.config.rt_priority - 20);
+    if (const int rc = planner.set_realtime(prio); rc != 0) {
+      spdlog::warn(
+          "planner thread: SCHED_FIFO priority {} refused ({}): steps may pause under load", prio,
+          std::strerror(rc));
+    }
+  }
 
   spdlog::info("module {} '{}' running: /dev/shm/stepmod.{}, {} backend, scan {} us",
                static_cast<unsigned>(d.config.type), d.config.name, d.config.name,
