@@ -116,7 +116,13 @@ std::int64_t shortest_gap(const std::vector<std::int64_t>& t) {
 }
 
 TEST_F(DaemonSafety, ShortSigstopAtTheStartingSpeedSlipsTheMoveWithoutAFault) {
+#if defined(STEPMOD_SANITIZED)
+  // Under the sanitizers the pulse thread's own stalls exceed 200 ms now and then: the pause
+  // limit relaxed (at Vs the lag is not judged, so the test still shows slip without a fault).
+  start("", "", kRelaxedLateLimit, "");
+#else
   start("", "", kDefaultLateLimit, "");
+#endif
   plc_->configure(2'000);  // Vs = 2,000 steps/s
   plc_->command(cmd::kPresetPosition, 0);
   plc_->command(cmd::kRelativeMove, 3'000, 2'000, 10, 10);  // all at Vs: 1.5 s
