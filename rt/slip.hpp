@@ -14,6 +14,7 @@
 //  * pulse thread -> everyone (rt::AxisFeedback::slip): the slip of the axis' motion, so that
 //    what the planner derives from motion time (cut and stop times, registration distances, hold
 //    times, the lookahead) is converted between wall time and the motion's planned time.
+#include <cmath>
 #include <cstdint>
 
 #include "core/clock.hpp"
@@ -43,10 +44,10 @@ inline constexpr std::uint32_t packed_value(std::uint64_t word) noexcept {
 }
 // Step interval at the starting speed, ns, as carried in motion_vs (0: unknown). Capped at
 // 4.29 s (Vs >= 0.24 steps/s; the modules' Vs is >= 1).
-inline constexpr std::uint32_t vs_interval_ns(double vs) noexcept {
+inline std::uint32_t vs_interval_ns(double vs) noexcept {
   if (!(vs > 0.0)) return 0;
   const double ns = 1e9 / vs;
-  return ns >= 4.29e9 ? 4'290'000'000u : static_cast<std::uint32_t>(ns + 0.5);
+  return ns >= 4.29e9 ? 4'290'000'000u : static_cast<std::uint32_t>(std::llround(ns));
 }
 // Published slip: microseconds (a planner conversion does not need finer), capped.
 inline constexpr std::uint32_t slip_us(Nanos slip) noexcept {
