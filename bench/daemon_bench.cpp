@@ -42,7 +42,12 @@
 #include "core/clock.hpp"
 #include "ipc/client.hpp"
 #include "ipc/codec.hpp"
+#include "module/axis/rules.hpp"
 #include "module/m3601/words_3601.hpp"
+#include "planner/motion_request.hpp"
+#include "planner/planner.hpp"
+#include "rt/axis_feedback.hpp"
+#include "rt/edge.hpp"
 
 namespace {
 
@@ -68,7 +73,8 @@ std::string slurp(const std::string& path) {
 class Daemon {
  public:
   // `late_limit_us`: the late-edge guard; the default is its maximum so that a fault does not
-  // end a measured move early (the guard has its own benchmark: `guard`).
+  // end a measured move early (the guard has its own benchmarks: `guard`, `slip`); <= 0: the
+  // product's default (no key written).
   Daemon(const std::string& exe, unsigned scan_us, bool trace, long late_limit_us = 1'000'000) {
     char tmpl[] = "/tmp/stepmod-bench-XXXXXX";
     dir_ = mkdtemp(tmpl);
@@ -79,7 +85,9 @@ class Daemon {
     std::ofstream(config_) << "[module]\ntype = \"3601\"\nname = \"" << name_
                            << "\"\nscan_us = " << scan_us
                            << "\n[gpio]\nbackend = \"sim\"\n[rt]\npriority = 80\n"
-                           << "late_limit_us = " << late_limit_us << "\n"
+                           << (late_limit_us > 0
+                                   ? "late_limit_us = " + std::to_string(late_limit_us) + "\n"
+                                   : std::string())
                            << "[[axis]]\nstep = 1\ndir = 2\nhome = 3\ncw_limit = 4\nccw_limit = 5\n"
                               "[axis.sim]\ncw_limit_at = 100000000\nccw_limit_at = -100000000\n"
                               "home_from = -200\nhome_to = -100\n";
@@ -176,6 +184,10 @@ struct Plc {
   void release() {
     c.write_word(0, 0);
     scans(2);
+  }
+  // A relative move with its acceleration words (steps/ms/s) and S-curve bits in the LSW.
+  void move(std::int32_t steps, std::int32_t speed, std::int16_t accel, std::uint16_t lsw) {
+    c.write_outputs(words(m::cmd_msw::kRelativeMove, lsw, steps, speed, accel, accel));
   }
 };
 
@@ -442,7 +454,7 @@ std::size_t densest(const std::vector<Nanos>& t, Nanos window) {
 }
 
 // Issue 12: the late-edge guard under load (scripts/bench loads the machine). --runs moves at
-// --rate with the default 1 ms limit: each completes (Move Complete) or faults (Stopped +
+// --rate with the product's guard (issue 18; before, a 1 ms limit): each completes (Move Complete) or faults (Stopped +
 // Position Invalid, a late-edge fault counted); and never a burst: the most steps in any 1 ms of
 // the VCD against the commanded rate (catching up within 1 ms of lateness may double it).
 int guard(int argc, char** argv) {
@@ -454,7 +466,7 @@ int guard(int argc, char** argv) {
   std::uint32_t faults = 0, worst_us = 0;
   std::vector<Nanos> rising;
   {
-    Daemon d(exe, 1000, true, 1000);
+    Daemon d(exe, 1000, true, 0);  // the product's guard (issue 18: slip, lag limit, 200 ms)
     Plc plc(d.name());
     plc.configure(rate);
     for (int r = 0; r < runs; ++r) {
@@ -493,6 +505,163 @@ int guard(int argc, char** argv) {
       "RESULT bench=guard rate=%d runs=%d clean=%d faulted=%d other=%d densest_1ms=%zu "
       "nominal_1ms=%.0f burst=%d\n",
       rate, runs, clean, faulted, other, dense, nominal, burst ? 1 : 0);
+  return 0;
+}
+
+// Issue 18: the planned step times of a single-axis move, from the planner itself (the
+// manual's profile equations, digest 7.2), in virtual time.
+std::vector<Nanos> planned_steps(const planner::MoveSpec& spec) {
+  SpscRing<rt::Edge> ring(1u << 16);
+  rt::AxisControl control;
+  const planner::PlannerAxis axis{&ring, &control, {}};
+  planner::Planner p(std::span<const planner::PlannerAxis>(&axis, 1));
+  planner::Command c;
+  c.axis = 0;
+  c.epoch = 1;
+  c.what = spec;
+  p.submit(c);
+  std::vector<Nanos> t;
+  bool last = false;
+  for (Nanos now = 0; !last && now < 3'600 * kNsPerSec;) {
+    const Nanos next = p.service(now);
+    rt::Edge e;
+    while (ring.try_pop(e)) {
+      if (e.dpos != 0) t.push_back(e.t);
+      last = last || (e.flags & rt::edge_flag::kLast) != 0;
+    }
+    now = std::max(now + kNsPerUs, std::min(next, now + kNsPerMs));
+  }
+  return t;
+}
+
+// One move's judgement against its plan (docs/slip.md, issue 18's criteria).
+struct SlipVerdict {
+  std::size_t compressed = 0;  // actual < 0.9 x planned - 2 us
+  std::size_t unfaulted = 0;   // pauses beyond the guard's rule that did not fault
+  Nanos worst_pause = 0;
+  bool in_time = true;  // ended within 2.5 x nominal + 3 s
+};
+
+SlipVerdict judge_move(const std::vector<Nanos>& wire, const std::vector<Nanos>& plan, double vs,
+                       bool faulted) {
+  SlipVerdict v;
+  const double vs_interval = 1e9 / vs;
+  for (std::size_t k = 1; k < wire.size() && k < plan.size(); ++k) {
+    const Nanos actual = wire[k] - wire[k - 1];
+    const Nanos planned = plan[k] - plan[k - 1];
+    if (static_cast<double>(actual) < 0.9 * static_cast<double>(planned) - 2'000) ++v.compressed;
+    const Nanos pause = actual - planned;
+    v.worst_pause = std::max(v.worst_pause, pause);
+    const bool above = static_cast<double>(planned) < 0.99 * vs_interval;
+    const bool beyond =
+        pause > 200 * kNsPerMs || (above && pause / std::max<Nanos>(planned, 1) > 8);
+    if (beyond && !faulted) ++v.unfaulted;
+  }
+  if (wire.size() >= 2 && plan.size() >= 2) {
+    const double nominal = static_cast<double>(plan.back() - plan.front());
+    v.in_time = static_cast<double>(wire.back() - wire.front()) <= 2.5 * nominal + 3e9;
+  }
+  return v;
+}
+
+// Step trains of consecutive moves, split where the line rested longer than `gap`.
+std::vector<std::vector<Nanos>> split_moves(const std::vector<Nanos>& rising, Nanos gap) {
+  std::vector<std::vector<Nanos>> moves;
+  for (std::size_t i = 0; i < rising.size(); ++i) {
+    if (i == 0 || rising[i] - rising[i - 1] > gap) moves.emplace_back();
+    moves.back().push_back(rising[i]);
+  }
+  return moves;
+}
+
+struct SlipCase {
+  int rate;
+  const char* profile;  // constant, trapezoid, scurve
+};
+
+void report_slip(const std::vector<SlipCase>& cases, const std::vector<planner::MoveSpec>& specs,
+                 const std::vector<bool>& faulted, const std::vector<std::vector<Nanos>>& moves) {
+  std::map<int, std::pair<int, int>> per_rate;  // rate -> (moves, faults)
+  std::size_t compressed = 0, unfaulted = 0, late_ends = 0, inexact = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const std::vector<Nanos> plan = planned_steps(specs[i]);
+    const std::vector<Nanos> wire = i < moves.size() ? moves[i] : std::vector<Nanos>{};
+    const SlipVerdict v = judge_move(wire, plan, specs[i].vs, faulted[i]);
+    compressed += v.compressed;
+    unfaulted += v.unfaulted;
+    late_ends += (!faulted[i] && !v.in_time) ? 1 : 0;
+    // Exact: a complete move has all its steps; a faulted one fewer (its count is the position).
+    const bool exact = faulted[i] ? wire.size() < plan.size() : wire.size() == plan.size();
+    inexact += exact ? 0 : 1;
+    auto& [n, f] = per_rate[cases[i].rate];
+    ++n;
+    f += faulted[i] ? 1 : 0;
+    std::printf(
+        "slip %6d steps/s %-9s: %zu of %zu planned steps, %s, compressed %zu, "
+        "unfaulted pauses %zu, worst pause %.1f us\n",
+        cases[i].rate, cases[i].profile, wire.size(), plan.size(),
+        faulted[i] ? "FAULTED" : "complete", v.compressed, v.unfaulted,
+        static_cast<double>(v.worst_pause) / 1e3);
+  }
+  std::printf(
+      "RESULT bench=slip moves=%zu compressed=%zu unfaulted_pauses=%zu late_ends=%zu "
+      "inexact=%zu",
+      cases.size(), compressed, unfaulted, late_ends, inexact);
+  for (const auto& [rate, nf] : per_rate)
+    std::printf(" faults_%d=%d/%d", rate, nf.second, nf.first);
+  std::printf("\n");
+}
+
+// Issue 18: single-axis moves at 2, 10 and 50 ksteps/s (constant at Vs, trapezoid, S-curve)
+// with the product's default guard; scripts/bench runs it beside `stress-ng --cpu 2`. Each move
+// is judged from the VCD against its plan: compressed intervals, pauses beyond the fault rule
+// that did not fault, the end within 2.5 x nominal + 3 s, exact counts, faults per speed.
+int slip(int argc, char** argv) {
+  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
+  const int runs = std::atoi(arg(argc, argv, "--runs", "2"));
+  std::vector<SlipCase> cases;
+  for (int r = 0; r < runs; ++r) {
+    for (const int rate : {2'000, 10'000, 50'000}) {
+      for (const char* profile : {"constant", "trapezoid", "scurve"})
+        cases.push_back({rate, profile});
+    }
+  }
+  std::vector<bool> faulted;
+  std::vector<planner::MoveSpec> specs;
+  std::vector<Nanos> rising;
+  {
+    Daemon d(exe, 1000, true, 0);
+    Plc plc(d.name());
+    for (const SlipCase& c : cases) {
+      const bool constant = std::strcmp(c.profile, "constant") == 0;
+      const bool scurve = std::strcmp(c.profile, "scurve") == 0;
+      const std::int32_t vs = constant ? c.rate : 1'000;
+      const auto accel = static_cast<std::int16_t>(c.rate / 500);  // steps/ms/s: ~0.5 s ramps
+      const std::int32_t steps = c.rate;                           // about a second
+      plc.configure(vs);
+      const std::uint32_t before = plc.c.read_health().late_faults;
+      plc.move(steps, c.rate, accel, scurve ? m::cmd_lsw::kSCurve | m::cmd_lsw::kTrapezoidalS : 0);
+      plc.scans(3);
+      plc.release();
+      wait_rest(plc, milliseconds(static_cast<long>(steps) * 5000 / c.rate + 10'000));
+      faulted.push_back(plc.c.read_health().late_faults > before);
+      planner::MoveSpec s;
+      s.steps = steps;
+      s.vs = vs;
+      s.vp = c.rate;
+      const double rate = static_cast<double>(accel) *
+                          static_cast<double>(module::axis::kRules3601.accel_word_unit);
+      const auto shape =
+          scurve ? planner::AccelShape::kTrapezoidalS : planner::AccelShape::kConstant;
+      s.accel = planner::Ramp{rate, shape};
+      s.decel = s.accel;
+      specs.push_back(s);
+      std::this_thread::sleep_for(milliseconds(400));  // a rest the VCD is split at
+    }
+    d.stop();
+    rising = vcd_rising(d.trace(), "axis1.step");
+  }
+  report_slip(cases, specs, faulted, split_moves(rising, 300 * kNsPerMs));
   return 0;
 }
 
@@ -548,12 +717,13 @@ int main(int argc, char** argv) {
     if (cmd == "grid") return grid(argc, argv);
     if (cmd == "guard") return guard(argc, argv);
     if (cmd == "trace") return trace(argc, argv);
+    if (cmd == "slip") return slip(argc, argv);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "daemon_bench: %s\n", e.what());
     return 1;
   }
   std::fprintf(stderr,
-               "usage: daemon_bench latency|footprint|cpu|grid|guard|trace --stepmodd PATH "
+               "usage: daemon_bench latency|footprint|cpu|grid|guard|trace|slip --stepmodd PATH "
                "[--scan-us US] [--steps N] [--runs N] "
                "[--commands N] [--seconds S] [--rate STEPS_PER_S]\n");
   return 2;

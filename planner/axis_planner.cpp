@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <type_traits>
 #include <variant>
 
@@ -19,7 +20,26 @@ constexpr Nanos kCutPollNs = 20 * kNsPerUs;
 }  // namespace
 
 AxisPlanner::AxisPlanner(const PlannerAxis& axis, const PlannerOptions& options) noexcept
-    : control_(axis.control), timing_(axis.timing), opt_(options), out_(axis.edges, axis.timing) {}
+    : control_(axis.control),
+      feedback_(axis.feedback),
+      timing_(axis.timing),
+      opt_(options),
+      out_(axis.edges, axis.timing) {}
+
+Nanos AxisPlanner::slip() const noexcept {
+  if (feedback_ == nullptr || m_.epoch == 0) return 0;
+  const std::uint64_t s = feedback_->slip.load(std::memory_order_acquire);
+  // Another motion's (the pulse thread has not reached this one yet): none yet.
+  if (rt::packed_epoch(s) != m_.epoch) return 0;
+  return static_cast<Nanos>(rt::packed_value(s)) * kNsPerUs;
+}
+
+void AxisPlanner::publish_motion(const Motion& m, double vs) noexcept {
+  if (control_ == nullptr) return;
+  control_->motion_group.store(rt::pack_epoch(m.epoch, m.group), std::memory_order_release);
+  control_->motion_vs.store(rt::pack_epoch(m.epoch, rt::vs_interval_ns(vs)),
+                            std::memory_order_release);
+}
 
 double AxisPlanner::frontier_speed() const noexcept {
   if (!m_.active) return 0.0;
@@ -34,12 +54,14 @@ std::int64_t AxisPlanner::planned_steps_at(Nanos t) const noexcept {
 
 void AxisPlanner::apply(const Command& c, Nanos now) noexcept {
   check_abort();
-  now_ = std::max(now_, now);
-  resolve_cut(true);
   if (c.starts_motion()) {
+    resolve_cut(true);
     if (prepare_start(c, now)) launch(earliest_origin(now));
     return;
   }
+  now -= slip();  // from here on: the running motion's time base
+  now_ = std::max(now_, now);
+  resolve_cut(true);
   const std::uint32_t epoch = c.epoch;
   std::visit(
       [&](const auto& p) {
@@ -93,7 +115,7 @@ void AxisPlanner::abort_last_motion() noexcept {
 
 bool AxisPlanner::prepare_start(const Command& c, Nanos now) noexcept {
   check_abort();
-  now_ = std::max(now_, now);
+  now_ = std::max(now_, now - slip());
   resolve_cut(true);
   if (control_ != nullptr && c.epoch <= control_->abort_epoch.load(std::memory_order_acquire)) {
     return false;  // aborted before it started
@@ -108,14 +130,18 @@ bool AxisPlanner::prepare_start(const Command& c, Nanos now) noexcept {
   m.active = true;
   m.held = true;
   m.epoch = c.epoch;
+  m.group = c.group.id;
+  double vs = 0.0;
   if (const auto* follow = std::get_if<FollowStart>(&c.what)) {
     // Steps and their direction come from follow_step as the target moves.
     m.dir = follow->spec.target < 0 ? Direction::kCcw : Direction::kCw;
     m.end = kEndless;
     m.follow = true;
     follow_.start(follow->spec);
+    vs = follow->spec.vs;
   } else if (path) {
     prepare_path(c, m);
+    vs = path_.vs();
   } else {
     ProfileSource::Start st;
     if (const auto* move = std::get_if<MoveSpec>(&c.what)) {
@@ -127,7 +153,9 @@ bool AxisPlanner::prepare_start(const Command& c, Nanos now) noexcept {
     }
     m.dir = st.dir;
     m.end = st.end;
+    vs = profile_.vs();
   }
+  publish_motion(m, vs);  // before any of its edges is pushed
   out_.begin(c.epoch, m.dir);
   // Step/direction: the direction line must settle dir_setup_ns before the first step. CW/CCW:
   // the CCW pulse line rests low. Only a change (or an unknown level) costs an edge. (A follow
@@ -253,7 +281,9 @@ void AxisPlanner::stop_at_frontier(const Ramp& ramp) noexcept {
 
 bool AxisPlanner::request_cut(const StopSpec& c) noexcept {
   if (control_ == nullptr || m_.held || cut_.open || cut_epoch_ == m_.epoch) return false;
-  const Nanos want = std::max(c.trigger_t, now_ + opt_.cut_margin_ns);
+  // The trigger is a wall-clock time (an input edge's timestamp, a scan): on the motion's time
+  // base it lies its slip earlier.
+  const Nanos want = std::max(c.trigger_t - slip(), now_ + opt_.cut_margin_ns);
   const std::int64_t k = planned_steps_at(want);
   // Nothing planned after `want` (the frontier stop is as early), or no step before it yet.
   if (k < 1 || k >= m_.k || m_.k - k >= static_cast<std::int64_t>(EdgeEmitter::kHistory) - 1) {
@@ -311,7 +341,8 @@ void AxisPlanner::apply_cut() noexcept {
 void AxisPlanner::stop_after(std::uint32_t epoch, const StopAfterSpec& c) noexcept {
   if (!m_.active || epoch != m_.epoch || m_.follow || m_.path) return;
   // Steps of this motion up to c.t, counting the ones already planned after it.
-  const std::int64_t end = planned_steps_at(c.t) + std::max<std::int64_t>(c.steps, 0);
+  // c.t is a wall-clock time (the registration input's edge): converted to the motion's time.
+  const std::int64_t end = planned_steps_at(c.t - slip()) + std::max<std::int64_t>(c.steps, 0);
   if (end >= m_.end) return;  // already ends there or sooner
   if (end <= m_.k) {
     finish_at_frontier();  // the count was reached by steps already planned: end at once
@@ -369,6 +400,14 @@ void AxisPlanner::step_once() noexcept {
 }
 
 Nanos AxisPlanner::fill(Nanos now) noexcept {
+  // The ring is kept filled a lookahead ahead on the motion's time base, and the time to come
+  // back is a wall-clock time again.
+  const Nanos s = slip();
+  const Nanos next = fill_planned(now - s);
+  return next >= std::numeric_limits<Nanos>::max() - s ? next : next + s;
+}
+
+Nanos AxisPlanner::fill_planned(Nanos now) noexcept {
   check_abort();
   now_ = std::max(now_, now);
   if (!resolve_cut(false)) {

@@ -38,6 +38,10 @@ class AxisPlanner {
   // Pushes edges while the ring has room, up to now + lookahead. Returns the time by which it
   // must be called again.
   Nanos fill(Nanos now) noexcept;
+  // How far the pulse thread has slipped the newest motion (rt/slip.hpp): its planned time t is
+  // written at t + slip(). Wall-clock times (now, a trigger's timestamp) are converted to the
+  // motion's time base with it; a start from rest is planned on the wall clock (no slip yet).
+  Nanos slip() const noexcept;
 
   // Introspection (tests, diagnostics).
   bool active() const noexcept { return m_.active; }            // a motion is still being planned
@@ -91,6 +95,7 @@ class AxisPlanner {
     bool follow = false;          // a follow motion (FollowSpec): steps come from follow_step
     bool path = false;            // a path motion (PathStart/PathResume): steps from path_
     bool held = false;            // prepared, waiting for launch() (group start)
+    std::uint32_t group = 0;      // its group id (GroupTag), 0: alone
     Nanos dir_shift = 0;          // launch: time 0 this long after the direction edge
     bool dir_edge = false;        // launch: write the direction line first
   };
@@ -120,6 +125,10 @@ class AxisPlanner {
   // Replans the profile from the newest step to end on step `end` (ProfileSource::replan_to_end).
   void replan_to_end(std::int64_t end, const Ramp& ramp, bool exact_ramp) noexcept;
   void step_once() noexcept;
+  // fill() on the motion's time base (`now` already converted).
+  Nanos fill_planned(Nanos now) noexcept;
+  // Tells the pulse thread the new motion's group and starting speed (rt::AxisControl).
+  void publish_motion(const Motion& m, double vs) noexcept;
   // Plans the path's next step if it lies within `horizon`; false (and the open pulse ended) if
   // it lies beyond: it stays unplanned, so a hold can still replan it (path_next_ns_).
   bool path_step_once(Nanos horizon) noexcept;
@@ -133,6 +142,7 @@ class AxisPlanner {
   void discard_path() noexcept;
 
   rt::AxisControl* control_;
+  const rt::AxisFeedback* feedback_;
   AxisTiming timing_;
   PlannerOptions opt_;
   EdgeEmitter out_;

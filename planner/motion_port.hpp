@@ -112,13 +112,26 @@ class MotionPort {
     return Phase::kCruising;
   }
   unsigned axis() const noexcept { return axis_; }
+  // The planned interval between the last two steps output (the programmed speed there, not
+  // stretched by slip); 0 before a motion's second step.
+  Nanos planned_interval() const noexcept {
+    return fb_.step_interval_ns.load(std::memory_order_relaxed);
+  }
+  // How far the motion now running has slipped behind its plan (rt/slip.hpp): its Move Complete,
+  // its stops and registration distances all come that much later on the wall clock.
+  Nanos slip_ns() const noexcept {
+    const std::uint64_t s = fb_.slip.load(std::memory_order_acquire);
+    return rt::packed_epoch(s) == epoch_ ? Nanos{rt::packed_value(s)} * kNsPerUs : 0;
+  }
 
   // Late-edge guard (rt::PulseEngine::set_late_limit), decoded from the pulse thread's feedback.
   struct LateFault {
     std::uint32_t count = 0;  // faults of this axis since start
     std::uint32_t epoch = 0;  // the motion last cut (0: none yet)
     std::int64_t step = 0;    // the axis step count when it was cut
-    Nanos late_ns = 0;        // how late its next edge would have been written
+    Nanos late_ns = 0;        // the pause at its next step (how late it would have been written)
+    std::int64_t lag = 0;     // steps due during the pause (0: at or below Vs, not judged)
+    Nanos interval_ns = 0;    // the planned step interval there (0: the motion's first step)
     Nanos worst_late_ns = 0;  // the largest late_ns so far
   };
   LateFault late_fault() const noexcept {
@@ -127,6 +140,8 @@ class MotionPort {
     f.epoch = fb_.fault_epoch.load(std::memory_order_relaxed);
     f.step = fb_.fault_step.load(std::memory_order_relaxed);
     f.late_ns = fb_.fault_late_ns.load(std::memory_order_relaxed);
+    f.lag = fb_.fault_lag.load(std::memory_order_relaxed);
+    f.interval_ns = fb_.fault_interval_ns.load(std::memory_order_relaxed);
     f.worst_late_ns = fb_.worst_fault_late_ns.load(std::memory_order_relaxed);
     return f;
   }

@@ -45,6 +45,7 @@ namespace stepmod::planner {
 
 class PathSource {
  public:
+  double vs() const noexcept { return vs_; }  // the path's starting speed
   struct Start {
     Direction dir;     // of the first step (kCw if there is none)
     std::int64_t end;  // the number of steps this motion makes (0: none)

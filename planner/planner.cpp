@@ -112,8 +112,9 @@ void Planner::hold_path(const Command& c, const Ramp& ramp, Nanos now) {
   const auto member = [&](unsigned i) {
     return i == c.axis || (id != 0 && axes_[i]->path_id() == id);
   };
-  // One time for all: no step either axis has planned may be replanned.
-  Nanos t = now + options_.start_delay_ns;
+  // One time for all: no step either axis has planned may be replanned. The axes of a path share
+  // one slip (rt/slip.hpp): `now` on their time base.
+  Nanos t = now - sender.slip() + options_.start_delay_ns;
   for (unsigned i = 0; i < axes_.size(); ++i) {
     if (member(i)) t = std::max(t, axes_[i]->path_frontier());
   }

@@ -24,6 +24,8 @@ struct PlannerAxis {
   SpscRing<rt::Edge>* edges = nullptr;  // producer side
   rt::AxisControl* control = nullptr;   // abort_epoch: skip aborted motions; cut (stops)
   AxisTiming timing;
+  // The pulse thread's slip of the axis' motion (rt/slip.hpp); null: none (no slip is seen).
+  const rt::AxisFeedback* feedback = nullptr;
 };
 
 struct PlannerOptions {

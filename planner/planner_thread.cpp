@@ -1,6 +1,9 @@
 #include "planner/planner_thread.hpp"
 
 #include <pthread.h>
+#include <sched.h>
+
+#include <cerrno>
 
 #include "core/clock.hpp"
 #include "planner/wakeup.hpp"
@@ -32,6 +35,13 @@ void PlannerThread::run() noexcept {
     if (stop_.load(std::memory_order_acquire)) break;
     if (next > monotonic_now()) wait_for_change(wake, seen, next);
   }
+}
+
+int PlannerThread::set_realtime(int priority) noexcept {
+  if (!thread_.joinable()) return ESRCH;
+  sched_param sp{};
+  sp.sched_priority = priority;
+  return pthread_setschedparam(thread_.native_handle(), SCHED_FIFO, &sp);
 }
 
 }  // namespace stepmod::planner

@@ -19,6 +19,10 @@ class PlannerThread {
   // Wakes the thread and joins it. Idempotent.
   void stop() noexcept;
   bool running() const noexcept { return thread_.joinable(); }
+  // After start(): SCHED_FIFO at `priority` (issue 18: a planner thread at normal priority is
+  // held off its CPU for milliseconds by CPU hogs, its pulse thread's 4 ms of edges run dry, and
+  // the step train pauses). Returns 0 or the error.
+  int set_realtime(int priority) noexcept;
   // Number of service() calls so far (diagnostics, tests).
   std::uint64_t loops() const noexcept { return loops_.load(std::memory_order_relaxed); }
 

@@ -17,6 +17,7 @@ inline constexpr std::int64_t kEndless = std::numeric_limits<std::int64_t>::max(
 
 class ProfileSource {
  public:
+  double vs() const noexcept { return vs_; }  // the motion's starting speed
   struct Start {
     Direction dir;
     std::int64_t end;  // the step count at which the motion ends (kEndless: a run)

@@ -10,6 +10,7 @@
 #include "core/clock.hpp"
 #include "rt/edge.hpp"
 #include "rt/edge_cut.hpp"
+#include "rt/slip.hpp"
 
 namespace stepmod::rt {
 
@@ -21,15 +22,24 @@ struct AxisFeedback {
   std::atomic<std::uint8_t> flags{0};  // edge_flag bits of the last executed motion edge
   std::atomic<std::uint8_t> output_levels{0};  // bit per OutputLine: what the lines are driven to
   std::atomic<Nanos> last_step_t{0};           // time of the last step's leading edge
+  // The slip of the axis' motion (rt/slip.hpp): pack_epoch(motion epoch, slip in us). Wire time
+  // of a planned time t of that motion = t + slip. Updated whenever it grows.
+  std::atomic<std::uint64_t> slip{0};
+  // Planned interval between the axis' last two steps of one motion (0: its first step).
+  std::atomic<Nanos> step_interval_ns{0};
 
-  // Late-edge guard (PulseEngine::set_late_limit): a motion edge that could only be written more
-  // than the limit after its time is not written; the rest of its motion is dropped (as by an
-  // immediate stop) and the fault is published here. Written in this order: the details, then
+  // Late-edge guard (PulseEngine::set_late_limit, set_lag_limit): a step whose pause (the gap
+  // in the step train beyond the planned interval) is longer than the late limit, or, above the
+  // starting speed, whose lag (steps due during the pause) exceeds the lag limit, is not
+  // written; the rest of its motion (its group's) is dropped (as by an immediate stop) and the
+  // fault is published here. Written in this order: the details, then
   // late_faults (release), then finished_epoch: a reader that sees the motion finished and
   // late_faults changed (acquire) sees the details of that fault. Two faults within one reader
   // pass may mix their details; the count never misses one.
   std::atomic<std::int64_t> fault_step{0};    // step count when the motion was cut
-  std::atomic<Nanos> fault_late_ns{0};        // how late the dropped edge would have been
+  std::atomic<Nanos> fault_late_ns{0};        // the pause at the dropped edge
+  std::atomic<std::int64_t> fault_lag{0};     // its lag, in steps (0 below Vs: not judged)
+  std::atomic<Nanos> fault_interval_ns{0};    // the planned step interval there (0: at rest)
   std::atomic<std::uint32_t> fault_epoch{0};  // the motion that was cut
   std::atomic<std::uint32_t> late_faults{0};  // faults since start
   std::atomic<Nanos> worst_fault_late_ns{0};  // the largest fault_late_ns so far
@@ -57,6 +67,10 @@ struct AxisControl {
   // Stored (release) after the edges pushed before it; read (acquire) before the ring is peeked.
   // Edges a command causes sooner come with the doorbell (PulseThread::ring).
   std::atomic<std::int64_t> refill_at{0};
+  // Planner -> pulse thread, stored before a motion's first edge is pushed (rt/slip.hpp):
+  // pack_epoch(epoch, group id; 0 = alone) and pack_epoch(epoch, vs_interval_ns(Vs)).
+  std::atomic<std::uint64_t> motion_group{0};
+  std::atomic<std::uint64_t> motion_vs{0};
 };
 
 // Time -> step count, for events stamped in the past (capture input, registration trigger).

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "rt/slip.hpp"
+
 namespace stepmod::rt {
 
 namespace {
@@ -25,7 +27,9 @@ PulseEngine::PulseEngine(gpio::Backend& backend, std::span<const AxisLink> axes,
       in_motion_(axes.size(), 0),
       pulse_late_(axes.size(), 0),
       dir_late_(axes.size(), 0),
-      truncated_epoch_(axes.size(), 0) {}
+      truncated_epoch_(axes.size(), 0),
+      cells_(axes.size()),
+      track_(axes.size()) {}
 
 Nanos PulseEngine::next_due() noexcept {
   Nanos best = kNever;
@@ -49,9 +53,13 @@ Nanos PulseEngine::next_due() noexcept {
     const Nanos refill_at =
         link.control != nullptr ? link.control->refill_at.load(std::memory_order_acquire) : 0;
     const Edge* e = link.edges->peek();
+    if (e != nullptr && (e->flags & edge_flag::kMotion) != 0 && e->epoch != track_[axis].epoch) {
+      bind(axis, *e);
+    }
     if (e == nullptr && in_motion_[axis] != 0) {
       starved = true;
-      dry_until = std::min(dry_until, refill_at);
+      // refill_at is a planned time of the motion: on the wire it comes its slip later.
+      dry_until = std::min(dry_until, refill_at == 0 ? 0 : refill_at + slip_of(axis));
     }
     // Strictly earlier only: on a tie the lower axis goes first, a stable order for tests.
     if (e != nullptr) {
@@ -79,13 +87,108 @@ void PulseEngine::drop_stale(unsigned axis) noexcept {
 }
 
 Nanos PulseEngine::due(unsigned axis, const Edge& e) const noexcept {
+  if ((e.flags & edge_flag::kMotion) == 0) return e.t;  // GPO: written at its own time
+  const Nanos t = e.t + slip_of(axis);
   // The pulse's trailing edge: a drive needs the whole high time, however late the rise was.
   if (e.level == 0 && pulse_high_[axis] == static_cast<std::uint8_t>(e.line)) {
-    return e.t + pulse_late_[axis];
+    return t + pulse_late_[axis];
   }
   // The first step after a direction change: the whole set-up time after the direction write.
-  if (e.dpos != 0) return e.t + dir_late_[axis];
-  return e.t;
+  if (e.dpos != 0) return t + dir_late_[axis];
+  return t;
+}
+
+int PulseEngine::find_cell(unsigned axis, std::uint32_t key) const noexcept {
+  const auto taken = [&](unsigned c) {
+    for (unsigned b = 0; b < track_.size(); ++b) {
+      if (b != axis && track_[b].cell == c) return true;
+    }
+    return false;
+  };
+  // The group's cell, if another member bound it already.
+  if (key != 0) {
+    for (unsigned c = 0; c < cells_.size(); ++c) {
+      if (cells_[c].key == key && taken(c)) return static_cast<int>(c);
+    }
+  }
+  if (!taken(axis)) return -static_cast<int>(axis) - 1;  // free: preferably the axis' own
+  for (unsigned c = 0; c < cells_.size(); ++c) {
+    if (!taken(c)) return -static_cast<int>(c) - 1;
+  }
+  return -static_cast<int>(axis) - 1;  // cannot happen: cells == axes, this axis holds none
+}
+
+void PulseEngine::bind(unsigned axis, const Edge& e) noexcept {
+  Track& tr = track_[axis];
+  std::uint32_t key = 0;
+  Nanos vs_interval = 0;
+  if (const AxisControl* ctl = axes_[axis].control) {
+    const std::uint64_t g = ctl->motion_group.load(std::memory_order_acquire);
+    const std::uint64_t v = ctl->motion_vs.load(std::memory_order_acquire);
+    if (packed_epoch(g) == e.epoch) key = packed_value(g);
+    if (packed_epoch(v) == e.epoch) vs_interval = packed_value(v);
+  }
+  // A motion that continues the previous one (planned within kChainGapNs of its slipped end)
+  // keeps its slip: the gap between them is not squeezed. A start from rest starts on time.
+  Nanos inherit = 0;
+  if (tr.have_last && e.t - tr.last_planned < tr.last_slip + kChainGapNs) inherit = tr.last_slip;
+  tr.cell = kNoCell;
+  const int found = find_cell(axis, key);
+  std::uint8_t c = 0;
+  if (found >= 0) {
+    c = static_cast<std::uint8_t>(found);
+    cells_[c].slip = std::max(cells_[c].slip, inherit);  // only ever later: never squeezed
+  } else {
+    c = static_cast<std::uint8_t>(-found - 1);
+    cells_[c] = Cell{inherit, key};
+  }
+  tr.cell = c;
+  tr.epoch = e.epoch;
+  tr.vs_interval = vs_interval;
+  tr.step_seen = false;
+  publish_slip(c);
+}
+
+void PulseEngine::publish_slip(std::uint8_t cell) noexcept {
+  const std::uint32_t us = slip_us(cells_[cell].slip);
+  for (unsigned b = 0; b < track_.size(); ++b) {
+    if (track_[b].cell != cell || axes_[b].feedback == nullptr) continue;
+    axes_[b].feedback->slip.store(pack_epoch(track_[b].epoch, us), std::memory_order_release);
+  }
+}
+
+Nanos PulseEngine::absorb(unsigned axis, const Edge& e, Nanos write_time) noexcept {
+  Track& tr = track_[axis];
+  Cell& cell = cells_[tr.cell];
+  // Against the slipped planned time: a step's direction set-up residual counts in here.
+  const Nanos late = write_time - (e.t + cell.slip);
+  if (late > kSlipFreeNs) {
+    cell.slip += late - kSlipFreeNs;
+    publish_slip(tr.cell);
+  }
+  tr.have_last = true;
+  tr.last_planned = e.t;
+  tr.last_slip = cell.slip;
+  return std::clamp<Nanos>(write_time - (e.t + cell.slip), 0, kSlipFreeNs);
+}
+
+PulseEngine::Verdict PulseEngine::judge(unsigned axis, const Edge& e,
+                                        Nanos write_time) const noexcept {
+  const Track& tr = track_[axis];
+  Verdict v;
+  v.pause = std::max<Nanos>(0, write_time - due(axis, e));
+  if (e.dpos != 0 && tr.step_seen) {
+    // The gap since the previous step against the planned one: what the motor sees, whichever
+    // edge (trailing, direction, this one; or another axis of the group) was late.
+    v.interval = std::max<Nanos>(1, e.t - tr.step_planned);
+    v.pause = std::max(v.pause, (write_time - tr.step_wire) - v.interval);
+    // Above Vs (1 % tolerance: a move at Vs is planned at Vs's interval, rounded).
+    const bool above_vs = tr.vs_interval == 0 || v.interval * 100 < tr.vs_interval * 99;
+    if (above_vs) v.lag = v.pause / v.interval;
+  }
+  v.fault = v.pause > late_limit_ ||
+            (tr.lag_limit != 0 && v.lag > static_cast<std::int64_t>(tr.lag_limit));
+  return v;
 }
 
 // Registration exactness (AxisControl::limit_steps): steps of the capped motion beyond its cap
@@ -133,26 +236,40 @@ void PulseEngine::apply_abort(unsigned axis) noexcept {
   if (link.feedback != nullptr) store_max(link.feedback->finished_epoch, a);
 }
 
-void PulseEngine::late_fault(unsigned axis, const Edge& e, Nanos late) noexcept {
-  // As an immediate stop of this motion that the module did not ask for: its edges (this one
-  // included, still at the head of the ring) and any the planner still pushes are dropped by
+void PulseEngine::fault_group(unsigned axis, const Verdict& v) noexcept {
+  const std::uint8_t cell = track_[axis].cell;
+  for (unsigned b = 0; b < track_.size(); ++b) {
+    if (b != axis && (cell == kNoCell || track_[b].cell != cell)) continue;
+    const std::uint32_t epoch = track_[b].epoch;
+    const AxisFeedback* fb = axes_[b].feedback;
+    // A member that has already made all its steps is not cut (its motion ended well).
+    if (b != axis && fb != nullptr && fb->finished_epoch.load(std::memory_order_relaxed) >= epoch) {
+      continue;
+    }
+    late_fault(b, epoch, v);
+  }
+}
+
+void PulseEngine::late_fault(unsigned axis, std::uint32_t epoch, const Verdict& v) noexcept {
+  // As an immediate stop of this motion that the module did not ask for: its edges (the faulted
+  // one included, still at the head of the ring) and any the planner still pushes are dropped by
   // drop_stale. The module learns of it from the feedback and stops the motion the same way.
-  abort_seen_[axis] = std::max(abort_seen_[axis], e.epoch);
+  abort_seen_[axis] = std::max(abort_seen_[axis], epoch);
   drop_stale(axis);
   in_motion_[axis] = 0;
-  // Edges of one axis are in time order, so a pulse's trailing edge precedes the next motion
-  // edge and no pulse can be high here; should one be (a foreign order), end it rather than
-  // leave the line high.
+  // A group member may be in the middle of a pulse: end it rather than leave the line high.
   const std::uint8_t line = pulse_high_[axis];
   if (line != kNoPulse) write(axis, static_cast<OutputLine>(line), false, clock_());
   if (AxisFeedback* fb = axes_[axis].feedback) {
     fb->fault_step.store(fb->steps.load(std::memory_order_relaxed), std::memory_order_relaxed);
-    fb->fault_late_ns.store(late, std::memory_order_relaxed);
-    fb->fault_epoch.store(e.epoch, std::memory_order_relaxed);
-    store_max(fb->worst_fault_late_ns, late);
+    fb->fault_late_ns.store(v.pause, std::memory_order_relaxed);
+    fb->fault_lag.store(v.lag, std::memory_order_relaxed);
+    fb->fault_interval_ns.store(v.interval, std::memory_order_relaxed);
+    fb->fault_epoch.store(epoch, std::memory_order_relaxed);
+    store_max(fb->worst_fault_late_ns, v.pause);
     fb->late_faults.store(fb->late_faults.load(std::memory_order_relaxed) + 1,
                           std::memory_order_release);
-    store_max(fb->finished_epoch, e.epoch);
+    store_max(fb->finished_epoch, epoch);
   }
 }
 
@@ -188,25 +305,25 @@ void PulseEngine::execute_one(Nanos write_time) noexcept {
   const Edge* p = link.edges->peek();
   if (p == nullptr) return;  // cannot happen: we are the only consumer and next_due() saw it
   const Edge e = *p;
-  // The late-edge guard looks at every motion edge but the end of a pulse under way: that one
-  // is always written (a drive needs the whole pulse, and due() already gave it its width).
-  if ((e.flags & edge_flag::kMotion) != 0 &&
-      !(e.level == 0 && pulse_high_[axis] == static_cast<std::uint8_t>(e.line))) {
-    const Nanos late = write_time - due(axis, e);
-    if (late > late_limit_) {
-      late_fault(axis, e, late);
+  const bool motion = (e.flags & edge_flag::kMotion) != 0;
+  const bool trailing = e.level == 0 && pulse_high_[axis] == static_cast<std::uint8_t>(e.line);
+  const Nanos due_t = due(axis, e);
+  // The guard looks at every motion edge but the end of a pulse under way: that one is always
+  // written (a drive needs the whole pulse, and due() already gave it its width).
+  if (motion && !trailing) {
+    const Verdict v = judge(axis, e, write_time);
+    if (v.fault) {
+      fault_group(axis, v);
       return;
     }
   }
   link.edges->pop();
   if (link.control != nullptr) link.control->cut.executed(e);
 
-  // Before write() clears pulse_high_: whether this edge ends the pulse under way.
-  const bool direction_edge = e.dpos == 0 && e.line == OutputLine::kDir &&
-                              pulse_high_[axis] != static_cast<std::uint8_t>(e.line) &&
-                              (e.flags & edge_flag::kMotion) != 0;
+  const bool direction_edge = e.dpos == 0 && e.line == OutputLine::kDir && !trailing && motion;
   write(axis, e.line, e.level != 0, write_time);
-  if (direction_edge) dir_late_[axis] = std::max<Nanos>(0, write_time - e.t);
+  const Nanos rest = motion ? absorb(axis, e, write_time) : 0;
+  if (direction_edge) dir_late_[axis] = rest;
 
   AxisFeedback* fb = link.feedback;
   if (e.dpos != 0) {
@@ -214,7 +331,17 @@ void PulseEngine::execute_one(Nanos write_time) noexcept {
     dir_late_[axis] = 0;
     if (e.level != 0) {
       pulse_high_[axis] = static_cast<std::uint8_t>(e.line);
-      pulse_late_[axis] = std::max<Nanos>(0, write_time - e.t);
+      pulse_late_[axis] = rest;
+    }
+    if (motion) {
+      Track& tr = track_[axis];
+      if (fb != nullptr) {
+        fb->step_interval_ns.store(tr.step_seen ? e.t - tr.step_planned : 0,
+                                   std::memory_order_relaxed);
+      }
+      tr.step_seen = true;
+      tr.step_planned = e.t;
+      tr.step_wire = write_time;
     }
     if (fb != nullptr) {
       const std::int64_t steps = fb->steps.load(std::memory_order_relaxed) + e.dpos;
@@ -225,16 +352,15 @@ void PulseEngine::execute_one(Nanos write_time) noexcept {
       fb->steps.store(steps, std::memory_order_release);
     }
   }
-  if ((e.flags & edge_flag::kMotion) != 0) {
-    in_motion_[axis] = (e.flags & edge_flag::kLast) != 0 ? 0 : 1;
-  }
-  if (fb != nullptr && (e.flags & edge_flag::kMotion) != 0) {
+  if (motion) in_motion_[axis] = (e.flags & edge_flag::kLast) != 0 ? 0 : 1;
+  if (fb != nullptr && motion) {
     fb->epoch.store(e.epoch, std::memory_order_release);
     fb->flags.store(e.flags, std::memory_order_release);
     // Last: a reader that sees the motion finished also sees its final count and flags.
     if ((e.flags & edge_flag::kLast) != 0) store_max(fb->finished_epoch, e.epoch);
   }
-  stats_.record(write_time - e.t);
+  // Against when it was due (its slipped time): the error the pulse thread itself adds.
+  stats_.record(write_time - due_t);
 }
 
 }  // namespace stepmod::rt

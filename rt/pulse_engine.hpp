@@ -59,14 +59,23 @@ class PulseEngine {
     return trace_dropped_;
   }
 
-  // Late-edge guard (issue 12): a motion edge whose write would come more than `limit` after
-  // the time it is due (PulseEngine::due) is a fault of its axis, never a burst of catch-up
-  // steps: the edge is not written, the rest of its motion is dropped (a step pulse under way
-  // has already been completed: trailing edges are never cut), and the fault is published in
-  // AxisFeedback. Within the limit, late edges are written (catching up). 0 = off (default:
-  // the engine alone measures; stepmodd sets [rt] late_limit_us). Set before use.
+  // Late-edge guard (issue 18, the contract's "Late edges"). A late edge never starts a burst:
+  // its motion's group slips (rt/slip.hpp). A step is a fault of its axis (and of the axes of
+  // its group) when its pause — how much longer the gap since the axis' previous step is than
+  // planned; for a motion's first step, how late it is — exceeds `limit` (any speed), or, above
+  // the motion's starting speed Vs, when its lag — pause / planned interval, the whole steps that
+  // were due during the pause — exceeds the axis' lag limit. The step is not written, the rest of
+  // the motion is dropped (a step pulse under way has already been completed: trailing edges are
+  // never cut), and the fault is published in AxisFeedback. 0 = off (default: the engine alone
+  // slips and measures; stepmodd sets [rt] late_limit_us and [axis] lag_limit_steps). Set before
+  // use.
   void set_late_limit(Nanos limit) noexcept { late_limit_ = limit > 0 ? limit : kNever; }
   Nanos late_limit() const noexcept { return late_limit_ == kNever ? 0 : late_limit_; }
+  void set_lag_limit(unsigned axis, std::uint32_t steps) noexcept {
+    if (axis < track_.size()) track_[axis].lag_limit = steps;
+  }
+  // The slip of `axis`' motion now (tests, diagnostics); AxisFeedback::slip publishes it.
+  Nanos slip(unsigned axis) const noexcept { return slip_of(axis); }
 
   // The clock an immediate stop stamps its line write with (next_due() has no time argument).
   // Default monotonic_now; tests running in virtual time substitute theirs. Set before use.
@@ -74,14 +83,38 @@ class PulseEngine {
   void set_clock(ClockFn clock) noexcept { clock_ = clock; }
 
  private:
+  // A guard's verdict on one motion edge (see set_late_limit).
+  struct Verdict {
+    Nanos pause = 0;
+    std::int64_t lag = 0;  // steps (0 when not above Vs)
+    Nanos interval = 0;    // planned interval from the previous step (0: first step, not a step)
+    bool fault = false;
+  };
+
   void apply_abort(unsigned axis) noexcept;
   void write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept;
   void drop_stale(unsigned axis) noexcept;
   void drop_beyond_limit(unsigned axis) noexcept;
-  // The late-edge guard's cut: drops motion `e.epoch` of `axis` and publishes the fault.
-  void late_fault(unsigned axis, const Edge& e, Nanos late) noexcept;
-  // When the head edge of `axis` may be written: its time, pushed back so that a late leading
-  // edge still gets its full pulse width and a late direction edge its full set-up time.
+  // Binds the motion of `e` (its first edge to reach the head) to a slip cell: its group's, or a
+  // free one, with the slip it inherits (rt/slip.hpp kChainGapNs).
+  void bind(unsigned axis, const Edge& e) noexcept;
+  int find_cell(unsigned axis, std::uint32_t key) const noexcept;
+  Nanos slip_of(unsigned axis) const noexcept {
+    const std::uint8_t c = track_[axis].cell;
+    return c == kNoCell ? 0 : cells_[c].slip;
+  }
+  // Publishes the slip of `cell` to the feedback of every axis bound to it.
+  void publish_slip(std::uint8_t cell) noexcept;
+  // After writing motion edge `e` at `write_time`: the lateness beyond kSlipFreeNs joins the
+  // slip; returns the rest (<= kSlipFreeNs), which the next edge's due() keeps as spacing.
+  Nanos absorb(unsigned axis, const Edge& e, Nanos write_time) noexcept;
+  Verdict judge(unsigned axis, const Edge& e, Nanos write_time) const noexcept;
+  // The guard's cut: drops `axis`' motion and every unfinished motion of its group.
+  void fault_group(unsigned axis, const Verdict& v) noexcept;
+  void late_fault(unsigned axis, std::uint32_t epoch, const Verdict& v) noexcept;
+  // When the head edge of `axis` may be written: its planned time plus its motion's slip, pushed
+  // back so that a leading edge a little late (within kSlipFreeNs) still gets its full pulse
+  // width and a direction edge its full set-up time.
   Nanos due(unsigned axis, const Edge& e) const noexcept;
 
   gpio::Backend& backend_;
@@ -98,11 +131,34 @@ class PulseEngine {
   static constexpr std::uint8_t kNoPulse = 0xff;
   std::vector<std::uint8_t> pulse_high_;
   std::vector<std::uint8_t> in_motion_;  // per axis: a motion's edges executed, not its last
-  // Per axis: how late the leading edge of the pulse now high was written, and how late the last
-  // direction edge was (until the next step): the trailing edge / next step keep their spacing.
+  // Per axis: how late (within kSlipFreeNs, beyond the slip) the leading edge of the pulse now
+  // high was written, and the last direction edge (until the next step): the trailing edge /
+  // next step keep their spacing.
   std::vector<Nanos> pulse_late_;
   std::vector<Nanos> dir_late_;
   std::vector<std::uint32_t> truncated_epoch_;  // per axis: motion cut at its step-count cap
+
+  // Slip cells: one per motion group running (a motion alone is a group of one). No more cells
+  // than axes, so an axis that binds a new motion always finds a free one.
+  static constexpr std::uint8_t kNoCell = 0xff;
+  struct Cell {
+    Nanos slip = 0;
+    std::uint32_t key = 0;  // the group id (0: a motion alone, never joined)
+  };
+  std::vector<Cell> cells_;
+  struct Track {  // per axis: its motion's binding and the guard's memory of its last step
+    std::uint8_t cell = kNoCell;
+    std::uint32_t epoch = 0;      // the motion bound (0: none yet)
+    Nanos vs_interval = 0;        // its step interval at Vs (0: unknown: every step is above Vs)
+    std::uint32_t lag_limit = 0;  // [axis] lag_limit_steps (0: off)
+    bool have_last = false;       // a motion edge of this axis was written: the two below
+    Nanos last_planned = 0;       // its planned time
+    Nanos last_slip = 0;          // the slip it was written with
+    bool step_seen = false;       // a step of the bound motion was written: the two below
+    Nanos step_planned = 0;
+    Nanos step_wire = 0;
+  };
+  std::vector<Track> track_;
   ClockFn clock_ = &monotonic_now;
   Nanos late_limit_ = kNever;
 };

@@ -255,10 +255,10 @@ class Parser {
     check_keys(*r, p, "rt");
     c.rt_priority = static_cast<int>(get_int(r, p, "priority", 80, 1, 99));
     c.rt_cpu = static_cast<int>(get_int(r, p, "cpu", -1, -1, 1023));
-    // Below a wake-up's latency (tens of us on a VM) every move would fault; above a second a
-    // stall would let a second's worth of steps out at once. No "off": a burst of late steps
-    // is what a motor loses steps on.
-    c.late_limit_ns = get_int(r, p, "late_limit_us", 1'000, 20, 1'000'000) * kNsPerUs;
+    // The longest pause at any speed (late edges slip, never burst: docs/slip.md). 200 ms:
+    // longer than a stock kernel's 50 ms fair-server / RT-throttling pause, short enough that a
+    // stalled board stops its axes within a fraction of a second. No "off".
+    c.late_limit_ns = get_int(r, p, "late_limit_us", 200'000, 20, 1'000'000) * kNsPerUs;
   }
 
   void parse_axes(const toml::table& root, const toml::table* module, Config& c) const {
@@ -340,6 +340,10 @@ class Parser {
     }
     a.step_pulse_ns = get_int(&t, p, "step_pulse_ns", 2'000, 100, 1'000'000);
     a.dir_setup_ns = get_int(&t, p, "dir_setup_ns", 5'000, 1, 1'000'000);
+    // Output steps of lag above Vs (docs/slip.md): a motor bridges 1-2 full steps, m..2m
+    // microsteps; 8 = one full step at 8 microsteps.
+    a.lag_limit_steps =
+        static_cast<std::uint32_t>(get_int(&t, p, "lag_limit_steps", 8, 1, 1'000'000));
     a.sim = parse_sim(sub_table(t, p, "sim"), p + ".sim");
     return a;
   }

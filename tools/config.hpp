@@ -24,6 +24,8 @@ using SimAxisConfig = gpio::SimAxisParams;
 struct AxisConfig : gpio::AxisLines {
   Nanos step_pulse_ns = 2'000;
   Nanos dir_setup_ns = 5'000;
+  // Late-edge guard above Vs (docs/slip.md): output steps the axis may lag after a pause.
+  std::uint32_t lag_limit_steps = 8;
   SimAxisConfig sim;
 };
 
@@ -37,9 +39,9 @@ struct Config {
   std::string chip = "gpiochip0";
   int rt_priority = 80;
   int rt_cpu = -1;
-  // Late-edge guard: an edge that would be written later than this after its time faults its
-  // axis (rt::PulseEngine::set_late_limit).
-  Nanos late_limit_ns = 1'000 * kNsPerUs;
+  // Late-edge guard: a pause in an axis' step train longer than this faults the axis at any
+  // speed (rt::PulseEngine::set_late_limit; docs/slip.md).
+  Nanos late_limit_ns = 200'000 * kNsPerUs;
   std::vector<AxisConfig> axes;
   ipc::ModbusOptions modbus;  // [modbus] (INTERFACE.md 6)
 };

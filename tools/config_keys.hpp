@@ -44,6 +44,7 @@ inline constexpr ConfigKey kConfigKeys[] = {
     {"axis", "enc_z"},
     {"axis", "step_pulse_ns"},
     {"axis", "dir_setup_ns"},
+    {"axis", "lag_limit_steps"},
     {"axis", "sim", true},
     {"axis.sim", "start_position"},
     {"axis.sim", "cw_limit_at"},

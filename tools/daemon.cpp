@@ -61,9 +61,7 @@ struct Daemon::Impl {
   std::vector<std::uint32_t> late_faults_seen;  // per axis: faults already logged
   // Per axis, for the "needs a CPU of its own" notice: the step count at the last scan and the
   // motion it was last given for.
-  std::vector<std::int64_t> steps_at_scan;
   std::vector<std::uint32_t> cpu_notice_epoch;
-  Nanos last_scan = 0;
   bool trace_loss_logged = false;
 
   // After the control thread may have submitted commands (or set an immediate stop, which is
@@ -100,7 +98,10 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
 
   StackOptions so;
   so.type = config.type;
-  for (const AxisConfig& a : config.axes) so.timing.push_back({a.step_pulse_ns, a.dir_setup_ns});
+  for (const AxisConfig& a : config.axes) {
+    so.timing.push_back({a.step_pulse_ns, a.dir_setup_ns});
+    so.lag_limit_steps.push_back(a.lag_limit_steps);
+  }
   // A new motion's time 0 is this long after the planner takes its command. The pulse thread,
   // rung when the command is submitted (kick()), polls every max_sleep_ns (50 us) and wakes
   // ~15-20 us late: 100 us covers it and is 50 us off the command latency (issue 5).
@@ -118,7 +119,6 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
     spdlog::warn("replaced {}", old);
   }
   d.late_faults_seen.assign(d.stack->shape().axes, 0);
-  d.steps_at_scan.assign(d.stack->shape().axes, 0);
   d.cpu_notice_epoch.assign(d.stack->shape().axes, 0);
   if (d.sim != nullptr) {
     d.panel = std::make_unique<ipc::SimPanelServer>(config.name, d.stack->shape().axes);
@@ -184,6 +184,16 @@ bool Daemon::run(const std::atomic<bool>& stop) {
   }
   planner::PlannerThread planner(d.stack->planner());
   planner.start();
+  // Real-time below the control thread (issue 18): under CPU hogs a normal-priority planner was
+  // held off for milliseconds, the pulse thread's 4 ms of edges ran dry and the steps paused.
+  if (po.priority > 0) {
+    const int prio = std::max(1, d.config.rt_priority - 20);
+    if (const int rc = planner.set_realtime(prio); rc != 0) {
+      spdlog::warn(
+          "planner thread: SCHED_FIFO priority {} refused ({}): steps may pause under load", prio,
+          std::strerror(rc));
+    }
+  }
 
   spdlog::info("module {} '{}' running: /dev/shm/stepmod.{}, {} backend, scan {} us",
                static_cast<unsigned>(d.config.type), d.config.name, d.config.name,
@@ -315,10 +325,12 @@ ipc::Health Daemon::Impl::health(std::uint32_t supervisor_flags) {
     if (f.count != late_faults_seen[a]) {
       late_faults_seen[a] = f.count;
       spdlog::error(
-          "axis {}: late-edge fault: the edge after step {} would have been written {} us late "
-          "(limit {} us); motion cut, no burst: the axis is stopped with position invalid "
-          "(re-home). {} fault(s) on this axis so far",
-          a + 1, f.step, f.late_ns / kNsPerUs, config.late_limit_ns / kNsPerUs, f.count);
+          "axis {}: late-edge fault at step {}: speed {} steps/s, pause {} us, lag {} steps "
+          "(limits: {} steps above the starting speed, {} us at any speed); motion cut, no "
+          "burst: the axis is stopped with position invalid (re-home). {} fault(s) on this "
+          "axis so far",
+          a + 1, f.step, f.interval_ns > 0 ? kNsPerSec / f.interval_ns : 0, f.late_ns / kNsPerUs,
+          f.lag, config.axes[a].lag_limit_steps, config.late_limit_ns / kNsPerUs, f.count);
     }
     h.late_faults += f.count;
     worst = std::max(worst, f.worst_late_ns);
@@ -338,40 +350,37 @@ ipc::Health Daemon::Impl::health(std::uint32_t supervisor_flags) {
   return h;
 }
 
-// Issue 12 item 5: a motion whose edges come closer together than the pulse thread's early
-// wake-up keeps that thread on its CPU for the whole move. On a CPU shared with other threads the
-// kernel then takes it away now and then (RT throttling, the fair server: tens of ms), which the
-// late-edge guard turns into a fault. Said once per motion, from here (never the pulse thread),
-// as soon as the axis runs that fast.
-void Daemon::Impl::notice_cpu_need(Nanos now) {
-  const Nanos dt = now - last_scan;
-  last_scan = now;
+// Issue 12 item 5, issue 18: a motion whose edges come closer together than the pulse thread's
+// early wake-up keeps that thread on its CPU for the whole move. On a CPU shared with other
+// threads the kernel then takes it away now and then (RT throttling, the fair server: tens of
+// ms): the schedule slips, and above Vs a pause of more than [axis] lag_limit_steps steps is a
+// fault. Said once per motion, from here (never the pulse thread), once the motion is past its
+// acceleration, naming its programmed speed there (the planned step interval, not a count of
+// steps per scan, which a late scan inflates).
+void Daemon::Impl::notice_cpu_need(Nanos /*now*/) {
   for (unsigned a = 0; a < stack->shape().axes; ++a) {
     planner::MotionPort& m = stack->motion(a);
-    const std::int64_t steps = m.steps();
-    const std::int64_t moved =
-        steps > steps_at_scan[a] ? steps - steps_at_scan[a] : steps_at_scan[a] - steps;
-    steps_at_scan[a] = steps;
-    if (pulse == nullptr || dt <= 0 || moved < 2 || !m.busy() || cpu_notice_epoch[a] == m.epoch()) {
+    const Nanos interval = m.planned_interval();
+    if (pulse == nullptr || interval <= 0 || !m.busy() || cpu_notice_epoch[a] == m.epoch() ||
+        m.phase() == planner::MotionPort::Phase::kAccelerating) {
       continue;
     }
-    const Nanos edge_gap = dt / (2 * moved);  // two edges per step
+    const Nanos edge_gap = interval / 2;  // two edges per step
     // Only once the thread has measured its wake-ups (before, its spin is a placeholder).
     if (pulse->wake_p99() == 0 || edge_gap >= pulse->stay_on_cpu_gap()) continue;
     cpu_notice_epoch[a] = m.epoch();
     spdlog::warn(
-        "axis {}: ~{} steps/s, an edge every {} us: closer than the pulse thread's wake-up "
-        "({} us early; measured p99 wake-up lateness {} us), so the thread stays on its CPU for "
-        "this move. {}; a stall beyond [rt] late_limit_us ({} us) stops the axis "
-        "(docs/performance.md: "
-        "'A CPU of its own')",
-        a + 1, moved * kNsPerSec / dt, edge_gap / 1000.0, pulse->spin_now() / kNsPerUs,
+        "axis {}: programmed {} steps/s, an edge every {} us: closer than the pulse thread's "
+        "wake-up ({} us early; measured p99 wake-up lateness {} us), so the thread stays on its "
+        "CPU for this move. {}; a pause slips the move, and one of more than {} steps above the "
+        "starting speed (or {} us at any speed) stops the axis (docs/slip.md)",
+        a + 1, kNsPerSec / interval, edge_gap / 1000.0, pulse->spin_now() / kNsPerUs,
         pulse->wake_p99() / kNsPerUs,
         config.rt_cpu >= 0
             ? "Make sure no other thread runs on CPU " + std::to_string(config.rt_cpu)
             : std::string("This axis needs a CPU of its own ([rt] cpu + isolcpus= "
                           "or a cpuset)"),
-        config.late_limit_ns / kNsPerUs);
+        config.axes[a].lag_limit_steps, config.late_limit_ns / kNsPerUs);
   }
 }
 

@@ -13,12 +13,15 @@ Stack::Stack(const StackOptions& options, gpio::Backend& backend, SpscRing<Trace
   std::vector<rt::AxisLink> links;
   for (unsigned i = 0; i < shape_.axes; ++i) {
     auto& a = axes_.emplace_back(std::make_unique<Axis>(options.edge_ring));
-    planner_axes.push_back({&a->edges, &a->control, options.timing[i]});
+    planner_axes.push_back({&a->edges, &a->control, options.timing[i], &a->feedback});
     links.push_back({&a->edges, &a->feedback, &a->control, &a->history});
   }
   planner_ = std::make_unique<planner::Planner>(planner_axes, options.planner);
   engine_ = std::make_unique<rt::PulseEngine>(backend_, links, trace);
   engine_->set_late_limit(options.late_limit_ns);
+  for (unsigned i = 0; i < options.lag_limit_steps.size() && i < shape_.axes; ++i) {
+    engine_->set_lag_limit(i, options.lag_limit_steps[i]);
+  }
   std::vector<planner::MotionPort*> ports;
   for (unsigned i = 0; i < shape_.axes; ++i) {
     Axis& a = *axes_[i];

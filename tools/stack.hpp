@@ -23,6 +23,8 @@ struct StackOptions {
   planner::PlannerOptions planner;
   std::size_t edge_ring = 1u << 15;  // edges per axis: > lookahead x max edge rate (2 MHz x 4 ms)
   Nanos late_limit_ns = 0;           // late-edge guard (rt::PulseEngine::set_late_limit); 0 = off
+  std::vector<std::uint32_t>
+      lag_limit_steps;  // per axis (rt::PulseEngine::set_lag_limit); none/0 = off
 };
 
 class Stack {

@@ -36,6 +36,7 @@ priority = 80
 late_limit_us = 1000000  # the maximum: a shared, loaded test VM; the guard has its own tests
 
 [[axis]]
+lag_limit_steps = 1000000  # with late_limit_us: the guard has its own tests
 step = 1
 dir = 2
 capture = 3
@@ -56,6 +57,7 @@ home_to = 5100
 encoder_ratio = 1.0
 
 [[axis]]
+lag_limit_steps = 1000000  # with late_limit_us: the guard has its own tests
 step = 12
 dir = 13
 capture = 14

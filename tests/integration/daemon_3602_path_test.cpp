@@ -48,8 +48,10 @@ std::string config_3602() {
   std::string axes;
   for (unsigned a = 0; a < 2; ++a) {
     const unsigned o = 10 * a;
-    axes += "\n[[axis]]\nstep = " + std::to_string(o + 1) + "\ndir = " + std::to_string(o + 2) +
-            "\ngpo = " + std::to_string(o + 3) + "\nhome = " + std::to_string(o + 4) +
+    // No lag limit in practice: see late_limit_us below.
+    axes += "\n[[axis]]\nlag_limit_steps = 1000000\nstep = " + std::to_string(o + 1) +
+            "\ndir = " + std::to_string(o + 2) + "\ngpo = " + std::to_string(o + 3) +
+            "\nhome = " + std::to_string(o + 4) +
             "\n[axis.sim]\ncw_limit_at = 1000000\nccw_limit_at = -1000000\n";
   }
   return R"(

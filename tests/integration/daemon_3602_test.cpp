@@ -32,10 +32,12 @@ std::string config_3602() {
   std::string axes;
   for (unsigned a = 0; a < 2; ++a) {
     const unsigned o = 10 * a;
-    axes += "\n[[axis]]\nstep = " + std::to_string(o + 1) + "\ndir = " + std::to_string(o + 2) +
-            "\ngpo = " + std::to_string(o + 3) + "\ncapture = " + std::to_string(o + 4) +
-            "\nexternal = " + std::to_string(o + 5) + "\nhome = " + std::to_string(o + 6) +
-            "\ncw_limit = " + std::to_string(o + 7) + "\nccw_limit = " + std::to_string(o + 8) +
+    // No lag limit in practice: see late_limit_us below.
+    axes += "\n[[axis]]\nlag_limit_steps = 1000000\nstep = " + std::to_string(o + 1) +
+            "\ndir = " + std::to_string(o + 2) + "\ngpo = " + std::to_string(o + 3) +
+            "\ncapture = " + std::to_string(o + 4) + "\nexternal = " + std::to_string(o + 5) +
+            "\nhome = " + std::to_string(o + 6) + "\ncw_limit = " + std::to_string(o + 7) +
+            "\nccw_limit = " + std::to_string(o + 8) +
             "\n[axis.sim]\ncw_limit_at = 1000000\nccw_limit_at = -1000000\nhome_from = 5000\n"
             "home_to = 5100\n";
   }
@@ -128,7 +130,7 @@ TEST_F(Daemon3602, CwInputConfiguredAsEStopStopsItsAxisOnly) {
   EXPECT_TRUE(status(0).has(kPositionInvalid));
   EXPECT_TRUE(status(1).moving());
   ASSERT_TRUE(plc_->wait_idle(1, std::chrono::seconds(20)).ok);
-  EXPECT_EQ(status(1).position, 40'000);
+  EXPECT_EQ(status(1).position, 40'000) << daemon_->log();
   EXPECT_FALSE(status(1).has(kInputError));
   panel.release(0, static_cast<unsigned>(InputLine::kCwLimit));
   const Vcd vcd = stop_and_read_trace();

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <limits>
 #include <thread>
 
 #include "ipc/sim_panel.hpp"
@@ -34,9 +35,10 @@ encoder_ratio = 0.0
 class DaemonSafety : public ::testing::Test {
  protected:
   void start(const std::string& module_extra = "", const std::string& name = "",
-             const std::string& rt_extra = kRelaxedLateLimit) {
-    daemon_ =
-        std::make_unique<DaemonProcess>(sim_3601_config(module_extra, kSim, rt_extra), true, name);
+             const std::string& rt_extra = kRelaxedLateLimit,
+             const std::string& axis_extra = kRelaxedLagLimit) {
+    daemon_ = std::make_unique<DaemonProcess>(
+        sim_3601_config(module_extra, kSim, rt_extra, axis_extra), true, name);
     ASSERT_TRUE(daemon_->wait_ready()) << daemon_->log();
     plc_ = std::make_unique<RawShmPlc>(daemon_->name());
   }
@@ -69,7 +71,7 @@ std::size_t densest(const std::vector<std::int64_t>& t, std::int64_t window) {
 }
 
 TEST_F(DaemonSafety, SigstopMidMoveIsALateEdgeFaultNeverABurst) {
-  start("", "", kDefaultLateLimit);
+  start("", "", kDefaultLateLimit, "");
   plc_->configure();
   plc_->command(cmd::kPresetPosition, 0);
   // 20,000 steps/s (50 us periods), 200,000 steps: ~10 s if nothing stopped it.
@@ -89,7 +91,7 @@ TEST_F(DaemonSafety, SigstopMidMoveIsALateEdgeFaultNeverABurst) {
   const ipc::Health h = health();
   EXPECT_GE(h.late_faults, 1u);
   EXPECT_NE(h.flags & STEPMOD_HEALTH_LATE_EDGE, 0u);
-  EXPECT_GE(h.worst_late_us, 1'000u);  // beyond the default limit
+  EXPECT_GE(h.worst_late_us, 400u);  // the pause: > 8 steps at 20,000 steps/s (lag limit)
   const std::int64_t position = plc_->position();
   EXPECT_LT(position, 200'000);
   const std::string log = daemon_->log();
@@ -99,9 +101,72 @@ TEST_F(DaemonSafety, SigstopMidMoveIsALateEdgeFaultNeverABurst) {
   const auto steps = vcd.rising("axis1.step");
   // The count is exact: every pulse on the line is one the position counts.
   EXPECT_EQ(static_cast<std::int64_t>(steps.size()), position);
-  // No burst: at 20,000 steps/s a millisecond holds 20 steps; catching up within the 1 ms limit
-  // may add about as many again. 4,000 steps were due in the stall: a burst puts them together.
-  EXPECT_LE(densest(steps, 1'000'000), 60u);
+  // No burst: at 20,000 steps/s a millisecond holds 20 steps, and late edges slip (issue 18),
+  // never catch up. 4,000 steps were due in the stall: a burst puts them together.
+  EXPECT_LE(densest(steps, 1'000'000), 25u);
+}
+
+// Issue 18: at the starting speed a pause is harmless. A daemon stopped for 50 ms (SIGSTOP: the
+// fair server's longest pause on a 6.12+ kernel) slips the move and completes it, with the
+// product's guard; stopped for 400 ms (beyond [rt] late_limit_us, 200 ms) it faults the axis.
+std::int64_t shortest_gap(const std::vector<std::int64_t>& t) {
+  std::int64_t gap = std::numeric_limits<std::int64_t>::max();
+  for (std::size_t i = 1; i < t.size(); ++i) gap = std::min(gap, t[i] - t[i - 1]);
+  return gap;
+}
+
+TEST_F(DaemonSafety, ShortSigstopAtTheStartingSpeedSlipsTheMoveWithoutAFault) {
+#if defined(STEPMOD_SANITIZED)
+  // Under the sanitizers the pulse thread's own stalls exceed 200 ms now and then: the pause
+  // limit relaxed (at Vs the lag is not judged, so the test still shows slip without a fault).
+  start("", "", kRelaxedLateLimit, "");
+#else
+  start("", "", kDefaultLateLimit, "");
+#endif
+  plc_->configure(2'000);  // Vs = 2,000 steps/s
+  plc_->command(cmd::kPresetPosition, 0);
+  plc_->command(cmd::kRelativeMove, 3'000, 2'000, 10, 10);  // all at Vs: 1.5 s
+  ASSERT_TRUE(
+      plc_->wait([&] { return plc_->position() > 500 || !plc_->moving(); }, milliseconds(5'000)))
+      << daemon_->log();
+  daemon_->signal(SIGSTOP);
+  std::this_thread::sleep_for(milliseconds(50));
+  daemon_->signal(SIGCONT);
+  ASSERT_TRUE(plc_->wait([&] { return !plc_->moving(); }, milliseconds(10'000))) << daemon_->log();
+  EXPECT_TRUE(plc_->status(kMoveComplete)) << daemon_->log();
+  EXPECT_FALSE(plc_->status(kPositionInvalid));
+  EXPECT_EQ(plc_->position(), 3'000);
+  EXPECT_EQ(health().late_faults, 0u) << daemon_->log();
+  const Vcd vcd = stop_and_read_trace();
+  const auto steps = vcd.rising("axis1.step");
+  EXPECT_EQ(steps.size(), 3'000u);
+  // Never squeezed: no interval shorter than Vs's 500 us (less the 2 us write allowance).
+  EXPECT_GE(shortest_gap(steps), 498'000);
+}
+
+TEST_F(DaemonSafety, LongSigstopAtTheStartingSpeedIsALateEdgeFault) {
+  start("", "", kDefaultLateLimit, "");
+  plc_->configure(2'000);
+  plc_->command(cmd::kPresetPosition, 0);
+  plc_->command(cmd::kRelativeMove, 6'000, 2'000, 10, 10);  // all at Vs: 3 s
+  ASSERT_TRUE(
+      plc_->wait([&] { return plc_->position() > 500 || !plc_->moving(); }, milliseconds(5'000)))
+      << daemon_->log();
+  daemon_->signal(SIGSTOP);
+  std::this_thread::sleep_for(milliseconds(400));
+  daemon_->signal(SIGCONT);
+  ASSERT_TRUE(plc_->wait([&] { return !plc_->moving(); }, milliseconds(5'000))) << daemon_->log();
+  EXPECT_TRUE(plc_->status(kPositionInvalid));
+  EXPECT_FALSE(plc_->status(kMoveComplete));
+  const ipc::Health h = health();
+  EXPECT_EQ(h.late_faults, 1u);
+  EXPECT_GE(h.worst_late_us, 200'000u);
+  const std::string log = daemon_->log();
+  EXPECT_NE(log.find("axis 1: late-edge fault at step"), std::string::npos) << log;
+  EXPECT_NE(log.find("lag 0 steps"), std::string::npos) << log;  // at Vs: judged by the pause
+  const std::int64_t position = plc_->position();
+  const Vcd vcd = stop_and_read_trace();
+  EXPECT_EQ(static_cast<std::int64_t>(vcd.rising("axis1.step").size()), position);
 }
 
 TEST_F(DaemonSafety, StaleHeartbeatKeepsTheModuleStoppedAndIgnoresNewCommands) {

@@ -471,6 +471,28 @@ TEST_F(Follower3601, AccelAndDecelSlewTheOutputItLagsThenCatchesUpExactly) {
   EXPECT_FALSE(errors());
 }
 
+// Issue 18: pauses of the pulse thread slip the follower's steps; it never steps faster than its
+// ramps allow to catch up, and its count stays exact.
+TEST_F(Follower3601, StallsNeverMakeTheFollowerStepFasterThanItsRamps) {
+  follower(cmd::kManualCw, 1, 1, 1, 1);  // 1,000 steps/s^2 both ways
+  vm_.scans(3);
+  master(2'000, 20'000);
+  for (int i = 0; i < 40; ++i) {  // 4 ms stalls (at most 7 steps at 1,732 steps/s: < 8)
+    vm_.stall_pulse_thread(vm_.now() + 10 * kMs, 4 * kMs);
+    vm_.run_for(50 * kMs);
+  }
+  vm_.run_for(4'000 * kMs);
+  EXPECT_EQ(motor(), 2'000);
+  EXPECT_EQ(vm_.stack().motion(0).late_fault().count, 0u);
+  EXPECT_GE(vm_.stack().motion(0).slip_ns(), 40 * kMs);  // the stalls did slip it
+  const auto& t = vm_.step_times(0);
+  ASSERT_EQ(t.size(), 2'000u);
+  Nanos shortest = t[1] - t[0];
+  for (std::size_t i = 1; i < t.size(); ++i) shortest = std::min(shortest, t[i] - t[i - 1]);
+  EXPECT_GT(shortest, static_cast<Nanos>(1e9 / 1'800.0));
+  EXPECT_FALSE(errors());
+}
+
 TEST_F(Follower3601, DirectionBit7SameSenseBit8ReverseSense) {
   follower(cmd::kManualCw);
   vm_.scans(3);

@@ -1,8 +1,10 @@
-// The late-edge guard (issue 12) seen from the PLC, in virtual time: a pulse thread stalled for
-// longer than [rt] late_limit_us in the middle of a move must not burst the missed steps out; the
-// axis stops as on an Immediate Stop (Stopped, Position Invalid) and the count stays what was
-// really written.
+// The late-edge guard (issues 12, 18) seen from the PLC, in virtual time: a stalled pulse thread
+// never bursts the missed steps out. A pause the motor bridges slips the move; one it cannot
+// (above Vs: more than lag_limit_steps; at any speed: longer than late_limit_us) stops the axis
+// as an Immediate Stop does (Stopped, Position Invalid), and the count stays what was written.
 #include <algorithm>
+
+#include "rt/slip.hpp"
 
 #include "tests/module/plc_3601.hpp"
 
@@ -62,19 +64,70 @@ TEST_F(LateEdge3601, StallBeyondTheLimitStopsTheAxisWithPositionInvalid) {
   EXPECT_EQ(vm_.stack().motion(0).late_fault().count, 1u);
 }
 
-TEST_F(LateEdge3601, StallWithinTheLimitCatchesUpAndCompletes) {
+// Issue 18 (the revised "Late edges"): a pause the motor can bridge slips the move, it is never
+// caught up. (Before, a stall within the 1 ms limit was caught up in a burst of short gaps.)
+TEST_F(LateEdge3601, ShortStallAboveVsSlipsTheMoveAndCompletesWithoutABurst) {
   command(cmd::kRelativeMove, {.target = 20'000, .speed = 20'000, .accel = 100, .decel = 100});
-  vm_.run_for(300 * kNsPerMs);
+  vm_.run_for(300 * kNsPerMs);  // cruising: 50 us per step
   const std::size_t before = vm_.step_times(0).size();
-  vm_.stall_pulse_thread(vm_.now(), 600 * kNsPerUs);  // below the 1 ms default
+  // 300 us = 6 steps of lag: within the default lag_limit_steps (8).
+  vm_.stall_pulse_thread(vm_.now(), 300 * kNsPerUs);
   ASSERT_TRUE(wait_idle(5 * kNsPerSec));
   EXPECT_TRUE(status(kMoveComplete));
   EXPECT_FALSE(status(kPositionInvalid));
   EXPECT_EQ(motor(), 20'000);
+  EXPECT_EQ(position(), 20'000);
   EXPECT_EQ(vm_.stack().motion(0).late_fault().count, 0u);
-  // The missed steps were caught up (allowed within the limit): some gaps right after the stall
-  // are shorter than the 50 us period.
-  EXPECT_LT(min_gap_from(before), 50 * kNsPerUs);
+  // Never squeezed: no gap after the stall is shorter than the cruise period (less the write
+  // allowance, rt::kSlipFreeNs).
+  EXPECT_GE(min_gap_from(before), 50 * kNsPerUs - rt::kSlipFreeNs);
+  // The rest of the move came later by the stall: Move Complete at the slipped end.
+  EXPECT_GE(vm_.stack().motion(0).slip_ns(), 250 * kNsPerUs);
+}
+
+TEST_F(LateEdge3601, StallAboveVsBeyondTheLagLimitStopsTheAxis) {
+  command(cmd::kRelativeMove, {.target = 20'000, .speed = 20'000, .accel = 100, .decel = 100});
+  vm_.run_for(300 * kNsPerMs);
+  const std::size_t before = vm_.step_times(0).size();
+  vm_.stall_pulse_thread(vm_.now(), 600 * kNsPerUs);  // 12 steps at 20,000 steps/s: > 8
+  ASSERT_TRUE(wait_idle(2 * kNsPerSec));
+  EXPECT_TRUE(status(kStopped));
+  EXPECT_TRUE(status(kPositionInvalid));
+  EXPECT_EQ(vm_.step_times(0).size(), before);  // the step after the pause was the cut
+  const auto f = vm_.stack().motion(0).late_fault();
+  EXPECT_EQ(f.count, 1u);
+  EXPECT_GE(f.lag, 9);
+  EXPECT_EQ(f.interval_ns, 50 * kNsPerUs);
+}
+
+// At the starting speed a pause is harmless (the motor starts and stops there without a ramp):
+// a 50 ms pause (the fair server's longest on a 6.12+ kernel) slips the move, never faults it.
+TEST_F(LateEdge3601, LongStallAtTheStartingSpeedSlipsAndNeverFaultsOnLag) {
+  // Vs = 1,000 steps/s (configure()); vp <= vs: the whole move runs at the starting speed.
+  command(cmd::kRelativeMove, {.target = 500, .speed = 1'000, .accel = 100, .decel = 100});
+  vm_.run_for(100 * kNsPerMs);
+  const std::size_t before = vm_.step_times(0).size();
+  vm_.stall_pulse_thread(vm_.now(), 50 * kNsPerMs);
+  ASSERT_TRUE(wait_idle(5 * kNsPerSec));
+  EXPECT_TRUE(status(kMoveComplete));
+  EXPECT_FALSE(status(kPositionInvalid));
+  EXPECT_EQ(motor(), 500);
+  EXPECT_EQ(vm_.stack().motion(0).late_fault().count, 0u);
+  EXPECT_GE(min_gap_from(before), kNsPerMs - rt::kSlipFreeNs);
+  EXPECT_GE(vm_.stack().motion(0).slip_ns(), 49 * kNsPerMs);
+}
+
+TEST_F(LateEdge3601, StallAtTheStartingSpeedBeyondTheLateLimitStopsTheAxis) {
+  command(cmd::kRelativeMove, {.target = 5'000, .speed = 1'000, .accel = 100, .decel = 100});
+  vm_.run_for(100 * kNsPerMs);
+  vm_.stall_pulse_thread(vm_.now(), 250 * kNsPerMs);  // > [rt] late_limit_us (200 ms)
+  ASSERT_TRUE(wait_idle(2 * kNsPerSec));
+  EXPECT_TRUE(status(kStopped));
+  EXPECT_TRUE(status(kPositionInvalid));
+  const auto f = vm_.stack().motion(0).late_fault();
+  EXPECT_EQ(f.count, 1u);
+  EXPECT_EQ(f.lag, 0);  // at Vs: not judged by lag
+  EXPECT_GT(f.late_ns, 200 * kNsPerMs);
 }
 
 TEST_F(LateEdge3601, StallDuringHomingEndsTheHomingAsAnImmediateStop) {

@@ -45,6 +45,7 @@ VirtualMachine::VirtualMachine(VirtualMachineOptions options)
   so.type = options_.type;
   so.timing.assign(options_.axes.size(), options_.timing);
   so.late_limit_ns = options_.late_limit_ns;
+  so.lag_limit_steps.assign(options_.axes.size(), options_.lag_limit_steps);
   stack_ = std::make_unique<tools::Stack>(so, *sim_, nullptr);
   stack_->engine().set_clock(&virtual_clock);
   step_times_.resize(options_.axes.size());

@@ -18,7 +18,9 @@ struct VirtualMachineOptions {
   std::vector<gpio::SimAxisSetup> axes;  // one per axis of the module
   Nanos scan_ns = kNsPerMs;
   planner::AxisTiming timing;
-  Nanos late_limit_ns = kNsPerMs;  // the late-edge guard, at stepmodd's default
+  // The late-edge guard, at stepmodd's defaults ([rt] late_limit_us, [axis] lag_limit_steps).
+  Nanos late_limit_ns = 200 * kNsPerMs;
+  std::uint32_t lag_limit_steps = 8;
 };
 
 // A typical machine for one 3601 axis: every input wired, limits at +-100,000, home 5,000..5,100.

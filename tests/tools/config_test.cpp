@@ -86,7 +86,8 @@ TEST(Config, MinimalFileGetsEveryDefault) {
   EXPECT_EQ(c.chip, "gpiochip0");
   EXPECT_EQ(c.rt_priority, 80);
   EXPECT_EQ(c.rt_cpu, -1);
-  EXPECT_EQ(c.late_limit_ns, 1'000'000);  // [rt] late_limit_us = 1000 (INTERFACE 2)
+  // [rt] late_limit_us = 200000 (issue 18: the longest pause at any speed; before: 1000)
+  EXPECT_EQ(c.late_limit_ns, 200'000'000);
   ASSERT_EQ(c.axes.size(), 1u);
   const AxisConfig& a = c.axes[0];
   EXPECT_EQ(a.out[0], 17u);
@@ -95,6 +96,7 @@ TEST(Config, MinimalFileGetsEveryDefault) {
   for (const auto& in : a.in) EXPECT_FALSE(in.has_value());
   EXPECT_EQ(a.step_pulse_ns, 2'000);
   EXPECT_EQ(a.dir_setup_ns, 5'000);
+  EXPECT_EQ(a.lag_limit_steps, 8u);  // [axis] lag_limit_steps (issue 18)
   EXPECT_EQ(a.sim.start_position, 0);
   EXPECT_FALSE(a.sim.cw_limit_at.has_value());
   EXPECT_FALSE(a.sim.ccw_limit_at.has_value());
@@ -259,6 +261,8 @@ TEST(ConfigError, PriorityAndCpu) {
                       "test.toml:9: key 'rt.cpu': must be an integer -1..1023");
   EXPECT_CONFIG_ERROR(std::string(kMinimal3601) + "[rt]\nlate_limit_us = 10\n",
                       "test.toml:9: key 'rt.late_limit_us': must be an integer 20..1000000");
+  EXPECT_CONFIG_ERROR(std::string(kMinimal3601) + "lag_limit_steps = 0\n",
+                      "test.toml:8: key 'axis[1].lag_limit_steps': must be an integer 1..1000000");
   EXPECT_CONFIG_ERROR(std::string(kMinimal3601) + "[rt]\nlate_limit_us = 0\n",
                       "test.toml:9: key 'rt.late_limit_us': must be an integer 20..1000000");
 }

@@ -84,7 +84,7 @@ std::string write_config(const ConfigOptions& o, const std::string& path) {
     // qemu (TCG, one emulated CPU) stalls the pulse thread for up to ~200 ms: the late-edge
     // guard at its maximum. At 200 ms the homing case failed now and then with the axis still
     // reported moving (issue 12: open, see the branch's report).
-    << "\nlate_limit_us = 1000000\n\n[[axis]]\n";
+    << "\nlate_limit_us = 1000000\n\n[[axis]]\nlag_limit_steps = 1000000\n";
   for (const char* k : kLineKeys) {
     const auto it = o.lines.find(k);
     if (it == o.lines.end()) {

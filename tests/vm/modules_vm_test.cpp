@@ -56,7 +56,7 @@ std::string write_module_config(const char* type, const std::vector<const char*>
     // qemu (TCG) stalls the pulse thread for up to ~200 ms: the late-edge guard at its maximum.
     << "[rt]\npriority = 80\nlate_limit_us = 1000000\n";
   for (unsigned axis = 1; axis <= 2; ++axis) {
-    c << "\n[[axis]]\n";
+    c << "\n[[axis]]\nlag_limit_steps = 1000000\n";  // qemu's stalls, as late_limit_us
     for (const char* k : keys) c << k << " = " << line(k, axis) << "\n";
     // 1 ms high: a pulse the sampler can see at these rates (at most 400 steps/s).
     c << "step_pulse_ns = 1000000\ndir_setup_ns = 20000\n";
