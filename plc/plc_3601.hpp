@@ -8,6 +8,7 @@
 #include <string>
 
 #include "plc/port.hpp"
+#include "plc/verdict.hpp"
 #include "plc/profile.hpp"
 #include "plc/status_3601.hpp"
 #include "plc/words_3601.hpp"
@@ -86,6 +87,8 @@ class Plc3601 {
   Port& port_;
   std::chrono::milliseconds timeout_;
   Sequencing seq_;
+  Verdict verdict_;                 // was THIS command refused (plc/verdict.hpp)
+  Stale stale_ = Stale::kRefused;  // what an earlier error bit means for the running command
 };
 
 }  // namespace stepmod::plc

@@ -28,6 +28,9 @@ void Module3601::scan(const ImageWords& out, ImageWords& in, Nanos now) {
     check = check_config(out);
     if (check.fault == ConfigFault::kNone) configuration = to_axis_config(check.config);
   }
+  // ConfigFault n is item 3601-CFG-(n + 1) (config_3601.hpp).
+  const unsigned item = check.fault == ConfigFault::kNone ? 0 : static_cast<unsigned>(check.fault) + 1;
+  axis_.set_configuration_fault(item, describe(check.fault));
   axis_.scan(command_from_words(out), configuration, now);
 
   if (axis_.in_configuration_mode()) {
@@ -50,6 +53,14 @@ void Module3601::plc_stopped(Nanos /*now*/) {
 
 void Module3601::shutdown() {
   axis_.plc_stopped();  // immediate stop of a motion under way
+}
+
+void Module3601::lease_expired(Nanos /*now*/) {
+  axis_.plc_stopped(axis::items::kPiLeaseExpired);
+}
+
+axis::ErrorReason Module3601::reason(unsigned /*axis*/) const {
+  return axis_.reason();
 }
 
 }  // namespace stepmod::module::m3601
