@@ -221,7 +221,7 @@ bool Axis::program_blend(const BlendFirstBlock& first,
                          std::span<const BlendSegmentBlock> segments) {
   if (config_mode_ || !st_.configured) {
     st_.status.invalid_profile = true;  // 3202-IP-15
-    st_.note(items::kBlendNotConfigured, "blend message before the channel is configured");
+    st_.note(items::kBlendNotConfigured);
     st_.explain_new_errors();
     return false;
   }

@@ -85,6 +85,7 @@ void Blend::programming_scan(const AxisCommand& c, const AxisCommand& prev) {
     // the profile is reported invalid (3601-IP-21) so that a PLC checking only IP sees it too.
     spoiled_ = true;
     ax_.status.invalid_profile = true;
+    ax_.note(items::kBlendBlockError, "blend block refused: Command Error is set");
     return;
   }
   if (first) {
@@ -97,7 +98,9 @@ void Blend::programming_scan(const AxisCommand& c, const AxisCommand& prev) {
   if (!ok || !msw_ok) {
     spoiled_ = true;
     ax_.status.invalid_profile = true;  // 3601-IP-21: any error in a block
+    if (!reason_noted_) ax_.note(items::kBlendBlockError, "blend block %u refused", blocks_);
   }
+  reason_noted_ = false;
 }
 
 bool Blend::first_block(const BlendFirstBlock& b) {
@@ -105,6 +108,8 @@ bool Blend::first_block(const BlendFirstBlock& b) {
   // 3601-IP-04: 2..16 segments.
   const std::int32_t count = b.segments;
   if (count < kMinSegments || count > kMaxSegments) {
+    ax_.note(items::kBlendSegmentCount, "%d blend segments (2..16)", static_cast<int>(count));
+    reason_noted_ = true;
     ok = false;
   } else {
     pending_.count = static_cast<std::uint8_t>(count);
@@ -123,6 +128,8 @@ bool Blend::first_block(const BlendFirstBlock& b) {
   if (value == 0) {
     // 3601-CE-24 / IP-07, A21a: no final deceleration value -> CE (Ch.5) and IP (Ch.6 #7).
     ax_.status.command_error = true;
+    ax_.note(items::kBlendNoFinalDecel, "blend profile without a final deceleration");
+    reason_noted_ = true;
     ok = false;
   } else if (!ax_.rate_in_range(value)) {
     ok = false;  // 3601-IP-02: outside the module's accel range
@@ -158,6 +165,9 @@ bool Blend::segment_block(const BlendSegmentBlock& b) {
     ok = false;
   } else if (*speed < ax_.cfg.starting_speed) {
     ax_.status.command_error = true;
+    ax_.note(items::kVpBelowVs, "blend segment speed %d is below Vs %d", static_cast<int>(*speed),
+             static_cast<int>(ax_.cfg.starting_speed));
+    reason_noted_ = true;
     ok = false;
   } else {
     seg.speed = static_cast<double>(*speed);
@@ -212,6 +222,8 @@ bool Blend::program(const BlendFirstBlock& first, std::span<const BlendSegmentBl
   blocks_ = 0;
   if (!ok) {
     ax_.status.invalid_profile = true;
+    if (!reason_noted_) ax_.note(items::kBlendBlockError, "blend profile refused");
+    reason_noted_ = false;
     return false;
   }
   profile_ = pending_;

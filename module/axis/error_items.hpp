@@ -31,19 +31,19 @@ inline constexpr Item kOutOfRange{L::kCommand, 4, 5, 3,
                                   "target, speed, accel or decel out of range"};
 inline constexpr Item kVpBelowVs{L::kCommand, 5, 6, 4, "programmed speed below starting speed"};
 inline constexpr Item kAbsoluteWithPi{L::kCommand, 6, 7, 6,
-                                      "absolute move while the position is invalid"};
+                                      "absolute move with the position invalid"};
 inline constexpr Item kHoldNotHoldable{L::kCommand, 7, 8, 7,
                                        "Hold without an absolute/relative move"};
 inline constexpr Item kResumeNotHeld{L::kCommand, 8, 9, 8, "Resume when not in Hold"};
 inline constexpr Item kHomeSCurve{L::kCommand, 10, 11, 10, "Find Home with S-curve"};
 inline constexpr Item kHomeNoLimit{L::kCommand, 13, 0, 22,
-                                   "Find Home toward a direction without an end limit"};
+                                   "Find Home toward no configured end limit"};
 inline constexpr Item kHomeTarget{L::kCommand, 0, 10, 0, "Find Home with a target not 0"};
 inline constexpr Item kHomeNoInput{L::kCommand, 0, 12, 0, "Find Home without the home input"};
 inline constexpr Item kNoEncoder{L::kCommand, 14, 0, 23,
-                                 "encoder move without the encoder configured"};
+                                 "encoder move with no encoder configured"};
 inline constexpr Item kPlannerFull{L::kCommand, 91, 91, 91,
-                                   "the motion planner's queue is full (stepmod)"};
+                                   "the planner's queue is full (stepmod)"};
 
 // ---- Invalid Profile ----
 inline constexpr Item kProfileVpBelowVs{L::kInvalidProfile, 1, 1, 1,
@@ -51,10 +51,16 @@ inline constexpr Item kProfileVpBelowVs{L::kInvalidProfile, 1, 1, 1,
 inline constexpr Item kProfileOutOfRange{L::kInvalidProfile, 2, 2, 2,
                                          "a move parameter out of range"};
 inline constexpr Item kProfileOverflow{L::kInvalidProfile, 3, 3, 4,
-                                       "the profile overflows the module's registers"};
+                                       "the profile overflows 32-bit registers"};
 inline constexpr Item kProfileReserved{L::kInvalidProfile, 0, 18, 3, "reserved words not 0"};
+inline constexpr Item kBlendSegmentCount{L::kInvalidProfile, 4, 4, 12,
+                                         "blend segment count not 2..16"};
+inline constexpr Item kBlendNoFinalDecel{L::kInvalidProfile, 7, 0, 17,
+                                         "blend profile without a final deceleration"};
+inline constexpr Item kBlendBlockError{L::kInvalidProfile, 21, 19, 0,
+                                       "an error in a blend programming block"};
 inline constexpr Item kBlendNotConfigured{L::kInvalidProfile, 0, 0, 15,
-                                          "blend message before the channel is configured"};
+                                          "blend message to an unconfigured channel"};
 inline constexpr Item kBlendNoChannel{L::kInvalidProfile, 0, 0, 11,
                                       "blend message channel not 1 or 2"};
 
@@ -62,14 +68,16 @@ inline constexpr Item kBlendNoChannel{L::kInvalidProfile, 0, 0, 11,
 inline constexpr Item kEStop{L::kInput, 1, 1, 1, "the E-stop input activated"};
 inline constexpr Item kLimitInMove{L::kInput, 2, 2, 2, "an end limit reached during a move"};
 inline constexpr Item kStartTowardLimit{L::kInput, 3, 5, 3,
-                                        "a move toward an active end limit or with E-stop"};
+                                        "a start toward an active limit or E-stop"};
 inline constexpr Item kHomingSecondLimit{L::kInput, 4, 0, 4,
-                                         "homing reached the other limit after reversing"};
+                                         "homing met the other limit after reversing"};
 inline constexpr Item kHomingOppositeLimit{L::kInput, 5, 4, 5,
                                            "homing reached the opposite limit first"};
 
 // ---- Home Invalid ----
 inline constexpr Item kHomeFailed{L::kHomeInvalid, 0, 0, 0, "homing did not find home"};
+inline constexpr Item kHomeLimitError{L::kHomeInvalid, 5, 5, 6,
+                                      "homing met the opposite or a second limit"};
 inline constexpr Item kHomeTimeout{L::kHomeInvalid, 0, 7, 0, "homing timeout expired"};
 
 // ---- Position Invalid ----
@@ -80,11 +88,11 @@ inline constexpr Item kPiImmediateStop{L::kPositionInvalid, 2, 2, 2,
 inline constexpr Item kPiEStop{L::kPositionInvalid, 3, 3, 3, "E-stop while moving"};
 inline constexpr Item kPiLimit{L::kPositionInvalid, 4, 4, 4, "an end limit during a move"};
 inline constexpr Item kPiPlcStopped{L::kPositionInvalid, 7, 0, 8,
-                                    "the PLC left Run mode (heartbeat stale) while moving"};
+                                    "the PLC left Run mode while moving"};
 inline constexpr Item kPiLateEdge{L::kPositionInvalid, 91, 91, 91,
-                                  "a late-edge fault stopped the axis (stepmod)"};
+                                  "a late-edge fault stopped it (stepmod)"};
 inline constexpr Item kPiLeaseExpired{L::kPositionInvalid, 92, 92, 92,
-                                      "a commissioning lease expired (stepmod)"};
+                                      "commissioning lease expired (stepmod)"};
 inline constexpr Item kPiFault{L::kPositionInvalid, 0, 0, 0, "a fault stopped the axis"};
 
 // Every item above, for the documentation table.
@@ -94,8 +102,8 @@ inline constexpr std::array kAll{
     &kOutOfRange,        &kVpBelowVs,         &kAbsoluteWithPi,     &kHoldNotHoldable,
     &kResumeNotHeld,     &kHomeSCurve,        &kHomeNoLimit,        &kHomeTarget, &kHomeNoInput,
     &kNoEncoder, &kPlannerFull, &kProfileOverflow,       &kProfileVpBelowVs,  &kProfileOutOfRange,  &kProfileReserved,
-    &kBlendNotConfigured, &kBlendNoChannel,   &kEStop,              &kLimitInMove,
-    &kStartTowardLimit,  &kHomingSecondLimit, &kHomingOppositeLimit, &kHomeFailed,
+    &kBlendSegmentCount, &kBlendNoFinalDecel, &kBlendBlockError, &kBlendNotConfigured, &kBlendNoChannel,   &kEStop,              &kLimitInMove,
+    &kStartTowardLimit,  &kHomingSecondLimit, &kHomingOppositeLimit, &kHomeFailed, &kHomeLimitError,
     &kHomeTimeout,       &kPiConfigured,      &kPiImmediateStop,    &kPiEStop,
     &kPiLimit,           &kPiPlcStopped,      &kPiLateEdge,         &kPiLeaseExpired,
     &kPiFault};

@@ -301,7 +301,7 @@ void Homing::limit(bool ahead) {
 void Homing::fail() {
   h_.limit_error = true;
   ax_.status.home_invalid = true;
-  ax_.fault_stop(items::kHomingOppositeLimit, "homing: a limit");  // immediate stop, IE, PI
+  ax_.fault_stop(items::kHomeLimitError, "homing: the wrong limit");  // immediate stop, IE, PI
 }
 
 // 3602-HI-07 (Ch.8 "Homing Timeout"): a homing not complete T seconds after the command (pauses
@@ -318,6 +318,8 @@ void Homing::timeout(Nanos now) {
   }
   if (now < h_.deadline) return;
   ax_.status.home_invalid = true;
+  ax_.note(items::kHomeTimeout, "homing timeout of %lld s expired",
+           static_cast<long long>(ax_.cfg.homing_timeout / kNsPerSec));
   if (h_.segment) {
     h_.step = Step::kTimedOut;  // ends when the stop has (motion_ended)
     ax_.motion.stop(h_.decel);

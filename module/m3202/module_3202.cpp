@@ -36,11 +36,7 @@ void Module3202::scan_channel(unsigned ch, const ImageWords& out, ImageWords& in
   if (command.configuration_mode) {
     check = check_config(out, ch);
     if (check.fault == ConfigFault::kNone) configuration = to_axis_config(check.config);
-    // ConfigFault n is item 3202-CFG-(n + 1), from kReservedBits on (n + 2): CFG-08 is old
-    // firmware's only (config_3202.hpp).
-    const auto n = static_cast<unsigned>(check.fault);
-    c.axis.set_configuration_fault(
-        n == 0 ? 0 : n + (check.fault >= ConfigFault::kReservedBits ? 2 : 1), describe(check.fault));
+    c.axis.set_configuration_fault(checklist_item(check.fault), describe(check.fault));
   }
   const bool was_config_mode = c.axis.in_configuration_mode();
   // A disabled channel ignores its command bits (digest 5.7 bit 28); the mode bit still works.

@@ -28,9 +28,7 @@ void Module3601::scan(const ImageWords& out, ImageWords& in, Nanos now) {
     check = check_config(out);
     if (check.fault == ConfigFault::kNone) configuration = to_axis_config(check.config);
   }
-  // ConfigFault n is item 3601-CFG-(n + 1) (config_3601.hpp).
-  const unsigned item = check.fault == ConfigFault::kNone ? 0 : static_cast<unsigned>(check.fault) + 1;
-  axis_.set_configuration_fault(item, describe(check.fault));
+  axis_.set_configuration_fault(checklist_item(check.fault), describe(check.fault));
   axis_.scan(command_from_words(out), configuration, now);
 
   if (axis_.in_configuration_mode()) {

@@ -36,9 +36,7 @@ void Module3602::Channel::scan(const ImageWords& out, const axis::AxisCommand& c
     Config3602 decoded;
     const ConfigFault fault = check_config(out, decoded);
     if (fault == ConfigFault::kNone) configuration = to_axis_config(decoded);
-    // ConfigFault n is item 3602-CFG-(n + 1) (config_3602.hpp).
-    axis.set_configuration_fault(fault == ConfigFault::kNone ? 0 : static_cast<unsigned>(fault) + 1,
-                                 describe(fault));
+    axis.set_configuration_fault(checklist_item(fault), describe(fault));
   }
   configuration_valid = configuration.has_value();
   axis.scan(c, configuration, now);
