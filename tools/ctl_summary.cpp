@@ -107,7 +107,8 @@ std::vector<AxisSummary> summarize(ModuleType type, const ImageWords& in) {
 }
 
 MotionEnd judge_end(const AxisSummary& s, Motion kind, const stepmod_reason_t& reason) {
-  const std::string why = reason_text(reason);
+  // The reason of a bit still set (an older one belongs to a bit since cleared).
+  const std::string why = s.has_list(reason.item / 100u % 100u) ? reason_text(reason) : "";
   const std::string errors = s.error_names();
   const std::string with_reason = errors + (why.empty() ? "" : ": " + why);
   if (s.at_home && kind != Motion::kMove && kind != Motion::kJog) return {true, "at home"};

@@ -10,6 +10,8 @@ using Clock = std::chrono::steady_clock;
 constexpr auto kPoll = std::chrono::milliseconds(2);
 // A scan every scan_us (1 ms by default); this long without one is a daemon that stopped.
 constexpr auto kStallLimit = std::chrono::milliseconds(1000);
+// Longer than the homing's pauses at rest (2 s, digest 7.11).
+constexpr auto kHomingPause = std::chrono::milliseconds(2500);
 }  // namespace
 
 bool daemon_scanning(const ipc::Client& client, std::chrono::milliseconds limit) {
@@ -26,14 +28,25 @@ int wait_motion_end(ipc::Client& client, const std::vector<unsigned>& units, Mot
   const auto deadline = Clock::now() + limit;
   std::uint64_t scans = client.scan_counter();
   auto scan_seen = Clock::now();
+  auto idle_since = Clock::now();
   ImageWords in;
   for (;;) {
     const auto now = Clock::now();
     if (client.read_inputs(in)) {
       const auto s = summarize(client.type(), in);
-      bool moving = false;
-      for (unsigned u : units) moving = moving || (u < s.size() && s[u].moving());
-      if (!moving) break;
+      bool busy = false;
+      for (unsigned u : units) {
+        if (u >= s.size()) continue;
+        // A homing rests 2 s between its segments without any motion bit: idle only counts once
+        // an outcome shows, or after longer than such a pause.
+        const bool outcome = s[u].move_complete || s[u].at_home || s[u].home_invalid ||
+                             s[u].input_error || s[u].command_error || s[u].stopped || s[u].hold;
+        const bool settled = outcome || kind == Motion::kMove || kind == Motion::kJog ||
+                             now - idle_since > kHomingPause;
+        busy = busy || s[u].moving() || !settled;
+        if (s[u].moving()) idle_since = now;
+      }
+      if (!busy) break;
     }
     if (client.scan_counter() != scans) {
       scans = client.scan_counter();
