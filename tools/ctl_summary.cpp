@@ -113,10 +113,18 @@ MotionEnd judge_end(const AxisSummary& s, Motion kind, const stepmod_reason_t& r
   const std::string with_reason = errors + (why.empty() ? "" : ": " + why);
   if (s.at_home && kind != Motion::kMove && kind != Motion::kJog) return {true, "at home"};
   if (s.move_complete && kind != Motion::kHome) return {true, "move complete"};
-  if (kind == Motion::kJog && s.stopped && !s.any_error()) return {true, "stopped"};
-  if (s.any_error()) return {false, "ended with " + with_reason};
+  // Faults and refusals first (Input Error is cleared by every start: it is this motion's).
+  if (s.input_error || s.command_error || s.invalid_profile || s.home_invalid || s.cfg_error) {
+    return {false, "ended with " + with_reason};
+  }
   if (s.hold) return {false, "held (Hold State), not complete"};
-  if (s.stopped) return {false, "stopped before its end"};
+  if (s.stopped) {
+    // A jog ends Stopped by design; an immediate stop also leaves Position Invalid.
+    if (kind == Motion::kJog) return {true, "stopped"};
+    return {false, "stopped before its end" + (s.position_invalid ? " (" + with_reason + ")"
+                                                                  : std::string())};
+  }
+  if (s.position_invalid) return {false, "ended with " + with_reason};
   return {false, kind == Motion::kHome ? "idle, not at home" : "idle without Move Complete"};
 }
 

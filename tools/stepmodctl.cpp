@@ -454,6 +454,8 @@ int main(int argc, char** argv) {
     if (status->parsed()) {
       const auto snap = take_snapshot(client, std::chrono::milliseconds(brief || json ? 100 : 0));
       if (!snap) {
+        // The words as they were left (what a stopped daemon last said), and why not to trust them.
+        if (!brief && !json) std::cout << status_text(name, client);
         std::cerr << stalled_text(name, client);
         return kExitUnreachable;
       }

@@ -247,7 +247,11 @@ TEST_F(Commissioning, PlcHeartbeatDuringALeaseSetsBit7) {
   start();
   ctl(kConfigure, 0);
   const pid_t tool = ctl_background("move rel 30000 -s 10000 -a 100 -d 100 --wait");
-  ASSERT_TRUE(eventually([&] { return client().raw().lease_holder != 0; }, milliseconds(10'000)));
+  // The daemon has seen the take (a heartbeat before that scan belongs to the time before it).
+  ASSERT_TRUE(eventually(
+      [&] { return daemon_->log().find("commissioning lease taken") != std::string::npos; },
+      milliseconds(10'000)))
+      << daemon_->log();
   ipc::Client plc(daemon_->name());
   plc.heartbeat();
   EXPECT_TRUE(eventually([&] { return (health() & STEPMOD_HEALTH_LEASE_CONFLICT) != 0; },
