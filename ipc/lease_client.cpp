@@ -25,8 +25,8 @@ bool LeaseClient::plc_quiet(std::chrono::milliseconds quiet) const {
 }
 
 void LeaseClient::renew() noexcept {
-  const auto expiry = stepmod_monotonic_ns() +
-                      std::chrono::duration_cast<std::chrono::nanoseconds>(kAhead).count();
+  const auto expiry =
+      stepmod_monotonic_ns() + std::chrono::duration_cast<std::chrono::nanoseconds>(kAhead).count();
   __atomic_store_n(&img_.lease_expiry_ns, static_cast<std::uint64_t>(expiry), __ATOMIC_RELEASE);
 }
 

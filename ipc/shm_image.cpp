@@ -138,7 +138,8 @@ ShmImage::Lease ShmImage::lease() const noexcept {
   Lease l;
   l.holder = __atomic_load_n(&img_->lease_holder, __ATOMIC_ACQUIRE);
   l.seq = __atomic_load_n(&img_->lease_seq, __ATOMIC_ACQUIRE);
-  l.expiry_ns = static_cast<std::int64_t>(__atomic_load_n(&img_->lease_expiry_ns, __ATOMIC_ACQUIRE));
+  l.expiry_ns =
+      static_cast<std::int64_t>(__atomic_load_n(&img_->lease_expiry_ns, __ATOMIC_ACQUIRE));
   return l;
 }
 

@@ -87,7 +87,7 @@ class ShmImage {
   ModuleShape shape_;
   ShmMapping map_;
   stepmod_image_t* img_ = nullptr;
-  Health health_;  // as last published
+  Health health_;                              // as last published
   std::array<stepmod_reason_t, 2> reasons_{};  // written with the next publication
 };
 

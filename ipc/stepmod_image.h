@@ -71,7 +71,7 @@ enum stepmod_image_offset {
   STEPMOD_OFF_HEALTH_FLAGS = 416,  /* section 3.3, under the input seqlock */
   STEPMOD_OFF_LATE_FAULTS = 420,   /* section 3.3, under the input seqlock */
   STEPMOD_OFF_WORST_LATE_US = 424, /* extension, see above; under the input seqlock */
-  STEPMOD_OFF_REASONS = 448,      /* section 3.4: 64 bytes per axis, under the input seqlock */
+  STEPMOD_OFF_REASONS = 448,       /* section 3.4: 64 bytes per axis, under the input seqlock */
   STEPMOD_REASON_STRIDE = 64,
   STEPMOD_OFF_LEASE_HOLDER = 576, /* section 3.5 */
   STEPMOD_OFF_LEASE_SEQ = 580,
@@ -80,20 +80,20 @@ enum stepmod_image_offset {
 };
 
 /* Daemon health flags (offset 416, INTERFACE.md 3.3): a bit each, set while the condition lasts. */
-#define STEPMOD_HEALTH_LATE_EDGE (1u << 0)  /* a late-edge fault stopped an axis */
-#define STEPMOD_HEALTH_PLC_STALE (1u << 1)  /* PLC heartbeat stale: as in Program mode */
-#define STEPMOD_HEALTH_SEQ_STUCK (1u << 2)  /* output sequence left odd (PLC died mid-write) */
-#define STEPMOD_HEALTH_SEQ_BYPASS (1u << 3) /* output words changed, sequence did not */
-#define STEPMOD_HEALTH_TRACE_LOST (1u << 4) /* trace records lost (the VCD says so too) */
+#define STEPMOD_HEALTH_LATE_EDGE (1u << 0)      /* a late-edge fault stopped an axis */
+#define STEPMOD_HEALTH_PLC_STALE (1u << 1)      /* PLC heartbeat stale: as in Program mode */
+#define STEPMOD_HEALTH_SEQ_STUCK (1u << 2)      /* output sequence left odd (PLC died mid-write) */
+#define STEPMOD_HEALTH_SEQ_BYPASS (1u << 3)     /* output words changed, sequence did not */
+#define STEPMOD_HEALTH_TRACE_LOST (1u << 4)     /* trace records lost (the VCD says so too) */
 #define STEPMOD_HEALTH_LEASE_EXPIRED (1u << 6)  /* a commissioning lease expired: axes stopped */
 #define STEPMOD_HEALTH_LEASE_CONFLICT (1u << 7) /* PLC heartbeat changed during a lease */
 
 /* Section 3.4: why an error bit was set (item code: docs/error-reasons.md). */
 #define STEPMOD_REASON_TEXT 56u
 typedef struct stepmod_reason {
-  uint32_t seq;                    /* +1 per new reason of this axis */
-  uint32_t item;                   /* checklist item code, 0 = none */
-  char text[STEPMOD_REASON_TEXT];  /* "3601-CE-05: Vp 500 is below Vs 1000", NUL-terminated */
+  uint32_t seq;                   /* +1 per new reason of this axis */
+  uint32_t item;                  /* checklist item code, 0 = none */
+  char text[STEPMOD_REASON_TEXT]; /* "3601-CE-05: Vp 500 is below Vs 1000", NUL-terminated */
 } stepmod_reason_t;
 
 /* 64 bytes of backplane words: 16-bit words (3601/3602) sit at 2*i, 32-bit words (3202) at 4*i. */
@@ -166,8 +166,7 @@ STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, reasons) == STEPMOD_OFF_REASONS,
 STEPMOD_STATIC_ASSERT(sizeof(stepmod_reason_t) == STEPMOD_REASON_STRIDE, "reason stride");
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, lease_holder) == STEPMOD_OFF_LEASE_HOLDER, "lh");
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, lease_seq) == STEPMOD_OFF_LEASE_SEQ, "ls");
-STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, lease_expiry_ns) == STEPMOD_OFF_LEASE_EXPIRY,
-                      "le");
+STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, lease_expiry_ns) == STEPMOD_OFF_LEASE_EXPIRY, "le");
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, unused) == STEPMOD_OFF_END_OF_FIELDS, "end");
 
 /* ---------------------------------------------------------------------------------------------

@@ -11,9 +11,10 @@ namespace m = module::m3202;
 using m3202::ChannelWords;
 
 namespace {
-constexpr ErrorBitSet kErrorBits{m::status_bit::kConfigurationError, m::status_bit::kCommandError,
-                                 m::status_bit::kInvalidProfile,     m::status_bit::kInputError,
-                                 m::status_bit::kHomeInvalid,        m::status_bit::kPositionInvalid};
+constexpr ErrorBitSet kErrorBits{
+    m::status_bit::kConfigurationError, m::status_bit::kCommandError,
+    m::status_bit::kInvalidProfile,     m::status_bit::kInputError,
+    m::status_bit::kHomeInvalid,        m::status_bit::kPositionInvalid};
 constexpr std::uint32_t kCommandErrors =
     m::status_bit::kCommandError | m::status_bit::kInvalidProfile;
 constexpr std::uint32_t kHomeErrors = kCommandErrors | m::status_bit::kHomeInvalid;

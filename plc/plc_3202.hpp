@@ -10,9 +10,9 @@
 
 #include "plc/plc_3601.hpp"  // Sequencing
 #include "plc/port.hpp"
-#include "plc/verdict.hpp"
 #include "plc/profile.hpp"
 #include "plc/status_3202.hpp"
+#include "plc/verdict.hpp"
 #include "plc/words_3202.hpp"
 
 namespace stepmod::plc {
@@ -51,7 +51,7 @@ class Plc3202 {
   Port& port_;
   std::chrono::milliseconds timeout_;
   Sequencing seq_;
-  Verdict verdict_;                 // was THIS command refused (plc/verdict.hpp)
+  Verdict verdict_;                // was THIS command refused (plc/verdict.hpp)
   Stale stale_ = Stale::kRefused;  // what an earlier error bit means for the running command
 };
 

@@ -13,9 +13,10 @@ using m3601::put_profile;
 using m3601::put_split;
 
 namespace {
-constexpr ErrorBitSet kErrorBits{m::status_msw::kConfigurationError, m::status_msw::kCommandError,
-                                 m::status_msw::kInvalidProfile,     m::status_msw::kInputError,
-                                 m::status_msw::kHomeInvalid,        m::status_msw::kPositionInvalid};
+constexpr ErrorBitSet kErrorBits{
+    m::status_msw::kConfigurationError, m::status_msw::kCommandError,
+    m::status_msw::kInvalidProfile,     m::status_msw::kInputError,
+    m::status_msw::kHomeInvalid,        m::status_msw::kPositionInvalid};
 // Errors that mean "the module rejected or failed this command" (status MSW).
 constexpr std::uint16_t kCommandErrors =
     m::status_msw::kCommandError | m::status_msw::kInvalidProfile;

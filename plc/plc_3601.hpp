@@ -8,9 +8,9 @@
 #include <string>
 
 #include "plc/port.hpp"
-#include "plc/verdict.hpp"
 #include "plc/profile.hpp"
 #include "plc/status_3601.hpp"
+#include "plc/verdict.hpp"
 #include "plc/words_3601.hpp"
 
 namespace stepmod::plc {
@@ -87,7 +87,7 @@ class Plc3601 {
   Port& port_;
   std::chrono::milliseconds timeout_;
   Sequencing seq_;
-  Verdict verdict_;                 // was THIS command refused (plc/verdict.hpp)
+  Verdict verdict_;                // was THIS command refused (plc/verdict.hpp)
   Stale stale_ = Stale::kRefused;  // what an earlier error bit means for the running command
 };
 

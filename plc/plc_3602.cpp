@@ -12,9 +12,10 @@ namespace stepmod::plc {
 namespace m = module::m3602;
 
 namespace {
-constexpr ErrorBitSet kErrorBits{m::status_msw::kConfigurationError, m::status_msw::kCommandError,
-                                 m::status_msw::kInvalidProfile,     m::status_msw::kInputError,
-                                 m::status_msw::kHomeInvalid,        m::status_msw::kPositionInvalid};
+constexpr ErrorBitSet kErrorBits{
+    m::status_msw::kConfigurationError, m::status_msw::kCommandError,
+    m::status_msw::kInvalidProfile,     m::status_msw::kInputError,
+    m::status_msw::kHomeInvalid,        m::status_msw::kPositionInvalid};
 constexpr std::uint16_t kCommandErrors =
     m::status_msw::kCommandError | m::status_msw::kInvalidProfile;
 }  // namespace

@@ -10,9 +10,9 @@
 
 #include "plc/plc_3601.hpp"  // Sequencing
 #include "plc/port.hpp"
-#include "plc/verdict.hpp"
 #include "plc/profile.hpp"
 #include "plc/status_3602.hpp"
+#include "plc/verdict.hpp"
 #include "plc/words_3602.hpp"
 
 namespace stepmod::plc {
@@ -70,7 +70,7 @@ class Plc3602 {
   Port& port_;
   std::chrono::milliseconds timeout_;
   Sequencing seq_;
-  Verdict verdict_;                 // was THIS command refused (plc/verdict.hpp)
+  Verdict verdict_;                // was THIS command refused (plc/verdict.hpp)
   Stale stale_ = Stale::kRefused;  // what an earlier error bit means for the running command
 };
 

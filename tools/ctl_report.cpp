@@ -91,7 +91,8 @@ std::string brief_text(const std::string& name, const ipc::Client& client, const
     if (s.reasons[u].seq != 0 && a.has_list(list)) out += " (" + reason_text(s.reasons[u]) + ")";
     out += "\n";
   }
-  if (s.health.flags != 0) out += name + " health: " + ipc::health_flag_names(s.health.flags) + "\n";
+  if (s.health.flags != 0)
+    out += name + " health: " + ipc::health_flag_names(s.health.flags) + "\n";
   return out;
 }
 

@@ -19,7 +19,8 @@ struct Snapshot {
   std::vector<stepmod_reason_t> reasons;
 };
 // nullopt: the daemon did not scan within `interval` + 1 s (stopped, hung).
-std::optional<Snapshot> take_snapshot(const ipc::Client& client, std::chrono::milliseconds interval);
+std::optional<Snapshot> take_snapshot(const ipc::Client& client,
+                                      std::chrono::milliseconds interval);
 
 std::string brief_text(const std::string& name, const ipc::Client& client, const Snapshot& s);
 std::string json_text(const std::string& name, const ipc::Client& client, const Snapshot& s);

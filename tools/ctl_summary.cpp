@@ -16,11 +16,11 @@ struct Bits {
   std::uint32_t cfg_mode, cw, ccw, hold, stopped, at_home, complete;
   std::uint32_t cfg, ce, ip, ie, hi, pi;
 };
-#define STEPMOD_BITS_OF(ns)                                                                   \
-  Bits {                                                                                      \
+#define STEPMOD_BITS_OF(ns)                                                                    \
+  Bits {                                                                                       \
     ns::kConfigMode, ns::kMovingCw, ns::kMovingCcw, ns::kHoldState, ns::kStopped, ns::kAtHome, \
-        ns::kMoveComplete, ns::kConfigurationError, ns::kCommandError, ns::kInvalidProfile,   \
-        ns::kInputError, ns::kHomeInvalid, ns::kPositionInvalid                               \
+        ns::kMoveComplete, ns::kConfigurationError, ns::kCommandError, ns::kInvalidProfile,    \
+        ns::kInputError, ns::kHomeInvalid, ns::kPositionInvalid                                \
   }
 constexpr Bits k3601 = STEPMOD_BITS_OF(module::m3601::status_msw);
 constexpr Bits k3602 = STEPMOD_BITS_OF(module::m3602::status_msw);
@@ -121,8 +121,8 @@ MotionEnd judge_end(const AxisSummary& s, Motion kind, const stepmod_reason_t& r
   if (s.stopped) {
     // A jog ends Stopped by design; an immediate stop also leaves Position Invalid.
     if (kind == Motion::kJog) return {true, "stopped"};
-    return {false, "stopped before its end" + (s.position_invalid ? " (" + with_reason + ")"
-                                                                  : std::string())};
+    return {false, "stopped before its end" +
+                       (s.position_invalid ? " (" + with_reason + ")" : std::string())};
   }
   if (s.position_invalid) return {false, "ended with " + with_reason};
   return {false, kind == Motion::kHome ? "idle, not at home" : "idle without Move Complete"};

@@ -28,8 +28,8 @@ struct AxisSummary {
   }
   // The error bit of list `list` (docs/error-reasons.md: 1 CFG ... 6 PI) is set.
   bool has_list(unsigned list) const noexcept {
-    const bool bits[] = {false,           cfg_error,   command_error, invalid_profile,
-                         input_error,     home_invalid, position_invalid};
+    const bool bits[] = {false,       cfg_error,    command_error,   invalid_profile,
+                         input_error, home_invalid, position_invalid};
     return list < 7 && bits[list];
   }
   // "configuration", "moving cw", "hold", "at home", "complete", "stopped", "idle".

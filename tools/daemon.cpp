@@ -249,8 +249,8 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
   ImageWords in{};
   Nanos next_scan = monotonic_now();
   ipc::PlcSupervisor supervisor(config.plc_timeout_ns);
-  LeaseKeeper lease;                                  // INTERFACE 3.5
-  ReasonPublisher reasons(stack->shape().axes);       // INTERFACE 3.4
+  LeaseKeeper lease;                             // INTERFACE 3.5
+  ReasonPublisher reasons(stack->shape().axes);  // INTERFACE 3.4
 
   while (!stop.load(std::memory_order_acquire)) {
     // Both backends block until an input edge or the scan (the sim on a futex its writes end,

@@ -62,7 +62,8 @@ const char* syslog_prefix(spdlog::level::level_enum level) noexcept {
 
 std::shared_ptr<spdlog::logger> make_daemon_logger() {
   const bool journal = is_journal_stream(std::getenv("JOURNAL_STREAM"), STDERR_FILENO);
-  auto logger = journal ? spdlog::stderr_logger_mt("stepmodd") : spdlog::stderr_color_mt("stepmodd");
+  auto logger =
+      journal ? spdlog::stderr_logger_mt("stepmodd") : spdlog::stderr_color_mt("stepmodd");
   if (journal) {
     auto f = std::make_unique<spdlog::pattern_formatter>();
     f->add_flag<PriorityFlag>('*').set_pattern("%*%v");

@@ -12,12 +12,12 @@
 #include <algorithm>
 #include <chrono>
 #include <csignal>
-#include <optional>
-#include <vector>
 #include <cstdint>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "core/version.hpp"
 #include "ipc/client.hpp"
@@ -104,8 +104,8 @@ std::optional<std::string> unknown_command(int argc, char** argv, const CLI::App
   for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
     names.push_back(sub->get_name());
   }
-  static const std::vector<std::string> kValued = {"--name", "-n", "--timeout", "--axis",
-                                                   "--channel", "-c"};
+  static const std::vector<std::string> kValued = {"--name", "-n",        "--timeout",
+                                                   "--axis", "--channel", "-c"};
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--") return std::nullopt;
@@ -116,7 +116,8 @@ std::optional<std::string> unknown_command(int argc, char** argv, const CLI::App
     if (a.starts_with("-")) continue;
     if (std::find(names.begin(), names.end(), a) != names.end()) return std::nullopt;
     const std::string guess = closest_command(a, names);
-    return "unknown command '" + a + "'" + (guess.empty() ? "" : "; did you mean '" + guess + "'?") +
+    return "unknown command '" + a + "'" +
+           (guess.empty() ? "" : "; did you mean '" + guess + "'?") +
            " (stepmodctl --help lists them)";
   }
   return std::nullopt;
@@ -459,7 +460,7 @@ int main(int argc, char** argv) {
         std::cerr << stalled_text(name, client);
         return kExitUnreachable;
       }
-      std::cout << (json ? json_text(name, client, *snap)
+      std::cout << (json    ? json_text(name, client, *snap)
                     : brief ? brief_text(name, client, *snap)
                             : status_text(name, client));
       return kExitOk;
@@ -521,8 +522,8 @@ int main(int argc, char** argv) {
     cmd.gpo_on = gpo_state == "on";
     plc::ShmPort port(client, timeout);
     if (cmd.verb == Verb::kWaitIdle) {
-      return wait_motion_end(client, {cmd.unit}, Motion::kAny, millis(cmd.wait_seconds),
-                             std::cout, std::cerr);
+      return wait_motion_end(client, {cmd.unit}, Motion::kAny, millis(cmd.wait_seconds), std::cout,
+                             std::cerr);
     }
     // --wait: the commissioning lease while no PLC is in control; a lease holder is no PLC and
     // leaves the heartbeat alone. Without --wait, say when plc_timeout_ms will cut the motion.

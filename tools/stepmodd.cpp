@@ -63,8 +63,8 @@ int run(int argc, char** argv) {
     return 0;
   }
 
-  // SIGINT/SIGTERM/SIGHUP are blocked in every thread (the threads created below inherit the mask) and
-  // taken here with sigtimedwait, so no handler ever runs on the pulse thread.
+  // SIGINT/SIGTERM/SIGHUP are blocked in every thread (the threads created below inherit the mask)
+  // and taken here with sigtimedwait, so no handler ever runs on the pulse thread.
   sigset_t signals;
   sigemptyset(&signals);
   sigaddset(&signals, SIGINT);

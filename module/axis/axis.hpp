@@ -158,7 +158,8 @@ class Axis {
   AxisCommand prev_;
   unsigned cfg_fault_number_ = 0;  // set_configuration_fault()
   std::string_view cfg_fault_text_;
-  unsigned cfg_fault_noted_ = 0;  // the fault last recorded (a bad configuration is re-read every scan)
+  unsigned cfg_fault_noted_ =
+      0;  // the fault last recorded (a bad configuration is re-read every scan)
 };
 
 }  // namespace stepmod::module::axis

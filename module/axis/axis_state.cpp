@@ -78,9 +78,9 @@ bool AxisState::inputs_block_start(planner::Direction d) {
   if (!estop_active() && !limit_active(d)) return false;
   status.input_error = true;
   note(items::kStartTowardLimit, "%s active: the move does not start",
-       estop_active()                   ? "E-stop"
+       estop_active()                 ? "E-stop"
        : d == planner::Direction::kCw ? "CW limit"
-                                        : "CCW limit");
+                                      : "CCW limit");
   return true;
 }
 

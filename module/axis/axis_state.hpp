@@ -142,7 +142,7 @@ struct AxisState {
  private:
   void vnote(const Item& item, const char* fmt, va_list args) noexcept;
   void record(ErrorList list, unsigned number, const char* text) noexcept;
-  Latches explained_;          // the error bits as of the last explain_new_errors()
+  Latches explained_;         // the error bits as of the last explain_new_errors()
   bool noted_since_ = false;  // a reason was recorded since then
 };
 

@@ -72,7 +72,7 @@ void Blend::programming_scan(const AxisCommand& c, const AxisCommand& prev) {
     // profile, which the running blend came from, is kept) and the blend is brought down with
     // its final-segment deceleration.
     spoiled_ = true;
-    ax_.reject();
+    ax_.reject(items::kBlendWhileBlending);
     hold_error_ = false;  // this CE does not clear itself
     if (ax_.stop_cause == StopCause::kNone) {
       ax_.stop_cause = StopCause::kHold;  // a controlled stop; motion_ended gives its outcome
@@ -200,7 +200,7 @@ bool Blend::segment_block(const BlendSegmentBlock& b) {
 bool Blend::program(const BlendFirstBlock& first, std::span<const BlendSegmentBlock> segments) {
   if (ax_.activity == Activity::kBlend) {
     // 3202-CE-19 (as 3601-CE-22): the stored profile of the running blend is kept.
-    ax_.reject();
+    ax_.reject(items::kBlendWhileBlending);
     hold_error_ = false;  // this CE does not clear itself
     if (ax_.stop_cause == StopCause::kNone) {
       ax_.stop_cause = StopCause::kHold;  // a controlled stop; motion_ended gives its outcome
@@ -236,13 +236,13 @@ bool Blend::program(const BlendFirstBlock& first, std::span<const BlendSegmentBl
 void Blend::run(planner::Direction dir) {
   // 3601-CE-03: a move while another is in progress; the running move is unaffected.
   if (ax_.moving()) {
-    ax_.reject();
+    ax_.reject(items::kMoveWhileMoving, "Run Blend while a motion is running");
     return;
   }
   // 3601-CE-20: no profile stored (never programmed, an incomplete or failed cycle, or erased by
   // a configuration).
   if (!stored_) {
-    ax_.reject();
+    ax_.reject(items::kBlendNotStored);
     return;
   }
   if (ax_.inputs_block_start(dir)) return;  // A15
@@ -250,7 +250,8 @@ void Blend::run(planner::Direction dir) {
   spec.dir = dir;  // + = CW, - = CCW; a profile never reverses (digest 7.10 rule 6)
   spec.vs = ax_.cfg.starting_speed;
   if (ax_.motion.start_blend(spec) == 0) {
-    ax_.reject();  // the planner queue is full: refuse rather than lose the command
+    ax_.reject(
+        items::kPlannerFull);  // the planner queue is full: refuse rather than lose the command
     return;
   }
   // A new move clears the previous move's outcome (3601-MC-03, HLD-C1, IE-C1, STP-C1). The
@@ -268,7 +269,7 @@ void Blend::hold() {
   // clears by itself. Only a CE set here clears itself: Hold reaches this point only with CE = 0
   // (3601-CE-L1), and a CE raised later for another reason cancels the self-clear (see
   // programming_scan and the CE-22 branch).
-  ax_.reject();
+  ax_.reject(items::kHoldDuringBlend);
   hold_error_ = true;
 }
 

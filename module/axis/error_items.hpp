@@ -24,8 +24,7 @@ inline constexpr Item kSeveralCommands{L::kCommand, 2, 2, 2, "more than one comm
 inline constexpr Item kUndefinedCommand{L::kCommand, 2, 2, 24, "an undefined command bit set"};
 inline constexpr Item kMoveWhileMoving{L::kCommand, 3, 4, 0,
                                        "a move while another motion is running"};
-inline constexpr Item kWordsNotZero{L::kCommand, 15, 10, 9,
-                                    "command words that must be 0 are not"};
+inline constexpr Item kWordsNotZero{L::kCommand, 15, 10, 9, "command words that must be 0 are not"};
 inline constexpr Item kReservedWords{L::kCommand, 0, 10, 5, "reserved command words not 0"};
 inline constexpr Item kOutOfRange{L::kCommand, 4, 5, 3,
                                   "target, speed, accel or decel out of range"};
@@ -40,8 +39,33 @@ inline constexpr Item kHomeNoLimit{L::kCommand, 13, 0, 22,
                                    "Find Home toward no configured end limit"};
 inline constexpr Item kHomeTarget{L::kCommand, 0, 10, 0, "Find Home with a target not 0"};
 inline constexpr Item kHomeNoInput{L::kCommand, 0, 12, 0, "Find Home without the home input"};
-inline constexpr Item kNoEncoder{L::kCommand, 14, 0, 23,
-                                 "encoder move with no encoder configured"};
+inline constexpr Item kNoEncoder{L::kCommand, 14, 0, 23, "encoder move with no encoder configured"};
+inline constexpr Item kPresetEncoderNoEncoder{L::kCommand, 11, 0, 11,
+                                              "Preset Encoder with no encoder configured"};
+inline constexpr Item kMinRegRange{L::kCommand, 25, 0, 0,
+                                   "minimum registration distance out of range"};
+inline constexpr Item kRegExternal{L::kCommand, 27, 0, 0, "registration move with External active"};
+inline constexpr Item kRegTooShort{L::kCommand, 28, 0, 0, "registration steps fewer than to stop"};
+inline constexpr Item kRegNegative{L::kCommand, 29, 0, 0, "a negative registration count"};
+inline constexpr Item kBlendNotStored{L::kCommand, 20, 0, 17, "Run Blend with no profile stored"};
+inline constexpr Item kBlendWhileBlending{L::kCommand, 22, 0, 19,
+                                          "blend programming while a blend runs"};
+inline constexpr Item kHoldDuringBlend{L::kCommand, 23, 8, 20, "Hold during a blend"};
+inline constexpr Item kFollowerNoEncoder{L::kCommand, 34, 0, 0,
+                                         "follower mode with no encoder configured"};
+inline constexpr Item kFollowerWhileMoving{L::kCommand, 35, 0, 0,
+                                           "follower mode while a motion runs"};
+inline constexpr Item kFollowerRatio{L::kCommand, 36, 0, 0, "follower ratio out of 1..32767"};
+inline constexpr Item kFollowerSpeed{L::kCommand, 37, 0, 0, "follower with speed words not 0"};
+inline constexpr Item kFollowerDirection{L::kCommand, 38, 0, 0,
+                                         "follower direction changed with no 0 scan"};
+inline constexpr Item kFollowerOtherCommand{L::kCommand, 39, 0, 0,
+                                            "a command other than +/- in follower mode"};
+inline constexpr Item kFollowerReleased{L::kCommand, 40, 0, 0,
+                                        "follower flag cleared with a direction set"};
+inline constexpr Item kFollowerSCurve{L::kCommand, 41, 0, 0, "S-curve with the follower"};
+inline constexpr Item kFollowerLimit{L::kCommand, 42, 0, 0,
+                                     "follower mode with an end limit active"};
 inline constexpr Item kPlannerFull{L::kCommand, 91, 91, 91,
                                    "the planner's queue is full (stepmod)"};
 
@@ -83,8 +107,7 @@ inline constexpr Item kHomeTimeout{L::kHomeInvalid, 0, 7, 0, "homing timeout exp
 // ---- Position Invalid ----
 inline constexpr Item kPiConfigured{L::kPositionInvalid, 1, 1, 1,
                                     "a configuration (the position is 0)"};
-inline constexpr Item kPiImmediateStop{L::kPositionInvalid, 2, 2, 2,
-                                       "Immediate Stop while moving"};
+inline constexpr Item kPiImmediateStop{L::kPositionInvalid, 2, 2, 2, "Immediate Stop while moving"};
 inline constexpr Item kPiEStop{L::kPositionInvalid, 3, 3, 3, "E-stop while moving"};
 inline constexpr Item kPiLimit{L::kPositionInvalid, 4, 4, 4, "an end limit during a move"};
 inline constexpr Item kPiPlcStopped{L::kPositionInvalid, 7, 0, 8,
@@ -96,16 +119,67 @@ inline constexpr Item kPiLeaseExpired{L::kPositionInvalid, 92, 92, 92,
 inline constexpr Item kPiFault{L::kPositionInvalid, 0, 0, 0, "a fault stopped the axis"};
 
 // Every item above, for the documentation table.
-inline constexpr std::array kAll{
-    &kConfigInvalid,     &kPowerUp,  &kNotConfigured,     &kConfigWhileMoving,  &kSeveralCommands,
-    &kUndefinedCommand,  &kMoveWhileMoving,   &kWordsNotZero,       &kReservedWords,
-    &kOutOfRange,        &kVpBelowVs,         &kAbsoluteWithPi,     &kHoldNotHoldable,
-    &kResumeNotHeld,     &kHomeSCurve,        &kHomeNoLimit,        &kHomeTarget, &kHomeNoInput,
-    &kNoEncoder, &kPlannerFull, &kProfileOverflow,       &kProfileVpBelowVs,  &kProfileOutOfRange,  &kProfileReserved,
-    &kBlendSegmentCount, &kBlendNoFinalDecel, &kBlendBlockError, &kBlendNotConfigured, &kBlendNoChannel,   &kEStop,              &kLimitInMove,
-    &kStartTowardLimit,  &kHomingSecondLimit, &kHomingOppositeLimit, &kHomeFailed, &kHomeLimitError,
-    &kHomeTimeout,       &kPiConfigured,      &kPiImmediateStop,    &kPiEStop,
-    &kPiLimit,           &kPiPlcStopped,      &kPiLateEdge,         &kPiLeaseExpired,
-    &kPiFault};
+inline constexpr std::array kAll{&kConfigInvalid,
+                                 &kPowerUp,
+                                 &kNotConfigured,
+                                 &kConfigWhileMoving,
+                                 &kSeveralCommands,
+                                 &kUndefinedCommand,
+                                 &kMoveWhileMoving,
+                                 &kWordsNotZero,
+                                 &kReservedWords,
+                                 &kOutOfRange,
+                                 &kVpBelowVs,
+                                 &kAbsoluteWithPi,
+                                 &kHoldNotHoldable,
+                                 &kResumeNotHeld,
+                                 &kHomeSCurve,
+                                 &kHomeNoLimit,
+                                 &kHomeTarget,
+                                 &kHomeNoInput,
+                                 &kNoEncoder,
+                                 &kPresetEncoderNoEncoder,
+                                 &kMinRegRange,
+                                 &kRegExternal,
+                                 &kRegTooShort,
+                                 &kRegNegative,
+                                 &kBlendNotStored,
+                                 &kBlendWhileBlending,
+                                 &kHoldDuringBlend,
+                                 &kFollowerNoEncoder,
+                                 &kFollowerWhileMoving,
+                                 &kFollowerRatio,
+                                 &kFollowerSpeed,
+                                 &kFollowerDirection,
+                                 &kFollowerOtherCommand,
+                                 &kFollowerReleased,
+                                 &kFollowerSCurve,
+                                 &kFollowerLimit,
+                                 &kPlannerFull,
+                                 &kProfileOverflow,
+                                 &kProfileVpBelowVs,
+                                 &kProfileOutOfRange,
+                                 &kProfileReserved,
+                                 &kBlendSegmentCount,
+                                 &kBlendNoFinalDecel,
+                                 &kBlendBlockError,
+                                 &kBlendNotConfigured,
+                                 &kBlendNoChannel,
+                                 &kEStop,
+                                 &kLimitInMove,
+                                 &kStartTowardLimit,
+                                 &kHomingSecondLimit,
+                                 &kHomingOppositeLimit,
+                                 &kHomeFailed,
+                                 &kHomeLimitError,
+                                 &kHomeTimeout,
+                                 &kPiConfigured,
+                                 &kPiImmediateStop,
+                                 &kPiEStop,
+                                 &kPiLimit,
+                                 &kPiPlcStopped,
+                                 &kPiLateEdge,
+                                 &kPiLeaseExpired,
+                                 &kPiFault};
 
 }  // namespace stepmod::module::axis::items

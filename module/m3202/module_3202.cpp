@@ -67,7 +67,8 @@ std::int32_t Module3202::on_message(std::span<const std::int32_t> data, Nanos /*
   }
   Channel& c = channels_[static_cast<unsigned>(m.channel - 1)];
   if (c.disabled) {
-    c.axis.set_invalid_profile(axis::items::kBlendNotConfigured);  // 3202-IP-15: the channel is not configured (or disabled)
+    c.axis.set_invalid_profile(axis::items::kBlendNotConfigured);  // 3202-IP-15: the channel is not
+                                                                   // configured (or disabled)
     return kMessageRefused;
   }
   return c.axis.program_blend(m.first, m.segments) ? kMessageAccepted : kMessageRefused;

@@ -79,8 +79,8 @@ class Commissioning : public ::testing::Test {
       const int null = ::open("/dev/null", O_WRONLY);
       ::dup2(null, 1);
       ::dup2(null, 2);
-      const std::string cmd = std::string("exec ") + STEPMODCTL_PATH + " -n " + daemon_->name() +
-                              " " + args;
+      const std::string cmd =
+          std::string("exec ") + STEPMODCTL_PATH + " -n " + daemon_->name() + " " + args;
       ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
       ::_exit(127);
     }
@@ -132,8 +132,7 @@ TEST_F(Commissioning, ReasonOfARefusedCommandInStepmodctlTheLogAndStatus) {
       << brief.out;
   const CtlRun json = ctl("status --json", 0);
   EXPECT_NE(json.out.find("\"reason_item\":10205"), std::string::npos) << json.out;
-  EXPECT_NE(json.out.find("\"reason\":\"3601-CE-05: Vp 500 is below Vs 1000\""),
-            std::string::npos)
+  EXPECT_NE(json.out.find("\"reason\":\"3601-CE-05: Vp 500 is below Vs 1000\""), std::string::npos)
       << json.out;
 }
 
@@ -193,11 +192,19 @@ TEST(CommissioningCli, VersionCheckAndTypos) {
   std::string cfg = config_3601();
   const std::string name = "check-" + std::to_string(::getpid());
   cfg.replace(cfg.find("{NAME}"), 6, name);
-  { std::FILE* f = std::fopen((dir + "/ok.toml").c_str(), "w"); std::fputs(cfg.c_str(), f); std::fclose(f); }
+  {
+    std::FILE* f = std::fopen((dir + "/ok.toml").c_str(), "w");
+    std::fputs(cfg.c_str(), f);
+    std::fclose(f);
+  }
   EXPECT_EQ(DaemonProcess::run_to_exit("--check --config " + dir + "/ok.toml", &err), 0) << err;
   EXPECT_FALSE(shm_exists(name));
   cfg.replace(cfg.find("scan_us"), 7, "scan_usx");
-  { std::FILE* f = std::fopen((dir + "/bad.toml").c_str(), "w"); std::fputs(cfg.c_str(), f); std::fclose(f); }
+  {
+    std::FILE* f = std::fopen((dir + "/bad.toml").c_str(), "w");
+    std::fputs(cfg.c_str(), f);
+    std::fclose(f);
+  }
   EXPECT_EQ(DaemonProcess::run_to_exit("--check --config " + dir + "/bad.toml", &err), 2);
   EXPECT_NE(err.find("scan_usx"), std::string::npos) << err;
   EXPECT_FALSE(shm_exists(name));
@@ -282,8 +289,8 @@ TEST_F(Commissioning, NoLeaseWhileAPlcHeartbeatIsLive) {
 TEST_F(Commissioning, MoveWithoutWaitAndNoPlcSaysTheTimeoutWillStopIt) {
   start(300);
   ctl(kConfigure, 0);
-  ASSERT_TRUE(eventually([&] { return (health() & STEPMOD_HEALTH_PLC_STALE) != 0; },
-                         milliseconds(3000)));
+  ASSERT_TRUE(
+      eventually([&] { return (health() & STEPMOD_HEALTH_PLC_STALE) != 0; }, milliseconds(3000)));
   const CtlRun r = ctl("move rel 100000 -s 5000 -a 100 -d 100", 0);
   EXPECT_NE(r.err.find("plc_timeout_ms"), std::string::npos) << r.err;
   ASSERT_TRUE(eventually([&] { return !moving(); }, milliseconds(3000)));
@@ -300,7 +307,11 @@ TEST(CommissioningSignals, ClosedLogPipeThenSigtermExitsZeroAndCleansUp) {
   const std::string name = "pipe-" + std::to_string(::getpid());
   std::string cfg = config_3601();
   cfg.replace(cfg.find("{NAME}"), 6, name);
-  { std::FILE* f = std::fopen((dir + "/c.toml").c_str(), "w"); std::fputs(cfg.c_str(), f); std::fclose(f); }
+  {
+    std::FILE* f = std::fopen((dir + "/c.toml").c_str(), "w");
+    std::fputs(cfg.c_str(), f);
+    std::fclose(f);
+  }
   for (const int sig : {SIGTERM, SIGHUP}) {
     int p[2];
     ASSERT_EQ(::pipe(p), 0);

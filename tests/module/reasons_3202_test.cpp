@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "module/axis/error_items.hpp"
 #include "ipc/stepmod_image.h"
+#include "module/axis/error_items.hpp"
 #include "module/m3202/blend_message_3202.hpp"
 #include "tests/module/plc_3202.hpp"
 

@@ -45,7 +45,8 @@ TEST_F(Reasons3602, CE_06_VpBelowVsOnAxis2) {
 TEST_F(Reasons3602, IP_03_ProfileOverflowNamesTheRegisters) {
   constexpr std::int32_t kMax = 1'073'741'823;
   configure(kAxis1);
-  command(kAxis1, m2::cmd_msw::kPresetPosition, {.target = kMax, .speed = 0, .accel = 0, .decel = 0});
+  command(kAxis1, m2::cmd_msw::kPresetPosition,
+          {.target = kMax, .speed = 0, .accel = 0, .decel = 0});
   command(kAxis1, m2::cmd_msw::kRelativeMove, {.target = 2});
   ASSERT_TRUE(wait_idle(kAxis1));
   command(kAxis1, m2::cmd_msw::kAbsoluteMove, {.target = -kMax, .speed = 1'000'000, .accel = 2000});
@@ -66,7 +67,8 @@ TEST_F(Reasons3602, IE_02_LimitDuringAMove) {
 
 TEST_F(Reasons3602, HI_07_HomingTimeoutNamesTheTime) {
   configure(kAxis1, kLimitsConfigMsw, kAllActiveHigh3602, 1'000, 1);  // T = 1 s
-  command(kAxis1, m2::cmd_msw::kFindHomeCw, {.target = 0, .speed = 2'000, .accel = 20, .decel = 20});
+  command(kAxis1, m2::cmd_msw::kFindHomeCw,
+          {.target = 0, .speed = 2'000, .accel = 20, .decel = 20});
   ASSERT_TRUE(wait_idle(kAxis1, 3 * kNsPerSec));
   EXPECT_TRUE(status(kAxis1, m2::status_msw::kHomeInvalid));
   EXPECT_EQ(reason(kAxis1).code, 20507u);
