@@ -1,5 +1,7 @@
 #include "gpio/vcd_trace.hpp"
 
+#include "core/version.hpp"
+
 #include <pthread.h>
 #include <sched.h>
 
@@ -76,7 +78,8 @@ VcdTrace::VcdTrace(const std::string& path, std::span<const TraceWire> wires, Na
   const std::time_t now = std::time(nullptr);
   std::tm tm{};
   if (localtime_r(&now, &tm) != nullptr) std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S", &tm);
-  std::fprintf(f_, "$date %s $end\n$version stepmod $end\n$timescale 1 ns $end\n", date);
+  std::fprintf(
+      f_, "$date %s $end\n$version stepmod " STEPMOD_VERSION " $end\n$timescale 1 ns $end\n", date);
   // The wires keep the names of INTERFACE.md section 5 verbatim (axis1.step, ...), inside one
   // top-level scope, which some readers require.
   std::fprintf(f_, "$scope module stepmod $end\n");

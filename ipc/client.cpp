@@ -144,4 +144,15 @@ std::optional<std::int32_t> Client::send_message(std::span<const std::int32_t> d
   return __atomic_load_n(&img_->msg_result, __ATOMIC_RELAXED);
 }
 
+stepmod_reason_t Client::read_reason(unsigned axis) const noexcept {
+  stepmod_reason_t r{};
+  if (axis >= shape_.axes || !stepmod_read_reason(img_, axis, &r)) return stepmod_reason_t{};
+  return r;
+}
+
+stepmod_image_t& Client::writable_image() {
+  require_writable();
+  return *img_;
+}
+
 }  // namespace stepmod::ipc

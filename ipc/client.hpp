@@ -36,6 +36,9 @@ class Client {
   bool read_outputs(ImageWords& out) const noexcept;
   // The daemon health words (INTERFACE.md 3.3), consistent with one input publication.
   Health read_health() const noexcept;
+  // The error reason of axis/channel `axis` (0-based; INTERFACE.md 3.4), consistent with one
+  // input publication; seq 0 and an empty text when none (or no consistent read).
+  stepmod_reason_t read_reason(unsigned axis) const noexcept;
 
   // Writes the first output_words words under the output seqlock (truncated to the word size).
   void write_outputs(const ImageWords& out);
@@ -63,6 +66,9 @@ class Client {
                                            std::chrono::milliseconds timeout);
 
   const stepmod_image_t& raw() const noexcept { return *img_; }
+  // The image itself, for the commissioning lease (ipc/lease_client.hpp): its fields are
+  // atomics shared with the daemon. Throws IpcError when the image is read-only.
+  stepmod_image_t& writable_image();
 
  private:
   void require_writable() const;

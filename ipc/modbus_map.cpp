@@ -113,6 +113,7 @@ ModbusResult ModbusMap::read_inputs(ModbusResult r) const noexcept {
   std::int32_t in[STEPMOD_MAX_WORDS] = {};
   std::uint32_t health = 0;
   std::uint32_t late = 0;
+  std::array<std::uint32_t, 2> items{};
   const bool ok = until_consistent([&] {
     const std::uint32_t s0 = __atomic_load_n(&img_.input_seq, __ATOMIC_ACQUIRE);
     if (s0 & 1u) return false;
@@ -121,6 +122,9 @@ ModbusResult ModbusMap::read_inputs(ModbusResult r) const noexcept {
     }
     health = __atomic_load_n(&img_.health_flags, __ATOMIC_ACQUIRE);
     late = __atomic_load_n(&img_.late_faults, __ATOMIC_ACQUIRE);
+    for (unsigned a = 0; a < items.size(); ++a) {
+      items[a] = __atomic_load_n(&img_.reasons[a].item, __ATOMIC_ACQUIRE);
+    }
     return __atomic_load_n(&img_.input_seq, __ATOMIC_RELAXED) == s0;
   });
   if (!ok) return fail(r, ModbusException::kServerDeviceBusy);
@@ -141,6 +145,10 @@ ModbusResult ModbusMap::read_inputs(ModbusResult r) const noexcept {
   h[kHeaderHealthHigh] = static_cast<std::uint16_t>(health >> 16);
   h[kHeaderLateLow] = static_cast<std::uint16_t>(late & 0xFFFFu);
   h[kHeaderLateHigh] = static_cast<std::uint16_t>(late >> 16);
+  h[kHeaderReason1High] = static_cast<std::uint16_t>(items[0] >> 16);
+  h[kHeaderReason1Low] = static_cast<std::uint16_t>(items[0] & 0xFFFFu);
+  h[kHeaderReason2High] = static_cast<std::uint16_t>(items[1] >> 16);
+  h[kHeaderReason2Low] = static_cast<std::uint16_t>(items[1] & 0xFFFFu);
   for (unsigned i = 0; i < r.count; ++i) r.values[i] = h[first - kHeaderBase + i];
   return r;
 }

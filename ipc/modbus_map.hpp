@@ -4,7 +4,8 @@
 // every rule is unit-tested on an image in ordinary memory.
 //
 //   input registers (function 4)   0 .. N-1     the module's input words
-//                                  1000 .. 1015 header and health fields (see kHeader* below)
+//                                  1000 .. 1019 header, health fields and reason item codes
+//                                               (see kHeader* below)
 //   holding registers (3, 6, 16)   0 .. M-1     the module's output words
 //
 // A 16-bit word is one register; a 32-bit word (3202) is two, high half first.
@@ -31,9 +32,10 @@ enum class ModbusException : std::uint8_t {
 inline constexpr unsigned kModbusMaxRead = 125;   // functions 3 and 4
 inline constexpr unsigned kModbusMaxWrite = 123;  // function 16
 
-// Input registers from 1000: the header of INTERFACE.md 3 and the health fields of 3.3.
+// Input registers from 1000: the header of INTERFACE.md 3, the health fields of 3.3 and the item
+// codes of the error reasons (3.4).
 inline constexpr std::uint16_t kHeaderBase = 1000;
-inline constexpr unsigned kHeaderRegisters = 16;
+inline constexpr unsigned kHeaderRegisters = 20;
 enum HeaderRegister : std::uint16_t {
   kHeaderModuleType = 0,  // 3601, 3602 or 3202
   kHeaderWordBytes = 1,   // 2 or 4
@@ -46,6 +48,11 @@ enum HeaderRegister : std::uint16_t {
   kHeaderLateLow = 8,
   kHeaderLateHigh = 9,
   // 10 .. 15 reserved: read as 0
+  // The error reasons' item codes (INTERFACE.md 3.4, docs/error-reasons.md), high half first.
+  kHeaderReason1High = 16,
+  kHeaderReason1Low = 17,
+  kHeaderReason2High = 18,
+  kHeaderReason2Low = 19,
 };
 
 namespace modbus_fc {

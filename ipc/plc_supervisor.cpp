@@ -17,7 +17,7 @@ const ImageWords& PlcSupervisor::scan(const Sample& s) noexcept {
   std::uint32_t flags = 0;
 
   // Heartbeat (INTERFACE 3.2): stale while unchanged for the timeout.
-  if (s.heartbeat != heartbeat_) {
+  if (s.heartbeat != heartbeat_ || s.lease_held) {
     heartbeat_ = s.heartbeat;
     heartbeat_changed_ = s.now;
   }

@@ -47,6 +47,9 @@ class PlcSupervisor {
     bool snapshot_ok = false;        // a consistent snapshot was taken ...
     std::uint32_t snapshot_seq = 0;  // ... under this (even) sequence value
     ImageWords words{};              // ... of these words
+    // A commissioning lease is held (INTERFACE 3.5): the tool is the deadman, the heartbeat
+    // timeout is not applied (the heartbeat counts as fresh).
+    bool lease_held = false;
   };
 
   // One scan. Returns the words the module is to scan this time (the live snapshot, the last

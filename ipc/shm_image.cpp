@@ -64,6 +64,15 @@ void ShmImage::publish_inputs(const ImageWords& in, const Health& health) noexce
   __atomic_store_n(&img_->health_flags, health.flags, __ATOMIC_RELAXED);
   __atomic_store_n(&img_->late_faults, health.late_faults, __ATOMIC_RELAXED);
   __atomic_store_n(&img_->worst_late_us, health.worst_late_us, __ATOMIC_RELAXED);
+  for (unsigned a = 0; a < reasons_.size(); ++a) {
+    stepmod_reason_t& r = img_->reasons[a];
+    if (__atomic_load_n(&r.seq, __ATOMIC_RELAXED) == reasons_[a].seq) continue;
+    __atomic_store_n(&r.item, reasons_[a].item, __ATOMIC_RELAXED);
+    for (unsigned i = 0; i < STEPMOD_REASON_TEXT; ++i) {
+      __atomic_store_n(&r.text[i], reasons_[a].text[i], __ATOMIC_RELAXED);
+    }
+    __atomic_store_n(&r.seq, reasons_[a].seq, __ATOMIC_RELAXED);
+  }
   health_ = health;
   stepmod_seq_write_end(&img_->input_seq, odd);
   __atomic_fetch_add(&img_->scan_counter, 1u, __ATOMIC_RELEASE);
@@ -115,6 +124,29 @@ std::optional<BlendMessage> ShmImage::pending_message() const noexcept {
 void ShmImage::finish_message(std::uint32_t seq, std::int32_t result) noexcept {
   __atomic_store_n(&img_->msg_result, result, __ATOMIC_RELAXED);
   __atomic_store_n(&img_->msg_done_seq, seq, __ATOMIC_RELEASE);
+}
+
+}  // namespace stepmod::ipc
+
+namespace stepmod::ipc {
+
+void ShmImage::set_reason(unsigned axis, const stepmod_reason_t& reason) noexcept {
+  if (axis < reasons_.size()) reasons_[axis] = reason;
+}
+
+ShmImage::Lease ShmImage::lease() const noexcept {
+  Lease l;
+  l.holder = __atomic_load_n(&img_->lease_holder, __ATOMIC_ACQUIRE);
+  l.seq = __atomic_load_n(&img_->lease_seq, __ATOMIC_ACQUIRE);
+  l.expiry_ns =
+      static_cast<std::int64_t>(__atomic_load_n(&img_->lease_expiry_ns, __ATOMIC_ACQUIRE));
+  return l;
+}
+
+bool ShmImage::free_lease(std::uint32_t holder) noexcept {
+  std::uint32_t expected = holder;
+  return __atomic_compare_exchange_n(&img_->lease_holder, &expected, 0u, false, __ATOMIC_ACQ_REL,
+                                     __ATOMIC_ACQUIRE);
 }
 
 }  // namespace stepmod::ipc

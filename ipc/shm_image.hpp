@@ -64,6 +64,21 @@ class ShmImage {
   // Stores the result and marks request `seq` done.
   void finish_message(std::uint32_t seq, std::int32_t result) noexcept;
 
+  // Section 3.4: the error reason of `axis` (0-based, < 2), written under the input seqlock by the
+  // next publish_inputs().
+  void set_reason(unsigned axis, const stepmod_reason_t& reason) noexcept;
+
+  // Section 3.5: the commissioning lease as its holder wrote it.
+  struct Lease {
+    std::uint32_t holder = 0;  // pid, 0 = free
+    std::uint32_t seq = 0;
+    std::int64_t expiry_ns = 0;  // CLOCK_MONOTONIC
+  };
+  Lease lease() const noexcept;
+  // Frees the lease if `holder` still holds it (a compare-and-swap: a release or a new take in
+  // between wins). Returns whether this call freed it.
+  bool free_lease(std::uint32_t holder) noexcept;
+
   // For tests and diagnostics.
   const stepmod_image_t& raw() const noexcept { return *img_; }
 
@@ -72,7 +87,8 @@ class ShmImage {
   ModuleShape shape_;
   ShmMapping map_;
   stepmod_image_t* img_ = nullptr;
-  Health health_;  // as last published
+  Health health_;                              // as last published
+  std::array<stepmod_reason_t, 2> reasons_{};  // written with the next publication
 };
 
 }  // namespace stepmod::ipc

@@ -14,6 +14,9 @@
  *   panel offset 16 (u64): same for the simulator panel.
  *   image offset 424 (u32): the largest lateness of a late-edge fault so far, in microseconds
  *                           (saturating), beside the fault count of offset 420 (section 3.3).
+ *   image offset 448 + 64 * (axis - 1): the error reason of each axis (section 3.4,
+ *                           docs/error-reasons.md), under the input seqlock.
+ *   image offset 576..591: the commissioning lease (section 3.5, docs/commissioning.md).
  */
 #ifndef STEPMOD_IMAGE_H
 #define STEPMOD_IMAGE_H
@@ -68,15 +71,30 @@ enum stepmod_image_offset {
   STEPMOD_OFF_HEALTH_FLAGS = 416,  /* section 3.3, under the input seqlock */
   STEPMOD_OFF_LATE_FAULTS = 420,   /* section 3.3, under the input seqlock */
   STEPMOD_OFF_WORST_LATE_US = 424, /* extension, see above; under the input seqlock */
-  STEPMOD_OFF_END_OF_FIELDS = 428
+  STEPMOD_OFF_REASONS = 448,       /* section 3.4: 64 bytes per axis, under the input seqlock */
+  STEPMOD_REASON_STRIDE = 64,
+  STEPMOD_OFF_LEASE_HOLDER = 576, /* section 3.5 */
+  STEPMOD_OFF_LEASE_SEQ = 580,
+  STEPMOD_OFF_LEASE_EXPIRY = 584,
+  STEPMOD_OFF_END_OF_FIELDS = 592
 };
 
 /* Daemon health flags (offset 416, INTERFACE.md 3.3): a bit each, set while the condition lasts. */
-#define STEPMOD_HEALTH_LATE_EDGE (1u << 0)  /* a late-edge fault stopped an axis */
-#define STEPMOD_HEALTH_PLC_STALE (1u << 1)  /* PLC heartbeat stale: as in Program mode */
-#define STEPMOD_HEALTH_SEQ_STUCK (1u << 2)  /* output sequence left odd (PLC died mid-write) */
-#define STEPMOD_HEALTH_SEQ_BYPASS (1u << 3) /* output words changed, sequence did not */
-#define STEPMOD_HEALTH_TRACE_LOST (1u << 4) /* trace records lost (the VCD says so too) */
+#define STEPMOD_HEALTH_LATE_EDGE (1u << 0)      /* a late-edge fault stopped an axis */
+#define STEPMOD_HEALTH_PLC_STALE (1u << 1)      /* PLC heartbeat stale: as in Program mode */
+#define STEPMOD_HEALTH_SEQ_STUCK (1u << 2)      /* output sequence left odd (PLC died mid-write) */
+#define STEPMOD_HEALTH_SEQ_BYPASS (1u << 3)     /* output words changed, sequence did not */
+#define STEPMOD_HEALTH_TRACE_LOST (1u << 4)     /* trace records lost (the VCD says so too) */
+#define STEPMOD_HEALTH_LEASE_EXPIRED (1u << 6)  /* a commissioning lease expired: axes stopped */
+#define STEPMOD_HEALTH_LEASE_CONFLICT (1u << 7) /* PLC heartbeat changed during a lease */
+
+/* Section 3.4: why an error bit was set (item code: docs/error-reasons.md). */
+#define STEPMOD_REASON_TEXT 56u
+typedef struct stepmod_reason {
+  uint32_t seq;                   /* +1 per new reason of this axis */
+  uint32_t item;                  /* checklist item code, 0 = none */
+  char text[STEPMOD_REASON_TEXT]; /* "3601-CE-05: Vp 500 is below Vs 1000", NUL-terminated */
+} stepmod_reason_t;
 
 /* 64 bytes of backplane words: 16-bit words (3601/3602) sit at 2*i, 32-bit words (3202) at 4*i. */
 typedef union stepmod_words {
@@ -111,6 +129,11 @@ typedef struct stepmod_image {
   uint32_t health_flags;  /* section 3.3: STEPMOD_HEALTH_* bits */
   uint32_t late_faults;   /* section 3.3: late-edge faults since the daemon started */
   uint32_t worst_late_us; /* extension: largest late-edge fault lateness, us */
+  uint8_t reserved428[STEPMOD_OFF_REASONS - 428];
+  stepmod_reason_t reasons[2]; /* section 3.4: axis/channel 1 and 2 */
+  uint32_t lease_holder;       /* section 3.5: pid of the tool holding the lease, 0 = free */
+  uint32_t lease_seq;          /* +1 by the tool at each take */
+  uint64_t lease_expiry_ns;    /* CLOCK_MONOTONIC; at most 500 ms ahead, renewed every 100 ms */
   uint8_t unused[STEPMOD_IMAGE_SIZE - STEPMOD_OFF_END_OF_FIELDS];
 } stepmod_image_t;
 
@@ -139,6 +162,11 @@ STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, msg_data) == STEPMOD_OFF_MSG_DAT
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, health_flags) == STEPMOD_OFF_HEALTH_FLAGS, "hf");
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, late_faults) == STEPMOD_OFF_LATE_FAULTS, "lf");
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, worst_late_us) == STEPMOD_OFF_WORST_LATE_US, "wl");
+STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, reasons) == STEPMOD_OFF_REASONS, "reasons");
+STEPMOD_STATIC_ASSERT(sizeof(stepmod_reason_t) == STEPMOD_REASON_STRIDE, "reason stride");
+STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, lease_holder) == STEPMOD_OFF_LEASE_HOLDER, "lh");
+STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, lease_seq) == STEPMOD_OFF_LEASE_SEQ, "ls");
+STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, lease_expiry_ns) == STEPMOD_OFF_LEASE_EXPIRY, "le");
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, unused) == STEPMOD_OFF_END_OF_FIELDS, "end");
 
 /* ---------------------------------------------------------------------------------------------
@@ -273,6 +301,29 @@ static inline int stepmod_read_health(const stepmod_image_t* im, uint32_t* flags
     *flags = __atomic_load_n(&im->health_flags, __ATOMIC_ACQUIRE);
     *late_faults = __atomic_load_n(&im->late_faults, __ATOMIC_ACQUIRE);
     if (__atomic_load_n(&im->input_seq, __ATOMIC_RELAXED) == s0) return 1;
+  }
+  return 0;
+}
+/* Section 3.4: the reason block of axis `axis` (0-based) as of one input publication. The text
+ * is copied with relaxed byte loads (the seqlock decides). Returns 0 if a write overlapped every
+ * attempt. */
+static inline int stepmod_read_reason(const stepmod_image_t* im, unsigned axis,
+                                      stepmod_reason_t* out) {
+  unsigned t = 0, i = 0;
+  if (axis >= 2u) return 0;
+  for (t = 0; t < 1000u; ++t) {
+    if (t > 0 && (t % 32u) == 0u) sched_yield();
+    const uint32_t s0 = __atomic_load_n(&im->input_seq, __ATOMIC_ACQUIRE);
+    if (s0 & 1u) continue;
+    out->seq = __atomic_load_n(&im->reasons[axis].seq, __ATOMIC_ACQUIRE);
+    out->item = __atomic_load_n(&im->reasons[axis].item, __ATOMIC_ACQUIRE);
+    for (i = 0; i < STEPMOD_REASON_TEXT; ++i) {
+      out->text[i] = __atomic_load_n(&im->reasons[axis].text[i], __ATOMIC_ACQUIRE);
+    }
+    if (__atomic_load_n(&im->input_seq, __ATOMIC_RELAXED) == s0) {
+      out->text[STEPMOD_REASON_TEXT - 1] = '\0';
+      return 1;
+    }
   }
   return 0;
 }

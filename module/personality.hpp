@@ -9,6 +9,7 @@
 
 #include "core/module_shape.hpp"
 #include "gpio/backend.hpp"
+#include "module/axis/error_reason.hpp"
 #include "planner/motion_port.hpp"
 
 namespace stepmod::module {
@@ -35,6 +36,13 @@ class Personality {
   // The PLC left Run mode (heartbeat timeout, INTERFACE.md 3.2): every move stops and the
   // position becomes invalid, as the manuals say of a PLC switched to Program mode.
   virtual void plc_stopped(Nanos now) = 0;
+  // A commissioning lease expired without release (INTERFACE.md 3.5): as plc_stopped, with the
+  // lease named as the reason.
+  virtual void lease_expired(Nanos now) = 0;
+
+  // The last reason recorded for an error bit of axis/channel `axis` (0-based;
+  // docs/error-reasons.md); the control thread publishes it with the input image.
+  virtual axis::ErrorReason reason(unsigned axis) const = 0;
 
   // A message arrived through the image's mailbox (INTERFACE.md 3: the 3202's 52-DINT blend
   // message); returns the message result (0 accepted). Modules without messages refuse it.

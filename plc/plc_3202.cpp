@@ -11,6 +11,10 @@ namespace m = module::m3202;
 using m3202::ChannelWords;
 
 namespace {
+constexpr ErrorBitSet kErrorBits{
+    m::status_bit::kConfigurationError, m::status_bit::kCommandError,
+    m::status_bit::kInvalidProfile,     m::status_bit::kInputError,
+    m::status_bit::kHomeInvalid,        m::status_bit::kPositionInvalid};
 constexpr std::uint32_t kCommandErrors =
     m::status_bit::kCommandError | m::status_bit::kInvalidProfile;
 constexpr std::uint32_t kHomeErrors = kCommandErrors | m::status_bit::kHomeInvalid;
@@ -18,7 +22,7 @@ constexpr std::uint32_t kCommandBits = 0x3FFFu;  // bits 0..13
 }  // namespace
 
 Plc3202::Plc3202(Port& port, std::chrono::milliseconds timeout, Sequencing seq)
-    : port_(port), timeout_(timeout), seq_(seq) {
+    : port_(port), timeout_(timeout), seq_(seq), verdict_(port, shape_of(port.type()).axes) {
   if (port.type() != ModuleType::k3202) {
     throw std::invalid_argument(
         "the module is a " + std::to_string(static_cast<unsigned>(port.type())) + ", not a 3202");
@@ -43,10 +47,9 @@ Outcome Plc3202::finish(unsigned ch, std::uint32_t error_mask, bool timed_out,
     return o;
   }
   const std::uint32_t word = m3202::decode_status(o.in, ch).word;
-  if (word & error_mask) {
-    o.ok = false;
-    o.message = what + ": " + set_bit_names(word & error_mask, m::kStatusBits);
-  }
+  const std::uint32_t errors = word & error_mask;
+  verdict_.judge(o, ch, errors, set_bit_names(errors, m::kStatusBits),
+                 lists_of(error_mask, kErrorBits), what, stale_);
   return o;
 }
 
@@ -117,6 +120,7 @@ Outcome Plc3202::home(unsigned ch, bool cw, const Profile& p) {
 }
 
 Outcome Plc3202::hold(unsigned ch) {
+  const StaleIsNote note(stale_);
   // Hold ignores the parameters: leave them, so that a Resume without new ones finds the held
   // move's speed and rates (zeros would make it an Invalid Profile).
   ChannelWords w{};
@@ -128,6 +132,7 @@ Outcome Plc3202::hold(unsigned ch) {
 }
 
 Outcome Plc3202::resume(unsigned ch, const std::optional<Profile>& p) {
+  const StaleIsNote note(stale_);
   ChannelWords w{};
   const unsigned b = m::channel_base(ch);
   const ImageWords now = port_.outputs();
@@ -144,6 +149,7 @@ Outcome Plc3202::resume(unsigned ch, const std::optional<Profile>& p) {
 }
 
 Outcome Plc3202::immediate_stop(unsigned ch) {
+  const StaleIsNote note(stale_);
   return edge_command(ch, m3202::command_words(m::cmd_bit::kImmediateStop, 0, 0, 0, 0),
                       m::cmd_bit::kImmediateStop, m::status_bit::kCommandError);
 }

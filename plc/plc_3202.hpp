@@ -12,6 +12,7 @@
 #include "plc/port.hpp"
 #include "plc/profile.hpp"
 #include "plc/status_3202.hpp"
+#include "plc/verdict.hpp"
 #include "plc/words_3202.hpp"
 
 namespace stepmod::plc {
@@ -50,6 +51,8 @@ class Plc3202 {
   Port& port_;
   std::chrono::milliseconds timeout_;
   Sequencing seq_;
+  Verdict verdict_;                // was THIS command refused (plc/verdict.hpp)
+  Stale stale_ = Stale::kRefused;  // what an earlier error bit means for the running command
 };
 
 }  // namespace stepmod::plc

@@ -13,6 +13,10 @@ using m3601::put_profile;
 using m3601::put_split;
 
 namespace {
+constexpr ErrorBitSet kErrorBits{
+    m::status_msw::kConfigurationError, m::status_msw::kCommandError,
+    m::status_msw::kInvalidProfile,     m::status_msw::kInputError,
+    m::status_msw::kHomeInvalid,        m::status_msw::kPositionInvalid};
 // Errors that mean "the module rejected or failed this command" (status MSW).
 constexpr std::uint16_t kCommandErrors =
     m::status_msw::kCommandError | m::status_msw::kInvalidProfile;
@@ -24,7 +28,7 @@ std::uint16_t lsw_of(const ImageWords& in) {
 }  // namespace
 
 Plc3601::Plc3601(Port& port, std::chrono::milliseconds timeout, Sequencing seq)
-    : port_(port), timeout_(timeout), seq_(seq) {
+    : port_(port), timeout_(timeout), seq_(seq), verdict_(port, shape_of(port.type()).axes) {
   if (port.type() != ModuleType::k3601) {
     throw std::invalid_argument(
         "the module is a " + std::to_string(static_cast<unsigned>(port.type())) + ", not a 3601");
@@ -52,10 +56,9 @@ Outcome Plc3601::finish(std::uint16_t error_mask, bool timed_out, const std::str
     return o;
   }
   const auto msw = static_cast<std::uint16_t>(o.in.w[m::in_word::kStatusMsw]);
-  if (msw & error_mask) {
-    o.ok = false;
-    o.message = what + ": " + set_bit_names(msw & error_mask, m::kStatusMswBits);
-  }
+  const std::uint16_t errors = msw & error_mask;
+  verdict_.judge(o, 0, errors, set_bit_names(errors, m::kStatusMswBits),
+                 lists_of(error_mask, kErrorBits), what, stale_);
   return o;
 }
 
@@ -142,12 +145,14 @@ Outcome Plc3601::home(bool cw, const Profile& p) {
 }
 
 Outcome Plc3601::hold() {
+  const StaleIsNote note(stale_);
   ImageWords w = port_.outputs();  // parameters are ignored by Hold: leave them
   w.w[m::out_word::kMsw] = m::cmd_msw::kHold;
   return edge_command(w, m::cmd_msw::kHold, m::status_msw::kCommandError);
 }
 
 Outcome Plc3601::resume(const std::optional<Profile>& p) {
+  const StaleIsNote note(stale_);
   ImageWords w = port_.outputs();
   w.w[m::out_word::kMsw] = m::cmd_msw::kResume;
   if (p) {
@@ -160,6 +165,7 @@ Outcome Plc3601::resume(const std::optional<Profile>& p) {
 }
 
 Outcome Plc3601::immediate_stop() {
+  const StaleIsNote note(stale_);
   ImageWords w = port_.outputs();
   w.w[m::out_word::kMsw] = m::cmd_msw::kImmediateStop;
   return edge_command(w, m::cmd_msw::kImmediateStop, m::status_msw::kCommandError);

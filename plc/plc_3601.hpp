@@ -10,6 +10,7 @@
 #include "plc/port.hpp"
 #include "plc/profile.hpp"
 #include "plc/status_3601.hpp"
+#include "plc/verdict.hpp"
 #include "plc/words_3601.hpp"
 
 namespace stepmod::plc {
@@ -86,6 +87,8 @@ class Plc3601 {
   Port& port_;
   std::chrono::milliseconds timeout_;
   Sequencing seq_;
+  Verdict verdict_;                // was THIS command refused (plc/verdict.hpp)
+  Stale stale_ = Stale::kRefused;  // what an earlier error bit means for the running command
 };
 
 }  // namespace stepmod::plc

@@ -12,12 +12,16 @@ namespace stepmod::plc {
 namespace m = module::m3602;
 
 namespace {
+constexpr ErrorBitSet kErrorBits{
+    m::status_msw::kConfigurationError, m::status_msw::kCommandError,
+    m::status_msw::kInvalidProfile,     m::status_msw::kInputError,
+    m::status_msw::kHomeInvalid,        m::status_msw::kPositionInvalid};
 constexpr std::uint16_t kCommandErrors =
     m::status_msw::kCommandError | m::status_msw::kInvalidProfile;
 }  // namespace
 
 Plc3602::Plc3602(Port& port, std::chrono::milliseconds timeout, Sequencing seq)
-    : port_(port), timeout_(timeout), seq_(seq) {
+    : port_(port), timeout_(timeout), seq_(seq), verdict_(port, shape_of(port.type()).axes) {
   if (port.type() != ModuleType::k3602) {
     throw std::invalid_argument(
         "the module is a " + std::to_string(static_cast<unsigned>(port.type())) + ", not a 3602");
@@ -41,10 +45,9 @@ Outcome Plc3602::finish(unsigned axis, std::uint16_t error_mask, bool timed_out,
     return o;
   }
   const std::uint16_t msw = m3602::decode_status(o.in, axis).msw;
-  if (msw & error_mask) {
-    o.ok = false;
-    o.message = std::string(what) + ": " + set_bit_names(msw & error_mask, m::kStatusMswBits);
-  }
+  const auto errors = static_cast<std::uint16_t>(msw & error_mask);
+  verdict_.judge(o, axis, errors, set_bit_names(errors, m::kStatusMswBits),
+                 lists_of(error_mask, kErrorBits), what, stale_);
   return o;
 }
 
@@ -148,11 +151,13 @@ Outcome Plc3602::jog(unsigned axis, bool cw, const Profile& p, std::chrono::mill
 }
 
 Outcome Plc3602::hold(unsigned axis) {
+  const StaleIsNote note(stale_);
   return edge(axis, m::cmd_msw::kHold, m::status_msw::kCommandError, "hold",
               [](ImageWords&, unsigned) {});
 }
 
 Outcome Plc3602::resume(unsigned axis, const std::optional<Profile>& p) {
+  const StaleIsNote note(stale_);
   return edge(axis, m::cmd_msw::kResume, kCommandErrors, "resume", [&](ImageWords& w, unsigned b) {
     if (!p) return;
     m3602::put_split(w, b, m::out_word::kSpeedMsw, p->speed);
@@ -175,6 +180,7 @@ Outcome Plc3602::reset_errors(unsigned axis) {
 }
 
 Outcome Plc3602::immediate_stop(unsigned axis) {
+  const StaleIsNote note(stale_);
   return pulse(axis, m::cmd_msw::kImmediateStop, 0, 0, 0, 0, 0);
 }
 

@@ -12,6 +12,7 @@
 #include "plc/port.hpp"
 #include "plc/profile.hpp"
 #include "plc/status_3602.hpp"
+#include "plc/verdict.hpp"
 #include "plc/words_3602.hpp"
 
 namespace stepmod::plc {
@@ -69,6 +70,8 @@ class Plc3602 {
   Port& port_;
   std::chrono::milliseconds timeout_;
   Sequencing seq_;
+  Verdict verdict_;                // was THIS command refused (plc/verdict.hpp)
+  Stale stale_ = Stale::kRefused;  // what an earlier error bit means for the running command
 };
 
 }  // namespace stepmod::plc

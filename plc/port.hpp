@@ -4,11 +4,22 @@
 // (tests/support/virtual_port.hpp). The dialects (plc/plc_3601.hpp, ...) sequence their commands
 // through this interface only, so stepmodctl and the tests run the same PLC code.
 #include <chrono>
+#include <cstdint>
 #include <functional>
+#include <optional>
+#include <string>
 
 #include "core/module_shape.hpp"
 
 namespace stepmod::plc {
+
+// The last error reason of one axis/channel (INTERFACE 3.4, docs/error-reasons.md).
+struct ReasonView {
+  std::uint32_t seq = 0;   // +1 per recorded reason
+  std::uint32_t code = 0;  // item code: module * 10000 + list * 100 + number
+  std::string text;        // "3601-CE-05: Vp 500 is below Vs 1000"
+  unsigned list() const noexcept { return code / 100u % 100u; }
+};
 
 class Port {
  public:
@@ -34,6 +45,12 @@ class Port {
   // Waits until `done` holds for the input words, at most `limit`; returns whether it held.
   virtual bool wait_inputs(const std::function<bool(const ImageWords&)>& done,
                            std::chrono::nanoseconds limit) = 0;
+  // The last error reason of axis/channel `unit` (0-based); nullopt where the image carries
+  // none (the virtual test machine): the error bits alone then decide.
+  virtual std::optional<ReasonView> reason(unsigned unit) const {
+    (void)unit;
+    return std::nullopt;
+  }
 };
 
 }  // namespace stepmod::plc

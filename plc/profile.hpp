@@ -34,7 +34,8 @@ struct BlendProfile {
 struct Outcome {
   bool ok = true;          // no error bit for this command, no timeout
   bool timed_out = false;  // the module did not scan or did not answer a handshake
-  std::string message;     // error bits by name, or the timeout, when !ok
+  std::string message;     // error bits by name (and the module's reason), or the timeout, when !ok
+  std::string note;        // ok, but worth saying: an error bit still set from before
   ImageWords in;           // input image after the command
 };
 

@@ -11,6 +11,11 @@ constexpr auto kPoll = std::chrono::microseconds(500);
 constexpr auto kHeartbeatSlice = std::chrono::milliseconds(10);
 }  // namespace
 
+std::optional<ReasonView> ShmPort::reason(unsigned unit) const {
+  const stepmod_reason_t r = client_.read_reason(unit);
+  return ReasonView{r.seq, r.item, std::string(r.text)};
+}
+
 ShmPort::ShmPort(ipc::Client& client, std::chrono::milliseconds scan_timeout)
     : client_(client), scan_timeout_(scan_timeout) {}
 
@@ -31,11 +36,11 @@ bool ShmPort::read_inputs(ImageWords& in) const {
 }
 
 bool ShmPort::wait_scans(unsigned n) {
-  client_.heartbeat();
+  beat();
   const std::uint64_t target = client_.scan_counter() + n;
   const auto deadline = Clock::now() + scan_timeout_;
   while (!client_.wait_scan_counter(target, std::chrono::milliseconds(50))) {
-    client_.heartbeat();
+    beat();
     if (Clock::now() >= deadline) return false;
   }
   return true;
@@ -44,7 +49,7 @@ bool ShmPort::wait_scans(unsigned n) {
 void ShmPort::pass(std::chrono::nanoseconds d) {
   const auto end = Clock::now() + d;
   for (auto now = Clock::now(); now < end; now = Clock::now()) {
-    client_.heartbeat();
+    beat();
     std::this_thread::sleep_for(std::min<std::chrono::nanoseconds>(kHeartbeatSlice, end - now));
   }
 }
@@ -56,7 +61,7 @@ bool ShmPort::wait_inputs(const std::function<bool(const ImageWords&)>& done,
     ImageWords in;
     if (client_.read_inputs(in) && done(in)) return true;
     if (Clock::now() >= deadline) return false;
-    client_.heartbeat();
+    beat();
     std::this_thread::sleep_for(kPoll);
   }
 }

@@ -21,6 +21,10 @@ class ShmPort final : public Port {
     client_.update_outputs(edit);
   }
   bool read_inputs(ImageWords& in) const override;
+  std::optional<ReasonView> reason(unsigned unit) const override;
+  // Off while the caller holds the commissioning lease (ipc/lease_client.hpp): a lease holder
+  // is no PLC and must not bump the heartbeat (INTERFACE 3.5).
+  void set_heartbeat(bool on) noexcept { heartbeat_on_ = on; }
   bool wait_scans(unsigned n) override;
   void pass(std::chrono::nanoseconds d) override;
   bool wait_inputs(const std::function<bool(const ImageWords&)>& done,
@@ -30,6 +34,10 @@ class ShmPort final : public Port {
 
  private:
   ipc::Client& client_;
+  bool heartbeat_on_ = true;
+  void beat() {
+    if (heartbeat_on_) client_.heartbeat();
+  }
   std::chrono::milliseconds scan_timeout_;
 };
 

@@ -25,6 +25,8 @@
 #include "systemd/notify.hpp"
 #include "systemd/watchdog.hpp"
 #include "tools/backend_factory.hpp"
+#include "tools/lease_keeper.hpp"
+#include "tools/reason_publisher.hpp"
 #include "tools/stack.hpp"
 
 namespace stepmod::tools {
@@ -257,6 +259,8 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
   ImageWords in{};
   Nanos next_scan = monotonic_now();
   ipc::PlcSupervisor supervisor(config.plc_timeout_ns);
+  LeaseKeeper lease;                             // INTERFACE 3.5
+  ReasonPublisher reasons(stack->shape().axes);  // INTERFACE 3.4
 
   while (!stop.load(std::memory_order_acquire)) {
     // Both backends block until an input edge or the scan (the sim on a futex its writes end,
@@ -287,6 +291,7 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     sample.heartbeat = image->heartbeat();
     sample.seq = image->output_seq();
     sample.snapshot_ok = image->read_outputs(sample.words, sample.snapshot_seq);
+    sample.lease_held = lease.scan(*image, sample.heartbeat, now, personality);
     const ImageWords& out = supervisor.scan(sample);
     log_supervision(supervisor, now);
     // As a PLC leaving Run mode (INTERFACE 3.2): every move stops, position invalid. Once per
@@ -303,7 +308,8 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     personality.scan(out, in, now);
     kick();
     notice_cpu_need(now);
-    image->publish_inputs(in, health(supervisor.flags()));
+    reasons.scan(personality, *image);
+    image->publish_inputs(in, health(supervisor.flags() | lease.flags()));
     // Done only once the status that shows the message's effect is published: a PLC that reads
     // the status bits when its message is done (INTERFACE.md 3: an error is in the status bits)
     // finds them. Marked done before this publication, a refused message was seen done with

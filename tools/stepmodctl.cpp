@@ -4,24 +4,31 @@
 // by the dialect the image header names (tools/ctl_3601.cpp, ctl_3602.cpp, ctl_3202.cpp), which
 // calls the PLC-side library (plc/).
 //
-// Exit status: 0 ok; 1 the module reported an error bit for the command; 2 usage error (nothing
-// written); 3 the module cannot be reached (no image, no scan within --timeout).
+// Exit status: 0 ok; 1 the module refused the command (an error bit with its reason), or a
+// waited-for motion did not end in Move Complete / At Home; 2 usage error (nothing written); 3 the
+// module cannot be reached (no image, no scan within --timeout: a stopped daemon).
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdint>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
+#include "core/version.hpp"
 #include "ipc/client.hpp"
 #include "ipc/sim_panel.hpp"
 #include "plc/shm_port.hpp"
 #include "tools/ctl_args.hpp"
 #include "tools/ctl_command.hpp"
 #include "tools/ctl_dialects.hpp"
+#include "tools/ctl_report.hpp"
 #include "tools/ctl_status.hpp"
+#include "tools/ctl_wait.hpp"
 
 namespace {
 
@@ -39,15 +46,18 @@ constexpr const char* kDescription =
     "for the module's scan, release the bit, show the decoded status). The module type comes\n"
     "from the image; --axis 1|2 picks the 3602's axis, --channel 1|2 the 3202's channel (either\n"
     "option works for both).\n\n"
-    "Exit status: 0 ok, 1 the module reported an error bit (Command Error, Invalid Profile,\n"
-    "Home Invalid, Configuration Error) for the command, 2 usage error (also a command or value\n"
-    "the module's words cannot carry; nothing is written), 3 module unreachable (no image\n"
-    "/dev/shm/stepmod.NAME, or no scan in time).\n"
+    "Exit status: 0 ok, 1 the module refused the command (an error bit it set for this command\n"
+    "- Command Error, Invalid Profile, Home Invalid, Configuration Error - printed with the\n"
+    "module's reason; a bit left by an earlier command is only a note for hold/resume/stop), or\n"
+    "a waited-for motion (--wait, wait-idle) did not end in Move Complete / At Home, 2 usage\n"
+    "error (also a command or value the module's words cannot carry; nothing is written), 3\n"
+    "module unreachable (no image /dev/shm/stepmod.NAME, or no scan in time: a stopped daemon).\n"
     "Numbers accept 0x.. and 16#.. hex; negative numbers are written as they are:\n"
     "  stepmodctl move rel -500 -s 1000 -a 10 -d 10\n"
     "Everything after '--' is positional, so options go before it:\n"
     "  stepmodctl move rel -s 1000 -a 10 -d 10 -- -500\n"
-    "Commands that drive the module also bump the PLC heartbeat while they run.";
+    "Commands that drive the module also bump the PLC heartbeat while they run; with --wait and\n"
+    "no PLC they hold the commissioning lease instead (docs/commissioning.md).";
 
 // --speed/--accel/--decel[/--scurve] of a sub-command, as text: each dialect checks the range
 // its words carry.
@@ -74,6 +84,43 @@ void print_outcome(const ipc::Client& c, const plc::Outcome& o) {
   // After a timeout the image says nothing about the command: only the message.
   if (!o.timed_out) std::cout << format_status(c.type(), o.in);
   if (!o.ok) std::cerr << "stepmodctl: " << o.message << "\n";
+  if (o.ok && !o.note.empty()) std::cerr << "stepmodctl: note: " << o.note << "\n";
+}
+
+// Commands that start a motion (for --wait, and the heartbeat-timeout note).
+bool starts_motion(Verb v) {
+  return v == Verb::kMove || v == Verb::kJog || v == Verb::kHome || v == Verb::kBlendRun ||
+         v == Verb::kPath;
+}
+
+Motion motion_of(Verb v) {
+  return v == Verb::kHome ? Motion::kHome : v == Verb::kJog ? Motion::kJog : Motion::kMove;
+}
+
+// A typo in the sub-command: named, with the closest one. nullopt: argv is fine (or CLI11 will
+// say what else is wrong).
+std::optional<std::string> unknown_command(int argc, char** argv, const CLI::App& app) {
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    names.push_back(sub->get_name());
+  }
+  static const std::vector<std::string> kValued = {"--name", "-n",        "--timeout",
+                                                   "--axis", "--channel", "-c"};
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--") return std::nullopt;
+    if (std::find(kValued.begin(), kValued.end(), a) != kValued.end()) {
+      ++i;
+      continue;
+    }
+    if (a.starts_with("-")) continue;
+    if (std::find(names.begin(), names.end(), a) != names.end()) return std::nullopt;
+    const std::string guess = closest_command(a, names);
+    return "unknown command '" + a + "'" +
+           (guess.empty() ? "" : "; did you mean '" + guess + "'?") +
+           " (stepmodctl --help lists them)";
+  }
+  return std::nullopt;
 }
 
 int exit_for(const plc::Outcome& o) {
@@ -85,7 +132,14 @@ std::string status_text(const std::string& name, ipc::Client& client) {
   ImageWords in;
   client.read_inputs(in);
   return "module '" + name + "' scan " + std::to_string(client.scan_counter()) + "\n" +
-         format_status(client.type(), in) + format_health(client.read_health());
+         format_status(client.type(), in) + reason_lines(client) +
+         format_health(client.read_health());
+}
+
+std::string stalled_text(const std::string& name, const ipc::Client& client) {
+  return "stepmodctl: module '" + name + "' is not scanning (scan counter " +
+         std::to_string(client.scan_counter()) +
+         " unchanged for 1 s): stepmodd is stopped (SIGSTOP?) or hung; its words are stale\n";
 }
 
 }  // namespace
@@ -93,6 +147,7 @@ std::string status_text(const std::string& name, ipc::Client& client) {
 int main(int argc, char** argv) {
   CLI::App app{kDescription};
   app.require_subcommand(1);
+  app.set_version_flag("--version", "stepmodctl " STEPMOD_VERSION);
   std::string name = "stepmod";
   int timeout_ms = 2000;
   unsigned axis_no = 0;
@@ -116,7 +171,13 @@ int main(int argc, char** argv) {
   auto* status = app.add_subcommand("status",
                                     "decoded input image: every status bit by name (both axes "
                                     "/ channels of a 3602 / 3202), positions as numbers");
+  bool brief = false;
+  bool json = false;
+  status->add_flag("--brief", brief,
+                   "one line per axis/channel: state, position, speed, errors and their reason");
+  status->add_flag("--json", json, "the --brief fields and the health as one JSON object");
   auto* watch = app.add_subcommand("watch", "status, refreshed until Ctrl-C");
+  watch->add_flag("--brief", brief, "the one-line-per-axis form of status --brief");
   int interval_ms = 200;
   watch->add_option("--interval,-i", interval_ms, "refresh period in ms (200)")
       ->check(CLI::Range(1, 3'600'000));
@@ -170,6 +231,14 @@ int main(int argc, char** argv) {
   move->add_option("TARGET", cmd.value, "target position or offset, steps")->required();
   add_profile(move, cmd.profile, true);
   move->add_flag("--encoder", cmd.encoder_move, "3601/3202: encoder-count move");
+  bool wait = false;
+  const auto add_wait = [&wait](CLI::App* sub) {
+    sub->add_flag("--wait,-w", wait,
+                  "wait for the end of the motion: exit 0 on Move Complete (At Home after a "
+                  "homing), 1 with the reason otherwise; holds the commissioning lease when no "
+                  "PLC is in control");
+  };
+  add_wait(move);
 
   auto* jog = verb(app.add_subcommand("jog",
                                       "jog (manual move, level-held) for --for seconds; with "
@@ -182,11 +251,13 @@ int main(int argc, char** argv) {
   jog->add_option("--registration", cmd.registration,
                   "registration move: steps after the stop trigger")
       ->type_name("STEPS");
+  add_wait(jog);
 
   auto* home =
       verb(app.add_subcommand("home", "find home in direction + (CW) or - (CCW)"), Verb::kHome);
   home->add_option("DIR", cmd.direction, "+ (cw) or - (ccw)")->required();
   add_profile(home, cmd.profile, true, false);
+  add_wait(home);
 
   verb(app.add_subcommand("hold", "hold move (controlled stop, resumable)"), Verb::kHold);
   auto* resume = verb(app.add_subcommand("resume",
@@ -230,6 +301,7 @@ int main(int argc, char** argv) {
   auto* blend_run =
       verb(blend->add_subcommand("run", "run the stored profile, + or -"), Verb::kBlendRun);
   blend_run->add_option("DIR", cmd.direction, "+ (cw) or - (ccw)")->required();
+  add_wait(blend_run);
 
   auto* follow =
       verb(app.add_subcommand(
@@ -253,7 +325,8 @@ int main(int argc, char** argv) {
 
   auto* wait_idle = verb(app.add_subcommand("wait-idle",
                                             "wait until the axis/channel is neither moving nor "
-                                            "running a blend"),
+                                            "running a blend: exit 0 if the motion ended in Move "
+                                            "Complete or At Home, 1 with the reason otherwise"),
                          Verb::kWaitIdle);
   wait_idle->add_option("--max", cmd.wait_seconds, "give up after this many seconds (60)")
       ->check(CLI::Range(0.0, 1e6));
@@ -287,6 +360,7 @@ int main(int argc, char** argv) {
   const auto path_options = [&](CLI::App* sub) {
     sub->add_flag("--abs", pa.absolute, "points are positions (default: offsets from the start)");
     add_profile(sub, cmd.profile, true);
+    add_wait(sub);
   };
   const auto sense = [&](CLI::App* sub) {
     sub->add_option("SENSE", pa.sense, "cw or ccw (X right, Y up)")
@@ -337,11 +411,17 @@ int main(int argc, char** argv) {
   panel_release->add_option("AXIS", p_axis, "axis number, 1-based")->required();
   panel_release->add_option("INPUT", p_input, "input name, or 'all'")->required();
 
+  if (const auto typo = unknown_command(argc, argv, app)) {
+    std::cerr << "stepmodctl: " << *typo << "\n";
+    return kExitUsage;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);
@@ -373,16 +453,32 @@ int main(int argc, char** argv) {
     ipc::Client client(name);
 
     if (status->parsed()) {
-      std::cout << status_text(name, client);
+      const auto snap = take_snapshot(client, std::chrono::milliseconds(brief || json ? 100 : 0));
+      if (!snap) {
+        // The words as they were left (what a stopped daemon last said), and why not to trust them.
+        if (!brief && !json) std::cout << status_text(name, client);
+        std::cerr << stalled_text(name, client);
+        return kExitUnreachable;
+      }
+      std::cout << (json    ? json_text(name, client, *snap)
+                    : brief ? brief_text(name, client, *snap)
+                            : status_text(name, client));
       return kExitOk;
     }
     if (watch->parsed()) {
       std::signal(SIGINT, on_signal);
       std::signal(SIGTERM, on_signal);
       while (!g_stop) {
+        // The snapshot's two readings are the refresh period apart (the speed is over it).
+        const auto snap = take_snapshot(client, std::chrono::milliseconds(interval_ms));
         // Home the cursor and clear: a steady display instead of a scrolling log.
-        std::cout << "\x1b[H\x1b[2J" << status_text(name, client) << std::flush;
-        std::this_thread::sleep_for(std::chrono::milliseconds(interval_ms));
+        std::cout << "\x1b[H\x1b[2J";
+        if (!snap) {
+          std::cout << stalled_text(name, client) << std::flush;
+          continue;
+        }
+        std::cout << (brief ? brief_text(name, client, *snap) : status_text(name, client))
+                  << std::flush;
       }
       return kExitOk;
     }
@@ -425,6 +521,22 @@ int main(int argc, char** argv) {
     cmd.unit = unit_no - 1;
     cmd.gpo_on = gpo_state == "on";
     plc::ShmPort port(client, timeout);
+    if (cmd.verb == Verb::kWaitIdle) {
+      return wait_motion_end(client, {cmd.unit}, Motion::kAny, millis(cmd.wait_seconds), std::cout,
+                             std::cerr);
+    }
+    // --wait: the commissioning lease while no PLC is in control; a lease holder is no PLC and
+    // leaves the heartbeat alone. Without --wait, say when plc_timeout_ms will cut the motion.
+    std::unique_ptr<ipc::LeaseClient> lease;
+    if (wait && starts_motion(cmd.verb)) {
+      lease = take_lease(client, std::cerr);
+      if (lease) {
+        port.set_heartbeat(false);
+        client.wait_scans(3, timeout);  // the daemon has seen it (and acts on the words again)
+      }
+    } else if (starts_motion(cmd.verb)) {
+      warn_heartbeat_timeout(client, std::cerr);
+    }
     plc::Outcome o;
     switch (client.type()) {
       case ModuleType::k3601:
@@ -438,7 +550,27 @@ int main(int argc, char** argv) {
         break;
     }
     print_outcome(client, o);
-    return exit_for(o);
+    if (!o.ok) return exit_for(o);
+    if (wait && starts_motion(cmd.verb)) {
+      const std::vector<unsigned> units =
+          cmd.verb == Verb::kPath ? std::vector<unsigned>{0, 1} : std::vector<unsigned>{cmd.unit};
+      return wait_motion_end(client, units, motion_of(cmd.verb), std::chrono::hours(24), std::cout,
+                             std::cerr);
+    }
+    // A stop or hold the module ignored (Command Error left set: 3601-CE-L1) while the axis still
+    // moves did not do its job, whatever the note says.
+    if ((cmd.verb == Verb::kStop || cmd.verb == Verb::kHold) && !o.note.empty()) {
+      client.wait_scans(2, timeout);
+      ImageWords in;
+      client.read_inputs(in);
+      const auto s = summarize(client.type(), in);
+      if (cmd.unit < s.size() && s[cmd.unit].moving()) {
+        std::cerr << "stepmodctl: the axis is still moving: the module ignored the command "
+                     "while Command Error is set; run 'stepmodctl reset', then the command again\n";
+        return kExitModuleError;
+      }
+    }
+    return kExitOk;
   } catch (const UsageError& e) {
     std::cerr << "stepmodctl: " << e.what() << "\n";
     return kExitUsage;

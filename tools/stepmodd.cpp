@@ -1,8 +1,11 @@
 // stepmodd: one emulated stepper-controller module per process (INTERFACE.md section 1).
 //   stepmodd --config FILE [--trace FILE.vcd] [--log-level LEVEL]
-// Exit status: 0 after SIGINT/SIGTERM, 2 for a bad command line or config file, 1 when the
-// module cannot be started (GPIO lines, shared memory, trace file), 3 after SIGINT/SIGTERM when
-// the trace lost records (the VCD says so too).
+//   stepmodd --check --config FILE     validate the configuration only (creates nothing)
+//   stepmodd --version
+// Exit status: 0 after SIGINT/SIGTERM/SIGHUP (or a valid --check), 2 for a bad command line or
+// config file, 1 when the module cannot be started (GPIO lines, shared memory, trace file), 3
+// after such a signal when the trace lost records (the VCD says so too). SIGPIPE is ignored: a
+// closed log pipe never ends the daemon.
 #include <spdlog/sinks/stdout_color_sinks.h>  // declares stderr_color_mt too
 #include <spdlog/spdlog.h>
 
@@ -14,8 +17,10 @@
 #include <optional>
 #include <thread>
 
+#include "core/version.hpp"
 #include "tools/config.hpp"
 #include "tools/daemon.hpp"
+#include "tools/daemon_log.hpp"
 
 namespace {
 
@@ -24,7 +29,11 @@ int run(int argc, char** argv) {
   std::string config_path;
   std::optional<std::string> trace_path;
   std::string log_level = "info";
+  bool check_only = false;
+  app.set_version_flag("--version", "stepmodd " STEPMOD_VERSION);
   app.add_option("--config", config_path, "module configuration (TOML, see README)")->required();
+  app.add_flag("--check", check_only,
+               "validate the configuration and exit: 0 valid, 2 not (nothing is created)");
   app.add_option("--trace", trace_path, "write every GPIO line change to this VCD file");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
@@ -35,8 +44,10 @@ int run(int argc, char** argv) {
     return rc == 0 ? 0 : 2;
   }
 
-  auto logger = spdlog::stderr_color_mt("stepmodd");
-  spdlog::set_default_logger(logger);
+  // A closed stderr pipe (`stepmodd ... 2>&1 | head`) must not kill the daemon with the outputs
+  // where they are: a failed write is just a lost log line.
+  std::signal(SIGPIPE, SIG_IGN);
+  stepmod::tools::make_daemon_logger();
   spdlog::set_level(spdlog::level::from_str(log_level));
 
   stepmod::tools::Config config;
@@ -46,13 +57,19 @@ int run(int argc, char** argv) {
     spdlog::error("{}", e.what());
     return 2;
   }
+  if (check_only) {
+    spdlog::info("{}: valid (module {} '{}', {} axis/axes)", config_path,
+                 static_cast<unsigned>(config.type), config.name, config.axes.size());
+    return 0;
+  }
 
-  // SIGINT/SIGTERM are blocked in every thread (the threads created below inherit the mask) and
-  // taken here with sigtimedwait, so no handler ever runs on the pulse thread.
+  // SIGINT/SIGTERM/SIGHUP are blocked in every thread (the threads created below inherit the mask)
+  // and taken here with sigtimedwait, so no handler ever runs on the pulse thread.
   sigset_t signals;
   sigemptyset(&signals);
   sigaddset(&signals, SIGINT);
   sigaddset(&signals, SIGTERM);
+  sigaddset(&signals, SIGHUP);  // the terminal closed: the same clean stop
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
   try {

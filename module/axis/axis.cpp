@@ -15,6 +15,8 @@ Axis::Axis(const ModuleRules& rules, gpio::Backend& backend, planner::MotionPort
   quadrature_.reset(st_.inputs.level(InputLine::kEncA), st_.inputs.level(InputLine::kEncB));
   // 3601-CFG-01: power-up in command mode with Configuration Error (the 3202: without).
   st_.status.configuration_error = rules.powers_up_with_configuration_error;
+  if (st_.status.configuration_error) st_.note(items::kPowerUp);
+  st_.explain_new_errors();
 }
 
 void Axis::scan(const AxisCommand& c, const std::optional<AxisConfig>& configuration, Nanos now) {
@@ -37,7 +39,7 @@ void Axis::scan(const AxisCommand& c, const std::optional<AxisConfig>& configura
     // enters configuration mode and CE clears (3601 Ch.3 "the stepper controller will finish its
     // current operation").
     if (st_.moving()) {
-      if (!config_after_motion_) st_.status.command_error = true;
+      if (!config_after_motion_) st_.reject(items::kConfigWhileMoving);
       config_after_motion_ = true;
       if (st_.activity == Activity::kHoming) homing_.timers(now);  // its pauses go on meanwhile
     } else {
@@ -51,6 +53,7 @@ void Axis::scan(const AxisCommand& c, const std::optional<AxisConfig>& configura
     command_mode_scan(c, now);
   }
   prev_ = c;
+  st_.explain_new_errors();
 }
 
 // In configuration mode the words are evaluated every scan (the verdict of unchanged words is
@@ -58,6 +61,20 @@ void Axis::scan(const AxisCommand& c, const std::optional<AxisConfig>& configura
 void Axis::take_configuration(const std::optional<AxisConfig>& configuration) {
   pending_ = configuration;
   st_.status.configuration_error = !configuration.has_value();
+  if (configuration) {
+    cfg_fault_noted_ = 0;
+  } else if (cfg_fault_noted_ != cfg_fault_number_ || cfg_fault_number_ == 0) {
+    // Once per fault: the words are read again every configuration scan.
+    cfg_fault_noted_ = cfg_fault_number_;
+    const Item item{ErrorList::kConfiguration, static_cast<std::uint8_t>(cfg_fault_number_),
+                    static_cast<std::uint8_t>(cfg_fault_number_),
+                    static_cast<std::uint8_t>(cfg_fault_number_), ""};
+    std::string_view text = cfg_fault_text_;  // "#2 neither ...": the manual's number goes
+    if (text.starts_with('#') && text.find(' ') != std::string_view::npos) {
+      text.remove_prefix(text.find(' ') + 1);
+    }
+    st_.note(item, "%.*s", static_cast<int>(text.size()), text.data());
+  }
 }
 
 // Leaving configuration mode (digest 7.15, 3601-CFG-13, 3601-PI-01).
@@ -87,6 +104,7 @@ void Axis::enter_command_mode() {
   st_.capture = 0;
   st_.status = Latches{};
   st_.status.position_invalid = true;
+  st_.note(items::kPiConfigured);
   st_.hold_coordinated = false;
   held_target_ = 0;
 }
@@ -99,6 +117,8 @@ void Axis::poll_motion_end() {
   if (st_.moving() && st_.stop_cause != StopCause::kImmediate &&
       st_.stop_cause != StopCause::kFault && st_.motion.late_faulted()) {
     st_.immediate_stop(StopCause::kImmediate);
+    st_.note(items::kPiLateEdge, "late-edge fault at step %lld: re-home",
+             static_cast<long long>(st_.position()));
   }
   if (st_.activity == Activity::kCoordinated) {
     // Its coordinator ends it (end_coordinated). The direction bits follow the axis' own steps:
@@ -201,14 +221,22 @@ bool Axis::program_blend(const BlendFirstBlock& first,
                          std::span<const BlendSegmentBlock> segments) {
   if (config_mode_ || !st_.configured) {
     st_.status.invalid_profile = true;  // 3202-IP-15
+    st_.note(items::kBlendNotConfigured);
+    st_.explain_new_errors();
     return false;
   }
-  return blend_.program(first, segments);
+  const bool ok = blend_.program(first, segments);
+  st_.explain_new_errors();
+  return ok;
 }
 
-void Axis::plc_stopped() {
+void Axis::plc_stopped(const Item& why) {
   // 3601-PI-07: the PLC left Run mode while moving: motion stops, position invalid.
-  if (st_.moving()) st_.immediate_stop(StopCause::kImmediate);
+  if (st_.moving()) {
+    st_.immediate_stop(StopCause::kImmediate);
+    st_.note(why);
+  }
+  st_.explain_new_errors();
 }
 
 AxisStatus Axis::status() const noexcept {

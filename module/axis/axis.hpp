@@ -9,6 +9,7 @@
 // Files: axis.cpp (modes, the scan, the end of a motion, the status), axis_commands.cpp (command
 // edges and the plain commands), axis_inputs.cpp (input edges, capture).
 #include <optional>
+#include <string_view>
 
 #include "gpio/backend.hpp"
 #include "module/axis/axis_command.hpp"
@@ -39,13 +40,26 @@ class Axis {
   // An input edge (electrical level, own timestamp), between scans.
   void on_input(const gpio::InputEvent& e);
   // The PLC left Run mode (3601-PI-07), or shutdown: immediate stop of a motion under way.
-  void plc_stopped();
+  void plc_stopped(const Item& why = items::kPiPlcStopped);
+  // The dialect's verdict on the configuration words of this scan, before scan(): the checklist
+  // number of its Configuration Error item (0: valid) and a sentence; recorded as the reason when
+  // the axis takes an invalid configuration. `text` must outlive the scan (a literal).
+  void set_configuration_fault(unsigned number, std::string_view text) noexcept {
+    cfg_fault_number_ = number;
+    cfg_fault_text_ = text;
+  }
+  // The last reason recorded for an error bit (docs/error-reasons.md).
+  const ErrorReason& reason() const noexcept { return st_.reason; }
 
   // The 3202's blend message for this channel (digest 5.8): 3202-IP-15 before the channel is
   // configured, else Blend::program. Returns whether the profile was stored.
   bool program_blend(const BlendFirstBlock& first, std::span<const BlendSegmentBlock> segments);
   // A blend message that names no channel (3202-IP-11, A23): Invalid Profile on every channel.
-  void set_invalid_profile() noexcept { st_.status.invalid_profile = true; }
+  void set_invalid_profile(const Item& why = items::kBlendNoChannel) noexcept {
+    st_.status.invalid_profile = true;
+    st_.note(why);
+    st_.explain_new_errors();
+  }
 
   // The status after the last scan (or input edge).
   AxisStatus status() const noexcept;
@@ -85,6 +99,14 @@ class Axis {
       st_.reject();
     }
   }
+  // The same with the item and sentence (AxisState::reject).
+  void reject_coordinated(bool invalid_profile, const Item& item, const char* text) noexcept {
+    if (invalid_profile) {
+      st_.reject_profile(item, "%s", text);
+    } else {
+      st_.reject(item, "%s", text);
+    }
+  }
   // A Resume of a held coordinated motion, accepted by this axis' rules (Hold state, the profile
   // in range and >= Vs): the new vector profile, once, for the coordinator.
   std::optional<Profile> take_coordinated_resume() noexcept {
@@ -107,6 +129,7 @@ class Axis {
   void command_immediate_stop();
   void command_preset_position(const AxisCommand& c);
   void command_reset_errors();
+  void input_edge(const gpio::InputEvent& e);  // on_input() without the reason check
   // The pulse thread has ended the motion: its outcome in the status latches.
   void poll_motion_end();
   // An encoder count changed at `t` (X4 decoding).
@@ -133,6 +156,10 @@ class Axis {
   // The previous scan's command image: edges are found against it (digest 7.16). After the scan
   // it is this scan's image, which the status reads.
   AxisCommand prev_;
+  unsigned cfg_fault_number_ = 0;  // set_configuration_fault()
+  std::string_view cfg_fault_text_;
+  unsigned cfg_fault_noted_ =
+      0;  // the fault last recorded (a bad configuration is re-read every scan)
 };
 
 }  // namespace stepmod::module::axis

@@ -53,29 +53,30 @@ void Axis::command_edge(const AxisCommand& c, const CommandSet& rising, Nanos no
   // 3601-CE-02 / CE-12: more than one command at a time. A33: an undefined command bit counts as
   // a command.
   if (c.commands.count() > 1) {
-    st_.reject();
+    st_.reject(items::kSeveralCommands, "%u command bits set at once",
+               static_cast<unsigned>(c.commands.count()));
     return;
   }
   if (rising.has(CommandKind::kUndefined)) {
-    st_.reject();  // A33
+    st_.reject(items::kUndefinedCommand, "an undefined command bit is set");  // A33
     return;
   }
   // The manual: "The 3601 module has to be configured before starting any operations."
   if (!st_.configured) {
-    st_.reject();
+    st_.reject(items::kNotConfigured, "not configured: configure the axis first");
     return;
   }
   // The dialect's word-level rules for this command (3601-CE-09, CE-15, CE-21: words or the
   // command LSW that must be 0).
   if (c.words_invalid) {
-    st_.reject();
+    st_.reject(items::kWordsNotZero, "words that must be 0 with this command are not");
     return;
   }
   const auto kind = rising.single();
   if (!kind) return;
   // 3202-CE-05 / IP-03 / HI-04: reserved command words not 0.
   if (c.reserved_words_nonzero) {
-    st_.reject_profile();
+    st_.reject_profile(items::kReservedWords, "reserved command words are not 0");
     if (*kind == CommandKind::kFindHomeCw || *kind == CommandKind::kFindHomeCcw) {
       st_.status.home_invalid = true;
     }
@@ -139,20 +140,21 @@ void Axis::command_edge(const AxisCommand& c, const CommandSet& rising, Nanos no
 void Axis::command_move(const AxisCommand& c, bool absolute) {
   // 3601-CE-03: a move while another is in progress; the running move is unaffected.
   if (st_.moving()) {
-    st_.reject();
+    st_.reject(items::kMoveWhileMoving, "a move while a motion is running");
     return;
   }
   // 3601-CE-04 / IP-02: target outside the module's range (3601: -8,388,608..8,388,607) or not a
   // valid number in the module's encoding.
   if (!st_.target_in_range(c.target)) {
-    st_.reject_profile();
+    st_.reject_profile(items::kOutOfRange, "target out of range %d..%d", st_.rules.target_min,
+                       st_.rules.target_max);
     return;
   }
   const auto profile = st_.read_profile(c, true);
   if (!profile) return;
   // 3601-CE-14 / IP-11: an encoder move needs the quadrature encoder.
   if (c.encoder_move && !st_.cfg.quadrature_encoder) {
-    st_.reject_profile();
+    st_.reject_profile(items::kNoEncoder, "encoder move without the encoder configured");
     return;
   }
   if (c.encoder_move) {
@@ -161,7 +163,7 @@ void Axis::command_move(const AxisCommand& c, bool absolute) {
   }
   // 3601-CE-06: an absolute move needs a valid position.
   if (absolute && st_.status.position_invalid) {
-    st_.reject();
+    st_.reject(items::kAbsoluteWithPi, "absolute move while the position is invalid");
     return;
   }
   const std::int64_t steps = absolute ? *c.target - st_.position() : *c.target;
@@ -171,7 +173,7 @@ void Axis::command_move(const AxisCommand& c, bool absolute) {
   // the 3602 gets there in practice: an absolute move from far outside the +-2^30 box of its
   // targets and presets, or a relative move past 2^31 - 1; elsewhere the ranges refuse it first.
   if (!count_fits_int32(steps) || !fits_int32(end)) {
-    st_.reject_profile();
+    st_.reject_profile(items::kProfileOverflow, "the move does not fit 32-bit registers");
     return;
   }
   const planner::Direction dir = steps < 0 ? planner::Direction::kCcw : planner::Direction::kCw;
@@ -215,7 +217,7 @@ void Axis::command_hold(Nanos now) {
   }
   // 3601-CE-07: Hold while no absolute/relative move is in progress. During a manual move the
   // motion also stops, controlled (A43).
-  st_.reject();
+  st_.reject(items::kHoldNotHoldable, "Hold without an absolute/relative move");
   if (st_.activity == Activity::kManual && st_.stop_cause == StopCause::kNone) {
     st_.stop_cause = StopCause::kRelease;
     st_.motion.stop(st_.move_decel, now);
@@ -227,7 +229,7 @@ void Axis::command_hold(Nanos now) {
 void Axis::command_resume(const AxisCommand& c) {
   // 3601-CE-08: Resume when not in the Hold state.
   if (!st_.status.hold || st_.moving()) {
-    st_.reject();
+    st_.reject(items::kResumeNotHeld, "Resume while not in Hold");
     return;
   }
   const auto profile = st_.read_profile(c, true);
@@ -260,11 +262,12 @@ void Axis::command_immediate_stop() {
 void Axis::command_preset_position(const AxisCommand& c) {
   // The position register cannot be rewritten under a moving axis.
   if (st_.moving()) {
-    st_.reject();
+    st_.reject(items::kMoveWhileMoving, "Preset Position while moving");
     return;
   }
   if (!st_.target_in_range(c.target)) {
-    st_.reject();  // 3601-CE-04
+    st_.reject(items::kOutOfRange, "preset out of range %d..%d", st_.rules.target_min,
+               st_.rules.target_max);  // 3601-CE-04
     return;
   }
   st_.set_position(*c.target);

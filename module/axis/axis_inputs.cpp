@@ -6,6 +6,11 @@
 namespace stepmod::module::axis {
 
 void Axis::on_input(const gpio::InputEvent& e) {
+  input_edge(e);
+  st_.explain_new_errors();  // an edge that set an error bit without a note
+}
+
+void Axis::input_edge(const gpio::InputEvent& e) {
   const bool was_active = st_.inputs.active(e.line);
   st_.inputs.set_level(e.line, e.level);
 
@@ -50,7 +55,10 @@ void Axis::on_input(const gpio::InputEvent& e) {
   // A 3602 CW / CCW input acts as configured: an end limit, an E-stop, or nothing.
   const InputLine role = st_.role_of(e.line);
   if (now_active && role == InputLine::kEStop) {
-    st_.fault_stop();  // 3601-IE-01, PI-03, STP-02; 3602-IE-01, PI-03
+    st_.fault_stop(items::kEStop, e.line == InputLine::kEStop     ? "E-stop"
+                                  : e.line == InputLine::kCwLimit ? "CW input (E-stop)"
+                                                                  : "CCW input (E-stop)");
+    // 3601-IE-01, PI-03, STP-02; 3602-IE-01, PI-03
     return;
   }
   if (now_active && (role == InputLine::kCwLimit || role == InputLine::kCcwLimit)) {
@@ -61,7 +69,9 @@ void Axis::on_input(const gpio::InputEvent& e) {
     const bool either_limit = st_.activity == Activity::kMove || st_.activity == Activity::kBlend ||
                               st_.activity == Activity::kEncoderMove ||
                               st_.activity == Activity::kCoordinated;  // digest 7.7
-    if (either_limit || in_travel_direction) st_.fault_stop();         // blends too (3601-IE-02)
+    if (either_limit || in_travel_direction) {                         // blends too (3601-IE-02)
+      st_.fault_stop(items::kLimitInMove, cw_limit ? "CW limit" : "CCW limit");
+    }
     return;
   }
   // Digest 7.10 rule 8: blends ignore the External input.

@@ -5,13 +5,20 @@ namespace stepmod::module::axis {
 
 std::optional<Profile> AxisState::read_profile(const AxisCommand& c, bool ramped) {
   // 3601-CE-04 / IP-02: speed, accel or decel outside its range.
-  if (!speed_in_range(c.speed) || !rate_in_range(c.accel) || !rate_in_range(c.decel)) {
-    reject_profile();
+  if (!speed_in_range(c.speed)) {
+    reject_profile(items::kOutOfRange, "speed %lld out of range 0..%d",
+                   static_cast<long long>(c.speed.value_or(-1)), rules.speed_max);
+    return std::nullopt;
+  }
+  if (!rate_in_range(c.accel) || !rate_in_range(c.decel)) {
+    reject_profile(items::kOutOfRange, "accel %lld or decel %lld steps/s2 out of range",
+                   static_cast<long long>(c.accel), static_cast<long long>(c.decel));
     return std::nullopt;
   }
   // 3601-CE-05 / IP-01: Vp < Vs where the move ramps from the starting speed.
   if (ramped && *c.speed < cfg.starting_speed) {
-    reject_profile();
+    reject_profile(items::kVpBelowVs, "Vp %d is below Vs %d", static_cast<int>(*c.speed),
+                   static_cast<int>(cfg.starting_speed));
     return std::nullopt;
   }
   return Profile{static_cast<double>(*c.speed),
@@ -36,7 +43,7 @@ bool AxisState::start_move_steps(std::int64_t steps, const Profile& p) {
   spec.accel = p.accel;
   spec.decel = p.decel;
   if (motion.start_move(spec) == 0) {
-    reject();  // the planner queue is full: refuse rather than lose the command
+    reject(items::kPlannerFull);  // refuse rather than lose the command
     return false;
   }
   activity = Activity::kMove;
@@ -70,6 +77,10 @@ bool AxisState::limit_active(planner::Direction d) const noexcept {
 bool AxisState::inputs_block_start(planner::Direction d) {
   if (!estop_active() && !limit_active(d)) return false;
   status.input_error = true;
+  note(items::kStartTowardLimit, "%s active: the move does not start",
+       estop_active()                 ? "E-stop"
+       : d == planner::Direction::kCw ? "CW limit"
+                                      : "CCW limit");
   return true;
 }
 
@@ -89,13 +100,16 @@ void AxisState::immediate_stop(StopCause cause) {
   motion.immediate_stop();
   stop_cause = cause;
   status.position_invalid = true;
+  note(cause == StopCause::kImmediate ? items::kPiImmediateStop : items::kPiFault,
+       "stopped at %lld: the position is invalid", static_cast<long long>(position()));
   status.move_complete = false;
 }
 
-void AxisState::fault_stop() {
+void AxisState::fault_stop(const Item& item, const char* input) {
   // Digest 7.7: limit / E-stop trip during a move: immediate stop, IE, PI, Stopped.
   immediate_stop(StopCause::kFault);
   status.input_error = true;
+  note(item, "%s active: stopped at %lld", input, static_cast<long long>(position()));
 }
 
 }  // namespace stepmod::module::axis

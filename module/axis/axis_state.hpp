@@ -3,12 +3,15 @@
 // the motion under way and the registers, with the helpers the manuals' rules share (starting a
 // move, the start checks, the stops). Each feature (homing.hpp, manual_move.hpp, blend.hpp,
 // encoder.hpp, follower.hpp) owns its own state and gets this one by reference.
+#include <cstdarg>
 #include <cstdint>
 #include <optional>
 
 #include "gpio/backend.hpp"
 #include "module/axis/axis_command.hpp"
 #include "module/axis/axis_config.hpp"
+#include "module/axis/error_items.hpp"
+#include "module/axis/error_reason.hpp"
 #include "module/axis/input_bank.hpp"
 #include "module/axis/rules.hpp"
 #include "planner/motion_port.hpp"
@@ -84,6 +87,22 @@ struct AxisState {
     status.command_error = true;
     status.invalid_profile = true;
   }
+  // The same with the reason (docs/error-reasons.md): Command Error (and Invalid Profile) set
+  // here, the item and the sentence recorded with them. `fmt`: printf-style, short (the image
+  // keeps 56 bytes with the item id); nullptr: the item's general description.
+  void reject(const Item& item, const char* fmt = nullptr, ...) noexcept
+      __attribute__((format(printf, 3, 4)));
+  void reject_profile(const Item& item, const char* fmt = nullptr, ...) noexcept
+      __attribute__((format(printf, 3, 4)));
+  // Records why an error bit is being set (the caller sets it). Same `fmt` as reject().
+  void note(const Item& item, const char* fmt = nullptr, ...) noexcept
+      __attribute__((format(printf, 3, 4)));
+
+  // Reasons (the image's block, INTERFACE 3.4): the last one recorded. An error bit that rises
+  // without a note gets its list's general reason at the next explain_new_errors() (every error
+  // bit has a reason, even from a path that names no item).
+  ErrorReason reason;
+  void explain_new_errors() noexcept;
 
   // Ranges of the module (rules.hpp).
   bool speed_in_range(const std::optional<std::int32_t>& v) const noexcept {
@@ -116,7 +135,15 @@ struct AxisState {
   // A new move clears the previous move's outcome (3601-MC-03, HLD-C1, IE-C1, STP-C1, AH-01).
   void clear_move_outcome() noexcept;
   void immediate_stop(StopCause cause);
-  void fault_stop();  // limit / E-stop: immediate stop, IE, PI (digest 7.7)
+  // Limit / E-stop: immediate stop, IE, PI (digest 7.7); `item` and the input's name ("E-stop")
+  // for the reason.
+  void fault_stop(const Item& item, const char* input);
+
+ private:
+  void vnote(const Item& item, const char* fmt, va_list args) noexcept;
+  void record(ErrorList list, unsigned number, const char* text) noexcept;
+  Latches explained_;         // the error bits as of the last explain_new_errors()
+  bool noted_since_ = false;  // a reason was recorded since then
 };
 
 }  // namespace stepmod::module::axis

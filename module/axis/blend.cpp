@@ -72,7 +72,7 @@ void Blend::programming_scan(const AxisCommand& c, const AxisCommand& prev) {
     // profile, which the running blend came from, is kept) and the blend is brought down with
     // its final-segment deceleration.
     spoiled_ = true;
-    ax_.reject();
+    ax_.reject(items::kBlendWhileBlending);
     hold_error_ = false;  // this CE does not clear itself
     if (ax_.stop_cause == StopCause::kNone) {
       ax_.stop_cause = StopCause::kHold;  // a controlled stop; motion_ended gives its outcome
@@ -85,6 +85,7 @@ void Blend::programming_scan(const AxisCommand& c, const AxisCommand& prev) {
     // the profile is reported invalid (3601-IP-21) so that a PLC checking only IP sees it too.
     spoiled_ = true;
     ax_.status.invalid_profile = true;
+    ax_.note(items::kBlendBlockError, "blend block refused: Command Error is set");
     return;
   }
   if (first) {
@@ -97,7 +98,9 @@ void Blend::programming_scan(const AxisCommand& c, const AxisCommand& prev) {
   if (!ok || !msw_ok) {
     spoiled_ = true;
     ax_.status.invalid_profile = true;  // 3601-IP-21: any error in a block
+    if (!reason_noted_) ax_.note(items::kBlendBlockError, "blend block %u refused", blocks_);
   }
+  reason_noted_ = false;
 }
 
 bool Blend::first_block(const BlendFirstBlock& b) {
@@ -105,6 +108,8 @@ bool Blend::first_block(const BlendFirstBlock& b) {
   // 3601-IP-04: 2..16 segments.
   const std::int32_t count = b.segments;
   if (count < kMinSegments || count > kMaxSegments) {
+    ax_.note(items::kBlendSegmentCount, "%d blend segments (2..16)", static_cast<int>(count));
+    reason_noted_ = true;
     ok = false;
   } else {
     pending_.count = static_cast<std::uint8_t>(count);
@@ -123,6 +128,8 @@ bool Blend::first_block(const BlendFirstBlock& b) {
   if (value == 0) {
     // 3601-CE-24 / IP-07, A21a: no final deceleration value -> CE (Ch.5) and IP (Ch.6 #7).
     ax_.status.command_error = true;
+    ax_.note(items::kBlendNoFinalDecel, "blend profile without a final deceleration");
+    reason_noted_ = true;
     ok = false;
   } else if (!ax_.rate_in_range(value)) {
     ok = false;  // 3601-IP-02: outside the module's accel range
@@ -158,6 +165,9 @@ bool Blend::segment_block(const BlendSegmentBlock& b) {
     ok = false;
   } else if (*speed < ax_.cfg.starting_speed) {
     ax_.status.command_error = true;
+    ax_.note(items::kVpBelowVs, "blend segment speed %d is below Vs %d", static_cast<int>(*speed),
+             static_cast<int>(ax_.cfg.starting_speed));
+    reason_noted_ = true;
     ok = false;
   } else {
     seg.speed = static_cast<double>(*speed);
@@ -190,7 +200,7 @@ bool Blend::segment_block(const BlendSegmentBlock& b) {
 bool Blend::program(const BlendFirstBlock& first, std::span<const BlendSegmentBlock> segments) {
   if (ax_.activity == Activity::kBlend) {
     // 3202-CE-19 (as 3601-CE-22): the stored profile of the running blend is kept.
-    ax_.reject();
+    ax_.reject(items::kBlendWhileBlending);
     hold_error_ = false;  // this CE does not clear itself
     if (ax_.stop_cause == StopCause::kNone) {
       ax_.stop_cause = StopCause::kHold;  // a controlled stop; motion_ended gives its outcome
@@ -212,6 +222,8 @@ bool Blend::program(const BlendFirstBlock& first, std::span<const BlendSegmentBl
   blocks_ = 0;
   if (!ok) {
     ax_.status.invalid_profile = true;
+    if (!reason_noted_) ax_.note(items::kBlendBlockError, "blend profile refused");
+    reason_noted_ = false;
     return false;
   }
   profile_ = pending_;
@@ -224,13 +236,13 @@ bool Blend::program(const BlendFirstBlock& first, std::span<const BlendSegmentBl
 void Blend::run(planner::Direction dir) {
   // 3601-CE-03: a move while another is in progress; the running move is unaffected.
   if (ax_.moving()) {
-    ax_.reject();
+    ax_.reject(items::kMoveWhileMoving, "Run Blend while a motion is running");
     return;
   }
   // 3601-CE-20: no profile stored (never programmed, an incomplete or failed cycle, or erased by
   // a configuration).
   if (!stored_) {
-    ax_.reject();
+    ax_.reject(items::kBlendNotStored);
     return;
   }
   if (ax_.inputs_block_start(dir)) return;  // A15
@@ -238,7 +250,8 @@ void Blend::run(planner::Direction dir) {
   spec.dir = dir;  // + = CW, - = CCW; a profile never reverses (digest 7.10 rule 6)
   spec.vs = ax_.cfg.starting_speed;
   if (ax_.motion.start_blend(spec) == 0) {
-    ax_.reject();  // the planner queue is full: refuse rather than lose the command
+    ax_.reject(
+        items::kPlannerFull);  // the planner queue is full: refuse rather than lose the command
     return;
   }
   // A new move clears the previous move's outcome (3601-MC-03, HLD-C1, IE-C1, STP-C1). The
@@ -256,7 +269,7 @@ void Blend::hold() {
   // clears by itself. Only a CE set here clears itself: Hold reaches this point only with CE = 0
   // (3601-CE-L1), and a CE raised later for another reason cancels the self-clear (see
   // programming_scan and the CE-22 branch).
-  ax_.reject();
+  ax_.reject(items::kHoldDuringBlend);
   hold_error_ = true;
 }
 

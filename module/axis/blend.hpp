@@ -46,6 +46,7 @@ class Blend {
   bool cycle_ = false;            // program flag held: a cycle is under way
   bool spoiled_ = false;          // this cycle had an error or was refused: store nothing
   unsigned blocks_ = 0;           // blocks read in this cycle (first block included)
+  bool reason_noted_ = false;     // a block check recorded its own reason (error_items.hpp)
   std::int64_t total_ = 0;        // sum of the segment lengths read so far
   bool ack_ = false;              // the acknowledge
   bool hold_error_ = false;       // CE was set by a Hold during the running blend

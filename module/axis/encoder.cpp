@@ -44,7 +44,8 @@ void Encoder::move(const AxisCommand& c, bool absolute) {
   run.accel = profile->accel;
   run.decel = profile->decel;
   if (ax_.motion.start_run(run) == 0) {
-    ax_.reject();  // the planner queue is full: refuse rather than lose the command
+    ax_.reject(
+        items::kPlannerFull);  // the planner queue is full: refuse rather than lose the command
     return;
   }
   ax_.activity = Activity::kEncoderMove;
@@ -76,12 +77,12 @@ void Encoder::watch(const AxisCommand& c, Nanos t) {
 void Encoder::preset(const AxisCommand& c) {
   // 3601-CE-11: the quadrature encoder must be configured.
   if (!ax_.cfg.quadrature_encoder) {
-    ax_.reject();
+    ax_.reject(items::kPresetEncoderNoEncoder);
     return;
   }
   // The dialect's word rules (3601-CE-09 / CE-15) were checked at dispatch; 3601-CE-04: range.
   if (!ax_.target_in_range(c.target)) {
-    ax_.reject();
+    ax_.reject(items::kOutOfRange, "encoder preset out of range");
     return;
   }
   // Not under a motion that steers by the count (the manual does not say; an encoder move's

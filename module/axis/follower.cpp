@@ -69,23 +69,23 @@ bool Follower::enter(const AxisCommand& c) {
   if (ax_.status.command_error) return false;  // 3601-CE-L1
   // 3601-CE-34: no quadrature encoder configured.
   if (!ax_.cfg.quadrature_encoder) {
-    ax_.reject();
+    ax_.reject(items::kFollowerNoEncoder);
     return false;
   }
   // 3601-CE-35: another motion is running; it runs to completion.
   if (ax_.moving()) {
-    ax_.reject();
+    ax_.reject(items::kFollowerWhileMoving);
     return false;
   }
   // 3601-CE-41: S-curve acceleration cannot be used.
   if (c.s_curve()) {
-    ax_.reject();
+    ax_.reject(items::kFollowerSCurve);
     return false;
   }
   // 3601-CE-42 / A24: "cannot be started when either of the end limit switches are active";
   // the manual names no error, the digest recommends CE.
   if (ax_.inputs.active(InputLine::kCwLimit) || ax_.inputs.active(InputLine::kCcwLimit)) {
-    ax_.reject();
+    ax_.reject(items::kFollowerLimit);
     return false;
   }
   // Entering is the start of a move operation: the previous outcome is cleared (3601-MC-03,
@@ -111,17 +111,18 @@ bool Follower::params(const AxisCommand& c) {
   const std::int64_t decel = c.decel;
   // 3601-CE-36: multiplier or divisor outside 1..32767.
   if (mul < 1 || mul > kMaxFollowerRatio || div < 1 || div > kMaxFollowerRatio) {
-    ax_.reject();
+    ax_.reject(items::kFollowerRatio, "follower ratio %lld/%lld out of 1..32767",
+               static_cast<long long>(mul), static_cast<long long>(div));
     return false;
   }
   // 3601-CE-37: the speed words must be 0.
   if (!c.speed || *c.speed != 0) {
-    ax_.reject();
+    ax_.reject(items::kFollowerSpeed);
     return false;
   }
   // 3601-CE-41: S-curve selected.
   if (c.s_curve()) {
-    ax_.reject();
+    ax_.reject(items::kFollowerSCurve);
     return false;
   }
   // 3601-CE-04 / IP-02: accel or decel outside the follower's 0 ... maximum (rules.hpp).
@@ -198,7 +199,7 @@ void Follower::scan(const AxisCommand& c, const AxisCommand& prev) {
   // 3601-CE-39: any command but Manual + / - (Hold included) while the follower flag is set.
   // Raised before the command is dispatched, which then ignores it (CE-L1).
   if (lsw7 && !rising.without(CommandKind::kManualCw, CommandKind::kManualCcw).empty()) {
-    ax_.reject();
+    ax_.reject(items::kFollowerOtherCommand);
     if (ax_.activity == Activity::kFollower) cut();
     return;
   }
@@ -208,7 +209,7 @@ void Follower::scan(const AxisCommand& c, const AxisCommand& prev) {
     // The follower flag rising: follower mode (a direction bit rising in the same scan then starts
     // the output in command_follower).
     if (ax_.moving()) {
-      ax_.reject();  // 3601-CE-35: the running motion completes
+      ax_.reject(items::kFollowerWhileMoving);  // 3601-CE-35: the running motion completes
       return;
     }
     enter(c);
@@ -232,7 +233,8 @@ void Follower::scan(const AxisCommand& c, const AxisCommand& prev) {
   }
   if (!lsw7) {
     if (cw || ccw) {
-      ax_.reject();  // 3601-CE-40: the flag cleared while a direction is still set
+      ax_.reject(
+          items::kFollowerReleased);  // 3601-CE-40: the flag cleared while a direction is still set
       cut();
       return;
     }
@@ -250,7 +252,7 @@ void Follower::scan(const AxisCommand& c, const AxisCommand& prev) {
   }
   // 3601-CE-41 on the fly.
   if (c.s_curve()) {
-    ax_.reject();
+    ax_.reject(items::kFollowerSCurve);
     cut();
     return;
   }
@@ -260,7 +262,7 @@ void Follower::scan(const AxisCommand& c, const AxisCommand& prev) {
     if (other) {
       // 3601-CE-38: the direction changed without a scan with the command word at 0 (both bits
       // at once is CE-02 as well).
-      ax_.reject();
+      ax_.reject(items::kFollowerDirection);
       cut();
       return;
     }

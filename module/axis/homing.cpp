@@ -105,19 +105,20 @@ struct HomingTable {
 void Homing::command(const AxisCommand& c, planner::Direction dir) {
   // 3601-CE-03: a homing is a move; none may start while another runs.
   if (ax_.moving()) {
-    ax_.reject();
+    ax_.reject(items::kMoveWhileMoving, "Find Home while a motion is running");
     return;
   }
   // 3601-CE-10: "S-Curve acceleration profiles are not allowed during a homing operation."
   if (c.s_curve()) {
-    ax_.reject();
+    ax_.reject(items::kHomeSCurve, "Find Home with an S-curve selected");
     if (ax_.rules.homing_s_curve_sets_home_invalid) ax_.status.home_invalid = true;  // 3602-HI-02
     return;
   }
   // 3601-CE-13 / HI-03: Find Home + needs a configured CW limit, Find Home - a CCW limit (not on
   // the 3602, digest 8.0).
   if (ax_.rules.homing_needs_limit_ahead && !ax_.cfg.used(limit_toward(dir))) {
-    ax_.reject();
+    ax_.reject(items::kHomeNoLimit, "Find Home %s: no %s limit configured",
+               dir == Direction::kCw ? "+" : "-", dir == Direction::kCw ? "CW" : "CCW");
     ax_.status.home_invalid = true;
     return;
   }
@@ -126,30 +127,33 @@ void Homing::command(const AxisCommand& c, planner::Direction dir) {
   const bool switch_homing = ax_.cfg.homing == HomingVariant::kSwitch ||
                              ax_.cfg.homing == HomingVariant::kSwitchWithBackplane;
   if (switch_homing && !ax_.cfg.used(InputLine::kHome)) {
-    ax_.reject();
+    ax_.reject(items::kHomeNoInput, "Find Home: the home input is not configured");
     return;
   }
   // 3601-HI-02: the target words must be 0. A8: CE as well, no motion.
   if (!c.target || *c.target != 0) {
-    ax_.reject();
+    ax_.reject(items::kHomeTarget, "Find Home with a target %lld (must be 0)",
+               static_cast<long long>(c.target.value_or(0)));
     ax_.status.home_invalid = true;
     return;
   }
   // Digest 6.4 row 2: a homing's out-of-range speed, accel or decel raises CE + HI.
   if (!ax_.speed_in_range(c.speed) || !ax_.rate_in_range(c.accel) || !ax_.rate_in_range(c.decel)) {
-    ax_.reject();
+    ax_.reject(items::kOutOfRange, "Find Home: speed, accel or decel out of range");
     ax_.status.home_invalid = true;
     return;
   }
   // 3601-HI-01 / CE-05 / IP-01: Vp < Vs (IP too: the manual's IP #1 is unconditional, 6.4).
   if (*c.speed < ax_.cfg.starting_speed) {
-    ax_.reject_profile();
+    ax_.reject_profile(items::kVpBelowVs, "Find Home: Vp %d is below Vs %d",
+                       static_cast<int>(*c.speed), static_cast<int>(ax_.cfg.starting_speed));
     ax_.status.home_invalid = true;
     return;
   }
   // A15: no move starts while the E-stop is active.
   if (ax_.estop_active()) {
     ax_.status.input_error = true;
+    ax_.note(items::kStartTowardLimit, "E-stop active: homing does not start");
     return;
   }
 
@@ -178,6 +182,7 @@ void Homing::command(const AxisCommand& c, planner::Direction dir) {
   if (reverse_first && ax_.limit_active(first)) {
     ax_.status.home_invalid = true;
     ax_.status.input_error = true;
+    ax_.note(items::kHomingOppositeLimit, "homing: both limits active, no start");
     return;
   }
 
@@ -296,7 +301,7 @@ void Homing::limit(bool ahead) {
 void Homing::fail() {
   h_.limit_error = true;
   ax_.status.home_invalid = true;
-  ax_.fault_stop();  // immediate stop, IE, PI
+  ax_.fault_stop(items::kHomeLimitError, "homing: the wrong limit");  // immediate stop, IE, PI
 }
 
 // 3602-HI-07 (Ch.8 "Homing Timeout"): a homing not complete T seconds after the command (pauses
@@ -313,6 +318,8 @@ void Homing::timeout(Nanos now) {
   }
   if (now < h_.deadline) return;
   ax_.status.home_invalid = true;
+  ax_.note(items::kHomeTimeout, "homing timeout of %lld s expired",
+           static_cast<long long>(ax_.cfg.homing_timeout / kNsPerSec));
   if (h_.segment) {
     h_.step = Step::kTimedOut;  // ends when the stop has (motion_ended)
     ax_.motion.stop(h_.decel);
@@ -363,7 +370,7 @@ void Homing::on_input(const gpio::InputEvent& e, bool was_active, bool now_activ
     case InputLine::kEStop:
       // 3601-IE-01 / PI-03 / STP-02; A49: IE + PI, no HI. The homing is a motion in progress
       // for its whole sequence, pauses included (digest 7.16).
-      if (now_active && !was_active) ax_.fault_stop();
+      if (now_active && !was_active) ax_.fault_stop(items::kEStop, "E-stop (homing)");
       return;
     case InputLine::kCwLimit:
     case InputLine::kCcwLimit:

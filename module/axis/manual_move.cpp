@@ -13,7 +13,7 @@ namespace stepmod::module::axis {
 // 3601-CE-16 / IP-08 are not emulated).
 void ManualMove::command(const AxisCommand& c, planner::Direction dir) {
   if (ax_.moving()) {
-    ax_.reject();  // 3601-CE-03
+    ax_.reject(items::kMoveWhileMoving, "a jog while a motion is running");  // 3601-CE-03
     return;
   }
   const auto target = c.target;
@@ -95,12 +95,12 @@ bool ManualMove::registration_start_allowed(std::int32_t count, double vp,
                                             const planner::Ramp& decel) {
   // 3601-CE-29 / IP-14: a negative registration count.
   if (count < 0) {
-    ax_.reject_profile();
+    ax_.reject_profile(items::kRegNegative);
     return false;
   }
   // 3601-CE-04 / IP-02: the target words' range (3601: -8,388,608 ... 8,388,607).
   if (count > ax_.rules.registration_max) {
-    ax_.reject_profile();
+    ax_.reject_profile(items::kOutOfRange, "registration count out of range");
     return false;
   }
   // Inferred (the manual does not cover it): a registration move needs a speed; a one-shot
@@ -114,7 +114,7 @@ bool ManualMove::registration_start_allowed(std::int32_t count, double vp,
   // (the 3602 only with a minimum distance of 0, digest 8.0).
   if (ax_.inputs.active(InputLine::kExternal) &&
       (ax_.rules.registration_external_always_error || min_registration_ == 0)) {
-    ax_.reject_profile();
+    ax_.reject_profile(items::kRegExternal);
     return false;
   }
   // 3601-CE-28 / IP-13: fewer steps than the deceleration from Vp to Vs needs at the programmed
@@ -123,7 +123,7 @@ bool ManualMove::registration_start_allowed(std::int32_t count, double vp,
   if (vp > ax_.cfg.starting_speed) {
     const double need = planner::ramp_distance(vp, ax_.cfg.starting_speed, decel);
     if (static_cast<double>(count) < need - 1e-9 * need) {
-      ax_.reject_profile();
+      ax_.reject_profile(items::kRegTooShort);
       return false;
     }
   }
@@ -171,7 +171,7 @@ void ManualMove::scan(const AxisCommand& c, const CommandSet& rising, Nanos now)
     // (3601-CE-L1) and the release is the registration input as usual.
     const bool hold_rising = rising.has(CommandKind::kHold);
     if (hold_rising && !ax_.status.command_error) {
-      ax_.reject();
+      ax_.reject(items::kHoldNotHoldable, "Hold during a registration move");
       ax_.stop_cause = StopCause::kRelease;
       ax_.motion.stop(ax_.move_decel);
       return;
@@ -321,7 +321,7 @@ void ManualMove::store_min_registration(const AxisCommand& c) {
   // 3601-CE-25: outside 0 ... 8,388,607 or negative (CE only; the value in force is kept).
   const auto& d = c.target;
   if (!d || *d < 0 || *d > ax_.rules.registration_max) {
-    ax_.reject();
+    ax_.reject(items::kMinRegRange);
     return;
   }
   min_registration_ = *d;  // shown as "distance set" (3601-LSW-01)

@@ -4,6 +4,12 @@
 
 namespace stepmod::module::m3202 {
 
+// kNone = 0, then the checklist in order from CFG-02 (CFG-08 is old firmware's only: skipped).
+unsigned checklist_item(ConfigFault f) noexcept {
+  const auto n = static_cast<unsigned>(f);
+  return n == 0 ? 0u : n + 1u + (f >= ConfigFault::kReservedBits ? 1u : 0u);
+}
+
 std::string_view describe(ConfigFault f) noexcept {
   switch (f) {
     case ConfigFault::kNone:

@@ -36,6 +36,7 @@ void Module3202::scan_channel(unsigned ch, const ImageWords& out, ImageWords& in
   if (command.configuration_mode) {
     check = check_config(out, ch);
     if (check.fault == ConfigFault::kNone) configuration = to_axis_config(check.config);
+    c.axis.set_configuration_fault(checklist_item(check.fault), describe(check.fault));
   }
   const bool was_config_mode = c.axis.in_configuration_mode();
   // A disabled channel ignores its command bits (digest 5.7 bit 28); the mode bit still works.
@@ -66,7 +67,8 @@ std::int32_t Module3202::on_message(std::span<const std::int32_t> data, Nanos /*
   }
   Channel& c = channels_[static_cast<unsigned>(m.channel - 1)];
   if (c.disabled) {
-    c.axis.set_invalid_profile();  // 3202-IP-15: the channel is not configured (or disabled)
+    c.axis.set_invalid_profile(axis::items::kBlendNotConfigured);  // 3202-IP-15: the channel is not
+                                                                   // configured (or disabled)
     return kMessageRefused;
   }
   return c.axis.program_blend(m.first, m.segments) ? kMessageAccepted : kMessageRefused;
@@ -78,6 +80,14 @@ void Module3202::plc_stopped(Nanos /*now*/) {
 
 void Module3202::shutdown() {
   for (Channel& c : channels_) c.axis.plc_stopped();  // immediate stop of motions under way
+}
+
+void Module3202::lease_expired(Nanos /*now*/) {
+  for (Channel& c : channels_) c.axis.plc_stopped(axis::items::kPiLeaseExpired);
+}
+
+axis::ErrorReason Module3202::reason(unsigned axis) const {
+  return axis < channels_.size() ? channels_[axis].axis.reason() : axis::ErrorReason{};
 }
 
 }  // namespace stepmod::module::m3202

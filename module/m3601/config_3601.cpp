@@ -5,6 +5,12 @@
 
 namespace stepmod::module::m3601 {
 
+// kNone = 0, then the checklist in order from CFG-02.
+unsigned checklist_item(ConfigFault f) noexcept {
+  const auto n = static_cast<unsigned>(f);
+  return n == 0 ? 0u : n + 1u;
+}
+
 std::string_view describe(ConfigFault f) noexcept {
   switch (f) {
     case ConfigFault::kNone:

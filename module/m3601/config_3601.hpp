@@ -37,6 +37,9 @@ enum class ConfigFault : std::uint8_t {
   kUnusedWordsNonZero,         // #11 (3601-CFG-12)
 };
 std::string_view describe(ConfigFault f) noexcept;
+// The number of its item in the Configuration Error checklist (3601-CFG-nn; 0 for kNone): the
+// error reason's item (docs/error-reasons.md).
+unsigned checklist_item(ConfigFault f) noexcept;
 
 struct ConfigCheck {
   ConfigFault fault = ConfigFault::kNone;

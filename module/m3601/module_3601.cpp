@@ -28,6 +28,7 @@ void Module3601::scan(const ImageWords& out, ImageWords& in, Nanos now) {
     check = check_config(out);
     if (check.fault == ConfigFault::kNone) configuration = to_axis_config(check.config);
   }
+  axis_.set_configuration_fault(checklist_item(check.fault), describe(check.fault));
   axis_.scan(command_from_words(out), configuration, now);
 
   if (axis_.in_configuration_mode()) {
@@ -50,6 +51,14 @@ void Module3601::plc_stopped(Nanos /*now*/) {
 
 void Module3601::shutdown() {
   axis_.plc_stopped();  // immediate stop of a motion under way
+}
+
+void Module3601::lease_expired(Nanos /*now*/) {
+  axis_.plc_stopped(axis::items::kPiLeaseExpired);
+}
+
+axis::ErrorReason Module3601::reason(unsigned /*axis*/) const {
+  return axis_.reason();
 }
 
 }  // namespace stepmod::module::m3601

@@ -31,6 +31,9 @@ enum class ConfigFault : std::uint8_t {
   kReservedWords,       // 3602-CFG-08: words 5..7 not 0
 };
 std::string_view describe(ConfigFault f) noexcept;
+// The number of its item in the Configuration Error checklist (3602-CFG-nn; 0 for kNone): the
+// error reason's item (docs/error-reasons.md).
+unsigned checklist_item(ConfigFault f) noexcept;
 
 // Checks the eight configuration-mode output words of one axis.
 ConfigFault check_config(const ImageWords& out, Config3602& decoded) noexcept;

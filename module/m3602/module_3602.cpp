@@ -34,9 +34,9 @@ void Module3602::Channel::scan(const ImageWords& out, const axis::AxisCommand& c
   std::optional<axis::AxisConfig> configuration;
   if (static_cast<std::uint16_t>(out.w[out_word::kMsw]) & cfg_msw::kConfigMode) {
     Config3602 decoded;
-    if (check_config(out, decoded) == ConfigFault::kNone) {
-      configuration = to_axis_config(decoded);
-    }
+    const ConfigFault fault = check_config(out, decoded);
+    if (fault == ConfigFault::kNone) configuration = to_axis_config(decoded);
+    axis.set_configuration_fault(checklist_item(fault), describe(fault));
   }
   configuration_valid = configuration.has_value();
   axis.scan(c, configuration, now);
@@ -104,6 +104,14 @@ void Module3602::shutdown() {
     c.axis.plc_stopped();  // immediate stop of a motion under way
     c.set_gpo(false);      // idle-low at shutdown
   }
+}
+
+void Module3602::lease_expired(Nanos /*now*/) {
+  for (Channel& c : axes_) c.axis.plc_stopped(axis::items::kPiLeaseExpired);
+}
+
+axis::ErrorReason Module3602::reason(unsigned axis) const {
+  return axis < axes_.size() ? axes_[axis].axis.reason() : axis::ErrorReason{};
 }
 
 }  // namespace stepmod::module::m3602

@@ -314,7 +314,7 @@ TEST_F(DaemonModbus, IllegalRequestsGetExceptionCodes) {
   EXPECT_EQ(errno, EMBXILADD);
   EXPECT_EQ(modbus_read_registers(c, 7, 2, regs), -1);
   EXPECT_EQ(errno, EMBXILADD);
-  EXPECT_EQ(modbus_read_input_registers(c, 1010, 7, regs), -1);
+  EXPECT_EQ(modbus_read_input_registers(c, 1010, 11, regs), -1);
   EXPECT_EQ(errno, EMBXILADD);
   EXPECT_EQ(modbus_write_register(c, 8, 1), -1);
   EXPECT_EQ(errno, EMBXILADD);

@@ -124,7 +124,7 @@ TEST_F(Ctl3602, JogHoldResumeExactStepCounts) {
   ctl("--axis 1 move rel 80000 -s 10000 -a 100 -d 100");
   std::this_thread::sleep_for(milliseconds(500));
   ctl("--axis 1 hold");
-  ctl("--axis 1 wait-idle --max 20");
+  ctl("--axis 1 wait-idle --max 20", 1);  // held, not Move Complete
   EXPECT_TRUE(status(0).has(m2::status_msw::kHoldState)) << daemon_->log();
   EXPECT_LT(status(0).position, jogged + 80'000);
   ctl("--axis 1 resume -s 20000 -a 200 -d 200 --scurve tri");
@@ -290,7 +290,7 @@ TEST_F(Ctl3202, EveryChannelCommandOnChannel2LeavesChannel1Alone) {
   ctl("-c 2 move rel 40000 -s 10000 -a 100000 -d 100000");
   std::this_thread::sleep_for(milliseconds(500));
   ctl("-c 2 hold");
-  ctl("-c 2 wait-idle --max 20");
+  ctl("-c 2 wait-idle --max 20", 1);  // held, not Move Complete
   EXPECT_LT(status(1).position, jogged + 40'000) << daemon_->log();
   ctl("-c 2 resume");  // the held move's own speed and rates
   ctl("-c 2 wait-idle --max 20");

@@ -111,14 +111,26 @@ TEST(ModbusMap, HeaderAndHealthRegistersFrom1000) {
                                                    0x0004, 0x0003, 0, 0, 0, 0, 0, 0}));
   EXPECT_EQ(values(map.handle(read_pdu(modbus_fc::kReadInput, 1006, 1))),
             (std::vector<std::uint16_t>{0x0012}));
-  EXPECT_EQ(map.handle(read_pdu(modbus_fc::kReadInput, 1015, 1)).exception, ModbusException::kNone);
-  EXPECT_EQ(map.handle(read_pdu(modbus_fc::kReadInput, 1015, 2)).exception,
+  EXPECT_EQ(map.handle(read_pdu(modbus_fc::kReadInput, 1019, 1)).exception, ModbusException::kNone);
+  EXPECT_EQ(map.handle(read_pdu(modbus_fc::kReadInput, 1019, 2)).exception,
             ModbusException::kIllegalDataAddress);
   EXPECT_EQ(map.handle(read_pdu(modbus_fc::kReadInput, 999, 2)).exception,
             ModbusException::kIllegalDataAddress);
   // The header is input registers only.
   EXPECT_EQ(map.handle(read_pdu(modbus_fc::kReadHolding, 1000, 1)).exception,
             ModbusException::kIllegalDataAddress);
+}
+
+// INTERFACE 3.4 / 6: input registers 1016..1019 = the reason item codes of axis 1 and 2, high
+// half first (docs/error-reasons.md).
+TEST(ModbusMap, ReasonItemCodesIn1016To1019) {
+  Image im(3602, 2, 16, 16);
+  im.img->reasons[0].item = 20205u;  // 3602-CE-05
+  im.img->reasons[1].item = 0x0001'0002u;
+  ModbusMap map(*im.img, false);
+  const auto r = map.handle(read_pdu(modbus_fc::kReadInput, 1016, 4));
+  ASSERT_EQ(r.exception, ModbusException::kNone);
+  EXPECT_EQ(values(r), (std::vector<std::uint16_t>{0, 20205, 0x0001, 0x0002}));
 }
 
 TEST(ModbusMap, IllegalAddressesAndCounts) {

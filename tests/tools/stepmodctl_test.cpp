@@ -89,8 +89,10 @@ TEST(Stepmodctl, A3602CommandWritesOnlyItsAxisWordsStatusDecodesBoth) {
   EXPECT_EQ(w.w[13], 5'000);  // binary split: MSW 0, LSW 5000
   EXPECT_EQ(w.w[14], 10);
   EXPECT_EQ(w.w[15], 20);
+  // Nobody scans: status shows the words as they are, says the module does not scan, exit 3.
   const CtlRun status = stepmodctl("-n " + n + " status");
-  EXPECT_EQ(status.exit_status, 0) << status.err;
+  EXPECT_EQ(status.exit_status, 3) << status.err;
+  EXPECT_NE(status.err.find("is not scanning"), std::string::npos) << status.err;
   EXPECT_NE(status.out.find("3602 axis 1 in COMMAND mode"), std::string::npos) << status.out;
   EXPECT_NE(status.out.find("3602 axis 2 in COMMAND mode"), std::string::npos) << status.out;
 }

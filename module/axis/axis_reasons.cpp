@@ -1,0 +1,96 @@
+// Recording why an error bit is set (AxisState::note, docs/error-reasons.md). Control thread
+// only; no allocation (the text is formatted into the reason's fixed buffer).
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
+#include "module/axis/axis_state.hpp"
+
+namespace stepmod::module::axis {
+
+namespace {
+struct LatchBit {
+  bool Latches::*bit;
+  ErrorList list;
+  const char* name;
+};
+constexpr LatchBit kErrorBits[] = {
+    {&Latches::configuration_error, ErrorList::kConfiguration, "Configuration Error"},
+    {&Latches::command_error, ErrorList::kCommand, "Command Error"},
+    {&Latches::invalid_profile, ErrorList::kInvalidProfile, "Invalid Profile"},
+    {&Latches::input_error, ErrorList::kInput, "Input Error"},
+    {&Latches::home_invalid, ErrorList::kHomeInvalid, "Home Invalid"},
+    {&Latches::position_invalid, ErrorList::kPositionInvalid, "Position Invalid"},
+};
+}  // namespace
+
+void AxisState::record(ErrorList list, unsigned number, const char* text) noexcept {
+  const ModuleType t = rules.type;
+  char id[24];
+  const char* abbr = list_abbreviation(list);
+  if (number == 0) {
+    std::snprintf(id, sizeof id, "%u-%s", static_cast<unsigned>(t), abbr);
+  } else if (number > 90) {
+    std::snprintf(id, sizeof id, "%u-%s-S%u", static_cast<unsigned>(t), abbr, number - 90);
+  } else {
+    std::snprintf(id, sizeof id, "%u-%s-%02u", static_cast<unsigned>(t), abbr, number);
+  }
+  char full[sizeof id + 2 + kReasonTextSize];
+  std::snprintf(full, sizeof full, "%s: %s", id, text);
+  // Cut to the image's 56 bytes (with the NUL): the log and the image show the same text.
+  const std::size_t n = std::min(std::strlen(full), reason.text.size() - 1);
+  std::memcpy(reason.text.data(), full, n);
+  reason.text[n] = '\0';
+  reason.code = item_code(t, list, number);
+  ++reason.seq;
+  noted_since_ = true;
+}
+
+void AxisState::vnote(const Item& item, const char* fmt, va_list args) noexcept {
+  char text[kReasonTextSize];
+  if (fmt == nullptr) {
+    std::snprintf(text, sizeof text, "%s", item.what);
+  } else {
+    std::vsnprintf(text, sizeof text, fmt, args);
+  }
+  record(item.list, item.number(rules.type), text);
+}
+
+void AxisState::note(const Item& item, const char* fmt, ...) noexcept {
+  va_list args;
+  va_start(args, fmt);
+  vnote(item, fmt, args);
+  va_end(args);
+}
+
+void AxisState::reject(const Item& item, const char* fmt, ...) noexcept {
+  status.command_error = true;
+  va_list args;
+  va_start(args, fmt);
+  vnote(item, fmt, args);
+  va_end(args);
+}
+
+void AxisState::reject_profile(const Item& item, const char* fmt, ...) noexcept {
+  status.command_error = true;
+  status.invalid_profile = true;
+  va_list args;
+  va_start(args, fmt);
+  vnote(item, fmt, args);
+  va_end(args);
+}
+
+void AxisState::explain_new_errors() noexcept {
+  if (!noted_since_) {
+    for (const LatchBit& b : kErrorBits) {
+      if (status.*(b.bit) && !(explained_.*(b.bit))) {
+        record(b.list, 0, b.name);  // the first new bit names the list; no item is known
+        break;
+      }
+    }
+  }
+  explained_ = status;
+  noted_since_ = false;
+}
+
+}  // namespace stepmod::module::axis

@@ -1,0 +1,159 @@
+// The image's error-reason blocks (INTERFACE 3.4, docs/error-reasons.md) and the commissioning
+// lease (3.5, docs/commissioning.md): the daemon's LeaseWatch and the tools' LeaseClient over a
+// real shared-memory image.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstring>
+#include <string>
+#include <thread>
+
+#include "ipc/client.hpp"
+#include "ipc/lease_client.hpp"
+#include "ipc/lease_watch.hpp"
+#include "ipc/shm_image.hpp"
+
+namespace stepmod::ipc {
+namespace {
+
+constexpr ModuleShape k3602{ModuleType::k3602, 2, 2, 16, 16};
+
+std::string test_name(const char* tag) {
+  return std::string("t-") + tag + "-" + std::to_string(::getpid());
+}
+
+stepmod_reason_t reason(std::uint32_t seq, std::uint32_t item, const char* text) {
+  stepmod_reason_t r{};
+  r.seq = seq;
+  r.item = item;
+  std::strncpy(r.text, text, sizeof r.text - 1);
+  return r;
+}
+
+TEST(ReasonBlock, AtOffset448PlusSixtyFourPerAxisUnderTheInputSeqlock) {
+  EXPECT_EQ(offsetof(stepmod_image_t, reasons), 448u);
+  EXPECT_EQ(offsetof(stepmod_image_t, reasons[1]), 512u);
+  EXPECT_EQ(offsetof(stepmod_reason_t, item), 4u);
+  EXPECT_EQ(offsetof(stepmod_reason_t, text), 8u);
+  EXPECT_EQ(offsetof(stepmod_image_t, lease_holder), 576u);
+  EXPECT_EQ(offsetof(stepmod_image_t, lease_seq), 580u);
+  EXPECT_EQ(offsetof(stepmod_image_t, lease_expiry_ns), 584u);
+
+  ShmImage image(test_name("reason"), k3602);
+  Client client(image.name());
+  EXPECT_EQ(client.read_reason(1).seq, 0u);
+  image.set_reason(1, reason(3, 20206, "3602-CE-06: Vp 400 is below Vs 1000"));
+  // Not visible before the publication it belongs to.
+  EXPECT_EQ(client.read_reason(1).seq, 0u);
+  const std::uint32_t seq_before = image.raw().input_seq;
+  image.publish_inputs(ImageWords{});
+  EXPECT_EQ(image.raw().input_seq, seq_before + 2);
+  const stepmod_reason_t r = client.read_reason(1);
+  EXPECT_EQ(r.seq, 3u);
+  EXPECT_EQ(r.item, 20206u);
+  EXPECT_STREQ(r.text, "3602-CE-06: Vp 400 is below Vs 1000");
+  const auto* raw = reinterpret_cast<const unsigned char*>(&image.raw());
+  std::uint32_t item = 0;
+  std::memcpy(&item, raw + 448 + 64 + 4, 4);
+  EXPECT_EQ(item, 20206u);
+  EXPECT_STREQ(reinterpret_cast<const char*>(raw + 448 + 64 + 8),
+               "3602-CE-06: Vp 400 is below Vs 1000");
+  EXPECT_EQ(client.read_reason(0).seq, 0u);  // axis 1 untouched
+}
+
+class Lease : public ::testing::Test {
+ protected:
+  Lease() : image_(test_name("lease"), k3602), client_(image_.name()) {}
+  LeaseWatch::Event scan() { return watch_.scan(image_, heartbeat_, stepmod_monotonic_ns()); }
+  stepmod_image_t& img() { return client_.writable_image(); }
+  ShmImage image_;
+  Client client_;
+  LeaseWatch watch_;
+  std::uint64_t heartbeat_ = 0;
+};
+
+TEST_F(Lease, TakenRenewedAndReleased) {
+  LeaseClient tool(client_, 4242);
+  // A daemon reports the heartbeat stale (bit 1): the lease is taken at once.
+  image_.publish_inputs(ImageWords{}, Health{STEPMOD_HEALTH_PLC_STALE, 0, 0});
+  ASSERT_EQ(tool.take(std::chrono::milliseconds(1)), LeaseClient::Take::kTaken);
+  EXPECT_EQ(img().lease_holder, 4242u);
+  EXPECT_EQ(img().lease_seq, 1u);
+  const LeaseWatch::Event taken = scan();
+  EXPECT_TRUE(taken.taken);
+  EXPECT_EQ(taken.holder, 4242u);
+  EXPECT_TRUE(watch_.held());
+  // Renewed: after twice the contract's 500 ms it is still held, the expiry ahead of now.
+  for (int i = 0; i < 10; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    const LeaseWatch::Event e = scan();
+    EXPECT_FALSE(e.expired);
+    const auto ahead = static_cast<std::int64_t>(img().lease_expiry_ns) - stepmod_monotonic_ns();
+    EXPECT_GT(ahead, 0);
+    EXPECT_LE(ahead, 500'000'000);
+  }
+  EXPECT_TRUE(tool.held());
+  tool.release();
+  EXPECT_EQ(img().lease_holder, 0u);
+  EXPECT_TRUE(scan().released);
+  EXPECT_FALSE(watch_.held());
+  EXPECT_EQ(watch_.flags(), 0u);
+}
+
+TEST_F(Lease, ExpiredLeaseIsFreedAndSetsBit6UntilAPlcOrANewTake) {
+  img().lease_expiry_ns = static_cast<std::uint64_t>(stepmod_monotonic_ns() + 50'000'000);
+  img().lease_holder = 999'999;  // a tool that died without releasing
+  img().lease_seq = 7;
+  EXPECT_TRUE(scan().taken);
+  std::this_thread::sleep_for(std::chrono::milliseconds(80));
+  const LeaseWatch::Event e = scan();
+  EXPECT_TRUE(e.expired);
+  EXPECT_EQ(img().lease_holder, 0u);
+  EXPECT_EQ(watch_.flags(), STEPMOD_HEALTH_LEASE_EXPIRED);
+  EXPECT_FALSE(scan().expired);  // once
+  EXPECT_EQ(watch_.flags(), STEPMOD_HEALTH_LEASE_EXPIRED);
+  ++heartbeat_;  // a PLC takes over
+  scan();
+  EXPECT_EQ(watch_.flags(), 0u);
+}
+
+TEST_F(Lease, HeartbeatDuringALeaseSetsBit7) {
+  LeaseClient tool(client_, 4343);
+  image_.publish_inputs(ImageWords{}, Health{STEPMOD_HEALTH_PLC_STALE, 0, 0});
+  ASSERT_EQ(tool.take(std::chrono::milliseconds(1)), LeaseClient::Take::kTaken);
+  scan();
+  EXPECT_EQ(watch_.flags(), 0u);
+  ++heartbeat_;
+  EXPECT_TRUE(scan().conflict);
+  EXPECT_EQ(watch_.flags(), STEPMOD_HEALTH_LEASE_CONFLICT);
+  ++heartbeat_;
+  EXPECT_FALSE(scan().conflict);  // said once per lease
+  tool.release();
+  scan();
+  EXPECT_EQ(watch_.flags(), 0u);
+}
+
+TEST_F(Lease, RefusedWhileAPlcHeartbeatIsLive) {
+  std::atomic<bool> stop{false};
+  Client plc(image_.name());
+  std::thread beat([&] {
+    while (!stop.load()) {
+      plc.heartbeat();
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  });
+  LeaseClient tool(client_, 4444);
+  EXPECT_EQ(tool.take(std::chrono::milliseconds(300)), LeaseClient::Take::kPlcInControl);
+  EXPECT_EQ(img().lease_holder, 0u);
+  stop = true;
+  beat.join();
+  // The PLC gone: the heartbeat unchanged for the whole watch, the lease is taken.
+  EXPECT_EQ(tool.take(std::chrono::milliseconds(100)), LeaseClient::Take::kTaken);
+  // A second tool finds it held.
+  LeaseClient other(client_, 4545);
+  EXPECT_EQ(other.take(std::chrono::milliseconds(1)), LeaseClient::Take::kHeldByOther);
+}
+
+}  // namespace
+}  // namespace stepmod::ipc
