@@ -144,4 +144,9 @@ std::optional<std::int32_t> Client::send_message(std::span<const std::int32_t> d
   return __atomic_load_n(&img_->msg_result, __ATOMIC_RELAXED);
 }
 
+stepmod_image_t& Client::writable_image() {
+  require_writable();
+  return *img_;
+}
+
 }  // namespace stepmod::ipc

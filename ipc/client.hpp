@@ -63,6 +63,9 @@ class Client {
                                            std::chrono::milliseconds timeout);
 
   const stepmod_image_t& raw() const noexcept { return *img_; }
+  // The image itself, for the commissioning lease (plc/lease.hpp): its fields are atomics
+  // shared with the daemon. Throws IpcError when the image is read-only.
+  stepmod_image_t& writable_image();
 
  private:
   void require_writable() const;

@@ -1,0 +1,107 @@
+// stepmod-web: the commissioning console of one module in the browser (docs/web-console.md).
+// One more client of the module's shared-memory image, like an HMI: a sampler thread reads it
+// under its seqlock, commands go through the plc/ library under the commissioning lease.
+#include <signal.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "ipc/shm_object.hpp"
+#include "web/auth.hpp"
+#include "web/commander.hpp"
+#include "web/image_json.hpp"
+#include "web/options.hpp"
+#include "web/sampler.hpp"
+#include "web/server.hpp"
+
+#ifndef STEPMOD_WEB_WWW
+#define STEPMOD_WEB_WWW "/usr/share/stepmod/web"
+#endif
+
+namespace {
+
+int wait_for_signal() {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGTERM);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGHUP);
+  int sig = 0;
+  sigwait(&set, &sig);
+  return sig;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace stepmod::web;
+  // Every thread started below inherits the blocked set: the main thread alone takes them.
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGTERM);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGHUP);
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+  signal(SIGPIPE, SIG_IGN);
+
+  CLI::App app{
+      "stepmod-web: the commissioning console of one stepmod module in the browser.\n"
+      "Listens on 127.0.0.1, port 8610 + the number the module name ends with (stepmod: 8610,\n"
+      "press2: 8612), unless --listen/--port say otherwise. The login page asks for the access\n"
+      "token in /etc/stepmod/web-token (made at package install, readable by root and the\n"
+      "stepmod group; --token-file). See docs/web-console.md."};
+  std::string name = "stepmod";
+  ServerOptions opt;
+  std::string token_file = kDefaultTokenFile;
+  unsigned port = 0;
+  int quiet_ms = 1000;
+  opt.www_dir = STEPMOD_WEB_WWW;
+  app.add_option("--name,-n", name, "module name (the image /dev/shm/stepmod.NAME)")
+      ->capture_default_str();
+  app.add_option("--listen", opt.listen,
+                 "address to listen on (default 127.0.0.1; another address exposes the "
+                 "console to that network: do it only on purpose)")
+      ->capture_default_str();
+  app.add_option("--port", port, "TCP port (default 8610 + the name's trailing number)")
+      ->check(CLI::Range(1, 65535));
+  app.add_option("--token-file", token_file, "access token file")->capture_default_str();
+  app.add_option("--www", opt.www_dir, "directory of the page's files")->capture_default_str();
+  app.add_option("--plc-quiet-ms", quiet_ms,
+                 "the lease is refused while the PLC heartbeat changed within this time")
+      ->check(CLI::Range(100, 60000))
+      ->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    opt.module_name = name;
+    opt.port = port != 0 ? port : default_port(name);
+    Auth auth(token_file);
+    stepmod::ipc::Client probe(name);
+    const std::string hello =
+        nlohmann::json{{"type", "hello"}, {"name", name}, {"module", module_json(probe.type())}}
+            .dump();
+    std::unique_ptr<Server> server;
+    std::mutex server_m;
+    Sampler sampler(name, [&](const std::string& json) {
+      std::lock_guard lock(server_m);
+      if (server) server->publish(json);
+    });
+    Commander commander(name, sampler, {std::chrono::milliseconds(quiet_ms)});
+    {
+      std::lock_guard lock(server_m);
+      server = std::make_unique<Server>(opt, auth, commander, hello);
+    }
+    std::fprintf(stderr, "stepmod-web: module %s, http://%s:%u/ (token: %s)\n", name.c_str(),
+                 opt.listen.c_str(), opt.port, token_file.c_str());
+    const int sig = wait_for_signal();
+    std::fprintf(stderr, "stepmod-web: signal %d, stopping\n", sig);
+    std::lock_guard lock(server_m);
+    server.reset();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "stepmod-web: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
