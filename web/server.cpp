@@ -150,6 +150,7 @@ int Server::on_http(mg_connection* c) {
   const mg_request_info* ri = mg_get_request_info(c);
   const std::string uri = ri->local_uri != nullptr ? ri->local_uri : "/";
   if (uri == "/login") return login(c);
+  if (uri == "/style.css") return serve_file(c, uri);  // the login page's look: no secret
   if (!auth_.valid(mg_get_header(c, "Cookie"))) {
     // The page itself answers 401 with the login form, so a browser shows it.
     if (uri == "/" || uri == "/index.html") {

@@ -142,7 +142,7 @@ function showBatch(b) {
     unit.plot.push(b.t_us, b.pos[u]);
     const r = unit.root;
     r.querySelector(".pos").textContent = s.position;
-    r.querySelector(".enc").textContent = s.encoder;
+    r.querySelector(".enc").textContent = state.module.type === 3602 ? "— (no encoder input)" : s.encoder;
     r.querySelector(".cap").textContent = s.capture;
     r.querySelector(".speed").textContent = Math.round(unit.plot.lastSpeed());
     r.querySelector(".reason").textContent = s.reason && s.reason.seq ? s.reason.text : "none";
