@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "ipc/shm_object.hpp"
+#include "tools/config.hpp"
 #include "web/auth.hpp"
 #include "web/commander.hpp"
 #include "web/image_json.hpp"
@@ -58,8 +59,13 @@ int main(int argc, char** argv) {
   unsigned port = 0;
   int quiet_ms = 1000;
   opt.www_dir = STEPMOD_WEB_WWW;
-  app.add_option("--name,-n", name, "module name (the image /dev/shm/stepmod.NAME)")
-      ->capture_default_str();
+  std::string config_path;
+  auto* name_opt =
+      app.add_option("--name,-n", name, "module name (the image /dev/shm/stepmod.NAME)")
+          ->capture_default_str();
+  app.add_option("--config", config_path,
+                 "take the module name from this stepmodd configuration ([module] name)")
+      ->excludes(name_opt);
   app.add_option("--listen", opt.listen,
                  "address to listen on (default 127.0.0.1; another address exposes the "
                  "console to that network: do it only on purpose)")
@@ -68,13 +74,24 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 65535));
   app.add_option("--token-file", token_file, "access token file")->capture_default_str();
   app.add_option("--www", opt.www_dir, "directory of the page's files")->capture_default_str();
-  app.add_option("--plc-quiet-ms", quiet_ms,
-                 "the lease is refused while the PLC heartbeat changed within this time")
-      ->check(CLI::Range(100, 60000))
-      ->capture_default_str();
+  auto* quiet_opt =
+      app.add_option("--plc-quiet-ms", quiet_ms,
+                     "the lease is refused while the PLC heartbeat changed within this time "
+                     "(default: the configuration's plc_timeout_ms, else 1000)")
+          ->check(CLI::Range(100, 60000))
+          ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   try {
+    if (!config_path.empty()) {
+      const auto cfg = stepmod::tools::load_config(config_path);
+      name = cfg.name;
+      // The contract: no PLC is in control once its heartbeat has not changed for
+      // plc_timeout_ms (1 s when that is 0).
+      if (cfg.plc_timeout_ns > 0 && quiet_opt->count() == 0) {
+        quiet_ms = static_cast<int>(cfg.plc_timeout_ns / 1'000'000);
+      }
+    }
     opt.module_name = name;
     opt.port = port != 0 ? port : default_port(name);
     Auth auth(token_file);

@@ -1,4 +1,4 @@
-// The live page: one WebSocket carries the sample batches (20 a second, samples every 1 ms) and
+// The live page: one WebSocket carries the sample batches (25 a second, samples every 1 ms) and
 // the page's requests. Controls act only under the commissioning lease; while this page holds it
 // and has the focus it sends keep-alives 20 times a second, and stepmod-web renews the lease
 // only while they arrive (the deadman). A jog button acts only while it is held down.
