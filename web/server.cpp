@@ -136,7 +136,7 @@ int Server::login(mg_connection* c) {
 
 int Server::serve_file(mg_connection* c, const std::string& uri) {
   static const std::set<std::string> kFiles = {"/index.html", "/console.js", "/plot.js",
-                                               "/style.css"};
+                                               "/style.css", "/picture.html", "/picture.js"};
   const std::string path = uri == "/" ? "/index.html" : uri;
   if (kFiles.count(path) == 0) {
     respond(c, 404, "text/plain", "not found\n");

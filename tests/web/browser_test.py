@@ -49,7 +49,7 @@ class Machine:
     """A stepmodd on the simulated machine (an examples/*-sim.toml under a fresh name), the
     token file and a stepmod-web for it."""
 
-    def __init__(self, example, port):
+    def __init__(self, example, port, trace=False):
         self.dir = tempfile.mkdtemp(prefix="stepmod-web-test-")
         self.name = "webt%d%d" % (os.getpid() % 100000, port % 100)
         with open(os.path.join(SRC, "examples", example)) as f:
@@ -65,7 +65,9 @@ class Machine:
         with open(self.token_file, "w") as f:
             f.write(self.token + "\n")
         self.port = port
-        self.daemon = subprocess.Popen([STEPMODD, "--config", self.config],
+        self.trace = os.path.join(self.dir, "trace.vcd") if trace else None
+        self.daemon = subprocess.Popen([STEPMODD, "--config", self.config] +
+                                       (["--trace", self.trace] if trace else []),
                                        stderr=open(os.path.join(self.dir, "d.log"), "w"))
         wait_for(lambda: os.path.exists("/dev/shm/stepmod." + self.name), 10, "the image")
         self.web = None
@@ -349,7 +351,7 @@ class Web3601(unittest.TestCase):
 
 class Web3602(unittest.TestCase):
     def test_circle_screenshot(self):
-        m = Machine("3602-sim.toml", 18612)
+        m = Machine("3602-sim.toml", 18612, trace=True)
         c = None
         try:
             for axis in ("1", "2"):
@@ -363,6 +365,23 @@ class Web3602(unittest.TestCase):
             wait_for(lambda: c.text("#unit-0 .pos") == str(m.image_position(1)) and
                      c.text("#unit-1 .pos") == str(m.image_position(2)), 5, "both positions")
             c.d.save_screenshot(os.path.join(SRC, "docs", "web-3602-circle.png"))
+            # Then a line to the circle's centre, and the move's picture from the trace.
+            r = m.ctl("path", "line", "2000", "0", "--speed", "6000", "--accel", "20",
+                      "--decel", "20")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            m.ctl("path", "wait")
+            end = (m.image_position(1), m.image_position(2))
+            self.assertEqual(end, (2000, 0))
+            m.daemon.terminate()  # the VCD is written at the stop
+            m.daemon.wait(30)
+            c.d.get(m.url("/picture.html"))
+            c.el("#vcd").send_keys(m.trace)
+            wait_for(lambda: c.text("#pic-xy h2") != "", 30, "the XY picture")
+            # The circle crosses 4 x 2000 integers on each axis, the line 2000 on axis 1.
+            self.assertRegex(c.text("#pic-axis1 h2"), r"^axis1: 10000 steps, end position 2000 ")
+            self.assertRegex(c.text("#pic-axis2 h2"), r"^axis2: 8000 steps, end position 0 ")
+            c.d.execute_script("document.getElementById('pic-axis2').scrollIntoView()")
+            c.d.save_screenshot(os.path.join(SRC, "docs", "web-3602-path.png"))
         finally:
             if c:
                 c.close()
