@@ -107,6 +107,10 @@ class Machine:
         out = self.ctl("status").stdout
         return bool(re.search(r"(?m)^\s*1\s+bit\s+[01]\s+(Moving C|C)C?W", out))
 
+    def health_flags(self):
+        with open("/dev/shm/stepmod." + self.name, "rb") as f:
+            return struct.unpack_from("<I", f.read(420), 416)[0]
+
     def free_lease(self):
         with open("/dev/shm/stepmod." + self.name, "r+b") as f:
             mm = mmap.mmap(f.fileno(), 4096)
@@ -332,6 +336,8 @@ class Web3601(unittest.TestCase):
             self.m.free_lease()
             self.skipTest("%s: needs the daemon's lease enforcement (not in this tree yet)" % how)
         wait_for(lambda: not self.m.moving(), 5, "the axis to stop after " + how)
+        # Stopped by the daemon at the lease's expiry: health bit 6.
+        self.assertTrue(self.m.health_flags() & (1 << 6), how)
         p = self.m.motor_position()
         self.assertGreater(p, p0 - 1)
         time.sleep(0.3)
