@@ -21,7 +21,7 @@ T relaxed(const unsigned char* p) {
 nlohmann::json reason_json(const stepmod_image_t& img, unsigned unit) {
   if (unit >= 2) return nlohmann::json::object();
   const auto* base = reinterpret_cast<const unsigned char*>(&img);
-  const unsigned char* block = base + kOffReasons + kStride * unit;
+  const unsigned char* block = base + kOffReasons + static_cast<std::size_t>(kStride) * unit;
   const auto* seq = &img.input_seq;
   for (int attempt = 0; attempt < 1000; ++attempt) {
     if (attempt > 0 && attempt % 32 == 0) std::this_thread::yield();
