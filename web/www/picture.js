@@ -139,10 +139,13 @@ function drawXY(main, ax, ay) {
   const h = document.createElement("h2"); h.textContent = "XY path (axis1 = X, axis2 = Y)"; box.appendChild(h);
   const c = document.createElement("canvas"); c.width = 520; c.height = 520; c.className = "plot"; box.appendChild(c);
   const ctx = c.getContext("2d");
-  const lo = Math.min(...xs, ...ys), hi = Math.max(...xs, ...ys, lo + 1), s = (c.width - 40) / (hi - lo);
+  // One scale for both axes (a circle stays round), each centred.
+  const x0 = Math.min(...xs), x1 = Math.max(...xs), y0 = Math.min(...ys), y1 = Math.max(...ys);
+  const s = (c.width - 40) / Math.max(x1 - x0, y1 - y0, 1);
+  const ox = (c.width - (x1 - x0) * s) / 2, oy = (c.height - (y1 - y0) * s) / 2;
   ctx.strokeStyle = "#1565c0"; ctx.beginPath();
   for (let k = 0; k < xs.length; k++) {
-    const X = 20 + (xs[k] - lo) * s, Y = c.height - 20 - (ys[k] - lo) * s;
+    const X = ox + (xs[k] - x0) * s, Y = c.height - oy - (ys[k] - y0) * s;
     if (k) ctx.lineTo(X, Y); else ctx.moveTo(X, Y);
   }
   ctx.stroke();
