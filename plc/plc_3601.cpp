@@ -111,8 +111,7 @@ Outcome Plc3601::move(bool absolute, std::int32_t target, const Profile& p, bool
   return edge_command(w, bit, kCommandErrors);
 }
 
-Outcome Plc3601::jog(bool cw, const Profile& p, std::chrono::milliseconds duration,
-                     std::int32_t registration) {
+Outcome Plc3601::jog_press(bool cw, const Profile& p, std::int32_t registration) {
   if (!release_stale()) return finish(kCommandErrors, true, "release");
   ImageWords w;
   const std::uint16_t bit = cw ? m::cmd_msw::kManualCw : m::cmd_msw::kManualCcw;
@@ -121,13 +120,23 @@ Outcome Plc3601::jog(bool cw, const Profile& p, std::chrono::milliseconds durati
   put_split(w, m::out_word::kTargetMsw, registration);
   put_profile(w, p);
   port_.write_outputs(w);
+  return finish(kCommandErrors, !port_.wait_scans(seq_.hold_scans), "jog");
+}
+
+Outcome Plc3601::jog_release() {
+  constexpr std::uint16_t kManual = m::cmd_msw::kManualCw | m::cmd_msw::kManualCcw;
+  port_.update_outputs([&](ImageWords& o) { o.w[m::out_word::kMsw] &= ~kManual; });
+  return finish(kCommandErrors, !port_.wait_scans(seq_.release_scans), "jog release");
+}
+
+Outcome Plc3601::jog(bool cw, const Profile& p, std::chrono::milliseconds duration,
+                     std::int32_t registration) {
+  const Outcome pressed = jog_press(cw, p, registration);
   // Level-held: keep the bit for the duration (the port keeps the PLC's heartbeat meanwhile).
-  const bool scanned = port_.wait_scans(seq_.hold_scans);
-  if (scanned) port_.pass(duration);
-  port_.update_outputs([&](ImageWords& o) { o.w[m::out_word::kMsw] &= ~bit; });
-  if (!scanned || !port_.wait_scans(seq_.release_scans)) {
-    return finish(kCommandErrors, true, "jog");
-  }
+  if (!pressed.timed_out) port_.pass(duration);
+  const Outcome released = jog_release();
+  if (pressed.timed_out) return pressed;
+  if (released.timed_out) return released;
   Outcome idle = wait_idle(timeout_ + std::chrono::seconds(30));
   if (idle.timed_out) return idle;
   return finish(kCommandErrors, false, "jog");

@@ -45,6 +45,11 @@ class Plc3601 {
   // `registration` > 0 makes it a registration move (digest 7.9).
   Outcome jog(bool cw, const Profile& p, std::chrono::milliseconds duration,
               std::int32_t registration = 0);
+  // The same as a PLC holding the button: jog_press sets the level-held bit and returns once
+  // the module scanned it; jog_release clears it (the axis decelerates to a stop, as the manual
+  // says of a released Manual bit). For an operator's button (stepmod-web).
+  Outcome jog_press(bool cw, const Profile& p, std::int32_t registration = 0);
+  Outcome jog_release();
   Outcome home(bool cw, const Profile& p);
   Outcome hold();
   // Without a profile the speed/accel/decel words of the previous move stay as they are.

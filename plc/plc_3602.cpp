@@ -128,8 +128,7 @@ Outcome Plc3602::home(unsigned axis, bool cw, const Profile& p) {
               });
 }
 
-Outcome Plc3602::jog(unsigned axis, bool cw, const Profile& p, std::chrono::milliseconds duration,
-                     std::int32_t registration) {
+Outcome Plc3602::jog_press(unsigned axis, bool cw, const Profile& p, std::int32_t registration) {
   if (!release_msw(axis)) return finish(axis, kCommandErrors, true, "release");
   const std::uint16_t bit = cw ? m::cmd_msw::kJogCw : m::cmd_msw::kJogCcw;
   const std::uint16_t lsw = m3602::accel_bits(p.type) | gpo_bit(axis);
@@ -137,14 +136,23 @@ Outcome Plc3602::jog(unsigned axis, bool cw, const Profile& p, std::chrono::mill
     m3602::put_command(w, axis, bit, lsw, registration, p.speed, static_cast<std::int16_t>(p.accel),
                        static_cast<std::int16_t>(p.decel));
   });
-  // Level-held: keep the bit for the duration (the port keeps the PLC's heartbeat meanwhile).
-  const bool scanned = port_.wait_scans(seq_.hold_scans);
-  if (scanned) port_.pass(duration);
+  return finish(axis, kCommandErrors, !port_.wait_scans(seq_.hold_scans), "jog");
+}
+
+Outcome Plc3602::jog_release(unsigned axis) {
   const unsigned msw_word = m3602::base(axis) + m::out_word::kMsw;
   port_.update_outputs([&](ImageWords& w) { w.w[msw_word] = 0; });
-  if (!scanned || !port_.wait_scans(seq_.release_scans)) {
-    return finish(axis, kCommandErrors, true, "jog");
-  }
+  return finish(axis, kCommandErrors, !port_.wait_scans(seq_.release_scans), "jog release");
+}
+
+Outcome Plc3602::jog(unsigned axis, bool cw, const Profile& p, std::chrono::milliseconds duration,
+                     std::int32_t registration) {
+  const Outcome pressed = jog_press(axis, cw, p, registration);
+  // Level-held: keep the bit for the duration (the port keeps the PLC's heartbeat meanwhile).
+  if (!pressed.timed_out) port_.pass(duration);
+  const Outcome released = jog_release(axis);
+  if (pressed.timed_out) return pressed;
+  if (released.timed_out) return released;
   Outcome idle = wait_idle(axis, timeout_ + std::chrono::seconds(30));
   if (idle.timed_out) return idle;
   return finish(axis, kCommandErrors, false, "jog");

@@ -36,6 +36,10 @@ class Plc3602 {
   // makes it a registration move of that many steps after the stop trigger (digest 4.6 bit 7/8).
   Outcome jog(unsigned axis, bool cw, const Profile& p, std::chrono::milliseconds duration,
               std::int32_t registration = 0);
+  // The same as a PLC holding the button: jog_press sets the level-held bit and returns once the
+  // module scanned it; jog_release clears the axis' MSW (the axis decelerates to a stop).
+  Outcome jog_press(unsigned axis, bool cw, const Profile& p, std::int32_t registration = 0);
+  Outcome jog_release(unsigned axis);
   // Hold Move: the parameter words stay as they are (the module ignores them).
   Outcome hold(unsigned axis);
   // Resume Move; without a profile the speed/accel/decel words of the held move stay.

@@ -1,0 +1,119 @@
+#include "web/commander.hpp"
+
+#include <unistd.h>
+
+#include <stdexcept>
+
+#include "web/reason.hpp"
+
+namespace stepmod::web {
+namespace {
+using Clock = std::chrono::steady_clock;
+
+nlohmann::json reply(const std::string& op, bool ok, const std::string& message) {
+  return {{"type", "reply"}, {"op", op}, {"ok", ok}, {"message", message}};
+}
+}  // namespace
+
+Commander::Commander(const std::string& module_name, const Sampler& sampler, Options opt)
+    : client_(module_name),
+      port_(client_),
+      lease_(client_, static_cast<std::uint32_t>(::getpid())),
+      sampler_(sampler),
+      opt_(opt) {
+  try {
+    controls_ = make_controls(port_);
+  } catch (const std::invalid_argument& e) {
+    controls_error_ = e.what();
+  }
+  deadman_ = std::thread([this] { deadman_loop(); });
+}
+
+Commander::~Commander() {
+  {
+    std::lock_guard lock(m_);
+    stop_ = true;
+  }
+  cv_.notify_all();
+  deadman_.join();
+  // A clean exit (SIGTERM) gives the lease back after letting go of any held jog; a crash
+  // leaves it to expire, and the daemon stops the axes.
+  if (lease_.held() && controls_) controls_->release_jogs();
+  lease_.release();
+}
+
+void Commander::deadman_loop() {
+  std::unique_lock lock(m_);
+  while (!cv_.wait_for(lock, std::chrono::milliseconds(50), [this] { return stop_; })) {
+    if (operator_ == 0) continue;
+    if (Clock::now() - last_keepalive_ > opt_.keepalive_limit) continue;  // let it expire
+    if (!lease_.renew()) operator_ = 0;  // the daemon freed it after an expiry
+  }
+}
+
+nlohmann::json Commander::take(std::uintptr_t conn) {
+  if (!controls_) return reply("take", false, controls_error_);
+  if (operator_ != 0 && operator_ != conn) {
+    return reply("take", false, "another page of this console holds the lease");
+  }
+  const PlcLink link = sampler_.plc_link();
+  const auto quiet = Clock::now() - link.heartbeat_changed;
+  if (!link.stale && quiet < opt_.plc_quiet) {
+    return reply(
+        "take", false,
+        "refused: a PLC is in control (its heartbeat changed " +
+            std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(quiet).count()) +
+            " ms ago)");
+  }
+  if (!lease_.take()) {
+    return reply("take", false,
+                 "refused: the lease is held by process " + std::to_string(lease_.holder()));
+  }
+  operator_ = conn;
+  last_keepalive_ = Clock::now();
+  return reply("take", true, "lease taken by process " + std::to_string(lease_.id()));
+}
+
+nlohmann::json Commander::release(std::uintptr_t conn) {
+  if (operator_ != conn) return reply("release", false, "this page does not hold the lease");
+  controls_->release_jogs();
+  lease_.release();
+  operator_ = 0;
+  return reply("release", true, "lease released");
+}
+
+nlohmann::json Commander::command(const nlohmann::json& req, std::uintptr_t conn) {
+  const std::string cmd = req.value("cmd", "");
+  if (operator_ != conn || !lease_.held()) {
+    return reply(cmd, false, "refused: take the commissioning lease first");
+  }
+  try {
+    const plc::Outcome o = controls_->run(req);
+    nlohmann::json r = reply(cmd, o.ok, o.ok ? "done" : o.message);
+    const unsigned unit = req.value("unit", 0u);
+    r["reason"] = reason_json(client_.raw(), unit);
+    return r;
+  } catch (const std::invalid_argument& e) {
+    return reply(cmd, false, std::string("refused: ") + e.what());
+  }
+}
+
+nlohmann::json Commander::handle(const nlohmann::json& req, std::uintptr_t conn) {
+  std::lock_guard lock(m_);
+  const std::string op = req.value("op", "");
+  if (op == "keepalive") {
+    if (operator_ == conn) last_keepalive_ = Clock::now();
+    return nullptr;
+  }
+  if (op == "take") return take(conn);
+  if (op == "release") return release(conn);
+  if (op == "cmd") return command(req, conn);
+  return reply(op, false, "unknown op '" + op + "'");
+}
+
+void Commander::disconnected(std::uintptr_t conn) {
+  std::lock_guard lock(m_);
+  if (operator_ == conn) operator_ = 0;  // no more renewals: the daemon stops at the expiry
+}
+
+}  // namespace stepmod::web

@@ -1,0 +1,42 @@
+#pragma once
+// The page's commissioning commands, each written exactly as a PLC writes it: one JSON request
+// ({"cmd": "move", "unit": 0, ...}) becomes one call of the module's plc/ dialect (Plc3601,
+// Plc3602) over a port without heartbeat. Bad input (unknown command, missing or out-of-range
+// field) is refused with a message before anything is written.
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "plc/port.hpp"
+#include "plc/profile.hpp"
+
+namespace stepmod::web {
+
+class Controls {
+ public:
+  virtual ~Controls() = default;
+  // Runs the command; the outcome of the plc/ call (ok, message = error bits by name).
+  plc::Outcome run(const nlohmann::json& req);
+  // Ends a held jog of every unit (the operator let go; also before a release of the lease).
+  virtual void release_jogs() = 0;
+
+ protected:
+  virtual plc::Outcome move(unsigned u, bool absolute, std::int32_t target,
+                            const plc::Profile& p) = 0;
+  virtual plc::Outcome jog_press(unsigned u, bool cw, const plc::Profile& p) = 0;
+  virtual plc::Outcome jog_release(unsigned u) = 0;
+  virtual plc::Outcome home(unsigned u, bool cw, const plc::Profile& p) = 0;
+  virtual plc::Outcome hold(unsigned u) = 0;
+  virtual plc::Outcome resume(unsigned u) = 0;
+  virtual plc::Outcome stop(unsigned u) = 0;
+  virtual plc::Outcome reset(unsigned u) = 0;
+  virtual plc::Outcome preset(unsigned u, std::int32_t position) = 0;
+  virtual plc::Outcome configure(unsigned u, std::uint16_t msw, std::uint16_t lsw,
+                                 std::int32_t start_speed) = 0;
+  virtual unsigned units() const = 0;
+};
+
+// The controls of the module behind `port`; throws std::invalid_argument for a module type
+// without console controls (the 3202).
+std::unique_ptr<Controls> make_controls(plc::Port& port);
+
+}  // namespace stepmod::web

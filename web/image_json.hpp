@@ -1,0 +1,30 @@
+#pragma once
+// The module's input image as the console page shows it: per axis/channel every status bit by the
+// manual's name (the module's bit tables, as stepmodctl status shows them), position, encoder and
+// capture in steps; the configuration fields and ranges for the page's form.
+#include <cstdint>
+#include <nlohmann/json.hpp>
+
+#include "core/module_shape.hpp"
+
+namespace stepmod::web {
+
+// One unit's registers in steps (what the plot samples).
+struct UnitRegisters {
+  std::int64_t position = 0;
+  std::int64_t encoder = 0;
+  std::int64_t capture = 0;
+};
+
+// Registers of `unit` (0-based axis/channel) decoded from the input words.
+UnitRegisters registers_of(ModuleType type, const ImageWords& in, unsigned unit);
+
+// The status words of `unit` with every named field: [{"word": "Status Word MSW", "bits":
+// [{"bit": 0, "name": "...", "value": 0}, ...]}, ...] plus the registers.
+nlohmann::json unit_json(ModuleType type, const ImageWords& in, unsigned unit);
+
+// What the page needs once: module type, units, the configuration bits by name and the ranges of
+// the manual's fields.
+nlohmann::json module_json(ModuleType type);
+
+}  // namespace stepmod::web

@@ -1,0 +1,194 @@
+// The live page: one WebSocket carries the sample batches (25 a second, samples every 1 ms) and
+// the page's requests. Controls act only under the commissioning lease; while this page holds it
+// and has the focus it sends keep-alives 20 times a second, and stepmod-web renews the lease
+// only while they arrive (the deadman). A jog button acts only while it is held down.
+"use strict";
+
+const state = { ws: null, module: null, units: [], holding: false, myLease: false,
+                batches: 0, samples: 0, rateT0: performance.now(), jog: null };
+const $ = (id) => document.getElementById(id);
+window.consoleStats = { batches: 0, samples: 0, rate: 0, sampleRate: 0 };
+
+function say(text, bad) {
+  const m = $("msg"); m.textContent = text; m.style.color = bad ? "#ff8a80" : "#b9f6ca";
+}
+
+function send(obj) {
+  if (state.ws && state.ws.readyState === WebSocket.OPEN) state.ws.send(JSON.stringify(obj));
+}
+
+function num(root, cls) { return parseInt(root.querySelector(cls).value, 10); }
+
+function profile(root) {
+  return { speed: num(root, ".f-speed"), accel: num(root, ".f-accel"),
+           decel: num(root, ".f-decel"), profile: num(root, ".f-profile") };
+}
+
+function command(unit, cmd, extra) {
+  send(Object.assign({ op: "cmd", unit: unit, cmd: cmd }, extra || {}));
+}
+
+function configBits(box, bits, prefix) {
+  for (const b of bits) {
+    if (b.name === "Configuration Mode") continue; // added by the plc/ library
+    const l = document.createElement("label");
+    const c = document.createElement("input");
+    c.type = "checkbox"; c.dataset.bit = b.bit; c.className = prefix;
+    l.appendChild(c); l.appendChild(document.createTextNode(" " + b.name));
+    box.appendChild(l);
+  }
+}
+
+function wordOf(root, cls) {
+  let w = 0;
+  for (const c of root.querySelectorAll("input." + cls)) if (c.checked) w |= 1 << c.dataset.bit;
+  return w;
+}
+
+function jogButton(root, u, dir) {
+  const b = root.querySelector(".b-jog-" + dir);
+  const press = (e) => {
+    e.preventDefault();
+    if (state.jog) return;
+    state.jog = { unit: u, button: b }; b.classList.add("active");
+    command(u, "jog_press", Object.assign({ dir: dir }, profile(root)));
+  };
+  b.addEventListener("pointerdown", press);
+  for (const ev of ["pointerup", "pointerleave", "pointercancel"]) {
+    b.addEventListener(ev, () => endJog());
+  }
+}
+
+function endJog() {
+  if (!state.jog) return;
+  command(state.jog.unit, "jog_release");
+  state.jog.button.classList.remove("active");
+  state.jog = null;
+}
+
+function wireControls(root, u, ranges) {
+  const click = (cls, fn) => root.querySelector(cls).addEventListener("click", fn);
+  click(".b-abs", () => command(u, "move", Object.assign({ absolute: true, target: num(root, ".f-target") }, profile(root))));
+  click(".b-rel", () => command(u, "move", Object.assign({ absolute: false, target: num(root, ".f-target") }, profile(root))));
+  click(".b-home-cw", () => command(u, "home", Object.assign({ dir: "cw" }, profile(root))));
+  click(".b-home-ccw", () => command(u, "home", Object.assign({ dir: "ccw" }, profile(root))));
+  click(".b-hold", () => command(u, "hold"));
+  click(".b-resume", () => command(u, "resume"));
+  click(".b-stop", () => command(u, "stop"));
+  click(".b-reset", () => command(u, "reset"));
+  click(".b-preset", () => command(u, "preset", { position: num(root, ".f-preset") }));
+  click(".b-config", () => command(u, "configure", { msw: wordOf(root, "cm"), lsw: wordOf(root, "cl"),
+                                                    start_speed: num(root, ".f-vs") }));
+  jogButton(root, u, "cw"); jogButton(root, u, "ccw");
+  root.querySelector(".f-speed").max = ranges.speed_max;
+  for (const c of [".f-accel", ".f-decel"]) {
+    root.querySelector(c).min = ranges.accel_min; root.querySelector(c).max = ranges.accel_max;
+  }
+  const vs = root.querySelector(".f-vs");
+  vs.min = ranges.starting_speed_min; vs.max = ranges.starting_speed_max;
+  root.querySelector(".ranges").textContent =
+    `ranges: starting speed ${ranges.starting_speed_min}..${ranges.starting_speed_max} steps/s, ` +
+    `speed ..${ranges.speed_max} steps/s, accel/decel ${ranges.accel_min}..${ranges.accel_max}`;
+}
+
+function buildUnits(hello) {
+  state.module = hello.module;
+  $("title").textContent = `stepmod console: ${hello.name} (AMCI ${hello.module.type})`;
+  const main = $("units"); main.textContent = "";
+  state.units = [];
+  const word = hello.module.type === 3202 ? "Channel" : "Axis";
+  for (let u = 0; u < hello.module.units; u++) {
+    const root = $("unit-template").content.firstElementChild.cloneNode(true);
+    root.id = "unit-" + u;
+    root.querySelector(".unit-title").textContent = `${word} ${u + 1}`;
+    configBits(root.querySelector(".cfg-msw"), hello.module.config_bits.msw, "cm");
+    configBits(root.querySelector(".cfg-lsw"), hello.module.config_bits.lsw, "cl");
+    wireControls(root, u, hello.module.ranges);
+    main.appendChild(root);
+    state.units.push({ root: root, plot: new LivePlot(root.querySelector("canvas"), 5) });
+  }
+}
+
+function showWords(box, words) {
+  box.textContent = "";
+  for (const w of words) {
+    const d = document.createElement("div");
+    const h = document.createElement("h3"); h.textContent = w.word; d.appendChild(h);
+    const ul = document.createElement("ul");
+    for (const b of w.bits) {
+      const li = document.createElement("li");
+      li.textContent = `${b.bit} ${b.name}` + (b.value > 1 ? ` = ${b.value}` : "");
+      li.dataset.name = b.name;
+      if (b.value) li.className = "on";
+      ul.appendChild(li);
+    }
+    d.appendChild(ul); box.appendChild(d);
+  }
+}
+
+function showBatch(b) {
+  state.batches++; state.samples += b.t_us.length;
+  const now = performance.now();
+  if (now - state.rateT0 >= 1000) {
+    const s = (now - state.rateT0) / 1000;
+    window.consoleStats.rate = state.batches / s; window.consoleStats.sampleRate = state.samples / s;
+    $("rate").textContent = window.consoleStats.rate.toFixed(1);
+    $("srate").textContent = Math.round(window.consoleStats.sampleRate);
+    state.batches = 0; state.samples = 0; state.rateT0 = now;
+  }
+  window.consoleStats.batches++;
+  b.status.forEach((s, u) => {
+    const unit = state.units[u]; if (!unit) return;
+    unit.plot.push(b.t_us, b.pos[u]);
+    const r = unit.root;
+    r.querySelector(".pos").textContent = s.position;
+    r.querySelector(".enc").textContent = state.module.type === 3602 ? "— (no encoder input)" : s.encoder;
+    r.querySelector(".cap").textContent = s.capture;
+    r.querySelector(".speed").textContent = Math.round(unit.plot.lastSpeed());
+    r.querySelector(".reason").textContent = s.reason && s.reason.seq ? s.reason.text : "none";
+    showWords(r.querySelector(".words"), s.words);
+  });
+  $("health").textContent = `${b.health.names} (16#${b.health.flags.toString(16)})`;
+  $("plc").textContent = b.plc.stale ? "heartbeat stale" :
+    (b.plc.quiet_ms < 1000 ? `heartbeat live (${b.plc.heartbeat})` : `no heartbeat for ${(b.plc.quiet_ms / 1000).toFixed(1)} s`);
+  const holder = b.lease.holder;
+  state.myLease = state.holding && holder !== 0;
+  if (state.holding && holder === 0) { state.holding = false; say("the lease ended (expired or freed): the axes were stopped", true); }
+  $("lease").textContent = holder === 0 ? "free" : (state.holding ? `held by this console (process ${holder})` : `held by process ${holder}`);
+}
+
+function onMessage(ev) {
+  const m = JSON.parse(ev.data);
+  if (m.type === "hello") buildUnits(m);
+  else if (m.type === "batch") showBatch(m);
+  else if (m.type === "reply") {
+    if (m.op === "take" && m.ok) state.holding = true;
+    if (m.op === "release" && m.ok) state.holding = false;
+    const why = m.reason && m.reason.seq && !m.ok ? ` — ${m.reason.text}` : "";
+    say(`${m.op}: ${m.message}${why}`, !m.ok);
+  }
+}
+
+function connect() {
+  const ws = new WebSocket((location.protocol === "https:" ? "wss://" : "ws://") + location.host + "/ws");
+  state.ws = ws;
+  ws.onopen = () => { $("conn").textContent = "live"; };
+  ws.onclose = () => { $("conn").textContent = "closed"; state.holding = false; setTimeout(connect, 1000); };
+  ws.onmessage = onMessage;
+}
+
+// The deadman: keep-alives only while this page holds the lease, is visible and has the focus.
+function keepAlive() {
+  if (state.holding && document.visibilityState === "visible" && document.hasFocus()) {
+    send({ op: "keepalive" });
+  }
+}
+
+window.addEventListener("blur", endJog);
+document.addEventListener("visibilitychange", () => { if (document.visibilityState !== "visible") endJog(); });
+window.addEventListener("load", () => {
+  $("take").addEventListener("click", () => send({ op: "take" }));
+  $("release").addEventListener("click", () => { endJog(); send({ op: "release" }); });
+  setInterval(keepAlive, 50);
+  connect();
+});
