@@ -102,10 +102,10 @@ bool in_ci() {
   const char* ci = std::getenv("CI");
   return ci != nullptr && (std::string(ci) == "true" || std::string(ci) == "1");
 }
-#define REQUIRE_CLIENT(probe, what)                                           \
-  if (const std::string why = client_missing(probe, what); !why.empty()) {    \
-    if (in_ci()) FAIL() << why << "\n(CI=true: a missing client fails)";      \
-    GTEST_SKIP() << why;                                                      \
+#define REQUIRE_CLIENT(probe, what)                                        \
+  if (const std::string why = client_missing(probe, what); !why.empty()) { \
+    if (in_ci()) FAIL() << why << "\n(CI=true: a missing client fails)";   \
+    GTEST_SKIP() << why;                                                   \
   }
 constexpr const char* kMbpollProbe = "sh -c 'command -v mbpoll'";
 // The script's own import: pymodbus 3.0's client imports serial_asyncio (a recommend only).

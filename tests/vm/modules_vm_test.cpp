@@ -51,10 +51,8 @@ std::string write_module_config(const char* type, const std::vector<const char*>
                                 const std::string& path) {
   std::ostringstream c;
   c << "[module]\ntype = \"" << type << "\"\nname = \"vm\"\nscan_us = 1000\n\n"
-    << "[gpio]\nbackend = \"gpiod\"\nchip = \"" << env("BOARD_CHIP")
-    << "\"\n\n"
-    // qemu (TCG) stalls the pulse thread for up to ~200 ms: the late-edge guard at its maximum.
-    << "[rt]\npriority = 80\nlate_limit_us = 1000000\n";
+    << "[gpio]\nbackend = \"gpiod\"\nchip = \"" << env("BOARD_CHIP") << "\"\n\n"
+    << rt_section();
   for (unsigned axis = 1; axis <= 2; ++axis) {
     c << "\n[[axis]]\n";
     for (const char* k : keys) c << k << " = " << line(k, axis) << "\n";
