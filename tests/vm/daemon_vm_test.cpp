@@ -714,12 +714,15 @@ class Machine {
 
  private:
   void run() {
-    // As the Sampler (vm_harness.hpp): real-time below the pulse thread, and asleep 100 us
-    // between looks. It used to spin at normal priority, and on the guest's one CPU that halved
-    // the time of the planner, whose ring the pulse thread then ran out of (late-edge faults).
-    // Pulses of 1 ms at <= 300 steps/s leave >= 2.3 ms low: a look every ~0.1-1 ms sees each.
+    // The machine is physics: it must see every pulse, so it looks above the pulse thread's
+    // priority (80), and sleeps 100 us between looks. It used to spin at normal priority: on the
+    // guest's one CPU it halved the planner's time (the pulse thread then ran out of ring, late-
+    // edge faults), and the pulse thread, which spins through fast edges at SCHED_FIFO, kept it
+    // off the CPU for 17 ms while pulses went out (it lost steps and never reached the CW
+    // limit). Pulses of 1 ms at <= 300 steps/s leave >= 2.3 ms low: a look every ~0.1-1 ms sees
+    // each; a stall of the whole guest stops the pulses as well.
     sched_param sp{};
-    sp.sched_priority = 10;
+    sp.sched_priority = 90;
     pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp);
     const timespec nap{0, 100'000};
     int last_step = step_.value();
