@@ -19,7 +19,7 @@ fi
 # The tools this test runs (scripts/install-deps installs them). One missing: skipped with its
 # name, except in CI (CI=true), where every test must run and a missing tool fails.
 missing=()
-for tool in cpack dpkg-deb dpkg-shlibdeps file groff systemd-analyze setpriv getent zcat adduser; do
+for tool in cpack dpkg-deb dpkg-shlibdeps file groff systemd-analyze man setpriv getent zcat adduser; do
   command -v "$tool" >/dev/null || missing+=("$tool")
 done
 if [ "${#missing[@]}" -gt 0 ]; then

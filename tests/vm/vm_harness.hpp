@@ -197,7 +197,6 @@ class Daemon {
         wait_exit(5'000);
         info("the daemon's log (the case failed while it ran):");
         print_log();
-        note_late_fault(log());
       }
     }
     if (pid_ > 0) {
@@ -273,6 +272,7 @@ class Daemon {
     return p == std::string::npos ? l : l.substr(p + 1);
   }
   void print_log() const {
+    note_late_fault(log());
     std::istringstream in(log());
     for (std::string l; std::getline(in, l);) info("  stepmodd: " + l);
   }
@@ -281,7 +281,6 @@ class Daemon {
   Vcd stop_and_trace() {
     const int rc = terminate();
     print_log();
-    note_late_fault(log());
     check(rc == 0, fmt("stepmodd exit status %d", rc));
     return trace();
   }
