@@ -615,6 +615,7 @@ std::string case_sigterm() {
   o.step_pulse_ns = 200'000;
   std::vector<Sample> samples;
   std::int64_t t_term = 0, t_exit = 0;
+  bool dir_high_before = false;  // moving CW: dir high, read through sysfs
   {
     Daemon3601 d(o, "sigterm");
     d.wait_ready();
@@ -623,6 +624,9 @@ std::string case_sigterm() {
     plc.command(cmd::kRelativeMove, 100'000, 1'000, 10, 10);
     sleep_ms(300);
     check(plc.moving(), "not moving");
+    // Read here, not from the sampler's first 50 ms: under load the pulse thread spinning
+    // through its late edges kept the sampler off the guest's CPU until after the SIGTERM.
+    dir_high_before = SimLine(dir_off).value() == 1;
     Sampler sampler(step_off, dir_off);
     sleep_ms(50);
     t_term = now_ns();
@@ -640,12 +644,11 @@ std::string case_sigterm() {
     check(::stat(("/dev/shm/stepmod." + o.name).c_str(), &s) != 0,
           "shared-memory image left behind");
   }
-  // Before SIGTERM: moving CW, dir high. Between SIGTERM and the exit: both idle (0) at some
-  // sample. After the exit: the pull (1) — the lines were released.
-  bool dir_high_before = false, idle_seen = false;
+  // Between SIGTERM and the exit: both idle (0) at some sample. After the exit: the pull (1) — the
+  // lines were released.
+  bool idle_seen = false;
   std::int64_t idle_at = 0;
   for (const Sample& s : samples) {
-    if (s.t1 < t_term && s.dir == 1) dir_high_before = true;
     if (s.t0 >= t_term && s.step == 0 && s.dir == 0 && !idle_seen) {
       idle_seen = true;
       idle_at = s.t0;
