@@ -111,7 +111,7 @@ def main():
     # Exceptions.
     r = plc.c.read_input_registers(8, count=1, slave=a.unit)
     plc.check(r.isError() and r.exception_code == 2, "input register 8: exception 02 (%s)" % r)
-    r = plc.c.read_coils(0, 1, slave=a.unit)
+    r = plc.c.read_coils(0, count=1, slave=a.unit)
     plc.check(r.isError() and r.exception_code == 1, "read coils: exception 01 (%s)" % r)
     r = plc.c.read_input_registers(0, count=1, slave=(a.unit + 1) % 256)
     plc.check(r.isError() and r.exception_code == 0x0B, "another unit id: exception 0B (%s)" % r)
