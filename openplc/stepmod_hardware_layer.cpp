@@ -2,11 +2,11 @@
 // (an emulated AMCI 3601/3602/3202) through %IW/%QW, word for word as the module's manual lays
 // out its backplane words. Install: see openplc/README.md.
 //
-// Addresses (the same registers as stepmod's Modbus map, INTERFACE.md 6):
+// Addresses (the same registers as stepmod's Modbus map, docs/interface.md section 6):
 //   %IW0  .. %IW31   the module's input words (3601/3602: one %IW per word; 3202: two per 32-bit
 //                    word, high half first)
 //   %IW32 .. %IW47   module type, word size (bytes), output words, input words, scan counter
-//                    bits 15..0 and 31..16, health flags (INTERFACE.md 3.3) low and high,
+//                    bits 15..0 and 31..16, health flags (docs/interface.md 3.3) low and high,
 //                    late-edge faults low and high, %IW42 link (1 while a running stepmodd's
 //                    image is mapped, else 0 and every %IW is 0), %IW43..%IW47 reserved (0)
 //   %QW0  .. %QW31   the module's output words (same layout as the inputs)
@@ -16,7 +16,7 @@
 //
 // Each OpenPLC scan: updateBuffersIn() takes one consistent seqlock snapshot of the input image;
 // updateBuffersOut() writes the whole output image as one seqlock write and increments the PLC
-// heartbeat (INTERFACE.md 3.2), so with [module] plc_timeout_ms a stopped runtime stops the axes.
+// heartbeat (docs/interface.md 3.2), so with [module] plc_timeout_ms a stopped runtime stops the axes.
 // Only libc and the plain-C header stepmod_image.h (copied next to this file) are needed.
 #include <fcntl.h>
 #include <pthread.h>
