@@ -17,6 +17,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <gpiod.h>
+#include <sched.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -283,6 +284,12 @@ static int cmd_burst(const char* chipname, const char* simdir, const char* offst
       for (int i = 0; i < n; ++i) sim_pull_fd(pull, i % 2 == 0);
       _exit(0);
     }
+    // The reader (this process, after the fork: the toggler stays at nice 19) reads as events
+    // come, whatever the emulated CPU's speed: real-time, so that a queued event wakes it before
+    // the toggler's next write (at SCHED_OTHER under a loaded host 182 of 200 arrived: the
+    // reader ran too late; the kernel path had not lost them). The toggler waits 20 ms first.
+    struct sched_param sp = {.sched_priority = 20};
+    if (sched_setscheduler(0, SCHED_FIFO, &sp) != 0) fail("SCHED_FIFO: %s", strerror(errno));
   } else {
     int pull = sim_pull_open(simdir, off);
     for (int i = 0; i < n; ++i) sim_pull_fd(pull, i % 2 == 0);

@@ -51,12 +51,10 @@ std::string write_module_config(const char* type, const std::vector<const char*>
                                 const std::string& path) {
   std::ostringstream c;
   c << "[module]\ntype = \"" << type << "\"\nname = \"vm\"\nscan_us = 1000\n\n"
-    << "[gpio]\nbackend = \"gpiod\"\nchip = \"" << env("BOARD_CHIP")
-    << "\"\n\n"
-    // qemu (TCG) stalls the pulse thread for up to ~200 ms: the late-edge guard at its maximum.
-    << "[rt]\npriority = 80\nlate_limit_us = 1000000\n";
+    << "[gpio]\nbackend = \"gpiod\"\nchip = \"" << env("BOARD_CHIP") << "\"\n\n"
+    << rt_section();
   for (unsigned axis = 1; axis <= 2; ++axis) {
-    c << "\n[[axis]]\nlag_limit_steps = 1000000\n";  // qemu's stalls, as late_limit_us
+    c << "\n[[axis]]\n" << axis_guard();
     for (const char* k : keys) c << k << " = " << line(k, axis) << "\n";
     // 1 ms high: a pulse the sampler can see at these rates (at most 400 steps/s).
     c << "step_pulse_ns = 1000000\ndir_setup_ns = 20000\n";

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Hundreds of input edges during a move: every edge in the VCD, the pulse count exact, lateness bounded.
+# Hundreds of input edges during a move: every edge in the VCD in order, none lost, the pulse count exact.
 # (tests/vm/daemon_vm_test.cpp, sub-command burst)
 . /vm/lib.sh
 need stepmodd
