@@ -15,8 +15,9 @@ SimBackend::SimBackend(std::span<const SimAxisSetup> axes, std::size_t event_cap
     for (unsigned i = 0; i < kInputLinesPerAxis; ++i) {
       if (axes[a].lines.in[i]) wired |= static_cast<std::uint16_t>(1u << i);
     }
-    machines_.push_back(std::make_unique<SimMachine>(static_cast<std::uint8_t>(a), axes[a].sim,
-                                                     wired, event_capacity));
+    const std::size_t ring = axes[a].sim.event_ring != 0 ? axes[a].sim.event_ring : event_capacity;
+    machines_.push_back(
+        std::make_unique<SimMachine>(static_cast<std::uint8_t>(a), axes[a].sim, wired, ring));
     lines_.push_back(axes[a].lines);
   }
 }

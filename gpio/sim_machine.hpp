@@ -36,8 +36,12 @@ struct SimAxisParams {
   std::optional<std::int64_t> ccw_limit_at;
   std::optional<std::int64_t> home_from;  // home actuated in [home_from, home_to]; both needed
   std::optional<std::int64_t> home_to;
-  bool contacts_nc = false;                  // "NO" (false): actuated = high; "NC": actuated = low
-  double encoder_ratio = 1.0;                // X4 counts per step; sign = direction; 0 = none
+  bool contacts_nc = false;    // "NO" (false): actuated = high; "NC": actuated = low
+  double encoder_ratio = 1.0;  // X4 counts per step; sign = direction; 0 = none
+  // Input event FIFO of this axis' simulated lines (power of two; 0: the backend's default).
+  // Like a GPIO line's kernel FIFO (16 events): when it overflows, events are lost, which the
+  // daemon treats as a lost-input fault. A small one lets a test provoke that.
+  std::size_t event_ring = 0;
   std::optional<std::int64_t> marker_every;  // Z period in encoder counts; absent/<=0 = no Z
 };
 

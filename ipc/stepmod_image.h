@@ -77,6 +77,7 @@ enum stepmod_image_offset {
 #define STEPMOD_HEALTH_SEQ_STUCK (1u << 2)  /* output sequence left odd (PLC died mid-write) */
 #define STEPMOD_HEALTH_SEQ_BYPASS (1u << 3) /* output words changed, sequence did not */
 #define STEPMOD_HEALTH_TRACE_LOST (1u << 4) /* trace records lost (the VCD says so too) */
+#define STEPMOD_HEALTH_INPUT_LOST (1u << 5) /* input events lost: the moving axes were stopped */
 
 /* 64 bytes of backplane words: 16-bit words (3601/3602) sit at 2*i, 32-bit words (3202) at 4*i. */
 typedef union stepmod_words {

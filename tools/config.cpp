@@ -347,7 +347,7 @@ class Parser {
     if (s == nullptr) return c;
     check_keys(*s, p,
                {"start_position", "cw_limit_at", "ccw_limit_at", "home_from", "home_to", "contacts",
-                "encoder_ratio", "marker_every"});
+                "encoder_ratio", "marker_every", "event_ring"});
     constexpr int64_t lo = -kMaxSimPosition;
     constexpr int64_t hi = kMaxSimPosition;
     c.start_position = get_int(s, p, "start_position", 0, lo, hi);
@@ -379,7 +379,18 @@ class Parser {
       c.encoder_ratio = *v;
     }
     c.marker_every = opt_int(s, p, "marker_every", 1);
+    c.event_ring = sim_event_ring(s, p);
     return c;
+  }
+
+  // [axis.sim] event_ring: the simulated input event FIFO, a power of two (SpscRing).
+  std::size_t sim_event_ring(const toml::table* s, const std::string& p) const {
+    const int64_t v = get_int(s, p, "event_ring", 4096, 2, 1 << 20);
+    if ((v & (v - 1)) != 0) {
+      fail(s->get("event_ring")->source(), join(p, "event_ring"),
+           "must be a power of two, 2 .. 1048576 (default 4096)");
+    }
+    return static_cast<std::size_t>(v);
   }
 
   std::string file_;

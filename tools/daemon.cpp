@@ -65,6 +65,10 @@ struct Daemon::Impl {
   std::vector<std::uint32_t> cpu_notice_epoch;
   Nanos last_scan = 0;
   bool trace_loss_logged = false;
+  // Input events lost (gpio::Backend::lost_events): the count already acted on, and each axis'
+  // motion epoch at the last loss (health bit 5 lasts until one of them has a new motion).
+  std::uint64_t lost_inputs_seen = 0;
+  std::vector<std::uint32_t> input_loss_epochs;
 
   // After the control thread may have submitted commands (or set an immediate stop, which is
   // also submitted): ring the pulse thread's doorbell so that it polls for the new edges. It
@@ -80,6 +84,8 @@ struct Daemon::Impl {
   // The daemon health words (INTERFACE.md 3.3) for this scan, logging new late-edge faults.
   ipc::Health health(std::uint32_t supervisor_flags);
   void log_supervision(const ipc::PlcSupervisor& sup, Nanos now);
+  void check_lost_inputs(Nanos now);
+  bool input_loss_lasts() const noexcept;
   void notice_cpu_need(Nanos now);
   std::uint64_t trace_dropped() const noexcept {
     return stack->engine().trace_dropped() + input_trace_dropped.load(std::memory_order_relaxed);
@@ -235,7 +241,7 @@ bool Daemon::run(const std::atomic<bool>& stop) {
     }
   }
   if (d.backend->lost_events() > 0) {
-    spdlog::warn("{} input events were lost", d.backend->lost_events());
+    spdlog::warn("{} input events were lost in all", d.backend->lost_events());
   }
   return !d.trace || d.trace_dropped() == 0;
 }
@@ -264,9 +270,10 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
       }
       personality.on_input(e);
     }
+    const Nanos now = monotonic_now();
+    check_lost_inputs(now);
     kick();
     if (panel) sync_panel();
-    const Nanos now = monotonic_now();
     if (now < next_scan) continue;
 
     // One consistent snapshot per scan; a PLC caught mid-write keeps the previous snapshot.
@@ -327,6 +334,7 @@ ipc::Health Daemon::Impl::health(std::uint32_t supervisor_flags) {
   }
   h.worst_late_us = static_cast<std::uint32_t>(
       std::min<Nanos>(worst / kNsPerUs, std::numeric_limits<std::uint32_t>::max()));
+  if (input_loss_lasts()) h.flags |= STEPMOD_HEALTH_INPUT_LOST;
   // Bit 4 from the first lost record on: the trace stays incomplete (the VCD says so too).
   if (output_trace && trace_dropped() > 0) {
     h.flags |= STEPMOD_HEALTH_TRACE_LOST;
@@ -372,6 +380,38 @@ void Daemon::Impl::notice_cpu_need(Nanos now) {
                           "or a cpuset)"),
         config.late_limit_ns / kNsPerUs);
   }
+}
+
+// Issue 18 item 5 / issue 19: an input edge the module never saw (a home, limit or capture edge,
+// an encoder count) leaves a homing, a registration or a position that cannot be trusted, so a
+// loss stops every moving axis as a PLC leaving Run mode does (immediate stop, position
+// invalid), sets health bit 5 and is logged. Losses: the kernel's per-line event FIFO (seen by
+// sequence-number gaps with libgpiod 2, by repeated edge directions with 1.6) or the simulated
+// machine's event ring.
+void Daemon::Impl::check_lost_inputs(Nanos now) {
+  const std::uint64_t lost = backend->lost_events();
+  if (lost == lost_inputs_seen) return;
+  const std::uint64_t fresh = lost - lost_inputs_seen;
+  lost_inputs_seen = lost;
+  unsigned moving = 0;
+  for (unsigned a = 0; a < stack->shape().axes; ++a) moving += stack->motion(a).busy() ? 1u : 0u;
+  stack->personality().plc_stopped(now);
+  input_loss_epochs.assign(stack->shape().axes, 0);
+  for (unsigned a = 0; a < stack->shape().axes; ++a)
+    input_loss_epochs[a] = stack->motion(a).epoch();
+  spdlog::error(
+      "{} input event(s) lost ({} in all): {} moving axis/axes stopped, position invalid "
+      "(re-home); a homing or registration may have missed its edge",
+      fresh, lost, moving);
+}
+
+// Bit 5 from the loss until the PLC's next accepted motion on any axis.
+bool Daemon::Impl::input_loss_lasts() const noexcept {
+  if (input_loss_epochs.empty()) return false;
+  for (unsigned a = 0; a < input_loss_epochs.size(); ++a) {
+    if (stack->motion(a).epoch() != input_loss_epochs[a]) return false;
+  }
+  return true;
 }
 
 void Daemon::Impl::log_supervision(const ipc::PlcSupervisor& sup, Nanos now) {
