@@ -283,11 +283,12 @@ class Parser {
     // Line offset -> key that uses it, for the uniqueness check across the whole file.
     std::map<int64_t, std::string> used;
     for (std::size_t i = 0; i < count; ++i) {
-      c.axes.push_back(parse_axis(*(*arr)[i].as_table(), i, c.type, used));
+      c.axes.push_back(
+          parse_axis(*(*arr)[i].as_table(), i, c.type, c.backend == Config::Backend::kGpiod, used));
     }
   }
 
-  AxisConfig parse_axis(const toml::table& t, std::size_t index, ModuleType type,
+  AxisConfig parse_axis(const toml::table& t, std::size_t index, ModuleType type, bool gpiod,
                         std::map<int64_t, std::string>& used) const {
     // 1-based like the contract's "axis 1, then axis 2" and the VCD names axis1.step.
     const std::string p = "axis[" + std::to_string(index + 1) + "]";
@@ -295,8 +296,9 @@ class Parser {
                {"step", "dir", "gpo", "capture", "external", "home", "estop", "cw_limit",
                 "ccw_limit", "enc_a", "enc_b", "enc_z", "step_pulse_ns", "dir_setup_ns", "sim"});
     AxisConfig a;
-    auto line = [&](std::string_view key) -> std::optional<unsigned> {
-      const auto v = opt_int(&t, p, key, 0, kMaxLineOffset);
+    auto line = [&](std::string_view key, bool input,
+                    gpio::LineOptions& opt) -> std::optional<unsigned> {
+      const auto v = line_entry(t, p, key, input, gpiod, opt);
       if (!v) return std::nullopt;
       const auto [it, fresh] = used.emplace(*v, join(p, key));
       if (!fresh) {
@@ -305,8 +307,12 @@ class Parser {
       }
       return static_cast<unsigned>(*v);
     };
-    for (unsigned o = 0; o < kOutputLinesPerAxis; ++o) a.out[o] = line(kOutputKeys[o]);
-    for (unsigned i = 0; i < kInputLinesPerAxis; ++i) a.in[i] = line(kInputKeys[i]);
+    for (unsigned o = 0; o < kOutputLinesPerAxis; ++o) {
+      a.out[o] = line(kOutputKeys[o], false, a.out_opt[o]);
+    }
+    for (unsigned i = 0; i < kInputLinesPerAxis; ++i) {
+      a.in[i] = line(kInputKeys[i], true, a.in_opt[i]);
+    }
 
     for (std::string_view req : {"step", "dir"}) {
       if (t.get(req) == nullptr) {
@@ -340,6 +346,50 @@ class Parser {
     a.dir_setup_ns = get_int(&t, p, "dir_setup_ns", 5'000, 1, 1'000'000);
     a.sim = parse_sim(sub_table(t, p, "sim"), p + ".sim");
     return a;
+  }
+
+  // A line key: its offset (`home = 5`), or the offset with electrical options
+  // (`home = { offset = 5, bias = "pull-up", active_low = true, debounce_us = 2000 }`).
+  std::optional<int64_t> line_entry(const toml::table& t, const std::string& p,
+                                    std::string_view key, bool input, bool gpiod,
+                                    gpio::LineOptions& opt) const {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return std::nullopt;
+    const toml::table* o = n->as_table();
+    if (o == nullptr) {
+      return opt_int(&t, p, key, 0, kMaxLineOffset);
+    }
+    const std::string q = join(p, key);
+    if (input) {
+      check_keys(*o, q, {"offset", "active_low", "bias", "debounce_us"});
+    } else {
+      check_keys(*o, q, {"offset", "active_low", "drive"});
+    }
+    const auto off = opt_int(o, q, "offset", 0, kMaxLineOffset);
+    if (!off) fail(o->source(), join(q, "offset"), "required: the line offset on the chip");
+    opt.active_low = get_bool(o, q, "active_low", false);
+    if (input) {
+      const std::string b =
+          get_choice(o, q, "bias", {"as-is", "pull-up", "pull-down", "disabled"}, "as-is");
+      opt.bias = b == "pull-up"     ? gpio::Bias::kPullUp
+                 : b == "pull-down" ? gpio::Bias::kPullDown
+                 : b == "disabled"  ? gpio::Bias::kDisabled
+                                    : gpio::Bias::kAsIs;
+      opt.debounce_us = static_cast<std::uint32_t>(get_int(o, q, "debounce_us", 0, 0, 1'000'000));
+      if (opt.debounce_us != 0 && gpiod && !gpio::gpiod_capabilities().debounce) {
+        fail(o->get("debounce_us")->source(), join(q, "debounce_us"),
+             "kernel debounce needs libgpiod 2; this stepmod is built with libgpiod " +
+                 std::to_string(gpio::gpiod_capabilities().libgpiod_major) +
+                 ".x (v1 uAPI, no debounce): debounce in hardware (RC filter) or remove the key");
+      }
+    } else {
+      const std::string d =
+          get_choice(o, q, "drive", {"push-pull", "open-drain", "open-source"}, "push-pull");
+      opt.drive = d == "open-drain"    ? gpio::Drive::kOpenDrain
+                  : d == "open-source" ? gpio::Drive::kOpenSource
+                                       : gpio::Drive::kPushPull;
+    }
+    return off;
   }
 
   SimAxisConfig parse_sim(const toml::table* s, const std::string& p) const {
