@@ -214,6 +214,13 @@ void GpiodBackend::write(unsigned axis, OutputLine line, bool level, Nanos /*t*/
   }
 }
 
+LineOptions GpiodBackend::line_options(unsigned axis, bool input, unsigned line) const noexcept {
+  if (axis >= d_->axes.size()) return {};
+  const AxisLines& a = d_->axes[axis];
+  if (input) return line < kInputLinesPerAxis ? a.in_opt[line] : LineOptions{};
+  return line < kOutputLinesPerAxis ? a.out_opt[line] : LineOptions{};
+}
+
 bool GpiodBackend::has_input(unsigned axis, InputLine line) const noexcept {
   return axis < d_->axes.size() && d_->axes[axis].has_input(line);
 }

@@ -50,12 +50,19 @@ inline constexpr std::uint16_t input_bit(InputLine l) noexcept {
 }
 inline constexpr std::uint16_t kPanelMask = (1u << kPanelInputs) - 1;
 
+// Inputs held by a pull resistor because nothing simulated drives them: their (logical) levels.
+struct SimPulls {
+  std::uint16_t mask = 0;
+  std::uint16_t levels = 0;
+};
+
 class SimMachine {
  public:
   // `wired_inputs`: bit per InputLine; an unwired input stays low and never produces events.
   // `event_capacity`: size of the event ring (power of two).
+  // `pulls`: inputs that rest at their pull resistor's level (and stay there).
   SimMachine(std::uint8_t axis, const SimAxisParams& params, std::uint16_t wired_inputs,
-             std::size_t event_capacity = 4096);
+             std::size_t event_capacity = 4096, SimPulls pulls = {});
   SimMachine(const SimMachine&) = delete;
   SimMachine& operator=(const SimMachine&) = delete;
 
@@ -111,6 +118,7 @@ class SimMachine {
   const SimAxisParams p_;
   const std::uint16_t wired_;
   const bool nc_;
+  const SimPulls pulls_;
 
   // producer-owned
   std::uint8_t out_ = 0;      // output levels
