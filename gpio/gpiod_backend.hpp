@@ -37,6 +37,7 @@ class GpiodBackend final : public Backend {
   // an even number of lost edges is not seen. Nothing is dropped after the kernel.
   std::uint64_t lost_events() const noexcept override;
   void idle_outputs() noexcept override;
+  void set_enable(unsigned axis, bool asserted) noexcept override;
   LineOptions line_options(unsigned axis, bool input, unsigned line) const noexcept override;
 
   // Write errors seen by the pulse thread (it cannot report them itself).

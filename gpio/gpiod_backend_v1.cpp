@@ -15,6 +15,7 @@ namespace stepmod::gpio {
 
 namespace {
 constexpr const char* kConsumer = "stepmod";
+constexpr unsigned kEnableKeyIndex = kOutputLinesPerAxis;  // where(): the enable line
 
 // libgpiod 1.6 request flags of a line's options (bias flags: since libgpiod 1.5 / Linux 5.5).
 int request_flags(const LineOptions& o) {
@@ -49,6 +50,7 @@ struct GpiodBackend::Impl {
   // one ioctl (GPIOHANDLE_SET_LINE_VALUES_IOCTL) on that line's handle.
   std::vector<std::array<gpiod_line*, kOutputLinesPerAxis>> out_lines;  // null: unwired
   std::vector<gpiod_line*> outputs_requested;
+  std::vector<gpiod_line*> enable_lines;  // per axis, null: none
   std::atomic<std::uint64_t> write_errors{0};
 
   // Inputs: one event request per line; their fds are read by `events`.
@@ -56,11 +58,18 @@ struct GpiodBackend::Impl {
   std::vector<Input> inputs;
   std::unique_ptr<LineEventReader> events;
 
+  // "axis1.step", "axis1.enable": the config key of a line.
+  static std::string key(unsigned axis, bool input, unsigned line) {
+    const std::string_view k = input ? input_key(static_cast<InputLine>(line))
+                               : line == kEnableKeyIndex
+                                   ? std::string_view("enable")
+                                   : output_key(static_cast<OutputLine>(line));
+    return "axis" + std::to_string(axis + 1) + "." + std::string(k);
+  }
+
   std::string where(unsigned axis, bool input, unsigned line, unsigned offset) const {
-    const std::string_view key =
-        input ? input_key(static_cast<InputLine>(line)) : output_key(static_cast<OutputLine>(line));
-    return "GPIO chip '" + chip_name + "', line " + std::to_string(offset) + " (axis" +
-           std::to_string(axis + 1) + "." + std::string(key) + ")";
+    return "GPIO chip '" + chip_name + "', line " + std::to_string(offset) + " (" +
+           key(axis, input, line) + ")";
   }
 
   gpiod_line* get_line(unsigned axis, bool input, unsigned line, unsigned offset) {
@@ -122,14 +131,11 @@ GpiodBackend::GpiodBackend(const std::string& chip, std::span<const AxisLines> a
     std::vector<std::string> used(gpiod_chip_num_lines(d.chip));  // offset -> "axis1.step"
     const auto claim = [&](unsigned a, bool input, unsigned line, unsigned offset) {
       gpiod_line* l = d.get_line(a, input, line, offset);
-      const std::string key = "axis" + std::to_string(a + 1) + "." +
-                              std::string(input ? input_key(static_cast<InputLine>(line))
-                                                : output_key(static_cast<OutputLine>(line)));
       if (!used[offset].empty()) {
         throw std::runtime_error(d.where(a, input, line, offset) + ": offset already used by " +
                                  used[offset]);
       }
-      used[offset] = key;
+      used[offset] = Impl::key(a, input, line);
       return l;
     };
 
@@ -148,6 +154,18 @@ GpiodBackend::GpiodBackend(const std::string& chip, std::span<const AxisLines> a
         }
         d.outputs_requested.push_back(line);
         d.out_lines[a][l] = line;
+      }
+      d.enable_lines.push_back(nullptr);
+      if (axes[a].enable) {
+        gpiod_line* line = claim(a, false, kEnableKeyIndex, *axes[a].enable);
+        const gpiod_line_request_config rc{kConsumer, GPIOD_LINE_REQUEST_DIRECTION_OUTPUT,
+                                           request_flags(axes[a].enable_opt)};
+        if (gpiod_line_request(line, &rc, 0) != 0) {
+          throw std::runtime_error(d.request_error(
+              d.where(a, false, kEnableKeyIndex, *axes[a].enable) + ": requesting the output"));
+        }
+        d.outputs_requested.push_back(line);
+        d.enable_lines.back() = line;
       }
       for (unsigned l = 0; l < kInputLinesPerAxis; ++l) {
         if (!axes[a].in[l]) continue;
@@ -258,6 +276,13 @@ std::uint64_t GpiodBackend::lost_events() const noexcept {
 
 std::uint64_t GpiodBackend::write_errors() const noexcept {
   return d_->write_errors.load(std::memory_order_relaxed);
+}
+
+void GpiodBackend::set_enable(unsigned axis, bool asserted) noexcept {
+  if (axis >= d_->enable_lines.size() || d_->enable_lines[axis] == nullptr) return;
+  if (gpiod_line_set_value(d_->enable_lines[axis], asserted ? 1 : 0) != 0) {
+    d_->write_errors.fetch_add(1, std::memory_order_relaxed);
+  }
 }
 
 void GpiodBackend::idle_outputs() noexcept {

@@ -27,6 +27,7 @@ namespace stepmod::gpio {
 
 namespace {
 constexpr const char* kConsumer = "stepmod";
+constexpr unsigned kEnableKeyIndex = kOutputLinesPerAxis;  // where(): the enable line
 
 gpiod_line_bias to_gpiod(Bias b) {
   switch (b) {
@@ -122,17 +123,25 @@ struct GpiodBackend::Impl {
   gpiod_line_request* out_req = nullptr;                         // all output lines
   std::vector<std::array<int, kOutputLinesPerAxis>> out_offset;  // -1: unwired
   std::vector<unsigned> out_offsets;                             // as requested
+  std::vector<int> enable_offset;                                // per axis, -1: none
   std::atomic<std::uint64_t> write_errors{0};
 
   std::vector<std::array<int, kInputLinesPerAxis>> in_index;  // into `inputs`, -1 unwired
   std::vector<Input> inputs;
   std::unique_ptr<LineEventReader> events;
 
+  // "axis1.step", "axis1.enable": the config key of a line.
+  static std::string key(unsigned axis, bool input, unsigned line) {
+    const std::string_view k = input ? input_key(static_cast<InputLine>(line))
+                               : line == kEnableKeyIndex
+                                   ? std::string_view("enable")
+                                   : output_key(static_cast<OutputLine>(line));
+    return "axis" + std::to_string(axis + 1) + "." + std::string(k);
+  }
+
   std::string where(unsigned axis, bool input, unsigned line, unsigned offset) const {
-    const std::string_view key =
-        input ? input_key(static_cast<InputLine>(line)) : output_key(static_cast<OutputLine>(line));
-    return "GPIO chip '" + chip_name + "', line " + std::to_string(offset) + " (axis" +
-           std::to_string(axis + 1) + "." + std::string(key) + ")";
+    return "GPIO chip '" + chip_name + "', line " + std::to_string(offset) + " (" +
+           key(axis, input, line) + ")";
   }
 
   std::string request_error(const std::string& what) const {
@@ -167,6 +176,18 @@ struct GpiodBackend::Impl {
     return r;
   }
 
+  void add_output(gpiod_line_config* lc, unsigned a, unsigned l, unsigned off,
+                  const LineOptions& o) {
+    Settings s;
+    gpiod_line_settings_set_direction(s.p, GPIOD_LINE_DIRECTION_OUTPUT);
+    gpiod_line_settings_set_output_value(s.p, GPIOD_LINE_VALUE_INACTIVE);
+    gpiod_line_settings_set_active_low(s.p, o.active_low);
+    gpiod_line_settings_set_drive(s.p, to_gpiod(o.drive));
+    if (gpiod_line_config_add_line_settings(lc, &off, 1, s.p) != 0) {
+      throw std::runtime_error(where(a, false, l, off) +
+                               ": line settings: " + std::strerror(errno));
+    }
+  }
   void request_outputs();
   void request_input(Input& in);
 
@@ -192,19 +213,13 @@ void GpiodBackend::Impl::request_outputs() {
   if (out_offsets.empty()) return;
   LineConfig lc;
   for (unsigned a = 0; a < axes.size(); ++a) {
+    if (enable_offset[a] >= 0) {
+      add_output(lc.p, a, kEnableKeyIndex, static_cast<unsigned>(enable_offset[a]),
+                 axes[a].enable_opt);
+    }
     for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
       if (out_offset[a][l] < 0) continue;
-      const LineOptions& o = axes[a].out_opt[l];
-      Settings s;
-      gpiod_line_settings_set_direction(s.p, GPIOD_LINE_DIRECTION_OUTPUT);
-      gpiod_line_settings_set_output_value(s.p, GPIOD_LINE_VALUE_INACTIVE);
-      gpiod_line_settings_set_active_low(s.p, o.active_low);
-      gpiod_line_settings_set_drive(s.p, to_gpiod(o.drive));
-      const unsigned off = static_cast<unsigned>(out_offset[a][l]);
-      if (gpiod_line_config_add_line_settings(lc.p, &off, 1, s.p) != 0) {
-        throw std::runtime_error(where(a, false, l, off) +
-                                 ": line settings: " + std::strerror(errno));
-      }
+      add_output(lc.p, a, l, static_cast<unsigned>(out_offset[a][l]), axes[a].out_opt[l]);
     }
   }
   out_req = request(lc.p, "GPIO chip '" + chip_name + "': requesting the " +
@@ -250,11 +265,10 @@ GpiodBackend::GpiodBackend(const std::string& chip, std::span<const AxisLines> a
         throw std::runtime_error(d.where(a, input, line, offset) + ": offset already used by " +
                                  used[offset]);
       }
-      used[offset] = "axis" + std::to_string(a + 1) + "." +
-                     std::string(input ? input_key(static_cast<InputLine>(line))
-                                       : output_key(static_cast<OutputLine>(line)));
+      used[offset] = Impl::key(a, input, line);
     };
     d.out_offset.assign(axes.size(), {-1, -1, -1});
+    d.enable_offset.assign(axes.size(), -1);
     d.in_index.resize(axes.size());
     for (unsigned a = 0; a < axes.size(); ++a) {
       d.in_index[a].fill(-1);
@@ -263,6 +277,11 @@ GpiodBackend::GpiodBackend(const std::string& chip, std::span<const AxisLines> a
         claim(a, false, l, *axes[a].out[l]);
         d.out_offset[a][l] = static_cast<int>(*axes[a].out[l]);
         d.out_offsets.push_back(*axes[a].out[l]);
+      }
+      if (axes[a].enable) {
+        claim(a, false, kEnableKeyIndex, *axes[a].enable);
+        d.enable_offset[a] = static_cast<int>(*axes[a].enable);
+        d.out_offsets.push_back(*axes[a].enable);
       }
       for (unsigned l = 0; l < kInputLinesPerAxis; ++l) {
         if (!axes[a].in[l]) continue;
@@ -356,6 +375,16 @@ std::uint64_t GpiodBackend::lost_events() const noexcept {
 
 std::uint64_t GpiodBackend::write_errors() const noexcept {
   return d_->write_errors.load(std::memory_order_relaxed);
+}
+
+void GpiodBackend::set_enable(unsigned axis, bool asserted) noexcept {
+  Impl& d = *d_;
+  if (axis >= d.enable_offset.size() || d.enable_offset[axis] < 0) return;
+  if (gpiod_line_request_set_value(
+          d.out_req, static_cast<unsigned>(d.enable_offset[axis]),
+          asserted ? GPIOD_LINE_VALUE_ACTIVE : GPIOD_LINE_VALUE_INACTIVE) != 0) {
+    d.write_errors.fetch_add(1, std::memory_order_relaxed);
+  }
 }
 
 void GpiodBackend::idle_outputs() noexcept {

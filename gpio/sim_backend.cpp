@@ -25,7 +25,8 @@ std::uint16_t undriven_inputs(const SimAxisParams& p) {
 }
 }  // namespace
 
-SimBackend::SimBackend(std::span<const SimAxisSetup> axes, std::size_t event_capacity) {
+SimBackend::SimBackend(std::span<const SimAxisSetup> axes, std::size_t event_capacity)
+    : enable_wire_(std::make_unique<std::atomic<std::uint32_t>[]>(axes.size())) {
   machines_.reserve(axes.size());
   for (std::size_t a = 0; a < axes.size(); ++a) {
     std::uint16_t wired = 0;
@@ -52,6 +53,7 @@ SimBackend::SimBackend(std::span<const SimAxisSetup> axes, std::size_t event_cap
                                                      wired, ring, pulls));
     lines_.push_back(axes[a].lines);
   }
+  for (unsigned a = 0; a < lines_.size(); ++a) set_enable(a, false);  // released at start
 }
 
 void SimBackend::write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept {
@@ -136,6 +138,7 @@ void SimBackend::idle_outputs() noexcept {
     for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
       write(a, static_cast<OutputLine>(l), false, now);
     }
+    set_enable(a, false);
   }
 }
 
@@ -153,6 +156,12 @@ LineOptions SimBackend::line_options(unsigned axis, bool input, unsigned line) c
   const AxisLines& a = lines_[axis];
   if (input) return line < kInputLinesPerAxis ? a.in_opt[line] : LineOptions{};
   return line < kOutputLinesPerAxis ? a.out_opt[line] : LineOptions{};
+}
+
+void SimBackend::set_enable(unsigned axis, bool asserted) noexcept {
+  if (axis >= lines_.size() || !lines_[axis].enable) return;
+  const bool wire = asserted != lines_[axis].enable_opt.active_low;
+  enable_wire_[axis].store(wire ? kEnableLevelBit : 0u, std::memory_order_relaxed);
 }
 
 }  // namespace stepmod::gpio

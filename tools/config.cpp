@@ -294,7 +294,8 @@ class Parser {
     const std::string p = "axis[" + std::to_string(index + 1) + "]";
     check_keys(t, p,
                {"step", "dir", "gpo", "capture", "external", "home", "estop", "cw_limit",
-                "ccw_limit", "enc_a", "enc_b", "enc_z", "step_pulse_ns", "dir_setup_ns", "sim"});
+                "ccw_limit", "enc_a", "enc_b", "enc_z", "step_pulse_ns", "dir_setup_ns", "sim",
+                "enable", "enable_delay_us", "enable_release_on"});
     AxisConfig a;
     auto line = [&](std::string_view key, bool input,
                     gpio::LineOptions& opt) -> std::optional<unsigned> {
@@ -313,6 +314,8 @@ class Parser {
     for (unsigned i = 0; i < kInputLinesPerAxis; ++i) {
       a.in[i] = line(kInputKeys[i], true, a.in_opt[i]);
     }
+    a.enable = line("enable", false, a.enable_opt);
+    parse_enable(t, p, a);
 
     for (std::string_view req : {"step", "dir"}) {
       if (t.get(req) == nullptr) {
@@ -390,6 +393,36 @@ class Parser {
                                        : gpio::Drive::kPushPull;
     }
     return off;
+  }
+
+  // The drive-enable output's keys (an extension: off unless `enable` names a line).
+  void parse_enable(const toml::table& t, const std::string& p, AxisConfig& a) const {
+    if (!a.enable) {
+      for (std::string_view k : {"enable_delay_us", "enable_release_on"}) {
+        if (const toml::node* n = t.get(k)) {
+          fail(n->source(), join(p, k), "needs an enable line (key 'enable')");
+        }
+      }
+      return;
+    }
+    a.enable_delay_ns = get_int(&t, p, "enable_delay_us", 10'000, 0, 10'000'000) * kNsPerUs;
+    const toml::node* n = t.get("enable_release_on");
+    if (n == nullptr) return;
+    const toml::array* arr = n->as_array();
+    const std::string what =
+        "must be a list of \"estop\", \"fault\", \"plc_loss\", \"config_mode\" (default [])";
+    if (arr == nullptr) fail(n->source(), join(p, "enable_release_on"), what);
+    for (const toml::node& e : *arr) {
+      const auto* s = e.as_string();
+      const std::string v = s != nullptr ? s->get() : "";
+      const std::uint8_t bit = v == "estop"         ? kReleaseOnEStop
+                               : v == "fault"       ? kReleaseOnFault
+                               : v == "plc_loss"    ? kReleaseOnPlcLoss
+                               : v == "config_mode" ? kReleaseOnConfigMode
+                                                    : 0;
+      if (bit == 0) fail(e.source(), join(p, "enable_release_on"), what);
+      a.enable_release |= bit;
+    }
   }
 
   SimAxisConfig parse_sim(const toml::table* s, const std::string& p) const {

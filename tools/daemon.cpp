@@ -25,6 +25,7 @@
 #include "systemd/notify.hpp"
 #include "systemd/watchdog.hpp"
 #include "tools/backend_factory.hpp"
+#include "tools/drive_enable.hpp"
 #include "tools/stack.hpp"
 
 namespace stepmod::tools {
@@ -49,6 +50,7 @@ struct Daemon::Impl {
   std::unique_ptr<SpscRing<TraceRecord>> input_trace;
   std::unique_ptr<gpio::TraceWriter> trace;
   std::unique_ptr<Stack> stack;
+  std::unique_ptr<DriveEnable> drive_enable;  // the axes' enable outputs (extension)
   std::unique_ptr<ipc::ShmImage> image;
   std::unique_ptr<ipc::SimPanelServer> panel;
 #ifdef STEPMOD_HAVE_MODBUS
@@ -85,6 +87,7 @@ struct Daemon::Impl {
   ipc::Health health(std::uint32_t supervisor_flags);
   void log_supervision(const ipc::PlcSupervisor& sup, Nanos now);
   void check_lost_inputs(Nanos now);
+  void update_drive_enable(const ipc::PlcSupervisor& sup, Nanos now);
   bool input_loss_lasts() const noexcept;
   void notice_cpu_need(Nanos now);
   std::uint64_t trace_dropped() const noexcept {
@@ -123,6 +126,11 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
   if (const std::string old = d.image->replaced_description(); !old.empty()) {
     spdlog::warn("replaced {}", old);
   }
+  std::vector<DriveEnable::AxisSetup> enables;
+  for (const AxisConfig& a : config.axes) {
+    enables.push_back({a.enable.has_value(), a.enable_delay_ns, a.enable_release});
+  }
+  d.drive_enable = std::make_unique<DriveEnable>(*d.backend, std::move(enables));
   d.late_faults_seen.assign(d.stack->shape().axes, 0);
   d.steps_at_scan.assign(d.stack->shape().axes, 0);
   d.cpu_notice_epoch.assign(d.stack->shape().axes, 0);
@@ -251,6 +259,7 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
   module::Personality& personality = stack->personality();
   std::array<gpio::InputEvent, 64> events{};
   ImageWords in{};
+  ImageWords given{};  // the output words the module last scanned (held while a drive gets ready)
   Nanos next_scan = monotonic_now();
   ipc::PlcSupervisor supervisor(config.plc_timeout_ns);
 
@@ -284,7 +293,10 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     sample.heartbeat = image->heartbeat();
     sample.seq = image->output_seq();
     sample.snapshot_ok = image->read_outputs(sample.words, sample.snapshot_seq);
-    const ImageWords& out = supervisor.scan(sample);
+    // While a drive enabled a moment ago is not ready, the module keeps scanning the words it
+    // had: a command issued meanwhile is a new edge once the drive is ready.
+    const ImageWords& live = supervisor.scan(sample);
+    const ImageWords& out = drive_enable->holding(now) ? given : live;
     log_supervision(supervisor, now);
     // As a PLC leaving Run mode (INTERFACE 3.2): every move stops, position invalid. Once per
     // loss; the frozen words keep anything new from starting until the PLC is back.
@@ -298,6 +310,8 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
       if (message) message_result = personality.on_message(message->data, now);
     }
     personality.scan(out, in, now);
+    if (&out != &given) given = out;
+    update_drive_enable(supervisor, now);
     kick();
     notice_cpu_need(now);
     image->publish_inputs(in, health(supervisor.flags()));
@@ -403,6 +417,23 @@ void Daemon::Impl::check_lost_inputs(Nanos now) {
       "{} input event(s) lost ({} in all): {} moving axis/axes stopped, position invalid "
       "(re-home); a homing or registration may have missed its edge",
       fresh, lost, moving);
+}
+
+void Daemon::Impl::update_drive_enable(const ipc::PlcSupervisor& sup, Nanos now) {
+  if (!drive_enable->any_wired()) return;
+  const bool input_loss = input_loss_lasts();
+  for (unsigned a = 0; a < stack->shape().axes; ++a) {
+    const module::Personality::DriveState s = stack->personality().drive_state(a);
+    const planner::MotionPort& m = stack->motion(a);
+    const planner::MotionPort::LateFault f = m.late_fault();
+    DriveEnable::Conditions c;
+    c.configured = s.configured;
+    c.configuration_mode = s.configuration_mode;
+    c.estop = s.estop;
+    c.fault = input_loss || (f.count != 0 && f.epoch == m.epoch());
+    c.plc_lost = sup.plc_lost();
+    drive_enable->update(a, c, now);
+  }
 }
 
 // Bit 5 from the loss until the PLC's next accepted motion on any axis.

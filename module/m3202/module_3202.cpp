@@ -80,4 +80,11 @@ void Module3202::shutdown() {
   for (Channel& c : channels_) c.axis.plc_stopped();  // immediate stop of motions under way
 }
 
+Personality::DriveState Module3202::drive_state(unsigned axis) const noexcept {
+  if (axis >= channels_.size()) return {};
+  const Channel& c = channels_[axis];
+  const auto d = c.axis.drive_state();
+  return {d.configured && !c.disabled, d.configuration_mode, d.estop};
+}
+
 }  // namespace stepmod::module::m3202

@@ -52,4 +52,10 @@ void Module3601::shutdown() {
   axis_.plc_stopped();  // immediate stop of a motion under way
 }
 
+Personality::DriveState Module3601::drive_state(unsigned axis) const noexcept {
+  (void)axis;  // one axis
+  const auto d = axis_.drive_state();
+  return {d.configured, d.configuration_mode, d.estop};
+}
+
 }  // namespace stepmod::module::m3601

@@ -19,6 +19,7 @@ class Module3601 final : public Personality {
   void scan(const ImageWords& out, ImageWords& in, Nanos now) override;
   void plc_stopped(Nanos now) override;
   void shutdown() override;
+  DriveState drive_state(unsigned axis) const noexcept override;
 
  private:
   axis::Axis axis_;

@@ -106,4 +106,11 @@ void Module3602::shutdown() {
   }
 }
 
+Personality::DriveState Module3602::drive_state(unsigned axis) const noexcept {
+  if (axis >= axes_.size()) return {};
+  const Channel& c = axes_[axis];
+  const auto d = c.axis.drive_state();
+  return {d.configured && !c.disabled, d.configuration_mode, d.estop};
+}
+
 }  // namespace stepmod::module::m3602

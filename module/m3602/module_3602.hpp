@@ -24,6 +24,7 @@ class Module3602 final : public Personality {
   void scan(const ImageWords& out, ImageWords& in, Nanos now) override;
   void plc_stopped(Nanos now) override;
   void shutdown() override;
+  DriveState drive_state(unsigned axis) const noexcept override;
 
  private:
   struct Channel {

@@ -105,5 +105,34 @@ TEST(ConfigLines, DebounceFollowsTheLibgpiodOfTheBuild) {
       "(accepted)");
 }
 
+TEST(ConfigLines, EnableLineAndItsKeys) {
+  const Config c = parse_config(
+      axis_file("sim",
+                "step = 1\ndir = 2\nenable = { offset = 9, active_low = true }\n"
+                "enable_delay_us = 250000\nenable_release_on = [\"estop\", \"plc_loss\"]\n"),
+      "t");
+  const auto& a = c.axes[0];
+  EXPECT_EQ(a.enable, 9u);
+  EXPECT_TRUE(a.enable_opt.active_low);
+  EXPECT_EQ(a.enable_delay_ns, 250 * kNsPerMs);
+  EXPECT_EQ(a.enable_release, kReleaseOnEStop | kReleaseOnPlcLoss);
+  const Config d = parse_config(axis_file("sim", "step = 1\ndir = 2\nenable = 9\n"), "t");
+  EXPECT_EQ(d.axes[0].enable_delay_ns, 10 * kNsPerMs);
+  EXPECT_EQ(d.axes[0].enable_release, 0);
+  EXPECT_FALSE(parse_config(axis_file("sim", "step = 1\ndir = 2\n"), "t").axes[0].enable);
+}
+
+TEST(ConfigLines, EnableKeysWithoutAnEnableLineOrWithBadValuesAreErrors) {
+  EXPECT_EQ(error_of(axis_file("sim", "step = 1\ndir = 2\nenable_delay_us = 5\n")),
+            "test.toml:8: key 'axis[1].enable_delay_us': needs an enable line (key 'enable')");
+  const std::string bad = error_of(
+      axis_file("sim", "step = 1\ndir = 2\nenable = 9\nenable_release_on = [\"estop\", \"x\"]\n"));
+  EXPECT_EQ(bad.rfind("test.toml:9: key 'axis[1].enable_release_on': must be a list of", 0), 0u)
+      << bad;
+  const std::string twice = error_of(axis_file("sim", "step = 1\ndir = 2\nenable = 2\n"));
+  EXPECT_NE(twice.find("line offset 2 is already used by 'axis[1].dir'"), std::string::npos)
+      << twice;
+}
+
 }  // namespace
 }  // namespace stepmod::tools
