@@ -5,7 +5,9 @@ registers and the exception codes, then starts a long move, keeps it alive with 
 PLC heartbeat) and goes silent: the module must stop the axis on its own (plc_timeout_ms).
 
 Run by tests/integration/daemon_modbus_test.cpp against a real stepmodd (loopback only). Exit
-status 0 when every check passed; each failure is printed. Every loop is bounded in time."""
+status 0 when every check passed; each failure is printed. Every loop is bounded in time.
+Register counts are passed as `count=`: pymodbus 3.0 (Debian 12) takes it either way, 3.8
+(Debian 13) only as a keyword."""
 import argparse
 import sys
 import time
@@ -50,7 +52,7 @@ class Plc:
         return ok
 
     def inputs(self):
-        r = self.c.read_input_registers(0, 8, slave=self.unit)
+        r = self.c.read_input_registers(0, count=8, slave=self.unit)
         if r.isError():
             raise RuntimeError("read input registers: %s" % r)
         return r.registers
@@ -97,20 +99,20 @@ def main():
     plc = Plc(a.port, a.unit)
 
     # Header registers: type, word size, word counts, a running scan counter.
-    h = plc.c.read_input_registers(1000, 16, slave=a.unit)
+    h = plc.c.read_input_registers(1000, count=16, slave=a.unit)
     plc.check(not h.isError() and h.registers[:4] == [3601, 2, 8, 8],
               "header registers 1000..1003 = 3601, 2, 8, 8: %s" % (h.registers[:4],))
     time.sleep(0.05)
-    h2 = plc.c.read_input_registers(1000, 16, slave=a.unit)
+    h2 = plc.c.read_input_registers(1000, count=16, slave=a.unit)
     scans = lambda r: r.registers[4] | (r.registers[5] << 16)
     plc.check(scans(h2) > scans(h), "scan counter advances: %d -> %d" % (scans(h), scans(h2)))
 
     # Exceptions.
-    r = plc.c.read_input_registers(8, 1, slave=a.unit)
+    r = plc.c.read_input_registers(8, count=1, slave=a.unit)
     plc.check(r.isError() and r.exception_code == 2, "input register 8: exception 02 (%s)" % r)
-    r = plc.c.read_coils(0, 1, slave=a.unit)
+    r = plc.c.read_coils(0, count=1, slave=a.unit)
     plc.check(r.isError() and r.exception_code == 1, "read coils: exception 01 (%s)" % r)
-    r = plc.c.read_input_registers(0, 1, slave=(a.unit + 1) % 256)
+    r = plc.c.read_input_registers(0, count=1, slave=(a.unit + 1) % 256)
     plc.check(r.isError() and r.exception_code == 0x0B, "another unit id: exception 0B (%s)" % r)
 
     # Configuration mode, then back to command mode.
