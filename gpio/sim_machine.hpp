@@ -38,11 +38,12 @@ struct SimAxisParams {
   std::optional<std::int64_t> home_to;
   bool contacts_nc = false;    // "NO" (false): actuated = high; "NC": actuated = low
   double encoder_ratio = 1.0;  // X4 counts per step; sign = direction; 0 = none
+  std::optional<std::int64_t> marker_every;  // Z period in encoder counts; absent/<=0 = no Z
+  // (Last, so that positional initializers of the fields above keep their meaning.)
   // Input event FIFO of this axis' simulated lines (power of two; 0: the backend's default).
   // Like a GPIO line's kernel FIFO (16 events): when it overflows, events are lost, which the
   // daemon treats as a lost-input fault. A small one lets a test provoke that.
   std::size_t event_ring = 0;
-  std::optional<std::int64_t> marker_every;  // Z period in encoder counts; absent/<=0 = no Z
 };
 
 inline constexpr std::uint16_t input_bit(InputLine l) noexcept {
