@@ -11,7 +11,10 @@ DEBIAN_FRONTEND=noninteractive apt-get install -y -q "$deb" >/tmp/install.log 2>
 dpkg-query -W -f='${Depends}\n' stepmod
 dpkg -l libgpiod3 | tail -1
 name=pkg13
-sed -e "s/^name = .*/name = \"$name\"/" /etc/stepmod/3601-sim.toml > /tmp/3601.toml
+# As tests/package/package_test.sh: the late-edge guard relaxed for a shared test machine (what is
+# under test is the package, not this machine's timer latency).
+sed -e "s/^name = .*/name = \"$name\"/" -e "s/^late_limit_us = .*/late_limit_us = 1000000/" \
+  /etc/stepmod/3601-sim.toml > /tmp/3601.toml
 stepmodd --config /tmp/3601.toml > /tmp/daemon.log 2>&1 &
 pid=$!
 for _ in $(seq 100); do [ -e /dev/shm/stepmod.$name ] && break; sleep 0.1; done
@@ -19,7 +22,7 @@ ctl="stepmodctl -n $name"
 $ctl configure --home --cw-limit --ccw-limit --estop >/dev/null
 $ctl move rel 1500 -s 2000 -a 10 -d 10 >/dev/null
 $ctl wait-idle --max 20 >/dev/null
-$ctl status | grep -E '^  position = ' 
+$ctl status | grep -Eq '^  position = 1500$' || { $ctl status; cat /tmp/daemon.log; exit 1; }
 kill -TERM $pid; wait $pid || { cat /tmp/daemon.log; exit 1; }
 DEBIAN_FRONTEND=noninteractive apt-get purge -y -q stepmod >/dev/null
 ! dpkg-query -W -f='${Status}' stepmod 2>/dev/null | grep -q installed
