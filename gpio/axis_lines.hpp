@@ -5,12 +5,19 @@
 #include <optional>
 
 #include "gpio/backend.hpp"
+#include "gpio/line_options.hpp"
 
 namespace stepmod::gpio {
 
 struct AxisLines {
   std::optional<unsigned> out[kOutputLinesPerAxis];  // indexed by OutputLine
   std::optional<unsigned> in[kInputLinesPerAxis];    // indexed by InputLine
+  LineOptions out_opt[kOutputLinesPerAxis];          // electrical options, by OutputLine
+  LineOptions in_opt[kInputLinesPerAxis];            // by InputLine
+  // Drive-enable output (an extension: the AMCI modules have none). Written by the control
+  // thread (Backend::set_enable), never by the pulse thread.
+  std::optional<unsigned> enable;
+  LineOptions enable_opt;
 
   bool has_output(OutputLine l) const noexcept { return out[static_cast<unsigned>(l)].has_value(); }
   bool has_input(InputLine l) const noexcept { return in[static_cast<unsigned>(l)].has_value(); }

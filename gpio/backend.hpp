@@ -10,6 +10,7 @@
 
 #include "core/clock.hpp"
 #include "core/lines.hpp"
+#include "gpio/line_options.hpp"
 
 namespace stepmod::gpio {
 
@@ -55,7 +56,20 @@ class Backend {
   virtual std::uint64_t lost_events() const noexcept = 0;
 
   // Any thread, while the pulse thread is stopped: drive every output to its idle level (low).
+  // The drive-enable outputs are released too.
   virtual void idle_outputs() noexcept = 0;
+
+  // Control thread: assert (true) or release the axis' drive-enable output, if it has one
+  // (AxisLines::enable; `active_low` gives its polarity). No-op without one.
+  virtual void set_enable(unsigned /*axis*/, bool /*asserted*/) noexcept {}
+
+  // Any thread: the electrical options of a configured line (`line`: an OutputLine or InputLine
+  // value as `input` says). Levels everywhere else are logical; the VCD shows the wire, which is
+  // inverted for an active-low line.
+  virtual LineOptions line_options(unsigned /*axis*/, bool /*input*/,
+                                   unsigned /*line*/) const noexcept {
+    return {};
+  }
 
   // Control thread: the module's configured pulse format (only the sim drive uses it).
   virtual void set_pulse_format(unsigned /*axis*/, PulseFormat /*format*/) noexcept {}

@@ -1,7 +1,10 @@
 #pragma once
-// Backend for `backend = "gpiod"`: a real GPIO chip through libgpiod 1.6 (the v1 character-device
-// uAPI). Outputs are one bulk request written with one ioctl; input edges are read through
-// io_uring (LineEventReader) with the kernel's timestamps.
+// Backend for `backend = "gpiod"`: a real GPIO chip through libgpiod. Two implementations of
+// this one class, chosen by CMake from the libgpiod version pkg-config finds:
+//   gpiod_backend_v1.cpp  libgpiod 1.6 (Debian 12), the v1 character-device uAPI
+//   gpiod_backend_v2.cpp  libgpiod >= 2 (Debian 13), the v2 uAPI
+// Every output write is one ioctl; input edges are read through io_uring (LineEventReader) with
+// the kernel's CLOCK_MONOTONIC timestamps, and lost edges are counted (edge_record.hpp).
 #include <memory>
 #include <span>
 #include <string>
@@ -13,10 +16,11 @@ namespace stepmod::gpio {
 
 class GpiodBackend final : public Backend {
  public:
-  // `chip`: name ("gpiochip0"), path ("/dev/gpiochip0"), label or number, as
-  // gpiod_chip_open_lookup accepts. Requests every configured line (consumer "stepmod"); outputs
-  // start low. Throws std::runtime_error naming the chip and the line (axis key and offset) when
-  // the chip is missing, an offset is out of range or used twice, or a line is busy.
+  // `chip`: name ("gpiochip0"), path ("/dev/gpiochip0"), label or number (libgpiod 1.6's
+  // gpiod_chip_open_lookup rules, on both versions). Requests every configured line (consumer
+  // "stepmod") with its LineOptions; outputs start inactive. Throws std::runtime_error naming the
+  // chip and the line (axis key and offset) when the chip is missing, an offset is out of range
+  // or used twice, a line is busy, or an option cannot be applied (debounce on libgpiod 1.6).
   GpiodBackend(const std::string& chip, std::span<const AxisLines> axes);
   ~GpiodBackend() override;
   GpiodBackend(const GpiodBackend&) = delete;
@@ -28,11 +32,13 @@ class GpiodBackend final : public Backend {
   bool has_output(unsigned axis, OutputLine line) const noexcept override;
   bool read(unsigned axis, InputLine line) override;
   std::size_t wait_events(std::span<InputEvent> out, Nanos deadline) override;
-  // Always 0: nothing is dropped between the kernel and the caller (see LineEventReader), and
-  // the v1 uAPI has no sequence numbers, so an overflow of the kernel's own per-line FIFO (16
-  // events) cannot be seen.
+  // Edges lost by the kernel (its per-line FIFO of 16 events overflowed): sequence-number gaps
+  // with libgpiod 2; with 1.6 (no sequence numbers) only two same-direction edges in a row, so
+  // an even number of lost edges is not seen. Nothing is dropped after the kernel.
   std::uint64_t lost_events() const noexcept override;
   void idle_outputs() noexcept override;
+  void set_enable(unsigned axis, bool asserted) noexcept override;
+  LineOptions line_options(unsigned axis, bool input, unsigned line) const noexcept override;
 
   // Write errors seen by the pulse thread (it cannot report them itself).
   std::uint64_t write_errors() const noexcept;

@@ -1,7 +1,6 @@
 #include "gpio/line_event_reader.hpp"
 
 #include <liburing.h>
-#include <linux/gpio.h>
 
 #include <array>
 #include <cerrno>
@@ -12,7 +11,11 @@ namespace stepmod::gpio {
 
 struct LineEventReader::Impl {
   std::vector<Source> sources;
-  std::vector<std::array<gpioevent_data, kReadBatch>> bufs;  // never resized after submission
+  EdgeRecordFormat format = EdgeRecordFormat::kV1;
+  std::size_t record_size = 0;
+  std::vector<std::vector<std::byte>>
+      bufs;                       // kReadBatch records each; never resized after submission
+  std::vector<EdgeTrack> tracks;  // per source
   std::vector<bool> open;  // false once a source reported end of file (never for line events)
   io_uring ring{};
   // Converted events not yet handed out (a ring buffer). A completion is reaped only when a
@@ -21,12 +24,14 @@ struct LineEventReader::Impl {
   std::vector<InputEvent> pending;
   std::size_t head = 0, size = 0;
   std::uint64_t malformed = 0;
+  std::uint64_t lost = 0;
 
   void submit_read(std::size_t i) noexcept {
     io_uring_sqe* sqe = io_uring_get_sqe(&ring);
     if (sqe == nullptr) return;  // cannot happen: the SQ has a slot per source
     // Offset -1: "current position"; a line-event fd is a stream that ignores it anyway.
-    io_uring_prep_read(sqe, sources[i].fd, bufs[i].data(), sizeof(bufs[i]), static_cast<__u64>(-1));
+    io_uring_prep_read(sqe, sources[i].fd, bufs[i].data(), static_cast<unsigned>(bufs[i].size()),
+                       static_cast<__u64>(-1));
     io_uring_sqe_set_data64(sqe, i);
   }
 
@@ -50,16 +55,14 @@ struct LineEventReader::Impl {
       const int res = cqe->res;
       io_uring_cqe_seen(&ring, cqe);
       if (res > 0) {
-        const std::size_t count = static_cast<std::size_t>(res) / sizeof(gpioevent_data);
-        if (static_cast<std::size_t>(res) % sizeof(gpioevent_data) != 0) ++malformed;
+        const std::size_t count = static_cast<std::size_t>(res) / record_size;
+        if (static_cast<std::size_t>(res) % record_size != 0) ++malformed;
         for (std::size_t k = 0; k < count; ++k) {
-          const gpioevent_data& ev = bufs[i][k];
-          // Since Linux 5.7 (commit f8850206e160, "gpio: Switch timestamps to ktime_get_ns()")
-          // the v1 line-event timestamp is CLOCK_MONOTONIC, the clock of every stepmod time;
-          // before it was CLOCK_REALTIME. Debian 12's kernel is 6.1.
+          const DecodedEdge ev =
+              decode_edge_record(format, bufs[i].data() + k * record_size, tracks[i]);
+          lost += ev.lost;
           pending[(head + size) % pending.size()] =
-              InputEvent{static_cast<Nanos>(ev.timestamp), sources[i].axis, sources[i].line,
-                         ev.id == GPIOEVENT_EVENT_RISING_EDGE};
+              InputEvent{ev.t, sources[i].axis, sources[i].line, ev.level};
           ++size;
         }
       } else if (res == 0) {
@@ -82,10 +85,14 @@ struct LineEventReader::Impl {
   }
 };
 
-LineEventReader::LineEventReader(std::vector<Source> sources) : d_(std::make_unique<Impl>()) {
+LineEventReader::LineEventReader(std::vector<Source> sources, EdgeRecordFormat format)
+    : d_(std::make_unique<Impl>()) {
   Impl& d = *d_;
   d.sources = std::move(sources);
-  d.bufs.resize(d.sources.size());
+  d.format = format;
+  d.record_size = edge_record_size(format);
+  d.bufs.assign(d.sources.size(), std::vector<std::byte>(kReadBatch * d.record_size));
+  d.tracks.assign(d.sources.size(), EdgeTrack{});
   d.open.assign(d.sources.size(), true);
   d.pending.resize(std::max<std::size_t>(d.sources.size(), 1) * kReadBatch * 2);
   unsigned entries = 1;
@@ -111,6 +118,10 @@ LineEventReader::~LineEventReader() {
 
 std::uint64_t LineEventReader::malformed() const noexcept {
   return d_->malformed;
+}
+
+std::uint64_t LineEventReader::lost() const noexcept {
+  return d_->lost;
 }
 
 std::size_t LineEventReader::wait(std::span<InputEvent> out, Nanos deadline) {

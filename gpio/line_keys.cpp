@@ -1,5 +1,6 @@
 // Config-file keys of the lines (INTERFACE.md section 2); also the VCD wire suffixes (section 5).
 #include "gpio/backend.hpp"
+#include "gpio/line_options.hpp"
 
 namespace stepmod::gpio {
 
@@ -35,6 +36,32 @@ std::string_view output_key(OutputLine l) noexcept {
       return "dir";
     case OutputLine::kGpo:
       return "gpo";
+  }
+  return "?";
+}
+
+std::string_view bias_name(Bias b) noexcept {
+  switch (b) {
+    case Bias::kAsIs:
+      return "as-is";
+    case Bias::kPullUp:
+      return "pull-up";
+    case Bias::kPullDown:
+      return "pull-down";
+    case Bias::kDisabled:
+      return "disabled";
+  }
+  return "?";
+}
+
+std::string_view drive_name(Drive d) noexcept {
+  switch (d) {
+    case Drive::kPushPull:
+      return "push-pull";
+    case Drive::kOpenDrain:
+      return "open-drain";
+    case Drive::kOpenSource:
+      return "open-source";
   }
   return "?";
 }

@@ -8,17 +8,52 @@
 
 namespace stepmod::gpio {
 
-SimBackend::SimBackend(std::span<const SimAxisSetup> axes, std::size_t event_capacity) {
+namespace {
+// Inputs with nothing simulated driving them: the bias of the line decides their level.
+std::uint16_t undriven_inputs(const SimAxisParams& p) {
+  std::uint16_t m = input_bit(InputLine::kCapture) | input_bit(InputLine::kExternal) |
+                    input_bit(InputLine::kEStop);
+  if (!p.home_from) m |= input_bit(InputLine::kHome);
+  if (!p.cw_limit_at) m |= input_bit(InputLine::kCwLimit);
+  if (!p.ccw_limit_at) m |= input_bit(InputLine::kCcwLimit);
+  if (p.encoder_ratio == 0.0) {
+    m |= input_bit(InputLine::kEncA) | input_bit(InputLine::kEncB) | input_bit(InputLine::kEncZ);
+  } else if (!p.marker_every || *p.marker_every <= 0) {
+    m |= input_bit(InputLine::kEncZ);
+  }
+  return m;
+}
+}  // namespace
+
+SimBackend::SimBackend(std::span<const SimAxisSetup> axes, std::size_t event_capacity)
+    : enable_wire_(std::make_unique<std::atomic<std::uint32_t>[]>(axes.size())) {
   machines_.reserve(axes.size());
   for (std::size_t a = 0; a < axes.size(); ++a) {
     std::uint16_t wired = 0;
+    SimPulls pulls;
+    const std::uint16_t undriven = undriven_inputs(axes[a].sim);
     for (unsigned i = 0; i < kInputLinesPerAxis; ++i) {
-      if (axes[a].lines.in[i]) wired |= static_cast<std::uint16_t>(1u << i);
+      if (!axes[a].lines.in[i]) continue;
+      const auto bit = static_cast<std::uint16_t>(1u << i);
+      wired |= bit;
+      // An unconnected input with a pull resistor reads the pull's level on the wire; the module
+      // sees it inverted when the line is active-low.
+      const LineOptions& o = axes[a].lines.in_opt[i];
+      if ((undriven & bit) == 0 || (o.bias != Bias::kPullUp && o.bias != Bias::kPullDown)) continue;
+      pulls.mask |= bit;
+      if ((o.bias == Bias::kPullUp) != o.active_low) pulls.levels |= bit;
     }
+    std::uint32_t inverted = 0;
+    for (unsigned o = 0; o < kOutputLinesPerAxis; ++o) {
+      if (axes[a].lines.out_opt[o].active_low) inverted |= 1u << o;
+    }
+    active_low_outputs_.push_back(inverted);
+    const std::size_t ring = axes[a].sim.event_ring != 0 ? axes[a].sim.event_ring : event_capacity;
     machines_.push_back(std::make_unique<SimMachine>(static_cast<std::uint8_t>(a), axes[a].sim,
-                                                     wired, event_capacity));
+                                                     wired, ring, pulls));
     lines_.push_back(axes[a].lines);
   }
+  for (unsigned a = 0; a < lines_.size(); ++a) set_enable(a, false);  // released at start
 }
 
 void SimBackend::write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept {
@@ -103,6 +138,7 @@ void SimBackend::idle_outputs() noexcept {
     for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
       write(a, static_cast<OutputLine>(l), false, now);
     }
+    set_enable(a, false);
   }
 }
 
@@ -113,6 +149,19 @@ void SimBackend::set_pulse_format(unsigned axis, PulseFormat format) noexcept {
 void SimBackend::force(unsigned axis, std::uint32_t mask, std::uint32_t levels,
                        Nanos now) noexcept {
   if (axis < machines_.size()) machines_[axis]->force(mask, levels, now);
+}
+
+LineOptions SimBackend::line_options(unsigned axis, bool input, unsigned line) const noexcept {
+  if (axis >= lines_.size()) return {};
+  const AxisLines& a = lines_[axis];
+  if (input) return line < kInputLinesPerAxis ? a.in_opt[line] : LineOptions{};
+  return line < kOutputLinesPerAxis ? a.out_opt[line] : LineOptions{};
+}
+
+void SimBackend::set_enable(unsigned axis, bool asserted) noexcept {
+  if (axis >= lines_.size() || !lines_[axis].enable) return;
+  const bool wire = asserted != lines_[axis].enable_opt.active_low;
+  enable_wire_[axis].store(wire ? kEnableLevelBit : 0u, std::memory_order_relaxed);
 }
 
 }  // namespace stepmod::gpio

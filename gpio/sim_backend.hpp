@@ -35,6 +35,7 @@ class SimBackend final : public Backend {
   std::uint64_t lost_events() const noexcept override;
   void idle_outputs() noexcept override;
   void set_pulse_format(unsigned axis, PulseFormat format) noexcept override;
+  LineOptions line_options(unsigned axis, bool input, unsigned line) const noexcept override;
 
   // Simulator panel. force() on the control thread (the thread calling wait_events).
   // The forced edges are stamped `now` (the daemon: the clock; virtual-time tests: their time).
@@ -44,9 +45,14 @@ class SimBackend final : public Backend {
   }
   std::int64_t position(unsigned axis) const noexcept { return machines_[axis]->position(); }
   std::int64_t encoder(unsigned axis) const noexcept { return machines_[axis]->encoder(); }
+  // Wire levels (an active-low output's level inverted), as the panel shows them; bit 3 is the
+  // drive-enable output (kEnableLevelBit).
   std::uint32_t output_levels(unsigned axis) const noexcept {
-    return machines_[axis]->output_levels();
+    return (machines_[axis]->output_levels() ^ active_low_outputs_[axis]) |
+           enable_wire_[axis].load(std::memory_order_relaxed);
   }
+  static constexpr std::uint32_t kEnableLevelBit = 1u << 3;
+  void set_enable(unsigned axis, bool asserted) noexcept override;
   SimMachine& machine(unsigned axis) noexcept { return *machines_[axis]; }
 
   // Events closer together than this are polled for at this period instead of each waking the
@@ -66,6 +72,8 @@ class SimBackend final : public Backend {
   Nanos last_events_ = 0;  // consumer: when wait_events last returned events
   std::vector<std::unique_ptr<SimMachine>> machines_;
   std::vector<AxisLines> lines_;
+  std::vector<std::uint32_t> active_low_outputs_;              // per axis, bit per OutputLine
+  std::unique_ptr<std::atomic<std::uint32_t>[]> enable_wire_;  // per axis: kEnableLevelBit or 0
   unsigned next_axis_ = 0;  // round-robin start of wait_events, so no axis starves another
 };
 

@@ -21,11 +21,12 @@ constexpr std::int64_t floor_mod(std::int64_t a, std::int64_t m) noexcept {
 }  // namespace
 
 SimMachine::SimMachine(std::uint8_t axis, const SimAxisParams& params, std::uint16_t wired_inputs,
-                       std::size_t event_capacity)
+                       std::size_t event_capacity, SimPulls pulls)
     : axis_(axis),
       p_(params),
       wired_(static_cast<std::uint16_t>(wired_inputs & ((1u << kInputLinesPerAxis) - 1))),
       nc_(params.contacts_nc),
+      pulls_(pulls),
       pos_(params.start_position),
       ring_(event_capacity) {
   // Initial levels: every panel input unactuated, then the switches and the encoder at the start
@@ -48,6 +49,7 @@ SimMachine::SimMachine(std::uint8_t axis, const SimAxisParams& params, std::uint
            p_.home_from && p_.home_to && *p_.home_from <= pos_ && pos_ <= *p_.home_to);
   count_ = encoder_count_at(pos_);
   sim_in_ = static_cast<std::uint16_t>((sim_in_ & ~kEncoderMask) | encoder_levels(count_));
+  sim_in_ = static_cast<std::uint16_t>((sim_in_ & ~pulls_.mask) | (pulls_.levels & pulls_.mask));
   sim_in_ &= wired_;
 
   seen_sim_ = sim_in_;
@@ -126,7 +128,7 @@ void SimMachine::update_switches(Nanos t) noexcept {
 
 void SimMachine::set_sim_input(InputLine line, bool level, Nanos t) noexcept {
   const std::uint16_t bit = input_bit(line);
-  if ((wired_ & bit) == 0) return;
+  if ((wired_ & bit) == 0 || (pulls_.mask & bit) != 0) return;
   if (((sim_in_ & bit) != 0) == level) return;
   sim_in_ = level ? static_cast<std::uint16_t>(sim_in_ | bit)
                   : static_cast<std::uint16_t>(sim_in_ & ~bit);

@@ -36,9 +36,14 @@ struct SimAxisParams {
   std::optional<std::int64_t> ccw_limit_at;
   std::optional<std::int64_t> home_from;  // home actuated in [home_from, home_to]; both needed
   std::optional<std::int64_t> home_to;
-  bool contacts_nc = false;                  // "NO" (false): actuated = high; "NC": actuated = low
-  double encoder_ratio = 1.0;                // X4 counts per step; sign = direction; 0 = none
+  bool contacts_nc = false;    // "NO" (false): actuated = high; "NC": actuated = low
+  double encoder_ratio = 1.0;  // X4 counts per step; sign = direction; 0 = none
   std::optional<std::int64_t> marker_every;  // Z period in encoder counts; absent/<=0 = no Z
+  // (Last, so that positional initializers of the fields above keep their meaning.)
+  // Input event FIFO of this axis' simulated lines (power of two; 0: the backend's default).
+  // Like a GPIO line's kernel FIFO (16 events): when it overflows, events are lost, which the
+  // daemon treats as a lost-input fault. A small one lets a test provoke that.
+  std::size_t event_ring = 0;
 };
 
 inline constexpr std::uint16_t input_bit(InputLine l) noexcept {
@@ -46,12 +51,19 @@ inline constexpr std::uint16_t input_bit(InputLine l) noexcept {
 }
 inline constexpr std::uint16_t kPanelMask = (1u << kPanelInputs) - 1;
 
+// Inputs held by a pull resistor because nothing simulated drives them: their (logical) levels.
+struct SimPulls {
+  std::uint16_t mask = 0;
+  std::uint16_t levels = 0;
+};
+
 class SimMachine {
  public:
   // `wired_inputs`: bit per InputLine; an unwired input stays low and never produces events.
   // `event_capacity`: size of the event ring (power of two).
+  // `pulls`: inputs that rest at their pull resistor's level (and stay there).
   SimMachine(std::uint8_t axis, const SimAxisParams& params, std::uint16_t wired_inputs,
-             std::size_t event_capacity = 4096);
+             std::size_t event_capacity = 4096, SimPulls pulls = {});
   SimMachine(const SimMachine&) = delete;
   SimMachine& operator=(const SimMachine&) = delete;
 
@@ -107,6 +119,7 @@ class SimMachine {
   const SimAxisParams p_;
   const std::uint16_t wired_;
   const bool nc_;
+  const SimPulls pulls_;
 
   // producer-owned
   std::uint8_t out_ = 0;      // output levels

@@ -40,14 +40,15 @@ std::vector<TraceWire> trace_wires(Backend& backend) {
   for (unsigned a = 0; a < backend.axes(); ++a) {
     for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
       if (backend.has_output(a, static_cast<OutputLine>(l))) {
-        wires.push_back({static_cast<std::uint8_t>(a), false, static_cast<std::uint8_t>(l), false});
+        wires.push_back({static_cast<std::uint8_t>(a), false, static_cast<std::uint8_t>(l), false,
+                         backend.line_options(a, false, l).active_low});
       }
     }
     for (unsigned l = 0; l < kInputLinesPerAxis; ++l) {
       const auto line = static_cast<InputLine>(l);
       if (backend.has_input(a, line)) {
         wires.push_back({static_cast<std::uint8_t>(a), true, static_cast<std::uint8_t>(l),
-                         backend.read(a, line)});
+                         backend.read(a, line), backend.line_options(a, true, l).active_low});
       }
     }
   }
@@ -71,7 +72,7 @@ VcdTrace::VcdTrace(const std::string& path, std::span<const TraceWire> wires, Na
     const TraceWire& w = wires_[i];
     index_[(w.axis * 2u + (w.is_input ? 1u : 0u)) * kLineSlots + w.line] = static_cast<int>(i);
     ids_.push_back(vcd_id(i));
-    levels_.push_back(w.initial ? 1 : 0);
+    levels_.push_back(w.initial != w.active_low ? 1 : 0);
   }
 
   char date[64] = "";
@@ -117,7 +118,9 @@ void VcdTrace::record(const TraceRecord& r) {
     ++unknown_;
     return;
   }
-  const std::uint8_t level = r.level ? 1 : 0;
+  // Wire level: the logical one inverted on an active-low line (the loss marker is not a line).
+  const bool inverted = r.is_input != kLossMarker && wires_[static_cast<std::size_t>(i)].active_low;
+  const std::uint8_t level = r.level != inverted ? 1 : 0;
   if (levels_[static_cast<std::size_t>(i)] == level) return;
   levels_[static_cast<std::size_t>(i)] = level;
   Nanos t = r.t - start_;

@@ -27,12 +27,13 @@ namespace stepmod::gpio {
 struct TraceWire {
   std::uint8_t axis = 0;  // 0-based; the wire is named axis<axis+1>.<key>
   bool is_input = false;
-  std::uint8_t line = 0;  // OutputLine or InputLine value
-  bool initial = false;
+  std::uint8_t line = 0;    // OutputLine or InputLine value
+  bool initial = false;     // logical level at the start
+  bool active_low = false;  // the wire carries the inverse of the logical level
 };
 
 // Every configured line of `backend`: outputs start low (the daemon idles them before starting),
-// inputs at their present level.
+// inputs at their present level. The VCD shows wire levels: an active-low line's inverted.
 std::vector<TraceWire> trace_wires(Backend& backend);
 
 // The VCD name of a line: "axis1.step", "axis2.cw_limit", ...

@@ -12,6 +12,7 @@ std::string health_flag_names(std::uint32_t flags) {
       {STEPMOD_HEALTH_SEQ_STUCK, "output sequence left odd"},
       {STEPMOD_HEALTH_SEQ_BYPASS, "seqlock bypassed"},
       {STEPMOD_HEALTH_TRACE_LOST, "trace records lost"},
+      {STEPMOD_HEALTH_INPUT_LOST, "input events lost"},
       {STEPMOD_HEALTH_LEASE_EXPIRED, "commissioning lease expired"},
       {STEPMOD_HEALTH_LEASE_CONFLICT, "PLC heartbeat during a commissioning lease"},
   };

@@ -85,6 +85,7 @@ enum stepmod_image_offset {
 #define STEPMOD_HEALTH_SEQ_STUCK (1u << 2)      /* output sequence left odd (PLC died mid-write) */
 #define STEPMOD_HEALTH_SEQ_BYPASS (1u << 3)     /* output words changed, sequence did not */
 #define STEPMOD_HEALTH_TRACE_LOST (1u << 4)     /* trace records lost (the VCD says so too) */
+#define STEPMOD_HEALTH_INPUT_LOST (1u << 5)     /* input events lost: the moving axes were stopped */
 #define STEPMOD_HEALTH_LEASE_EXPIRED (1u << 6)  /* a commissioning lease expired: axes stopped */
 #define STEPMOD_HEALTH_LEASE_CONFLICT (1u << 7) /* PLC heartbeat changed during a lease */
 

@@ -54,6 +54,15 @@ class Personality {
 
   // Shutdown: immediate stop of every axis.
   virtual void shutdown() = 0;
+
+  // Axis `axis` (0-based) as a drive-enable output needs it: configured, in configuration mode,
+  // E-stop active (a 3202 channel or 3602 axis disabled by its configuration is not configured).
+  struct DriveState {
+    bool configured = false;
+    bool configuration_mode = false;
+    bool estop = false;
+  };
+  virtual DriveState drive_state(unsigned axis) const noexcept = 0;
 };
 
 // Creates the personality for `type`. `backend` gives input levels and the pulse format;

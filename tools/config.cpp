@@ -11,6 +11,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <initializer_list>
 #include <map>
 #include <sstream>
 #include <string_view>
@@ -79,6 +80,21 @@ class Parser {
   // ("axis[1].sim").
   void check_keys(const toml::table& t, const std::string& prefix, std::string_view table) const {
     const std::vector<std::string_view> allowed = config_keys_of(table);
+    for (auto&& [k, v] : t) {
+      bool ok = false;
+      for (std::string_view a : allowed) ok = ok || k.str() == a;
+      if (!ok) {
+        std::string list;
+        for (std::string_view a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+        fail(k.source(), join(prefix, k.str()), "unknown key (expected one of: " + list + ")");
+      }
+    }
+  }
+
+  // An inline line table's options (`home = { offset = 13, bias = "pull-up" }`): their own short
+  // lists, per direction (docs/gpio-boards.md), not rows of kConfigKeys.
+  void check_keys(const toml::table& t, const std::string& prefix,
+                  std::initializer_list<std::string_view> allowed) const {
     for (auto&& [k, v] : t) {
       bool ok = false;
       for (std::string_view a : allowed) ok = ok || k.str() == a;
@@ -287,18 +303,20 @@ class Parser {
     // Line offset -> key that uses it, for the uniqueness check across the whole file.
     std::map<int64_t, std::string> used;
     for (std::size_t i = 0; i < count; ++i) {
-      c.axes.push_back(parse_axis(*(*arr)[i].as_table(), i, c.type, used));
+      c.axes.push_back(
+          parse_axis(*(*arr)[i].as_table(), i, c.type, c.backend == Config::Backend::kGpiod, used));
     }
   }
 
-  AxisConfig parse_axis(const toml::table& t, std::size_t index, ModuleType type,
+  AxisConfig parse_axis(const toml::table& t, std::size_t index, ModuleType type, bool gpiod,
                         std::map<int64_t, std::string>& used) const {
     // 1-based like the contract's "axis 1, then axis 2" and the VCD names axis1.step.
     const std::string p = "axis[" + std::to_string(index + 1) + "]";
     check_keys(t, p, "axis");
     AxisConfig a;
-    auto line = [&](std::string_view key) -> std::optional<unsigned> {
-      const auto v = opt_int(&t, p, key, 0, kMaxLineOffset);
+    auto line = [&](std::string_view key, bool input,
+                    gpio::LineOptions& opt) -> std::optional<unsigned> {
+      const auto v = line_entry(t, p, key, input, gpiod, opt);
       if (!v) return std::nullopt;
       const auto [it, fresh] = used.emplace(*v, join(p, key));
       if (!fresh) {
@@ -307,8 +325,14 @@ class Parser {
       }
       return static_cast<unsigned>(*v);
     };
-    for (unsigned o = 0; o < kOutputLinesPerAxis; ++o) a.out[o] = line(kOutputKeys[o]);
-    for (unsigned i = 0; i < kInputLinesPerAxis; ++i) a.in[i] = line(kInputKeys[i]);
+    for (unsigned o = 0; o < kOutputLinesPerAxis; ++o) {
+      a.out[o] = line(kOutputKeys[o], false, a.out_opt[o]);
+    }
+    for (unsigned i = 0; i < kInputLinesPerAxis; ++i) {
+      a.in[i] = line(kInputKeys[i], true, a.in_opt[i]);
+    }
+    a.enable = line("enable", false, a.enable_opt);
+    parse_enable(t, p, a);
 
     for (std::string_view req : {"step", "dir"}) {
       if (t.get(req) == nullptr) {
@@ -348,6 +372,80 @@ class Parser {
     return a;
   }
 
+  // A line key: its offset (`home = 5`), or the offset with electrical options
+  // (`home = { offset = 5, bias = "pull-up", active_low = true, debounce_us = 2000 }`).
+  std::optional<int64_t> line_entry(const toml::table& t, const std::string& p,
+                                    std::string_view key, bool input, bool gpiod,
+                                    gpio::LineOptions& opt) const {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return std::nullopt;
+    const toml::table* o = n->as_table();
+    if (o == nullptr) {
+      return opt_int(&t, p, key, 0, kMaxLineOffset);
+    }
+    const std::string q = join(p, key);
+    if (input) {
+      check_keys(*o, q, {"offset", "active_low", "bias", "debounce_us"});
+    } else {
+      check_keys(*o, q, {"offset", "active_low", "drive"});
+    }
+    const auto off = opt_int(o, q, "offset", 0, kMaxLineOffset);
+    if (!off) fail(o->source(), join(q, "offset"), "required: the line offset on the chip");
+    opt.active_low = get_bool(o, q, "active_low", false);
+    if (input) {
+      const std::string b =
+          get_choice(o, q, "bias", {"as-is", "pull-up", "pull-down", "disabled"}, "as-is");
+      opt.bias = b == "pull-up"     ? gpio::Bias::kPullUp
+                 : b == "pull-down" ? gpio::Bias::kPullDown
+                 : b == "disabled"  ? gpio::Bias::kDisabled
+                                    : gpio::Bias::kAsIs;
+      opt.debounce_us = static_cast<std::uint32_t>(get_int(o, q, "debounce_us", 0, 0, 1'000'000));
+      if (opt.debounce_us != 0 && gpiod && !gpio::gpiod_capabilities().debounce) {
+        fail(o->get("debounce_us")->source(), join(q, "debounce_us"),
+             "kernel debounce needs libgpiod 2; this stepmod is built with libgpiod " +
+                 std::to_string(gpio::gpiod_capabilities().libgpiod_major) +
+                 ".x (v1 uAPI, no debounce): debounce in hardware (RC filter) or remove the key");
+      }
+    } else {
+      const std::string d =
+          get_choice(o, q, "drive", {"push-pull", "open-drain", "open-source"}, "push-pull");
+      opt.drive = d == "open-drain"    ? gpio::Drive::kOpenDrain
+                  : d == "open-source" ? gpio::Drive::kOpenSource
+                                       : gpio::Drive::kPushPull;
+    }
+    return off;
+  }
+
+  // The drive-enable output's keys (an extension: off unless `enable` names a line).
+  void parse_enable(const toml::table& t, const std::string& p, AxisConfig& a) const {
+    if (!a.enable) {
+      for (std::string_view k : {"enable_delay_us", "enable_release_on"}) {
+        if (const toml::node* n = t.get(k)) {
+          fail(n->source(), join(p, k), "needs an enable line (key 'enable')");
+        }
+      }
+      return;
+    }
+    a.enable_delay_ns = get_int(&t, p, "enable_delay_us", 10'000, 0, 10'000'000) * kNsPerUs;
+    const toml::node* n = t.get("enable_release_on");
+    if (n == nullptr) return;
+    const toml::array* arr = n->as_array();
+    const std::string what =
+        "must be a list of \"estop\", \"fault\", \"plc_loss\", \"config_mode\" (default [])";
+    if (arr == nullptr) fail(n->source(), join(p, "enable_release_on"), what);
+    for (const toml::node& e : *arr) {
+      const auto* s = e.as_string();
+      const std::string v = s != nullptr ? s->get() : "";
+      const std::uint8_t bit = v == "estop"         ? kReleaseOnEStop
+                               : v == "fault"       ? kReleaseOnFault
+                               : v == "plc_loss"    ? kReleaseOnPlcLoss
+                               : v == "config_mode" ? kReleaseOnConfigMode
+                                                    : 0;
+      if (bit == 0) fail(e.source(), join(p, "enable_release_on"), what);
+      a.enable_release |= bit;
+    }
+  }
+
   SimAxisConfig parse_sim(const toml::table* s, const std::string& p) const {
     SimAxisConfig c;
     if (s == nullptr) return c;
@@ -383,7 +481,18 @@ class Parser {
       c.encoder_ratio = *v;
     }
     c.marker_every = opt_int(s, p, "marker_every", 1);
+    c.event_ring = sim_event_ring(s, p);
     return c;
+  }
+
+  // [axis.sim] event_ring: the simulated input event FIFO, a power of two (SpscRing).
+  std::size_t sim_event_ring(const toml::table* s, const std::string& p) const {
+    const int64_t v = get_int(s, p, "event_ring", 4096, 2, 1 << 20);
+    if ((v & (v - 1)) != 0) {
+      fail(s->get("event_ring")->source(), join(p, "event_ring"),
+           "must be a power of two, 2 .. 1048576 (default 4096)");
+    }
+    return static_cast<std::size_t>(v);
   }
 
   std::string file_;

@@ -21,11 +21,23 @@ using SimAxisConfig = gpio::SimAxisParams;
 
 // One [[axis]] table. The line offsets (`out[]`, `in[]`, absent = not wired; step and dir are
 // required) are the backend's AxisLines.
+// What releases a drive-enable output besides the axis not being configured (bits of
+// AxisConfig::enable_release; config key enable_release_on).
+enum EnableRelease : std::uint8_t {
+  kReleaseOnEStop = 1,       // an E-stop input is active
+  kReleaseOnFault = 2,       // a late-edge fault or lost input events stopped the axis
+  kReleaseOnPlcLoss = 4,     // the PLC is lost (heartbeat stale, sequence stuck)
+  kReleaseOnConfigMode = 8,  // the axis is in configuration mode
+};
+
 struct AxisConfig : gpio::AxisLines {
   Nanos step_pulse_ns = 2'000;
   Nanos dir_setup_ns = 5'000;
   // Late-edge guard above Vs (docs/slip.md): output steps the axis may lag after a pause.
   std::uint32_t lag_limit_steps = 8;
+  // Drive-enable output (AxisLines::enable): commands wait this long after asserting it.
+  Nanos enable_delay_ns = 10 * kNsPerMs;
+  std::uint8_t enable_release = 0;  // EnableRelease bits
   SimAxisConfig sim;
 };
 

@@ -27,6 +27,7 @@
 #include "tools/backend_factory.hpp"
 #include "tools/lease_keeper.hpp"
 #include "tools/reason_publisher.hpp"
+#include "tools/drive_enable.hpp"
 #include "tools/stack.hpp"
 
 namespace stepmod::tools {
@@ -51,6 +52,7 @@ struct Daemon::Impl {
   std::unique_ptr<SpscRing<TraceRecord>> input_trace;
   std::unique_ptr<gpio::TraceWriter> trace;
   std::unique_ptr<Stack> stack;
+  std::unique_ptr<DriveEnable> drive_enable;  // the axes' enable outputs (extension)
   std::unique_ptr<ipc::ShmImage> image;
   std::unique_ptr<ipc::SimPanelServer> panel;
 #ifdef STEPMOD_HAVE_MODBUS
@@ -65,6 +67,10 @@ struct Daemon::Impl {
   // motion it was last given for.
   std::vector<std::uint32_t> cpu_notice_epoch;
   bool trace_loss_logged = false;
+  // Input events lost (gpio::Backend::lost_events): the count already acted on, and each axis'
+  // motion epoch at the last loss (health bit 5 lasts until one of them has a new motion).
+  std::uint64_t lost_inputs_seen = 0;
+  std::vector<std::uint32_t> input_loss_epochs;
 
   // After the control thread may have submitted commands (or set an immediate stop, which is
   // also submitted): ring the pulse thread's doorbell so that it polls for the new edges. It
@@ -80,6 +86,9 @@ struct Daemon::Impl {
   // The daemon health words (INTERFACE.md 3.3) for this scan, logging new late-edge faults.
   ipc::Health health(std::uint32_t supervisor_flags);
   void log_supervision(const ipc::PlcSupervisor& sup, Nanos now);
+  void check_lost_inputs(Nanos now);
+  void update_drive_enable(const ipc::PlcSupervisor& sup, Nanos now);
+  bool input_loss_lasts() const noexcept;
   void notice_cpu_need(Nanos now);
   std::uint64_t trace_dropped() const noexcept {
     return stack->engine().trace_dropped() + input_trace_dropped.load(std::memory_order_relaxed);
@@ -120,6 +129,11 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
   if (const std::string old = d.image->replaced_description(); !old.empty()) {
     spdlog::warn("replaced {}", old);
   }
+  std::vector<DriveEnable::AxisSetup> enables;
+  for (const AxisConfig& a : config.axes) {
+    enables.push_back({a.enable.has_value(), a.enable_delay_ns, a.enable_release});
+  }
+  d.drive_enable = std::make_unique<DriveEnable>(*d.backend, std::move(enables));
   d.late_faults_seen.assign(d.stack->shape().axes, 0);
   d.cpu_notice_epoch.assign(d.stack->shape().axes, 0);
   if (d.sim != nullptr) {
@@ -247,7 +261,7 @@ bool Daemon::run(const std::atomic<bool>& stop) {
     }
   }
   if (d.backend->lost_events() > 0) {
-    spdlog::warn("{} input events were lost", d.backend->lost_events());
+    spdlog::warn("{} input events were lost in all", d.backend->lost_events());
   }
   return !d.trace || d.trace_dropped() == 0;
 }
@@ -257,6 +271,7 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
   module::Personality& personality = stack->personality();
   std::array<gpio::InputEvent, 64> events{};
   ImageWords in{};
+  ImageWords given{};  // the output words the module last scanned (held while a drive gets ready)
   Nanos next_scan = monotonic_now();
   ipc::PlcSupervisor supervisor(config.plc_timeout_ns);
   LeaseKeeper lease;                             // INTERFACE 3.5
@@ -278,9 +293,10 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
       }
       personality.on_input(e);
     }
+    const Nanos now = monotonic_now();
+    check_lost_inputs(now);
     kick();
     if (panel) sync_panel();
-    const Nanos now = monotonic_now();
     if (now < next_scan) continue;
 
     // One consistent snapshot per scan; a PLC caught mid-write keeps the previous snapshot.
@@ -292,7 +308,10 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     sample.seq = image->output_seq();
     sample.snapshot_ok = image->read_outputs(sample.words, sample.snapshot_seq);
     sample.lease_held = lease.scan(*image, sample.heartbeat, now, personality);
-    const ImageWords& out = supervisor.scan(sample);
+    // While a drive enabled a moment ago is not ready, the module keeps scanning the words it
+    // had: a command issued meanwhile is a new edge once the drive is ready.
+    const ImageWords& live = supervisor.scan(sample);
+    const ImageWords& out = drive_enable->holding(now) ? given : live;
     log_supervision(supervisor, now);
     // As a PLC leaving Run mode (INTERFACE 3.2): every move stops, position invalid. Once per
     // loss; the frozen words keep anything new from starting until the PLC is back.
@@ -306,6 +325,8 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
       if (message) message_result = personality.on_message(message->data, now);
     }
     personality.scan(out, in, now);
+    if (&out != &given) given = out;
+    update_drive_enable(supervisor, now);
     kick();
     notice_cpu_need(now);
     reasons.scan(personality, *image);
@@ -345,6 +366,7 @@ ipc::Health Daemon::Impl::health(std::uint32_t supervisor_flags) {
   }
   h.worst_late_us = static_cast<std::uint32_t>(
       std::min<Nanos>(worst / kNsPerUs, std::numeric_limits<std::uint32_t>::max()));
+  if (input_loss_lasts()) h.flags |= STEPMOD_HEALTH_INPUT_LOST;
   // Bit 4 from the first lost record on: the trace stays incomplete (the VCD says so too).
   if (output_trace && trace_dropped() > 0) {
     h.flags |= STEPMOD_HEALTH_TRACE_LOST;
@@ -388,6 +410,55 @@ void Daemon::Impl::notice_cpu_need(Nanos /*now*/) {
                           "or a cpuset)"),
         config.axes[a].lag_limit_steps, config.late_limit_ns / kNsPerUs);
   }
+}
+
+// Issue 18 item 5 / issue 19: an input edge the module never saw (a home, limit or capture edge,
+// an encoder count) leaves a homing, a registration or a position that cannot be trusted, so a
+// loss stops every moving axis as a PLC leaving Run mode does (immediate stop, position
+// invalid), sets health bit 5 and is logged. Losses: the kernel's per-line event FIFO (seen by
+// sequence-number gaps with libgpiod 2, by repeated edge directions with 1.6) or the simulated
+// machine's event ring.
+void Daemon::Impl::check_lost_inputs(Nanos now) {
+  const std::uint64_t lost = backend->lost_events();
+  if (lost == lost_inputs_seen) return;
+  const std::uint64_t fresh = lost - lost_inputs_seen;
+  lost_inputs_seen = lost;
+  unsigned moving = 0;
+  for (unsigned a = 0; a < stack->shape().axes; ++a) moving += stack->motion(a).busy() ? 1u : 0u;
+  stack->personality().plc_stopped(now);
+  input_loss_epochs.assign(stack->shape().axes, 0);
+  for (unsigned a = 0; a < stack->shape().axes; ++a)
+    input_loss_epochs[a] = stack->motion(a).epoch();
+  spdlog::error(
+      "{} input event(s) lost ({} in all): {} moving axis/axes stopped, position invalid "
+      "(re-home); a homing or registration may have missed its edge",
+      fresh, lost, moving);
+}
+
+void Daemon::Impl::update_drive_enable(const ipc::PlcSupervisor& sup, Nanos now) {
+  if (!drive_enable->any_wired()) return;
+  const bool input_loss = input_loss_lasts();
+  for (unsigned a = 0; a < stack->shape().axes; ++a) {
+    const module::Personality::DriveState s = stack->personality().drive_state(a);
+    const planner::MotionPort& m = stack->motion(a);
+    const planner::MotionPort::LateFault f = m.late_fault();
+    DriveEnable::Conditions c;
+    c.configured = s.configured;
+    c.configuration_mode = s.configuration_mode;
+    c.estop = s.estop;
+    c.fault = input_loss || (f.count != 0 && f.epoch == m.epoch());
+    c.plc_lost = sup.plc_lost();
+    drive_enable->update(a, c, now);
+  }
+}
+
+// Bit 5 from the loss until the PLC's next accepted motion on any axis.
+bool Daemon::Impl::input_loss_lasts() const noexcept {
+  if (input_loss_epochs.empty()) return false;
+  for (unsigned a = 0; a < input_loss_epochs.size(); ++a) {
+    if (stack->motion(a).epoch() != input_loss_epochs[a]) return false;
+  }
+  return true;
 }
 
 void Daemon::Impl::log_supervision(const ipc::PlcSupervisor& sup, Nanos now) {

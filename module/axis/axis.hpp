@@ -64,6 +64,16 @@ class Axis {
   // The status after the last scan (or input edge).
   AxisStatus status() const noexcept;
   bool in_configuration_mode() const noexcept { return config_mode_; }
+  // For a drive-enable output (tools/drive_enable.hpp): a configuration is in force, the axis is
+  // in configuration mode, an E-stop input is active.
+  struct DriveState {
+    bool configured = false;
+    bool configuration_mode = false;
+    bool estop = false;
+  };
+  DriveState drive_state() const noexcept {
+    return {st_.configured, config_mode_, st_.estop_active()};
+  }
 
   // ---- Coordinated motion (the 3602's interpolated moves: module/m3602/interpolated_move.hpp).
   // A coordinator outside the axis starts the motion on this axis' MotionPort, one part of a

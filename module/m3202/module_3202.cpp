@@ -90,4 +90,11 @@ axis::ErrorReason Module3202::reason(unsigned axis) const {
   return axis < channels_.size() ? channels_[axis].axis.reason() : axis::ErrorReason{};
 }
 
+Personality::DriveState Module3202::drive_state(unsigned axis) const noexcept {
+  if (axis >= channels_.size()) return {};
+  const Channel& c = channels_[axis];
+  const auto d = c.axis.drive_state();
+  return {d.configured && !c.disabled, d.configuration_mode, d.estop};
+}
+
 }  // namespace stepmod::module::m3202

@@ -27,6 +27,7 @@ class Module3202 final : public Personality {
   // The blend profile message (digest 5.8; 3202-IP-11..17, CE-19).
   std::int32_t on_message(std::span<const std::int32_t> data, Nanos now) override;
   void shutdown() override;
+  DriveState drive_state(unsigned axis) const noexcept override;
 
  private:
   struct Channel {

@@ -61,4 +61,10 @@ axis::ErrorReason Module3601::reason(unsigned /*axis*/) const {
   return axis_.reason();
 }
 
+Personality::DriveState Module3601::drive_state(unsigned axis) const noexcept {
+  (void)axis;  // one axis
+  const auto d = axis_.drive_state();
+  return {d.configured, d.configuration_mode, d.estop};
+}
+
 }  // namespace stepmod::module::m3601

@@ -21,6 +21,7 @@ class Module3601 final : public Personality {
   void lease_expired(Nanos now) override;
   axis::ErrorReason reason(unsigned axis) const override;
   void shutdown() override;
+  DriveState drive_state(unsigned axis) const noexcept override;
 
  private:
   axis::Axis axis_;

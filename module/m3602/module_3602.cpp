@@ -114,4 +114,11 @@ axis::ErrorReason Module3602::reason(unsigned axis) const {
   return axis < axes_.size() ? axes_[axis].axis.reason() : axis::ErrorReason{};
 }
 
+Personality::DriveState Module3602::drive_state(unsigned axis) const noexcept {
+  if (axis >= axes_.size()) return {};
+  const Channel& c = axes_[axis];
+  const auto d = c.axis.drive_state();
+  return {d.configured && !c.disabled, d.configuration_mode, d.estop};
+}
+
 }  // namespace stepmod::module::m3602

@@ -26,6 +26,7 @@ class Module3602 final : public Personality {
   void lease_expired(Nanos now) override;
   axis::ErrorReason reason(unsigned axis) const override;
   void shutdown() override;
+  DriveState drive_state(unsigned axis) const noexcept override;
 
  private:
   struct Channel {

@@ -137,5 +137,34 @@ TEST(GpioLineEventReader, EndOfFileStopsThatSourceWithoutSpinning) {
   EXPECT_EQ(got[0].line, InputLine::kEStop);
 }
 
+TEST(GpioLineEventReader, V1RepeatedDirectionCountsALostEdge) {
+  Pipe p;
+  LineEventReader r({{p.r, 0, InputLine::kHome, "home"}});
+  p.send({rec(1, true), rec(2, true), rec(3, false)});
+  const auto got = collect(r, 3, 8);
+  ASSERT_EQ(got.size(), 3u);
+  EXPECT_EQ(r.lost(), 1u);
+}
+
+TEST(GpioLineEventReader, V2RecordsWithASequenceGapCountTheLostEdges) {
+  Pipe p;
+  LineEventReader r({{p.r, 0, InputLine::kCapture, "capture"}}, EdgeRecordFormat::kV2);
+  std::vector<gpio_v2_line_event> recs(3);
+  const std::uint32_t seq[] = {1, 2, 6};
+  for (int i = 0; i < 3; ++i) {
+    recs[i].timestamp_ns = 100u + static_cast<unsigned>(i);
+    recs[i].id = i % 2 == 0 ? GPIO_V2_LINE_EVENT_RISING_EDGE : GPIO_V2_LINE_EVENT_FALLING_EDGE;
+    recs[i].line_seqno = seq[i];
+    recs[i].seqno = seq[i];
+  }
+  const auto bytes = static_cast<ssize_t>(recs.size() * sizeof(gpio_v2_line_event));
+  ASSERT_EQ(::write(p.w, recs.data(), static_cast<std::size_t>(bytes)), bytes);
+  const auto got = collect(r, 3, 8);
+  ASSERT_EQ(got.size(), 3u);
+  EXPECT_EQ(got[2].t, 102);
+  EXPECT_TRUE(got[2].level);
+  EXPECT_EQ(r.lost(), 3u);
+}
+
 }  // namespace
 }  // namespace stepmod::gpio

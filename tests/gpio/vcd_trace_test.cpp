@@ -299,6 +299,42 @@ TEST(GpioTraceWires, FromTheBackendsConfiguredLinesWithInputLevels) {
   EXPECT_TRUE(wires[3].initial);
 }
 
+TEST(GpioVcdTrace, ActiveLowWiresShowTheInvertedLevel) {
+  const std::string path = temp_path("active_low.vcd");
+  const TraceWire wires[] = {
+      {0, false, static_cast<std::uint8_t>(OutputLine::kStep), false, true},
+      {0, true, static_cast<std::uint8_t>(InputLine::kHome), true, true},
+  };
+  {
+    VcdTrace v(path, wires, 0);
+    v.record(out_rec(100, 0, OutputLine::kStep, true));  // logical high: the wire goes low
+    v.record(in_rec(200, 0, InputLine::kHome, false));   // logical low: the wire goes high
+    v.close(1000);
+  }
+  const Parsed p = parse_vcd(slurp(path));
+  EXPECT_EQ(p.initial.at("axis1.step"), 1) << "idle (logical low) is a high wire";
+  EXPECT_EQ(p.initial.at("axis1.home"), 0);
+  const std::vector<Change> want = {{100, "axis1.step", 0}, {200, "axis1.home", 1}};
+  EXPECT_EQ(p.changes, want);
+  std::filesystem::remove(path);
+}
+
+TEST(GpioTraceWires, CarryTheBackendsActiveLowOption) {
+  SimAxisSetup s;
+  s.lines.out[0] = 1;
+  s.lines.out[1] = 2;
+  s.lines.out_opt[0].active_low = true;
+  s.lines.in[static_cast<unsigned>(InputLine::kHome)] = 3;
+  s.lines.in_opt[static_cast<unsigned>(InputLine::kHome)].active_low = true;
+  const std::vector<SimAxisSetup> axes = {s};
+  SimBackend b(axes);
+  const auto wires = trace_wires(b);
+  ASSERT_EQ(wires.size(), 3u);
+  EXPECT_TRUE(wires[0].active_low);
+  EXPECT_FALSE(wires[1].active_low);
+  EXPECT_TRUE(wires[2].active_low);
+}
+
 TEST(GpioVcdTrace, ManyWiresGetDistinctIds) {
   std::vector<TraceWire> wires;
   for (unsigned a = 0; a < 20; ++a) {

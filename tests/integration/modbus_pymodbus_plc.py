@@ -5,7 +5,9 @@ registers and the exception codes, then starts a long move, keeps it alive with 
 PLC heartbeat) and goes silent: the module must stop the axis on its own (plc_timeout_ms).
 
 Run by tests/integration/daemon_modbus_test.cpp against a real stepmodd (loopback only). Exit
-status 0 when every check passed; each failure is printed. Every loop is bounded in time."""
+status 0 when every check passed; each failure is printed. Every loop is bounded in time.
+Register counts are passed as `count=`: pymodbus 3.0 (Debian 12) takes it either way, 3.8
+(Debian 13) only as a keyword."""
 import argparse
 import sys
 import time

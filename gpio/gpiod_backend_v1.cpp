@@ -15,6 +15,22 @@ namespace stepmod::gpio {
 
 namespace {
 constexpr const char* kConsumer = "stepmod";
+constexpr unsigned kEnableKeyIndex = kOutputLinesPerAxis;  // where(): the enable line
+
+// libgpiod 1.6 request flags of a line's options (bias flags: since libgpiod 1.5 / Linux 5.5).
+int request_flags(const LineOptions& o) {
+  int flags = o.active_low ? GPIOD_LINE_REQUEST_FLAG_ACTIVE_LOW : 0;
+  if (o.drive == Drive::kOpenDrain) flags |= GPIOD_LINE_REQUEST_FLAG_OPEN_DRAIN;
+  if (o.drive == Drive::kOpenSource) flags |= GPIOD_LINE_REQUEST_FLAG_OPEN_SOURCE;
+  if (o.bias == Bias::kPullUp) flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_UP;
+  if (o.bias == Bias::kPullDown) flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_DOWN;
+  if (o.bias == Bias::kDisabled) flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_DISABLE;
+  return flags;
+}
+}  // namespace
+
+GpiodCapabilities gpiod_capabilities() noexcept {
+  return {1, false};
 }
 
 struct GpiodBackend::Impl {
@@ -30,12 +46,11 @@ struct GpiodBackend::Impl {
   gpiod_chip* chip = nullptr;
   std::vector<AxisLines> axes;
 
-  // Outputs: every output line of every axis in one bulk request, so one write is one ioctl
-  // (GPIOHANDLE_SET_LINE_VALUES_IOCTL) of the whole shadow array.
-  std::vector<std::array<int, kOutputLinesPerAxis>> out_index;  // slot in the bulk, -1 unwired
-  gpiod_line_bulk out_bulk{};
-  std::vector<int> shadow;
-  bool outputs_requested = false;
+  // Outputs: one request per line (each with its own flags: drive, active-low), so one write is
+  // one ioctl (GPIOHANDLE_SET_LINE_VALUES_IOCTL) on that line's handle.
+  std::vector<std::array<gpiod_line*, kOutputLinesPerAxis>> out_lines;  // null: unwired
+  std::vector<gpiod_line*> outputs_requested;
+  std::vector<gpiod_line*> enable_lines;  // per axis, null: none
   std::atomic<std::uint64_t> write_errors{0};
 
   // Inputs: one event request per line; their fds are read by `events`.
@@ -43,11 +58,18 @@ struct GpiodBackend::Impl {
   std::vector<Input> inputs;
   std::unique_ptr<LineEventReader> events;
 
+  // "axis1.step", "axis1.enable": the config key of a line.
+  static std::string key(unsigned axis, bool input, unsigned line) {
+    const std::string_view k = input ? input_key(static_cast<InputLine>(line))
+                               : line == kEnableKeyIndex
+                                   ? std::string_view("enable")
+                                   : output_key(static_cast<OutputLine>(line));
+    return "axis" + std::to_string(axis + 1) + "." + std::string(k);
+  }
+
   std::string where(unsigned axis, bool input, unsigned line, unsigned offset) const {
-    const std::string_view key =
-        input ? input_key(static_cast<InputLine>(line)) : output_key(static_cast<OutputLine>(line));
-    return "GPIO chip '" + chip_name + "', line " + std::to_string(offset) + " (axis" +
-           std::to_string(axis + 1) + "." + std::string(key) + ")";
+    return "GPIO chip '" + chip_name + "', line " + std::to_string(offset) + " (" +
+           key(axis, input, line) + ")";
   }
 
   gpiod_line* get_line(unsigned axis, bool input, unsigned line, unsigned offset) {
@@ -80,12 +102,11 @@ struct GpiodBackend::Impl {
   void release() noexcept {
     // The reader first: it cancels the reads that use the event fds.
     events.reset();
-    if (outputs_requested) {
-      std::fill(shadow.begin(), shadow.end(), 0);
-      gpiod_line_set_value_bulk(&out_bulk, shadow.data());
-      gpiod_line_release_bulk(&out_bulk);
-      outputs_requested = false;
+    for (gpiod_line* l : outputs_requested) {
+      gpiod_line_set_value(l, 0);
+      gpiod_line_release(l);
     }
+    outputs_requested.clear();
     for (Input& in : inputs) {
       if (in.fd >= 0) gpiod_line_release(in.line);
       in.fd = -1;
@@ -110,27 +131,41 @@ GpiodBackend::GpiodBackend(const std::string& chip, std::span<const AxisLines> a
     std::vector<std::string> used(gpiod_chip_num_lines(d.chip));  // offset -> "axis1.step"
     const auto claim = [&](unsigned a, bool input, unsigned line, unsigned offset) {
       gpiod_line* l = d.get_line(a, input, line, offset);
-      const std::string key = "axis" + std::to_string(a + 1) + "." +
-                              std::string(input ? input_key(static_cast<InputLine>(line))
-                                                : output_key(static_cast<OutputLine>(line)));
       if (!used[offset].empty()) {
         throw std::runtime_error(d.where(a, input, line, offset) + ": offset already used by " +
                                  used[offset]);
       }
-      used[offset] = key;
+      used[offset] = Impl::key(a, input, line);
       return l;
     };
 
-    gpiod_line_bulk_init(&d.out_bulk);
-    d.out_index.assign(axes.size(), {-1, -1, -1});
+    d.out_lines.assign(axes.size(), {nullptr, nullptr, nullptr});
     d.in_index.resize(axes.size());
     for (unsigned a = 0; a < axes.size(); ++a) {
       d.in_index[a].fill(-1);
       for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
         if (!axes[a].out[l]) continue;
         gpiod_line* line = claim(a, false, l, *axes[a].out[l]);
-        d.out_index[a][l] = static_cast<int>(gpiod_line_bulk_num_lines(&d.out_bulk));
-        gpiod_line_bulk_add(&d.out_bulk, line);
+        const gpiod_line_request_config rc{kConsumer, GPIOD_LINE_REQUEST_DIRECTION_OUTPUT,
+                                           request_flags(axes[a].out_opt[l])};
+        if (gpiod_line_request(line, &rc, 0) != 0) {
+          throw std::runtime_error(
+              d.request_error(d.where(a, false, l, *axes[a].out[l]) + ": requesting the output"));
+        }
+        d.outputs_requested.push_back(line);
+        d.out_lines[a][l] = line;
+      }
+      d.enable_lines.push_back(nullptr);
+      if (axes[a].enable) {
+        gpiod_line* line = claim(a, false, kEnableKeyIndex, *axes[a].enable);
+        const gpiod_line_request_config rc{kConsumer, GPIOD_LINE_REQUEST_DIRECTION_OUTPUT,
+                                           request_flags(axes[a].enable_opt)};
+        if (gpiod_line_request(line, &rc, 0) != 0) {
+          throw std::runtime_error(d.request_error(
+              d.where(a, false, kEnableKeyIndex, *axes[a].enable) + ": requesting the output"));
+        }
+        d.outputs_requested.push_back(line);
+        d.enable_lines.back() = line;
       }
       for (unsigned l = 0; l < kInputLinesPerAxis; ++l) {
         if (!axes[a].in[l]) continue;
@@ -144,18 +179,15 @@ GpiodBackend::GpiodBackend(const std::string& chip, std::span<const AxisLines> a
       }
     }
 
-    const unsigned n_out = gpiod_line_bulk_num_lines(&d.out_bulk);
-    d.shadow.assign(n_out, 0);
-    if (n_out > 0) {
-      if (gpiod_line_request_bulk_output(&d.out_bulk, kConsumer, d.shadow.data()) != 0) {
-        throw std::runtime_error(d.request_error("GPIO chip '" + chip + "': requesting the " +
-                                                 std::to_string(n_out) + " output lines"));
-      }
-      d.outputs_requested = true;
-    }
-
     for (Impl::Input& in : d.inputs) {
-      if (gpiod_line_request_both_edges_events(in.line, kConsumer) != 0) {
+      const LineOptions& o = axes[in.axis].in_opt[static_cast<unsigned>(in.which)];
+      if (o.debounce_us != 0) {
+        throw std::runtime_error(
+            d.where(in.axis, true, static_cast<unsigned>(in.which), in.offset) +
+            ": debounce_us needs libgpiod 2 (this stepmod is built with "
+            "libgpiod 1.6, whose v1 uAPI has no debounce)");
+      }
+      if (gpiod_line_request_both_edges_events_flags(in.line, kConsumer, request_flags(o)) != 0) {
         throw std::runtime_error(
             d.request_error(d.where(in.axis, true, static_cast<unsigned>(in.which), in.offset) +
                             ": requesting edge events"));
@@ -191,14 +223,20 @@ unsigned GpiodBackend::axes() const noexcept {
 
 void GpiodBackend::write(unsigned axis, OutputLine line, bool level, Nanos /*t*/) noexcept {
   Impl& d = *d_;
-  const int slot = d.out_index[axis][static_cast<unsigned>(line)];
-  if (slot < 0) return;
-  d.shadow[static_cast<std::size_t>(slot)] = level ? 1 : 0;
-  // One ioctl for the whole bulk; the other lines are rewritten with their present values.
-  if (gpiod_line_set_value_bulk(&d.out_bulk, d.shadow.data()) != 0) {
+  gpiod_line* l = d.out_lines[axis][static_cast<unsigned>(line)];
+  if (l == nullptr) return;
+  // One ioctl on the line's handle (libgpiod builds its one-line bulk on the stack).
+  if (gpiod_line_set_value(l, level ? 1 : 0) != 0) {
     d.write_errors.store(d.write_errors.load(std::memory_order_relaxed) + 1,
                          std::memory_order_relaxed);
   }
+}
+
+LineOptions GpiodBackend::line_options(unsigned axis, bool input, unsigned line) const noexcept {
+  if (axis >= d_->axes.size()) return {};
+  const AxisLines& a = d_->axes[axis];
+  if (input) return line < kInputLinesPerAxis ? a.in_opt[line] : LineOptions{};
+  return line < kOutputLinesPerAxis ? a.out_opt[line] : LineOptions{};
 }
 
 bool GpiodBackend::has_input(unsigned axis, InputLine line) const noexcept {
@@ -233,18 +271,23 @@ std::size_t GpiodBackend::wait_events(std::span<InputEvent> out, Nanos deadline)
 }
 
 std::uint64_t GpiodBackend::lost_events() const noexcept {
-  return 0;
+  return d_->events ? d_->events->lost() : 0;
 }
 
 std::uint64_t GpiodBackend::write_errors() const noexcept {
   return d_->write_errors.load(std::memory_order_relaxed);
 }
 
+void GpiodBackend::set_enable(unsigned axis, bool asserted) noexcept {
+  if (axis >= d_->enable_lines.size() || d_->enable_lines[axis] == nullptr) return;
+  if (gpiod_line_set_value(d_->enable_lines[axis], asserted ? 1 : 0) != 0) {
+    d_->write_errors.fetch_add(1, std::memory_order_relaxed);
+  }
+}
+
 void GpiodBackend::idle_outputs() noexcept {
   Impl& d = *d_;
-  if (!d.outputs_requested) return;
-  std::fill(d.shadow.begin(), d.shadow.end(), 0);
-  gpiod_line_set_value_bulk(&d.out_bulk, d.shadow.data());
+  for (gpiod_line* l : d.outputs_requested) gpiod_line_set_value(l, 0);
 }
 
 }  // namespace stepmod::gpio

@@ -1,0 +1,398 @@
+// GpiodBackend for libgpiod >= 2 (the v2 character-device uAPI). CMake builds this file instead
+// of gpiod_backend_v1.cpp when pkg-config finds libgpiod 2.
+//
+// Outputs: one request for all output lines (per-line settings: drive, active-low); a write is
+// gpiod_line_request_set_value, one GPIO_V2_LINE_SET_VALUES_IOCTL with a one-line mask, built on
+// the stack (no allocation: fit for the pulse thread).
+// Inputs: one request per line (each line its own kernel FIFO, so a busy encoder line cannot push
+// a limit switch's edge out of a shared one), both edges, CLOCK_MONOTONIC timestamps. The
+// request fds are read by LineEventReader as raw `struct gpio_v2_line_event` records through
+// io_uring, not through gpiod_edge_event_buffer: libgpiod's reader is a blocking read() into its
+// own buffer per request, which would need a poll or an io_uring poll per fd and a second
+// syscall per batch; the record layout is kernel ABI (linux/gpio.h), the same one libgpiod reads.
+#include <gpiod.h>
+
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+#include "gpio/gpiod_backend.hpp"
+#include "gpio/line_event_reader.hpp"
+
+namespace stepmod::gpio {
+
+namespace {
+constexpr const char* kConsumer = "stepmod";
+constexpr unsigned kEnableKeyIndex = kOutputLinesPerAxis;  // where(): the enable line
+
+gpiod_line_bias to_gpiod(Bias b) {
+  switch (b) {
+    case Bias::kPullUp:
+      return GPIOD_LINE_BIAS_PULL_UP;
+    case Bias::kPullDown:
+      return GPIOD_LINE_BIAS_PULL_DOWN;
+    case Bias::kDisabled:
+      return GPIOD_LINE_BIAS_DISABLED;
+    case Bias::kAsIs:
+      break;
+  }
+  return GPIOD_LINE_BIAS_AS_IS;
+}
+
+gpiod_line_drive to_gpiod(Drive d) {
+  switch (d) {
+    case Drive::kOpenDrain:
+      return GPIOD_LINE_DRIVE_OPEN_DRAIN;
+    case Drive::kOpenSource:
+      return GPIOD_LINE_DRIVE_OPEN_SOURCE;
+    case Drive::kPushPull:
+      break;
+  }
+  return GPIOD_LINE_DRIVE_PUSH_PULL;
+}
+
+// Owners of libgpiod's objects (freed on every path, including a throw).
+struct Settings {
+  gpiod_line_settings* p = gpiod_line_settings_new();
+  ~Settings() { gpiod_line_settings_free(p); }
+};
+struct LineConfig {
+  gpiod_line_config* p = gpiod_line_config_new();
+  ~LineConfig() { gpiod_line_config_free(p); }
+};
+struct RequestConfig {
+  gpiod_request_config* p = gpiod_request_config_new();
+  ~RequestConfig() { gpiod_request_config_free(p); }
+};
+struct LineInfo {
+  gpiod_line_info* p = nullptr;
+  ~LineInfo() { gpiod_line_info_free(p); }
+};
+
+std::string chip_label(const std::string& path) {
+  gpiod_chip* c = gpiod_chip_open(path.c_str());
+  if (c == nullptr) return "";
+  gpiod_chip_info* info = gpiod_chip_get_info(c);
+  std::string label = info != nullptr ? gpiod_chip_info_get_label(info) : "";
+  gpiod_chip_info_free(info);
+  gpiod_chip_close(c);
+  return label;
+}
+
+// libgpiod 2 opens paths only; keep 1.6's gpiod_chip_open_lookup rules: a path, a name under
+// /dev, a number, or a label.
+gpiod_chip* open_chip(const std::string& chip) {
+  if (chip.empty()) return nullptr;
+  if (chip.front() == '/') return gpiod_chip_open(chip.c_str());
+  if (chip.find_first_not_of("0123456789") == std::string::npos) {
+    return gpiod_chip_open(("/dev/gpiochip" + chip).c_str());
+  }
+  const std::string dev = "/dev/" + chip;
+  if (gpiod_is_gpiochip_device(dev.c_str())) return gpiod_chip_open(dev.c_str());
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator("/dev", ec)) {
+    const std::string p = e.path().string();
+    if (p.rfind("/dev/gpiochip", 0) != 0 || !gpiod_is_gpiochip_device(p.c_str())) continue;
+    if (chip_label(p) == chip) return gpiod_chip_open(p.c_str());
+  }
+  errno = ENOENT;
+  return nullptr;
+}
+}  // namespace
+
+GpiodCapabilities gpiod_capabilities() noexcept {
+  return {2, true};
+}
+
+struct GpiodBackend::Impl {
+  struct Input {
+    gpiod_line_request* req = nullptr;
+    std::uint8_t axis = 0;
+    InputLine which = InputLine::kCapture;
+    unsigned offset = 0;
+  };
+
+  std::string chip_name;
+  gpiod_chip* chip = nullptr;
+  std::vector<AxisLines> axes;
+
+  gpiod_line_request* out_req = nullptr;                         // all output lines
+  std::vector<std::array<int, kOutputLinesPerAxis>> out_offset;  // -1: unwired
+  std::vector<unsigned> out_offsets;                             // as requested
+  std::vector<int> enable_offset;                                // per axis, -1: none
+  std::atomic<std::uint64_t> write_errors{0};
+
+  std::vector<std::array<int, kInputLinesPerAxis>> in_index;  // into `inputs`, -1 unwired
+  std::vector<Input> inputs;
+  std::unique_ptr<LineEventReader> events;
+
+  // "axis1.step", "axis1.enable": the config key of a line.
+  static std::string key(unsigned axis, bool input, unsigned line) {
+    const std::string_view k = input ? input_key(static_cast<InputLine>(line))
+                               : line == kEnableKeyIndex
+                                   ? std::string_view("enable")
+                                   : output_key(static_cast<OutputLine>(line));
+    return "axis" + std::to_string(axis + 1) + "." + std::string(k);
+  }
+
+  std::string where(unsigned axis, bool input, unsigned line, unsigned offset) const {
+    return "GPIO chip '" + chip_name + "', line " + std::to_string(offset) + " (" +
+           key(axis, input, line) + ")";
+  }
+
+  std::string request_error(const std::string& what) const {
+    const int e = errno;
+    return what + (e == EBUSY ? ": line busy" : "") + ": " + std::strerror(e);
+  }
+
+  // Checked before requesting so that the message names the line and its present user.
+  void check_line(unsigned axis, bool input, unsigned line, unsigned offset, std::size_t n) {
+    if (offset >= n) {
+      throw std::runtime_error(where(axis, input, line, offset) +
+                               ": offset out of range (the chip has " + std::to_string(n) +
+                               " lines, 0.." + std::to_string(n - 1) + ")");
+    }
+    LineInfo info{gpiod_chip_get_line_info(chip, offset)};
+    if (info.p == nullptr) {
+      throw std::runtime_error(where(axis, input, line, offset) +
+                               ": cannot get line info: " + std::strerror(errno));
+    }
+    if (gpiod_line_info_is_used(info.p)) {
+      const char* who = gpiod_line_info_get_consumer(info.p);
+      throw std::runtime_error(where(axis, input, line, offset) + ": line busy (used by '" +
+                               (who != nullptr ? who : "?") + "')");
+    }
+  }
+
+  gpiod_line_request* request(gpiod_line_config* lc, const std::string& what) {
+    RequestConfig rc;
+    gpiod_request_config_set_consumer(rc.p, kConsumer);
+    gpiod_line_request* r = gpiod_chip_request_lines(chip, rc.p, lc);
+    if (r == nullptr) throw std::runtime_error(request_error(what));
+    return r;
+  }
+
+  void add_output(gpiod_line_config* lc, unsigned a, unsigned l, unsigned off,
+                  const LineOptions& o) {
+    Settings s;
+    gpiod_line_settings_set_direction(s.p, GPIOD_LINE_DIRECTION_OUTPUT);
+    gpiod_line_settings_set_output_value(s.p, GPIOD_LINE_VALUE_INACTIVE);
+    gpiod_line_settings_set_active_low(s.p, o.active_low);
+    gpiod_line_settings_set_drive(s.p, to_gpiod(o.drive));
+    if (gpiod_line_config_add_line_settings(lc, &off, 1, s.p) != 0) {
+      throw std::runtime_error(where(a, false, l, off) +
+                               ": line settings: " + std::strerror(errno));
+    }
+  }
+  void request_outputs();
+  void request_input(Input& in);
+
+  void release() noexcept {
+    events.reset();  // first: it cancels the reads that use the request fds
+    if (out_req != nullptr) {
+      for (unsigned o : out_offsets) {
+        gpiod_line_request_set_value(out_req, o, GPIOD_LINE_VALUE_INACTIVE);
+      }
+      gpiod_line_request_release(out_req);
+      out_req = nullptr;
+    }
+    for (Input& in : inputs) {
+      if (in.req != nullptr) gpiod_line_request_release(in.req);
+      in.req = nullptr;
+    }
+    if (chip != nullptr) gpiod_chip_close(chip);
+    chip = nullptr;
+  }
+};
+
+void GpiodBackend::Impl::request_outputs() {
+  if (out_offsets.empty()) return;
+  LineConfig lc;
+  for (unsigned a = 0; a < axes.size(); ++a) {
+    if (enable_offset[a] >= 0) {
+      add_output(lc.p, a, kEnableKeyIndex, static_cast<unsigned>(enable_offset[a]),
+                 axes[a].enable_opt);
+    }
+    for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
+      if (out_offset[a][l] < 0) continue;
+      add_output(lc.p, a, l, static_cast<unsigned>(out_offset[a][l]), axes[a].out_opt[l]);
+    }
+  }
+  out_req = request(lc.p, "GPIO chip '" + chip_name + "': requesting the " +
+                              std::to_string(out_offsets.size()) + " output lines");
+}
+
+void GpiodBackend::Impl::request_input(Input& in) {
+  const LineOptions& o = axes[in.axis].in_opt[static_cast<unsigned>(in.which)];
+  const std::string name = where(in.axis, true, static_cast<unsigned>(in.which), in.offset);
+  Settings s;
+  gpiod_line_settings_set_direction(s.p, GPIOD_LINE_DIRECTION_INPUT);
+  gpiod_line_settings_set_edge_detection(s.p, GPIOD_LINE_EDGE_BOTH);
+  gpiod_line_settings_set_event_clock(s.p, GPIOD_LINE_CLOCK_MONOTONIC);
+  gpiod_line_settings_set_bias(s.p, to_gpiod(o.bias));
+  gpiod_line_settings_set_active_low(s.p, o.active_low);
+  gpiod_line_settings_set_debounce_period_us(s.p, o.debounce_us);
+  LineConfig lc;
+  if (gpiod_line_config_add_line_settings(lc.p, &in.offset, 1, s.p) != 0) {
+    throw std::runtime_error(name + ": line settings: " + std::strerror(errno));
+  }
+  in.req = request(lc.p, name + ": requesting edge events");
+}
+
+GpiodBackend::GpiodBackend(const std::string& chip, std::span<const AxisLines> axes)
+    : d_(std::make_unique<Impl>()) {
+  Impl& d = *d_;
+  d.chip_name = chip;
+  d.axes.assign(axes.begin(), axes.end());
+  d.chip = open_chip(chip);
+  if (d.chip == nullptr) {
+    const int e = errno;
+    throw std::runtime_error("GPIO chip '" + chip + "' not found or not accessible: " +
+                             std::strerror(e != 0 ? e : ENOENT));
+  }
+  try {
+    gpiod_chip_info* info = gpiod_chip_get_info(d.chip);
+    const std::size_t n = info != nullptr ? gpiod_chip_info_get_num_lines(info) : 0;
+    gpiod_chip_info_free(info);
+    std::vector<std::string> used(n);  // offset -> "axis1.step"
+    const auto claim = [&](unsigned a, bool input, unsigned line, unsigned offset) {
+      d.check_line(a, input, line, offset, n);
+      if (!used[offset].empty()) {
+        throw std::runtime_error(d.where(a, input, line, offset) + ": offset already used by " +
+                                 used[offset]);
+      }
+      used[offset] = Impl::key(a, input, line);
+    };
+    d.out_offset.assign(axes.size(), {-1, -1, -1});
+    d.enable_offset.assign(axes.size(), -1);
+    d.in_index.resize(axes.size());
+    for (unsigned a = 0; a < axes.size(); ++a) {
+      d.in_index[a].fill(-1);
+      for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
+        if (!axes[a].out[l]) continue;
+        claim(a, false, l, *axes[a].out[l]);
+        d.out_offset[a][l] = static_cast<int>(*axes[a].out[l]);
+        d.out_offsets.push_back(*axes[a].out[l]);
+      }
+      if (axes[a].enable) {
+        claim(a, false, kEnableKeyIndex, *axes[a].enable);
+        d.enable_offset[a] = static_cast<int>(*axes[a].enable);
+        d.out_offsets.push_back(*axes[a].enable);
+      }
+      for (unsigned l = 0; l < kInputLinesPerAxis; ++l) {
+        if (!axes[a].in[l]) continue;
+        claim(a, true, l, *axes[a].in[l]);
+        d.in_index[a][l] = static_cast<int>(d.inputs.size());
+        d.inputs.push_back(
+            {nullptr, static_cast<std::uint8_t>(a), static_cast<InputLine>(l), *axes[a].in[l]});
+      }
+    }
+    d.request_outputs();
+    std::vector<LineEventReader::Source> sources;
+    for (Impl::Input& in : d.inputs) {
+      d.request_input(in);
+      sources.push_back({gpiod_line_request_get_fd(in.req), in.axis, in.which,
+                         d.where(in.axis, true, static_cast<unsigned>(in.which), in.offset)});
+    }
+    if (!sources.empty()) {
+      try {
+        d.events = std::make_unique<LineEventReader>(std::move(sources), EdgeRecordFormat::kV2);
+      } catch (const std::runtime_error& e) {
+        throw std::runtime_error("GPIO chip '" + chip + "': input events: " + e.what());
+      }
+    }
+  } catch (...) {
+    d.release();
+    throw;
+  }
+}
+
+GpiodBackend::~GpiodBackend() {
+  d_->release();
+}
+
+unsigned GpiodBackend::axes() const noexcept {
+  return static_cast<unsigned>(d_->axes.size());
+}
+
+void GpiodBackend::write(unsigned axis, OutputLine line, bool level, Nanos /*t*/) noexcept {
+  Impl& d = *d_;
+  const int off = d.out_offset[axis][static_cast<unsigned>(line)];
+  if (off < 0) return;
+  if (gpiod_line_request_set_value(d.out_req, static_cast<unsigned>(off),
+                                   level ? GPIOD_LINE_VALUE_ACTIVE : GPIOD_LINE_VALUE_INACTIVE) !=
+      0) {
+    d.write_errors.store(d.write_errors.load(std::memory_order_relaxed) + 1,
+                         std::memory_order_relaxed);
+  }
+}
+
+LineOptions GpiodBackend::line_options(unsigned axis, bool input, unsigned line) const noexcept {
+  if (axis >= d_->axes.size()) return {};
+  const AxisLines& a = d_->axes[axis];
+  if (input) return line < kInputLinesPerAxis ? a.in_opt[line] : LineOptions{};
+  return line < kOutputLinesPerAxis ? a.out_opt[line] : LineOptions{};
+}
+
+bool GpiodBackend::has_input(unsigned axis, InputLine line) const noexcept {
+  return axis < d_->axes.size() && d_->axes[axis].has_input(line);
+}
+
+bool GpiodBackend::has_output(unsigned axis, OutputLine line) const noexcept {
+  return axis < d_->axes.size() && d_->axes[axis].has_output(line);
+}
+
+bool GpiodBackend::read(unsigned axis, InputLine line) {
+  Impl& d = *d_;
+  if (axis >= d.in_index.size()) return false;
+  const int i = d.in_index[axis][static_cast<unsigned>(line)];
+  if (i < 0) return false;
+  const Impl::Input& in = d.inputs[static_cast<std::size_t>(i)];
+  const gpiod_line_value v = gpiod_line_request_get_value(in.req, in.offset);
+  if (v == GPIOD_LINE_VALUE_ERROR) {
+    throw std::runtime_error(d.where(axis, true, static_cast<unsigned>(line), in.offset) +
+                             ": reading the level: " + std::strerror(errno));
+  }
+  return v == GPIOD_LINE_VALUE_ACTIVE;
+}
+
+std::size_t GpiodBackend::wait_events(std::span<InputEvent> out, Nanos deadline) {
+  Impl& d = *d_;
+  if (!d.events) {  // no input wired: nothing can arrive
+    sleep_until(deadline);
+    return 0;
+  }
+  return d.events->wait(out, deadline);
+}
+
+std::uint64_t GpiodBackend::lost_events() const noexcept {
+  return d_->events ? d_->events->lost() : 0;
+}
+
+std::uint64_t GpiodBackend::write_errors() const noexcept {
+  return d_->write_errors.load(std::memory_order_relaxed);
+}
+
+void GpiodBackend::set_enable(unsigned axis, bool asserted) noexcept {
+  Impl& d = *d_;
+  if (axis >= d.enable_offset.size() || d.enable_offset[axis] < 0) return;
+  if (gpiod_line_request_set_value(
+          d.out_req, static_cast<unsigned>(d.enable_offset[axis]),
+          asserted ? GPIOD_LINE_VALUE_ACTIVE : GPIOD_LINE_VALUE_INACTIVE) != 0) {
+    d.write_errors.fetch_add(1, std::memory_order_relaxed);
+  }
+}
+
+void GpiodBackend::idle_outputs() noexcept {
+  Impl& d = *d_;
+  if (d.out_req == nullptr) return;
+  for (unsigned o : d.out_offsets) {
+    gpiod_line_request_set_value(d.out_req, o, GPIOD_LINE_VALUE_INACTIVE);
+  }
+}
+
+}  // namespace stepmod::gpio
