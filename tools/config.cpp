@@ -159,7 +159,7 @@ class Parser {
   void parse_modbus(const toml::table* t, Config& c) const {
     const std::string p = "modbus";
     if (t == nullptr) return;
-    check_keys(*t, p, {"enabled", "listen", "unit_id", "writes", "max_clients"});
+    check_keys(*t, p, {"enabled", "listen", "unit_id", "writes", "max_clients", "allow"});
     ipc::ModbusOptions& m = c.modbus;
     m.enabled = get_bool(t, p, "enabled", false);
     m.writes = get_bool(t, p, "writes", false);
@@ -186,6 +186,29 @@ class Parser {
       }
       m.address = text.substr(0, colon);
       m.port = static_cast<std::uint16_t>(port);
+    }
+    parse_modbus_allow(t, m);
+  }
+
+  // [modbus] allow = ["127.0.0.1", "10.0.0.0/8", ...]: where connections may come from.
+  void parse_modbus_allow(const toml::table* t, ipc::ModbusOptions& m) const {
+    const toml::node* n = t->get("allow");
+    if (n == nullptr) return;
+    const auto* list = n->as_array();
+    if (list == nullptr || list->empty()) {
+      fail(n->source(), "modbus.allow",
+           "must be a non-empty list of IPv4 addresses or networks, e.g. [\"127.0.0.1\", "
+           "\"10.0.0.0/8\"]");
+    }
+    for (const toml::node& e : *list) {
+      const auto* s = e.as_string();
+      const auto net = s != nullptr ? ipc::parse_allow_net(s->get()) : std::nullopt;
+      if (!net) {
+        fail(e.source(), "modbus.allow",
+             "each entry must be an IPv4 address or ADDRESS/PREFIX (0..32) in quotes, e.g. "
+             "\"10.0.0.0/8\"");
+      }
+      m.allow.push_back(*net);
     }
   }
 
