@@ -221,10 +221,15 @@ class Parser {
       if (m != nullptr) where = m->source();
       fail(where, "module.type", "required: \"3601\", \"3602\" or \"3202\"");
     }
-    // The contract writes the type as a string; a bare integer is the same intent, so accept it.
+    // A string, as the contract writes it: a bare 3602 is refused like every other mistyped
+    // value (one spelling, so that scripts and the docs agree).
     std::string ts;
     if (const auto* s = type->as_string()) ts = s->get();
-    if (const auto* i = type->as_integer()) ts = std::to_string(i->get());
+    if (type->as_integer() != nullptr) {
+      fail(type->source(), "module.type",
+           "must be a string in quotes: type = \"" + std::to_string(type->as_integer()->get()) +
+               "\"");
+    }
     if (const auto t = module_type_from_name(ts)) {
       c.type = *t;
     } else {
@@ -362,7 +367,19 @@ class Parser {
     a.step_pulse_ns = get_int(&t, p, "step_pulse_ns", 2'000, 100, 1'000'000);
     a.dir_setup_ns = get_int(&t, p, "dir_setup_ns", 5'000, 1, 1'000'000);
     a.sim = parse_sim(sub_table(t, p, "sim"), p + ".sim");
+    if (is3602) refuse_sim_encoder(sub_table(t, p, "sim"), p + ".sim");
     return a;
+  }
+
+  // The 3602 has no encoder input: a simulated encoder for it is a config meant for another
+  // module (the 3601/3202 examples have one).
+  void refuse_sim_encoder(const toml::table* s, const std::string& p) const {
+    if (s == nullptr) return;
+    for (std::string_view k : {"encoder_ratio", "marker_every"}) {
+      if (const toml::node* n = s->get(k)) {
+        fail(n->source(), join(p, k), "the 3602 has no encoder input: remove this key");
+      }
+    }
   }
 
   SimAxisConfig parse_sim(const toml::table* s, const std::string& p) const {
