@@ -163,29 +163,25 @@ const TraceRecord* SpoolReader::next() {
 
 // ---- ordering -----------------------------------------------------------------------------------
 
-namespace {
-struct Later {
-  template <typename Item>
-  bool operator()(const Item& a, const Item& b) const noexcept {
-    return a.r.t != b.r.t ? a.r.t > b.r.t : a.seq > b.seq;
-  }
-};
-}  // namespace
-
 OrderedReader::OrderedReader(SpoolReader& source, std::size_t window)
     : source_(source), window_(std::max<std::size_t>(window, 1)) {}
 
 const TraceRecord* OrderedReader::next() {
-  while (heap_.size() < window_) {
+  while (!source_done_ && pending_.size() < window_) {
     const TraceRecord* r = source_.next();
-    if (r == nullptr) break;
-    heap_.push_back({*r, seq_++});
-    std::push_heap(heap_.begin(), heap_.end(), Later{});
+    if (r == nullptr) {
+      source_done_ = true;
+      break;
+    }
+    pending_.push_back(*r);
+    // Back past every later record (strictly: equal times keep their file order).
+    for (std::size_t k = pending_.size() - 1; k > 0 && pending_[k - 1].t > pending_[k].t; --k) {
+      std::swap(pending_[k - 1], pending_[k]);
+    }
   }
-  if (heap_.empty()) return nullptr;
-  std::pop_heap(heap_.begin(), heap_.end(), Later{});
-  current_ = heap_.back().r;
-  heap_.pop_back();
+  if (pending_.empty()) return nullptr;
+  current_ = pending_.front();
+  pending_.pop_front();
   return &current_;
 }
 

@@ -10,6 +10,7 @@
 // created new and read back through their own descriptor (gpio/trace_file.hpp).
 #include <atomic>
 #include <cstdint>
+#include <deque>
 #include <string>
 #include <vector>
 
@@ -103,23 +104,21 @@ class SpoolReader {
 // A spool's records in time order. The records of one spool are only nearly ordered: the input
 // spool interleaves the edges of several lines (and axes), each in order, as the control thread
 // happened to collect them (a 3202's two encoders: 5-7 % of the input records were behind one of
-// the other axis). A min-heap over the next `window` records puts them back in order; a record
-// more than `window` records away from its place stays late (VcdTrace::late() counts it).
+// the other axis). Each record read is moved back past the later ones among the last `window`
+// records not yet given out (an insertion sort: a pass-through for records in order, a few moves
+// for the nearly ordered); a record more than `window` records away from its place stays late
+// (VcdTrace::late() counts it).
 class OrderedReader {
  public:
-  static constexpr std::size_t kWindow = std::size_t{1} << 18;
+  static constexpr std::size_t kWindow = std::size_t{1} << 16;
   explicit OrderedReader(SpoolReader& source, std::size_t window = kWindow);
   const TraceRecord* next();
 
  private:
-  struct Item {
-    TraceRecord r;
-    std::uint64_t seq;  // file order: equal times keep it
-  };
   SpoolReader& source_;
   std::size_t window_;
-  std::vector<Item> heap_;
-  std::uint64_t seq_ = 0;
+  std::deque<TraceRecord> pending_;  // in time order; given out from the front
+  bool source_done_ = false;
   TraceRecord current_;
 };
 
