@@ -25,7 +25,7 @@ namespace stepmod::ipc {
 
 namespace {
 // Unanswered bytes a client may let pile up (it sends and never reads): then it is closed.
-constexpr std::size_t kMaxPendingOut = 64 * 1024;
+constexpr std::size_t kMaxPendingOut = std::size_t{64} * 1024;
 // Bytes read per recv(): whole frames of a pipelining client at once.
 constexpr std::size_t kReadChunk = 4096;
 

@@ -92,7 +92,7 @@ void unmap() {
 int map_image() {
   const int fd = shm_open(g_link.object, O_RDWR, 0);
   if (fd < 0) return 0;
-  struct stat st;
+  struct stat st = {};
   void* p = MAP_FAILED;
   if (fstat(fd, &st) == 0 && st.st_size >= (off_t)STEPMOD_IMAGE_SIZE) {
     p = mmap(nullptr, STEPMOD_IMAGE_SIZE, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
@@ -119,7 +119,7 @@ int map_image() {
 // a second was too slow: a daemon with plc_timeout_ms = 500 declared the PLC stale before the
 // layer had found its image.
 void check_link() {
-  struct stat st;
+  struct stat st = {};
   const int present = stat(g_link.path, &st) == 0;
   if (g_link.img != nullptr && present && st.st_ino == g_link.ino && st.st_dev == g_link.dev) {
     return;

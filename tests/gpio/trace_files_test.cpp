@@ -182,7 +182,7 @@ TEST_F(TraceFiles, InputsOfSeveralAxesCollectedOutOfOrderAreWrittenAtTheirTimes)
   SpscRing<TraceRecord> outs(64), ins(64);
   TraceWriter w(at("a.vcd"), kWires, 0, outs, ins);
   for (int k = 0; k < 4; ++k) {
-    const Nanos base = 1000 * (k + 1);
+    const Nanos base = Nanos{1000} * (k + 1);
     ins.try_push(rec(base + 100, 0, true, k % 2 == 0));  // axis 1 first...
     ins.try_push(rec(base + 50, 1, true, k % 2 == 0));   // ...then axis 2's earlier edge
     outs.try_push(rec(base + 75, 0, false, k % 2 == 0));
@@ -205,7 +205,7 @@ TEST_F(TraceFiles, KilledWritersSpoolsAreRecoveredIntoAVcdMarkedIncomplete) {
   if (child == 0) {
     SpscRing<TraceRecord> outs(64), ins(64);
     TraceWriter w(at("a.vcd"), kWires, 0, outs, ins, kNsPerMs);
-    for (int i = 0; i < 10; ++i) outs.try_push(rec(1000 * (i + 1), 0, false, i % 2 == 0));
+    for (int i = 0; i < 10; ++i) outs.try_push(rec(Nanos{1000} * (i + 1), 0, false, i % 2 == 0));
     ins.try_push(rec(5500, 1, true, true));
     w.start();
     std::this_thread::sleep_for(std::chrono::milliseconds(400));
@@ -258,7 +258,7 @@ class TraceFullDisk : public TraceFiles {
   // Pushes `n` output records through the running writer until its spool write fails.
   static void push_until_failed(TraceWriter& w, SpscRing<TraceRecord>& outs, int n) {
     for (int i = 0; i < n; ++i) {
-      while (!outs.try_push(rec(1000 * (i + 1), 0, false, i % 2 == 0))) {
+      while (!outs.try_push(rec(Nanos{1000} * (i + 1), 0, false, i % 2 == 0))) {
         std::this_thread::yield();
       }
     }
@@ -287,7 +287,7 @@ TEST_F(TraceFullDisk, VcdThatCannotBeWrittenLeavesTheSpoolsAndTheOldFileInPlace)
   put(at("a.vcd"), "the previous run's trace\n");
   SpscRing<TraceRecord> outs(1024), ins(64);
   TraceWriter w(at("a.vcd"), kWires, 0, outs, ins, kNsPerMs);
-  fill(48 * 1024);  // room for the spools' 20,000 records (320 KB) is not there either
+  fill(std::size_t{48} * 1024);  // room for the spools' 20,000 records (320 KB) is not there either
   w.start();
   push_until_failed(w, outs, 20'000);
   const TraceOutcome o = w.stop();

@@ -13,7 +13,7 @@ namespace {
 
 // A read of input register 0, count 1, with the given header fields; `extra` PDU bytes appended.
 std::vector<std::uint8_t> frame(std::uint16_t protocol, std::uint16_t length, std::uint8_t fc = 4,
-                                std::vector<std::uint8_t> extra = {}) {
+                                const std::vector<std::uint8_t>& extra = {}) {
   std::vector<std::uint8_t> f = {0x12,
                                  0x34,
                                  static_cast<std::uint8_t>(protocol >> 8),
