@@ -50,14 +50,23 @@ class DaemonTraceFiles : public ::testing::Test {
   void start() {
     daemon_ = std::make_unique<DaemonProcess>(sim_3601_config("", kSim), true, "", at("a.vcd"));
   }
-  // Toggles the home input `n` times through the simulator panel: 2n input records.
+  // Toggles the home input `n` times through the simulator panel: n input records.
   void toggle_home(int n) {
     ipc::SimPanelClient panel(daemon_->name());
+    ipc::Client image(daemon_->name());
     for (int i = 0; i < n; ++i) {
       panel.force(0, kHomeInput, i % 2 == 0);
-      std::this_thread::sleep_for(milliseconds(15));  // > a scan: each force seen
+      // The daemon takes the panel in once per control loop: each force seen before the next.
+      ASSERT_TRUE(image.wait_scans(3, milliseconds(5000)));
     }
     panel.release_all(0);
+  }
+  // The daemon creates its image before its trace spools: wait for the spools too.
+  void wait_for_spools() {
+    for (int i = 0; i < 1000 && !fs::exists(at("a.vcd.in.spool")); ++i) {
+      std::this_thread::sleep_for(milliseconds(10));
+    }
+    ASSERT_TRUE(fs::exists(at("a.vcd.in.spool")));
   }
   static std::string slurp(const std::string& path) { return slurp_file(path); }
 
@@ -124,6 +133,7 @@ TEST_F(DaemonTraceFiles, FullDiskSetsHealthBit4WhileRunningAndExitsThreeKeepingT
   mounted_ = true;
   start();
   ASSERT_TRUE(daemon_->wait_ready()) << daemon_->log();
+  wait_for_spools();
   {
     std::ofstream f(at("filler"), std::ios::binary);
     const std::string chunk(4096, 'x');
