@@ -30,6 +30,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <random>
@@ -84,7 +85,7 @@ class Daemon {
                               "home_from = -200\nhome_to = -100\n";
     pid_ = fork();
     if (pid_ == 0) {
-      std::freopen(log_.c_str(), "w", stderr);
+      if (std::freopen(log_.c_str(), "w", stderr) == nullptr) _exit(126);  // no log, no run
       std::vector<std::string> a{exe, "--config", config_};
       if (trace) {
         a.push_back("--trace");
@@ -109,7 +110,8 @@ class Daemon {
   }
   ~Daemon() {
     stop();
-    std::system(("rm -rf " + dir_).c_str());
+    std::error_code ignored;  // a bench leaves at worst a temp dir behind
+    std::filesystem::remove_all(dir_, ignored);
   }
   int stop() {
     if (pid_ <= 0) return 0;

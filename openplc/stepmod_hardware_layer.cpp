@@ -2,11 +2,11 @@
 // (an emulated AMCI 3601/3602/3202) through %IW/%QW, word for word as the module's manual lays
 // out its backplane words. Install: see openplc/README.md.
 //
-// Addresses (the same registers as stepmod's Modbus map, INTERFACE.md 6):
+// Addresses (the same registers as stepmod's Modbus map, docs/interface.md section 6):
 //   %IW0  .. %IW31   the module's input words (3601/3602: one %IW per word; 3202: two per 32-bit
 //                    word, high half first)
 //   %IW32 .. %IW47   module type, word size (bytes), output words, input words, scan counter
-//                    bits 15..0 and 31..16, health flags (INTERFACE.md 3.3) low and high,
+//                    bits 15..0 and 31..16, health flags (docs/interface.md 3.3) low and high,
 //                    late-edge faults low and high, %IW42 link (see below), %IW43..%IW47
 //                    reserved (0)
 //   %QW0  .. %QW31   the module's output words (same layout as the inputs)
@@ -28,7 +28,7 @@
 // input image; a snapshot that fails (the module publishing on every try) keeps the last good
 // words, and %IW42 (link) drops to 0, with every %IW 0, only after kLinkLossNs without a good
 // snapshot or when the image goes away (a real loss). updateBuffersOut() writes the output image
-// as one seqlock write and increments the PLC heartbeat (INTERFACE.md 3.2): with [module]
+// as one seqlock write and increments the PLC heartbeat (docs/interface.md 3.2): with [module]
 // plc_timeout_ms set, a stopped or dead runtime stops the axes as a PLC leaving Run mode does
 // (the stop's disableOutputs() only writes zeros, which stops nothing). The image is looked for
 // (and its identity checked) on every scan: one stat() of /dev/shm.

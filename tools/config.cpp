@@ -15,6 +15,8 @@
 #include <sstream>
 #include <string_view>
 
+#include "tools/config_keys.hpp"
+
 namespace stepmod::tools {
 namespace {
 
@@ -50,7 +52,7 @@ class Parser {
     }
     Config c;
     c.file = file_;
-    check_keys(root, "", {"module", "gpio", "rt", "axis", "modbus"});
+    check_keys(root, "", "");
 
     const toml::table* module = sub_table(root, "", "module");
     parse_module(module, c);
@@ -73,8 +75,10 @@ class Parser {
     return prefix.empty() ? std::string(key) : prefix + "." + std::string(key);
   }
 
-  void check_keys(const toml::table& t, const std::string& prefix,
-                  std::initializer_list<std::string_view> allowed) const {
+  // `table` names the table in kConfigKeys ("axis.sim"); `prefix` is how the message names it
+  // ("axis[1].sim").
+  void check_keys(const toml::table& t, const std::string& prefix, std::string_view table) const {
+    const std::vector<std::string_view> allowed = config_keys_of(table);
     for (auto&& [k, v] : t) {
       bool ok = false;
       for (std::string_view a : allowed) ok = ok || k.str() == a;
@@ -159,7 +163,7 @@ class Parser {
   void parse_modbus(const toml::table* t, Config& c) const {
     const std::string p = "modbus";
     if (t == nullptr) return;
-    check_keys(*t, p, {"enabled", "listen", "unit_id", "writes", "max_clients", "allow"});
+    check_keys(*t, p, "modbus");
     ipc::ModbusOptions& m = c.modbus;
     m.enabled = get_bool(t, p, "enabled", false);
     m.writes = get_bool(t, p, "writes", false);
@@ -214,7 +218,7 @@ class Parser {
 
   void parse_module(const toml::table* m, Config& c) const {
     const std::string p = "module";
-    if (m != nullptr) check_keys(*m, p, {"type", "name", "scan_us", "plc_timeout_ms"});
+    if (m != nullptr) check_keys(*m, p, "module");
     const toml::node* type = m != nullptr ? m->get("type") : nullptr;
     if (type == nullptr) {
       toml::source_region where{};
@@ -260,7 +264,7 @@ class Parser {
   void parse_gpio(const toml::table* g, Config& c) const {
     const std::string p = "gpio";
     if (g == nullptr) return;
-    check_keys(*g, p, {"backend", "chip"});
+    check_keys(*g, p, "gpio");
     c.backend = get_choice(g, p, "backend", {"sim", "gpiod"}, "sim") == "gpiod"
                     ? Config::Backend::kGpiod
                     : Config::Backend::kSim;
@@ -276,7 +280,7 @@ class Parser {
   void parse_rt(const toml::table* r, Config& c) const {
     const std::string p = "rt";
     if (r == nullptr) return;
-    check_keys(*r, p, {"priority", "cpu", "late_limit_us"});
+    check_keys(*r, p, "rt");
     c.rt_priority = static_cast<int>(get_int(r, p, "priority", 80, 1, 99));
     c.rt_cpu = static_cast<int>(get_int(r, p, "cpu", -1, -1, 1023));
     // Below a wake-up's latency (tens of us on a VM) every move would fault; above a second a
@@ -319,9 +323,7 @@ class Parser {
                         std::map<int64_t, std::string>& used) const {
     // 1-based like the contract's "axis 1, then axis 2" and the VCD names axis1.step.
     const std::string p = "axis[" + std::to_string(index + 1) + "]";
-    check_keys(t, p,
-               {"step", "dir", "gpo", "capture", "external", "home", "estop", "cw_limit",
-                "ccw_limit", "enc_a", "enc_b", "enc_z", "step_pulse_ns", "dir_setup_ns", "sim"});
+    check_keys(t, p, "axis");
     AxisConfig a;
     auto line = [&](std::string_view key) -> std::optional<unsigned> {
       const auto v = opt_int(&t, p, key, 0, kMaxLineOffset);
@@ -385,9 +387,7 @@ class Parser {
   SimAxisConfig parse_sim(const toml::table* s, const std::string& p) const {
     SimAxisConfig c;
     if (s == nullptr) return c;
-    check_keys(*s, p,
-               {"start_position", "cw_limit_at", "ccw_limit_at", "home_from", "home_to", "contacts",
-                "encoder_ratio", "marker_every"});
+    check_keys(*s, p, "axis.sim");
     constexpr int64_t lo = -kMaxSimPosition;
     constexpr int64_t hi = kMaxSimPosition;
     c.start_position = get_int(s, p, "start_position", 0, lo, hi);

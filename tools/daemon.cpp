@@ -370,7 +370,8 @@ void Daemon::Impl::notice_cpu_need(Nanos now) {
     spdlog::warn(
         "axis {}: ~{} steps/s, an edge every {} us: closer than the pulse thread's wake-up "
         "({} us early; measured p99 wake-up lateness {} us), so the thread stays on its CPU for "
-        "this move. {}; a stall beyond [rt] late_limit_us ({} us) stops the axis (README: "
+        "this move. {}; a stall beyond [rt] late_limit_us ({} us) stops the axis "
+        "(docs/performance.md: "
         "'A CPU of its own')",
         a + 1, moved * kNsPerSec / dt, edge_gap / 1000.0, pulse->spin_now() / kNsPerUs,
         pulse->wake_p99() / kNsPerUs,

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # The Debian package end to end (ctest label "package"): builds it with cpack from this build
 # tree, installs it with dpkg -i, checks what a board gets (user, groups, udev rule, unit, man
-# pages, conffiles), runs the installed stepmodd as the stepmod user on an example config and
-# drives a move with the installed stepmodctl, verifies the unit with systemd-analyze, then
-# removes and purges the package and checks that nothing is left.
+# pages, conffiles, copyright, changelog), runs lintian (no error, no warning), checks the unit's
+# hardening (exposure <= 3.0 with what stepmodd needs kept), runs the installed stepmodd as the
+# stepmod user without privileges on an example config and drives a move with the installed
+# stepmodctl (under strace: every system call allowed by the unit's filter), verifies the unit
+# with systemd-analyze, then removes and purges the package and checks that nothing is left.
 #   package_test.sh BUILD_DIR
 # Exit 77 (skipped) unless root with dpkg, or when stepmod is already installed (not ours).
 set -euo pipefail
@@ -49,6 +51,21 @@ for f in 3601-sim 3601-board 3602-sim 3202-sim; do
   grep -qx "/etc/stepmod/$f.toml" "$tmp/control/conffiles" || fail "example $f is not a conffile"
 done
 
+step "copyright, changelog, lintian, the unit's exposure"
+for f in ./usr/share/doc/stepmod/copyright ./usr/share/doc/stepmod/changelog.gz \
+         ./usr/share/man/man5/stepmod.toml.5.gz ./usr/share/doc/stepmod/interface.md; do
+  grep -qx "$f" "$tmp/files" || fail "$f not in the package"
+done
+dpkg-deb -x "$deb" "$tmp/root"
+version=$(dpkg-deb -f "$deb" Version)
+zcat "$tmp/root/usr/share/doc/stepmod/changelog.gz" | head -n 1 | grep -q "^stepmod ($version) " ||
+  fail "the changelog's newest entry is not $version: $(zcat "$tmp/root/usr/share/doc/stepmod/changelog.gz" | head -n 1)"
+head -n 1 "$tmp/root/usr/share/doc/stepmod/copyright" |
+  grep -qx 'Format: https://www.debian.org/doc/packaging-manuals/copyright-format/1.0/' ||
+  fail "copyright is not machine-readable (DEP-5)"
+"$(dirname "$0")/package_lint.sh" "$tmp/out"
+"$(dirname "$0")/unit_exposure.sh" "$tmp/root/usr/lib/systemd/system/stepmodd@.service" "$tmp"
+
 step "dpkg -i"
 had_gpio=0
 getent group gpio >/dev/null && had_gpio=1
@@ -58,7 +75,8 @@ getent passwd stepmod >/dev/null || fail "no stepmod user"
 id -nG stepmod | tr ' ' '\n' | grep -qx gpio || fail "stepmod is not in the gpio group"
 id -nG stepmod | tr ' ' '\n' | grep -qx stepmod || fail "stepmod has no stepmod group"
 grep -q 'GROUP="gpio"' /usr/lib/udev/rules.d/60-stepmod-gpio.rules || fail "udev rule"
-for page in /usr/share/man/man8/stepmodd.8.gz /usr/share/man/man1/stepmodctl.1.gz; do
+for page in /usr/share/man/man8/stepmodd.8.gz /usr/share/man/man1/stepmodctl.1.gz \
+            /usr/share/man/man5/stepmod.toml.5.gz; do
   zcat "$page" | groff -man -Tutf8 -ww -z 2>"$tmp/groff.log" || fail "$page does not render"
   [ ! -s "$tmp/groff.log" ] || { cat "$tmp/groff.log"; fail "$page: groff warnings"; }
 done
@@ -86,8 +104,19 @@ name="pkgtest-$$"
 sed -e "s/^name = .*/name = \"$name\"/" -e "s/^late_limit_us = .*/late_limit_us = 1000000/" \
   /etc/stepmod/3601-sim.toml >"$tmp/3601-sim.toml"
 grep -q '^late_limit_us = 1000000' "$tmp/3601-sim.toml" || fail "example config has no late_limit_us"
+# With the Modbus server on (a free port), so that its sockets run under the unit's filters too.
+port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+printf '\n[modbus]\nenabled = true\nlisten = "127.0.0.1:%s"\n' "$port" >>"$tmp/3601-sim.toml"
 chmod 644 "$tmp/3601-sim.toml"
-setpriv --reuid stepmod --regid stepmod --init-groups /usr/bin/stepmodd --config "$tmp/3601-sim.toml" >"$tmp/daemon.log" 2>&1 &
+# As the unit runs it: no new privileges, no capabilities. Under strace when it is there, for the
+# unit's system call filter (syscall_filter.sh below).
+tracer=()
+if command -v strace >/dev/null; then
+  install -m 666 /dev/null "$tmp/strace.log"
+  tracer=(strace -f -qq -o "$tmp/strace.log")
+fi
+setpriv --reuid stepmod --regid stepmod --init-groups --no-new-privs --bounding-set -all \
+  "${tracer[@]}" /usr/bin/stepmodd --config "$tmp/3601-sim.toml" >"$tmp/daemon.log" 2>&1 &
 daemon_pid=$!
 for _ in $(seq 100); do
   [ -e "/dev/shm/stepmod.$name" ] && break
@@ -101,11 +130,26 @@ $ctl configure --home --cw-limit --ccw-limit --estop >/dev/null
 $ctl move rel 1500 -s 10000 -a 10 -d 10 >/dev/null
 $ctl wait-idle --max 10 >/dev/null
 $ctl status | grep -Eq '^  position = 1500$' || { $ctl status; fail "position after the move"; }
-kill -TERM "$daemon_pid"
+# Input register 1000: the module type, over Modbus/TCP.
+if command -v mbpoll >/dev/null; then
+  mbpoll -m tcp -p "$port" -0 -1 -t 3 -r 1000 -c 1 127.0.0.1 | grep -q '^\[1000\]:[[:space:]]*3601' ||
+    fail "Modbus: input register 1000 is not 3601"
+fi
+# Under strace the daemon is strace's child: the signal goes to stepmodd itself.
+stepmodd_pid=$daemon_pid
+[ "${#tracer[@]}" -eq 0 ] || stepmodd_pid=$(pgrep -P "$daemon_pid")
+kill -TERM "$stepmodd_pid"
 rc=0
 wait "$daemon_pid" || rc=$?
 daemon_pid=""
 [ "$rc" -eq 0 ] || { cat "$tmp/daemon.log"; fail "stepmodd exit status $rc"; }
+if [ "${#tracer[@]}" -gt 0 ]; then
+  "$(dirname "$0")/syscall_filter.sh" /usr/lib/systemd/system/stepmodd@.service "$tmp/strace.log"
+elif [ "${CI:-}" = true ] || [ "${CI:-}" = 1 ]; then
+  fail "strace missing (scripts/install-deps installs it)"
+else
+  echo "system call filter: SKIPPED, strace not installed (scripts/install-deps installs it)"
+fi
 [ ! -e "/dev/shm/stepmod.$name" ] || fail "image left behind"
 
 step "dpkg -r, then dpkg -P"

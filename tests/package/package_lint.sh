@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# lintian on every .deb in DIR: no error and no warning (informational tags are printed, not
+# counted). Skipped with a message when lintian is missing, except in CI (CI=true).
+#   package_lint.sh DIR
+set -euo pipefail
+dir=$1
+if ! command -v lintian >/dev/null; then
+  if [ "${CI:-}" = true ] || [ "${CI:-}" = 1 ]; then
+    echo "FAIL: lintian missing (scripts/install-deps installs it)" >&2; exit 1
+  fi
+  echo "lintian: SKIPPED, not installed (apt-get install lintian, or scripts/install-deps)"
+  exit 0
+fi
+status=0
+for deb in "$dir"/*.deb; do
+  [ -f "$deb" ] || { echo "FAIL: no .deb in $dir" >&2; exit 1; }
+  # --no-cfg: the machine's lintianrc must not change the verdict; running as root is fine here.
+  out=$(lintian --no-cfg --display-info "$deb" 2>&1 | grep -v 'running with root privileges' || true)
+  echo "lintian $(basename "$deb"):"
+  [ -z "$out" ] || echo "$out" | sed 's/^/  /'
+  if echo "$out" | grep -q '^[EW]: '; then
+    echo "FAIL: lintian reports errors or warnings for $(basename "$deb")" >&2
+    status=1
+  fi
+done
+exit "$status"
