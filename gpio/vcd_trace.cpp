@@ -4,6 +4,7 @@
 
 #include <pthread.h>
 #include <sched.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -11,6 +12,8 @@
 #include <cstring>
 #include <ctime>
 #include <stdexcept>
+
+#include "gpio/trace_file.hpp"
 
 namespace stepmod::gpio {
 namespace {
@@ -60,10 +63,14 @@ std::vector<TraceWire> trace_wires(Backend& backend) {
 VcdTrace::VcdTrace(const std::string& path, std::span<const TraceWire> wires, Nanos start,
                    bool loss_marker)
     : path_(path), start_(start), wires_(wires.begin(), wires.end()) {
-  f_ = std::fopen(path.c_str(), "w");
+  NewFile file = create_file_beside(path, "trace file");
+  tmp_path_ = std::move(file.path);
+  f_ = ::fdopen(file.fd, "w");
   if (f_ == nullptr) {
-    throw std::runtime_error("trace file '" + path +
-                             "': cannot open for writing: " + std::strerror(errno));
+    const std::string why = std::strerror(errno);
+    ::close(file.fd);
+    ::unlink(tmp_path_.c_str());
+    throw std::runtime_error("trace file '" + path + "': " + why);
   }
   unsigned max_axis = 0;
   for (const TraceWire& w : wires_) max_axis = std::max<unsigned>(max_axis, w.axis);
@@ -101,7 +108,19 @@ VcdTrace::VcdTrace(const std::string& path, std::span<const TraceWire> wires, Na
 }
 
 VcdTrace::~VcdTrace() {
-  if (f_ != nullptr) std::fclose(f_);
+  if (f_ == nullptr) return;
+  try {
+    close(start_ + last_);
+  } catch (...) {
+    // close() removed the failed file; a destructor cannot report it.
+  }
+}
+
+void VcdTrace::abandon() noexcept {
+  if (f_ == nullptr) return;
+  std::fclose(f_);
+  f_ = nullptr;
+  ::unlink(tmp_path_.c_str());
 }
 
 int VcdTrace::wire_index(const TraceRecord& r) const noexcept {
@@ -153,39 +172,65 @@ void VcdTrace::close(Nanos end) {
     std::fprintf(f_, "#%" PRId64 "\n", static_cast<std::int64_t>(t));
     last_ = t;
   }
-  const bool bad = std::ferror(f_) != 0;
+  const bool flushed = std::fflush(f_) == 0;
+  const int flush_errno = errno;
+  const bool bad = !flushed || std::ferror(f_) != 0;
   const int rc = std::fclose(f_);
+  const int close_errno = errno;
   f_ = nullptr;
   if (bad || rc != 0) {
-    throw std::runtime_error("trace file '" + path_ + "': write failed: " + std::strerror(errno));
+    ::unlink(tmp_path_.c_str());
+    throw std::runtime_error("trace file '" + path_ + "': write failed: " +
+                             std::strerror(!flushed ? flush_errno : close_errno));
+  }
+  // Replaces the name, never what a link there points to.
+  if (::rename(tmp_path_.c_str(), path_.c_str()) != 0) {
+    const std::string why = std::strerror(errno);
+    ::unlink(tmp_path_.c_str());
+    throw std::runtime_error("trace file '" + path_ + "': cannot put it in place: " + why);
+  }
+}
+
+void write_merged(std::span<OrderedReader* const> readers, VcdTrace& vcd) {
+  std::vector<const TraceRecord*> heads;
+  heads.reserve(readers.size());
+  for (OrderedReader* r : readers) heads.push_back(r->next());
+  for (;;) {
+    std::size_t best = heads.size();
+    for (std::size_t k = 0; k < heads.size(); ++k) {
+      if (heads[k] != nullptr && (best == heads.size() || heads[k]->t < heads[best]->t)) best = k;
+    }
+    if (best == heads.size()) return;
+    vcd.record(*heads[best]);
+    heads[best] = readers[best]->next();
   }
 }
 
 // ---- TraceWriter --------------------------------------------------------------------------------
 
 namespace {
-std::string writable_path(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (f == nullptr) {
-    throw std::runtime_error("trace file '" + path +
-                             "': cannot open for writing: " + std::strerror(errno));
-  }
-  std::fclose(f);
+// The trace file's path, refused at the start if something other than a regular file is there.
+std::string checked_path(const std::string& path) {
+  refuse_special_file(path, "trace file");
   return path;
+}
+
+SpoolInfo spool_info(Nanos start, std::span<const TraceWire> wires) {
+  return SpoolInfo{start, std::vector<TraceWire>(wires.begin(), wires.end())};
 }
 }  // namespace
 
 TraceWriter::TraceWriter(const std::string& path, std::span<const TraceWire> wires, Nanos start,
                          SpscRing<TraceRecord>& outputs, SpscRing<TraceRecord>& inputs,
                          Nanos period)
-    : path_(writable_path(path)),
+    : path_(checked_path(path)),
       wires_(wires.begin(), wires.end()),
       start_(start),
       outputs_(outputs),
       inputs_(inputs),
       period_(period),
-      out_spool_(path + ".out.spool"),
-      in_spool_(path + ".in.spool") {}
+      out_spool_(path + ".out.spool", spool_info(start, wires)),
+      in_spool_(path + ".in.spool", spool_info(start, wires)) {}
 
 TraceWriter::~TraceWriter() {
   try {
@@ -238,63 +283,102 @@ void TraceWriter::step() {
 }
 
 void TraceWriter::run() {
+  Nanos flushed = monotonic_now();
   while (running_.load(std::memory_order_acquire)) {
     const Nanos now = monotonic_now();
     step();
+    // What a killed daemon leaves in its spools: all but the last kFlushPeriod.
+    if (now - flushed >= kFlushPeriod) {
+      out_spool_.flush();
+      in_spool_.flush();
+      flushed = now;
+    }
     sleep_until(now + period_);
   }
 }
 
-void TraceWriter::stop(std::uint64_t dropped_outputs, std::uint64_t dropped_inputs) {
-  if (closed_) return;
+TraceOutcome TraceWriter::stop(std::uint64_t dropped_outputs, std::uint64_t dropped_inputs) {
+  if (closed_) return outcome_;
   running_.store(false, std::memory_order_release);
   if (thread_.joinable()) thread_.join();
   closed_ = true;
   step();
-  write_vcd(dropped_outputs, dropped_inputs);
+  outcome_ = finish(dropped_outputs, dropped_inputs);
+  return outcome_;
+}
+
+// The VCD from the spools; on failure the spools are kept beside the VCD's path.
+TraceOutcome TraceWriter::finish(std::uint64_t dropped_outputs, std::uint64_t dropped_inputs) {
+  TraceOutcome o;
+  out_spool_.flush();
+  in_spool_.flush();
+  try {
+    write_vcd(dropped_outputs, dropped_inputs);
+  } catch (const std::exception& e) {
+    out_spool_.keep();
+    in_spool_.keep();
+    o.complete = false;
+    o.vcd_written = false;
+    o.problem = std::string(e.what()) + "; the spools " + out_spool_.path() + " and " +
+                in_spool_.path() +
+                " are kept (make room, then: stepmodctl trace recover --output " + path_ + " " +
+                out_spool_.path() + " " + in_spool_.path() + ")";
+    return o;
+  }
+  out_spool_.remove();
+  in_spool_.remove();
+  if (failed()) {
+    const int err = out_spool_.failed() ? out_spool_.error() : in_spool_.error();
+    o.complete = false;
+    o.problem = "trace spool write failed (" + std::string(std::strerror(err)) + "): the VCD " +
+                path_ + " is marked TRACE INCOMPLETE";
+  } else if (dropped_outputs + dropped_inputs > 0 || markers_ > 0) {
+    o.complete = false;
+    o.problem = "trace records lost (ring full): the VCD " + path_ + " is marked TRACE INCOMPLETE";
+  }
+  return o;
 }
 
 void TraceWriter::write_vcd(std::uint64_t dropped_outputs, std::uint64_t dropped_inputs) {
-  const bool spooled_ok = out_spool_.finish() && in_spool_.finish();
-  const bool lost = dropped_outputs + dropped_inputs > 0 || markers_ > 0;
+  const bool spool_failed = failed();
+  const bool lost = dropped_outputs + dropped_inputs > 0 || markers_ > 0 || spool_failed;
   vcd_ = std::make_unique<VcdTrace>(path_, wires_, start_, lost);
-  if (lost && markers_ == 0) {
-    // Counted by a producer but never seen by the thread (the counts came from stop()'s caller
-    // only): mark the end, so the wire still shows it.
-    const Nanos t = std::max(last_output_t_, last_input_t_);
-    out_spool_.append(TraceRecord{t + 1, 0, 0, 1, kLossMarker});
-    out_spool_.append(TraceRecord{t + 2, 0, 0, 0, kLossMarker});
-    out_spool_.finish();
-  }
-  // Two streams, each in time order: merge them (outputs first on equal times).
-  TraceSpool::Reader outs(out_spool_.path());
-  TraceSpool::Reader ins(in_spool_.path());
-  const TraceRecord* o = outs.next();
-  const TraceRecord* i = ins.next();
-  while (o != nullptr || i != nullptr) {
-    if (i == nullptr || (o != nullptr && o->t <= i->t)) {
-      vcd_->record(*o);
-      o = outs.next();
-    } else {
-      vcd_->record(*i);
-      i = ins.next();
+  try {
+    // Outputs first on equal times.
+    SpoolReader out_file(out_spool_.fd(), out_spool_.path());
+    SpoolReader in_file(in_spool_.fd(), in_spool_.path());
+    OrderedReader outs(out_file);
+    OrderedReader ins(in_file);
+    OrderedReader* const readers[] = {&outs, &ins};
+    write_merged(readers, *vcd_);
+    if (lost && markers_ == 0) {
+      // Counted by a producer but never seen by the thread, or a spool that stopped being
+      // written: mark the end of what there is, so the wire still shows it.
+      const Nanos t = vcd_->last_time();
+      vcd_->record(TraceRecord{t + 1, 0, 0, 1, kLossMarker});
+      vcd_->record(TraceRecord{t + 2, 0, 0, 0, kLossMarker});
     }
-  }
-  // Always written, zeros included, so that a script can tell a complete trace from one whose
-  // rings overflowed without guessing.
-  vcd_->comment("stepmod: dropped records: outputs " + std::to_string(dropped_outputs) +
-                ", inputs " + std::to_string(dropped_inputs) + "; late records " +
-                std::to_string(vcd_->late()) + "; unknown lines " +
-                std::to_string(vcd_->unknown()));
-  if (lost) {
-    vcd_->comment("stepmod: TRACE INCOMPLETE: " + std::to_string(dropped_outputs + dropped_inputs) +
-                  " records were lost (a trace ring was full); the wire " + kLossMarkerWire +
-                  " pulses where");
-  }
-  vcd_->close(monotonic_now());
-  if (!spooled_ok) {
-    throw std::runtime_error("trace file '" + path_ +
-                             "': the spool could not be written (disk full?): trace incomplete");
+    // Always written, zeros included, so that a script can tell a complete trace from one whose
+    // rings overflowed without guessing.
+    vcd_->comment("stepmod: dropped records: outputs " + std::to_string(dropped_outputs) +
+                  ", inputs " + std::to_string(dropped_inputs) + "; late records " +
+                  std::to_string(vcd_->late()) + "; unknown lines " +
+                  std::to_string(vcd_->unknown()));
+    if (spool_failed) {
+      vcd_->comment(
+          "stepmod: TRACE INCOMPLETE: a trace spool could not be written (disk full?); "
+          "the records after the wire " +
+          std::string(kLossMarkerWire) + " pulses are missing");
+    } else if (lost) {
+      vcd_->comment(
+          "stepmod: TRACE INCOMPLETE: " + std::to_string(dropped_outputs + dropped_inputs) +
+          " records were lost (a trace ring was full); the wire " + kLossMarkerWire +
+          " pulses where");
+    }
+    vcd_->close(monotonic_now());
+  } catch (...) {
+    vcd_->abandon();
+    throw;
   }
 }
 

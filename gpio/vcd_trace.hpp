@@ -23,15 +23,6 @@
 
 namespace stepmod::gpio {
 
-// One traced line and its level at #0.
-struct TraceWire {
-  std::uint8_t axis = 0;  // 0-based; the wire is named axis<axis+1>.<key>
-  bool is_input = false;
-  std::uint8_t line = 0;    // OutputLine or InputLine value
-  bool initial = false;     // logical level at the start
-  bool active_low = false;  // the wire carries the inverse of the logical level
-};
-
 // Every configured line of `backend`: outputs start low (the daemon idles them before starting),
 // inputs at their present level. The VCD shows wire levels: an active-low line's inverted.
 std::vector<TraceWire> trace_wires(Backend& backend);
@@ -41,12 +32,14 @@ std::string wire_name(const TraceWire& w);
 
 class VcdTrace {
  public:
-  // Opens (truncates) `path` and writes the header and the #0 values; throws std::runtime_error
-  // naming the file if it cannot be opened. `start`: CLOCK_MONOTONIC time that is #0.
+  // Writes the header and the #0 values to a new file beside `path` (gpio/trace_file.hpp),
+  // which close() renames to `path` (replacing the name, whatever it is: a link planted there is
+  // never followed); throws std::runtime_error naming the file if it cannot be created.
+  // `start`: CLOCK_MONOTONIC time that is #0.
   // `loss_marker`: also declare the wire kLossMarkerWire, driven by kLossMarker records.
   VcdTrace(const std::string& path, std::span<const TraceWire> wires, Nanos start,
            bool loss_marker = false);
-  ~VcdTrace();  // closes, ignoring errors (call close() to see them)
+  ~VcdTrace();  // as close() if still open, ignoring errors (a failed file is removed)
   VcdTrace(const VcdTrace&) = delete;
   VcdTrace& operator=(const VcdTrace&) = delete;
 
@@ -57,9 +50,14 @@ class VcdTrace {
   void record(const TraceRecord& r);
   void comment(std::string_view text);
   // Writes a final timestamp `end` (if later than the last change) so viewers show the whole
-  // run, flushes and closes. Throws std::runtime_error if the file could not be written.
+  // run, flushes, closes and renames the file into place. Throws std::runtime_error if the file
+  // could not be written (it is then removed; whatever was at `path` stays as it was).
   void close(Nanos end);
+  // Closes and removes the unfinished file; `path` is left as it was.
+  void abandon() noexcept;
   void flush();
+  // CLOCK_MONOTONIC time of the last change written (start if none).
+  Nanos last_time() const noexcept { return start_ + last_; }
 
   std::uint64_t late() const noexcept { return late_; }
   std::uint64_t unknown() const noexcept { return unknown_; }
@@ -69,6 +67,7 @@ class VcdTrace {
   int wire_index(const TraceRecord& r) const noexcept;
 
   std::string path_;
+  std::string tmp_path_;  // the new file, renamed to path_ by close()
   std::FILE* f_ = nullptr;
   Nanos start_ = 0;
   Nanos last_ = 0;  // last written time, relative
@@ -91,10 +90,23 @@ inline constexpr const char* kLossMarkerWire = "trace.records_lost";
 // them; the thread watches those counters and puts a loss marker where records went missing, and
 // the VCD then declares the marker wire `trace.records_lost` (a pulse at each loss) and says so
 // in a comment.
+// What stop() did, for the daemon's log and exit status.
+struct TraceOutcome {
+  bool complete = true;     // every record is in the VCD
+  bool vcd_written = true;  // the VCD is at its path (else the spools were kept beside it)
+  std::string problem;      // what went wrong, "" when complete
+};
+
+// The streams of `readers` (each in time order) merged into `vcd`; equal times go in the order
+// of `readers`.
+void write_merged(std::span<OrderedReader* const> readers, VcdTrace& vcd);
+
 class TraceWriter {
  public:
-  // Checks that `path` can be written (truncating it) and creates the spools beside it
-  // (`path`.out.spool / .in.spool, removed by stop()); throws std::runtime_error naming the file.
+  // Refuses a `path` that exists and is not a regular file, and creates the spools beside it as
+  // new files (`path`.out.spool / .in.spool; an existing name is refused: a killed daemon's
+  // spools are recovered with `stepmodctl trace recover` or removed first). Removed by stop()
+  // once the VCD is written. Throws std::runtime_error naming the file.
   // Both rings must outlive the writer. `period`: how often the thread drains the rings.
   TraceWriter(const std::string& path, std::span<const TraceWire> wires, Nanos start,
               SpscRing<TraceRecord>& outputs, SpscRing<TraceRecord>& inputs,
@@ -120,9 +132,13 @@ class TraceWriter {
   bool fifo() const noexcept { return fifo_.load(std::memory_order_acquire); }
   // Stops the thread (after the producers have stopped), spools what is left in the rings and
   // writes the VCD: every record in time order, a $comment with the producers' dropped-record
-  // counts, and with any loss the marker wire. Throws std::runtime_error if a file could not be
-  // written.
-  void stop(std::uint64_t dropped_outputs = 0, std::uint64_t dropped_inputs = 0);
+  // counts, and with any loss (or a spool write that failed) the marker wire and a
+  // "TRACE INCOMPLETE" comment. A VCD that cannot be written (a full disk) is not left half
+  // written: the spools stay beside its path instead, and the outcome says so. Never throws.
+  TraceOutcome stop(std::uint64_t dropped_outputs = 0, std::uint64_t dropped_inputs = 0);
+
+  // Any thread: a spool write failed (disk full...): the trace is incomplete from then on.
+  bool failed() const noexcept { return out_spool_.failed() || in_spool_.failed(); }
 
   // One round of the thread's work: drain both rings into the spools (tests call it without
   // the thread).
@@ -130,14 +146,17 @@ class TraceWriter {
 
   // Records spooled so far (any thread: for diagnostics and the trace benchmark).
   std::uint64_t spooled() const noexcept { return spooled_.load(std::memory_order_relaxed); }
-  // The written file's statistics; valid after stop().
+  // The written file's statistics; valid after a stop() that wrote it.
   const VcdTrace& vcd() const { return *vcd_; }
+  // How often the thread writes the spools' buffers to their files: what a killed daemon loses.
+  static constexpr Nanos kFlushPeriod = 100 * kNsPerMs;
 
  private:
   void run();
   void drain(SpscRing<TraceRecord>& ring, TraceSpool& spool, const std::atomic<std::uint64_t>* lost,
              std::uint64_t& lost_seen, Nanos& last_t);
   void write_vcd(std::uint64_t dropped_outputs, std::uint64_t dropped_inputs);
+  TraceOutcome finish(std::uint64_t dropped_outputs, std::uint64_t dropped_inputs);
 
   std::string path_;
   std::vector<TraceWire> wires_;
@@ -160,6 +179,7 @@ class TraceWriter {
   std::atomic<bool> running_{false};
   std::atomic<bool> fifo_{false};
   bool closed_ = false;
+  TraceOutcome outcome_;
 };
 
 }  // namespace stepmod::gpio

@@ -2,6 +2,9 @@
 // [modbus] of the configuration file (INTERFACE.md section 6), as the server uses it.
 #include <cstdint>
 #include <string>
+#include <vector>
+
+#include "ipc/modbus_allow.hpp"
 
 namespace stepmod::ipc {
 
@@ -12,6 +15,9 @@ struct ModbusOptions {
   std::uint8_t unit_id = 1;
   bool writes = false;  // true: a master may write the output words (it then is the PLC)
   unsigned max_clients = 4;
+  // Source addresses/networks a connection may come from; empty: any (the listen address is
+  // then the only gate).
+  std::vector<AllowNet> allow;
 };
 
 }  // namespace stepmod::ipc

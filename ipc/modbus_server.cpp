@@ -1,50 +1,104 @@
 #include "ipc/modbus_server.hpp"
 
-#include <modbus/modbus.h>
 #include <spdlog/spdlog.h>
 
-#include <fcntl.h>
+#include <arpa/inet.h>
+#include <netinet/in.h>
 #include <poll.h>
 #include <pthread.h>
 #include <sched.h>
-#include <signal.h>
 #include <sys/eventfd.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <span>
+#include <list>
 #include <vector>
 
+#include "ipc/mbap.hpp"
 #include "ipc/modbus_map.hpp"
 #include "ipc/shm_object.hpp"
 
 namespace stepmod::ipc {
 
 namespace {
-// A request arrives in at most a few TCP segments on loopback or a LAN; a client that stops in
-// the middle of one holds this thread (never a scan) for at most this long per byte wait.
-constexpr std::uint32_t kByteTimeoutUs = 100'000;
+// Unanswered bytes a client may let pile up (it sends and never reads): then it is closed.
+constexpr std::size_t kMaxPendingOut = std::size_t{64} * 1024;
+// Bytes read per recv(): whole frames of a pipelining client at once.
+constexpr std::size_t kReadChunk = 4096;
+
+struct Connection {
+  int fd = -1;
+  std::string peer;
+  std::vector<std::uint8_t> in;
+  std::vector<std::uint8_t> out;
+  Nanos frame_start = 0;  // when the first byte of the incomplete frame in `in` came; 0: none
+};
+
+std::string peer_name(const sockaddr_in& a) {
+  char host[INET_ADDRSTRLEN] = "?";
+  ::inet_ntop(AF_INET, &a.sin_addr, host, sizeof host);
+  return std::string(host) + ":" + std::to_string(ntohs(a.sin_port));
+}
+
+// Counts refusals and logs them at most once per period.
+struct RefusalLog {
+  Nanos last = 0;
+  std::uint64_t quiet = 0;  // refused since the last line
+  void refused(Nanos now, const std::string& peer, const char* why) {
+    ++quiet;
+    if (last != 0 && now - last < ModbusServer::kRefusalLogPeriod) return;
+    spdlog::warn("modbus: connection from {} refused ({}); {} refused since the last such line",
+                 peer, why, quiet);
+    last = now;
+    quiet = 0;
+  }
+};
 }  // namespace
 
 struct ModbusServer::Impl {
   ShmMapping map;
   std::unique_ptr<ModbusMap> regs;
-  modbus_t* ctx = nullptr;
-  modbus_mapping_t* mapping = nullptr;  // reply buffers for modbus_reply()
   int listen_fd = -1;
   int wake_fd = -1;
-  std::vector<int> clients;
+  std::list<Connection> clients;
+  RefusalLog refusals;
 
   ~Impl() {
-    for (int fd : clients) ::close(fd);
+    for (Connection& c : clients) ::close(c.fd);
     if (listen_fd >= 0) ::close(listen_fd);
     if (wake_fd >= 0) ::close(wake_fd);
-    if (mapping != nullptr) modbus_mapping_free(mapping);
-    if (ctx != nullptr) modbus_free(ctx);
   }
+  void accept_one(const ModbusOptions& o);
+  bool receive(Connection& c, std::uint8_t unit_id);
+  bool answer(Connection& c, std::uint8_t unit_id);
+  bool send_pending(Connection& c);
+  int poll_timeout_ms(Nanos now) const;
 };
+
+namespace {
+int listen_on(const ModbusOptions& o) {
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(o.port);
+  if (::inet_pton(AF_INET, o.address.c_str(), &a.sin_addr) != 1) {
+    throw IpcError("modbus: '" + o.address + "' is not a numeric IPv4 address");
+  }
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  if (fd < 0) throw IpcError(std::string("modbus: socket: ") + std::strerror(errno));
+  const int one = 1;
+  ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+  if (::bind(fd, reinterpret_cast<const sockaddr*>(&a), sizeof a) != 0 || ::listen(fd, 16) != 0) {
+    const std::string why = std::strerror(errno);
+    ::close(fd);
+    throw IpcError("modbus: cannot listen on " + o.address + ":" + std::to_string(o.port) + ": " +
+                   why);
+  }
+  return fd;
+}
+}  // namespace
 
 ModbusServer::ModbusServer(const std::string& name, const ModbusOptions& options)
     : impl_(std::make_unique<Impl>()), options_(options) {
@@ -56,18 +110,7 @@ ModbusServer::ModbusServer(const std::string& name, const ModbusOptions& options
     throw IpcError("modbus: the image of module '" + name + "' is not a writable stepmod image");
   }
   d.regs = std::make_unique<ModbusMap>(*img, options.writes);
-
-  d.ctx = modbus_new_tcp(options.address.c_str(), options.port);
-  if (d.ctx == nullptr) throw IpcError(std::string("modbus: ") + modbus_strerror(errno));
-  modbus_set_byte_timeout(d.ctx, 0, kByteTimeoutUs);
-  d.mapping = modbus_mapping_new_start_address(0, 0, 0, 0, 0, d.regs->holding_registers(), 0,
-                                               kHeaderBase + kHeaderRegisters);
-  if (d.mapping == nullptr) throw IpcError("modbus: out of memory");
-  d.listen_fd = modbus_tcp_listen(d.ctx, static_cast<int>(options.max_clients));
-  if (d.listen_fd < 0) {
-    throw IpcError("modbus: cannot listen on " + endpoint() + ": " + std::strerror(errno));
-  }
-  ::fcntl(d.listen_fd, F_SETFD, FD_CLOEXEC);
+  d.listen_fd = listen_on(options);
   d.wake_fd = ::eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
   if (d.wake_fd < 0) throw IpcError(std::string("modbus: eventfd: ") + std::strerror(errno));
   thread_ = std::thread([this] { run(); });
@@ -88,76 +131,139 @@ std::string ModbusServer::endpoint() const {
   return options_.address + ":" + std::to_string(options_.port);
 }
 
+void ModbusServer::Impl::accept_one(const ModbusOptions& o) {
+  sockaddr_in a{};
+  socklen_t len = sizeof a;
+  const int fd =
+      ::accept4(listen_fd, reinterpret_cast<sockaddr*>(&a), &len, SOCK_NONBLOCK | SOCK_CLOEXEC);
+  if (fd < 0) return;
+  const std::string peer = peer_name(a);
+  if (!address_allowed(o.allow, a.sin_addr.s_addr)) {
+    refusals.refused(monotonic_now(), peer, "not in [modbus] allow");
+    ::close(fd);
+  } else if (clients.size() >= o.max_clients) {
+    // Over [modbus] max_clients: the connection is closed at once.
+    refusals.refused(monotonic_now(), peer, "max_clients connected already");
+    ::close(fd);
+  } else {
+    clients.push_back(Connection{fd, peer, {}, {}, 0});
+  }
+}
+
+// Reads what the socket has; false: the connection is to be closed.
+bool ModbusServer::Impl::receive(Connection& c, std::uint8_t unit_id) {
+  // A bounded number of reads per round: a client that sends without pause gets its turn like
+  // every other, not the whole thread.
+  for (int round = 0; round < 16; ++round) {
+    std::uint8_t buf[kReadChunk];
+    const ssize_t n = ::recv(c.fd, buf, sizeof buf, MSG_DONTWAIT);
+    if (n == 0) return false;  // the peer closed
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return errno == EAGAIN || errno == EWOULDBLOCK;
+    }
+    if (c.in.empty()) c.frame_start = monotonic_now();
+    c.in.insert(c.in.end(), buf, buf + n);
+    if (!answer(c, unit_id)) return false;
+    if (c.out.size() > kMaxPendingOut) return false;  // sends, never reads its answers
+  }
+  return true;
+}
+
+// Answers every whole frame in c.in; false on a malformed frame (closed without an answer).
+bool ModbusServer::Impl::answer(Connection& c, std::uint8_t unit_id) {
+  std::size_t used = 0;
+  for (;;) {
+    MbapFrame f;
+    const MbapStatus s = parse_mbap(std::span<const std::uint8_t>(c.in).subspan(used), f);
+    if (s == MbapStatus::kIncomplete) break;
+    if (s != MbapStatus::kFrame) return false;
+    if (f.unit != unit_id) {
+      // Addressed to another unit behind this "gateway": there is none.
+      append_exception(c.out, f, ModbusException::kGatewayTargetFailed);
+    } else {
+      append_response(c.out, f, regs->handle(f.pdu));
+    }
+    used += f.size;
+  }
+  if (used > 0) {
+    c.in.erase(c.in.begin(), c.in.begin() + static_cast<std::ptrdiff_t>(used));
+    c.frame_start = c.in.empty() ? 0 : monotonic_now();
+  }
+  return send_pending(c);
+}
+
+// Sends what the socket takes now; false on an error (the peer is gone).
+bool ModbusServer::Impl::send_pending(Connection& c) {
+  std::size_t sent = 0;
+  while (sent < c.out.size()) {
+    const ssize_t n =
+        ::send(c.fd, c.out.data() + sent, c.out.size() - sent, MSG_DONTWAIT | MSG_NOSIGNAL);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      if (errno == EAGAIN || errno == EWOULDBLOCK) break;
+      return false;
+    }
+    sent += static_cast<std::size_t>(n);
+  }
+  c.out.erase(c.out.begin(), c.out.begin() + static_cast<std::ptrdiff_t>(sent));
+  return true;
+}
+
+// Until the earliest frame time-out, or -1 (none pending).
+int ModbusServer::Impl::poll_timeout_ms(Nanos now) const {
+  Nanos first = -1;
+  for (const Connection& c : clients) {
+    if (c.frame_start == 0) continue;
+    const Nanos left = std::max<Nanos>(0, c.frame_start + kFrameTimeout - now);
+    if (first < 0 || left < first) first = left;
+  }
+  return first < 0 ? -1 : static_cast<int>((first + kNsPerMs - 1) / kNsPerMs);
+}
+
 void ModbusServer::run() noexcept {
   Impl& d = *impl_;
   // Normal priority whatever the creating thread had: Modbus never competes with the pulse or
-  // control thread. A peer that closed its socket must not kill the daemon with SIGPIPE.
+  // control thread.
   sched_param sp{};
   pthread_setschedparam(pthread_self(), SCHED_OTHER, &sp);
-  sigset_t pipe_set;
-  sigemptyset(&pipe_set);
-  sigaddset(&pipe_set, SIGPIPE);
-  pthread_sigmask(SIG_BLOCK, &pipe_set, nullptr);
 
   std::vector<pollfd> fds;
-  std::uint8_t req[MODBUS_TCP_MAX_ADU_LENGTH];
+  std::vector<Connection*> polled;
   for (;;) {
-    fds.clear();
-    fds.push_back({d.wake_fd, POLLIN, 0});
-    fds.push_back({d.listen_fd, POLLIN, 0});
-    for (int fd : d.clients) fds.push_back({fd, POLLIN, 0});
-    if (::poll(fds.data(), fds.size(), -1) < 0) {
+    fds.assign({{d.wake_fd, POLLIN, 0}, {d.listen_fd, POLLIN, 0}});
+    polled.clear();
+    for (Connection& c : d.clients) {
+      fds.push_back({c.fd, static_cast<short>(POLLIN | (c.out.empty() ? 0 : POLLOUT)), 0});
+      polled.push_back(&c);
+    }
+    if (::poll(fds.data(), fds.size(), d.poll_timeout_ms(monotonic_now())) < 0) {
       if (errno == EINTR) continue;
       spdlog::error("modbus: poll: {}; server stopped", std::strerror(errno));
       return;
     }
     if (fds[0].revents != 0) return;  // stop()
 
-    std::vector<int> closed;
-    for (std::size_t i = 2; i < fds.size(); ++i) {
-      if (fds[i].revents == 0) continue;
-      modbus_set_socket(d.ctx, fds[i].fd);
-      const int len = modbus_receive(d.ctx, req);
-      if (len < 0) {  // peer closed, reset, or sent a frame libmodbus cannot parse
-        closed.push_back(fds[i].fd);
-        continue;
+    const Nanos now = monotonic_now();
+    for (std::size_t i = 0; i < polled.size(); ++i) {
+      Connection& c = *polled[i];
+      bool keep = true;
+      if (fds[i + 2].revents & POLLOUT) keep = d.send_pending(c);
+      if (keep && (fds[i + 2].revents & (POLLIN | POLLHUP | POLLERR))) {
+        keep = d.receive(c, options_.unit_id);
       }
-      if (len == 0) continue;
-      const int header = modbus_get_header_length(d.ctx);
-      const std::uint8_t unit = req[header - 1];
-      if (unit != options_.unit_id) {
-        // Addressed to another unit behind this "gateway": there is none.
-        modbus_reply_exception(d.ctx, req, MODBUS_EXCEPTION_GATEWAY_TARGET);
-        continue;
+      if (keep && c.frame_start != 0 && now - c.frame_start >= kFrameTimeout) {
+        spdlog::debug("modbus: {}: frame incomplete after {} ms: closed", c.peer,
+                      kFrameTimeout / kNsPerMs);
+        keep = false;
       }
-      const ModbusResult r = d.regs->handle(
-          std::span<const std::uint8_t>(req + header, static_cast<std::size_t>(len - header)));
-      if (r.exception != ModbusException::kNone) {
-        modbus_reply_exception(d.ctx, req, static_cast<unsigned>(r.exception));
-        continue;
-      }
-      // modbus_reply() builds the answer from its mapping: put the values read in the window.
-      std::uint16_t* table = r.function == modbus_fc::kReadInput ? d.mapping->tab_input_registers
-                                                                 : d.mapping->tab_registers;
-      for (unsigned k = 0; k < r.count; ++k) table[r.address + k] = r.values[k];
-      modbus_reply(d.ctx, req, len, d.mapping);
-    }
-    for (int fd : closed) {
-      ::close(fd);
-      std::erase(d.clients, fd);
-    }
-
-    if (fds[1].revents != 0) {
-      const int fd = ::accept4(d.listen_fd, nullptr, nullptr, SOCK_CLOEXEC);
-      if (fd < 0) continue;
-      if (d.clients.size() >= options_.max_clients) {
-        // Over [modbus] max_clients: the connection is closed at once.
-        spdlog::warn("modbus: connection refused, {} clients already connected", d.clients.size());
-        ::close(fd);
-      } else {
-        d.clients.push_back(fd);
+      if (!keep) {
+        ::close(c.fd);
+        c.fd = -1;
       }
     }
+    d.clients.remove_if([](const Connection& c) { return c.fd < 0; });
+    if (fds[1].revents != 0) d.accept_one(options_);
   }
 }
 

@@ -1,19 +1,33 @@
 #pragma once
-// Modbus/TCP server of INTERFACE.md section 6 (libmodbus for the framing), serving one module's
-// shared-memory image. It runs in its own thread at normal priority and reaches the image only
-// through its seqlocks (ModbusMap), never through the control thread: a flood of requests costs
-// this thread CPU time, not a scan.
+// Modbus/TCP server of INTERFACE.md section 6, serving one module's shared-memory image. It runs
+// in its own thread at normal priority and reaches the image only through its seqlocks
+// (ModbusMap), never through the control thread: a flood of requests costs this thread CPU time,
+// not a scan.
+//
+// No client can hold up another (docs/hardening.md): every socket is non-blocking, each
+// connection has its own receive and send buffers, and one poll() serves them all, so a client
+// that sends a frame a byte at a time delays nobody; a frame not complete kFrameTimeout after its
+// first byte closes its connection. Frames are checked as Modbus/TCP defines them (ipc/mbap.hpp):
+// a malformed one gets exception 03 or a closed connection, never a normal answer.
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <thread>
 
+#include "core/clock.hpp"
 #include "ipc/modbus_options.hpp"
 
 namespace stepmod::ipc {
 
 class ModbusServer {
  public:
+  // A frame must be complete this long after its first byte arrived, else the connection is
+  // closed (a request is one TCP segment from any real master).
+  static constexpr Nanos kFrameTimeout = 500 * kNsPerMs;
+  // Refused connections (max_clients, allow) are logged at most once per this period, with the
+  // number refused since the last line.
+  static constexpr Nanos kRefusalLogPeriod = 10 * kNsPerSec;
+
   // Maps the image of module `name` (created by this process's ShmImage beforehand), binds
   // options.address:port and starts serving. Throws IpcError (address in use, bad address...).
   ModbusServer(const std::string& name, const ModbusOptions& options);

@@ -1,7 +1,7 @@
 #include "ipc/shm_object.hpp"
 
 #include <fcntl.h>
-#include <signal.h>
+#include <sys/file.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -52,10 +52,12 @@ Existing classify_existing(const std::string& object, std::size_t size, std::str
   if (!magic_ok || pid == 0 || pid > static_cast<std::uint64_t>(INT32_MAX)) {
     return Existing::kUnknown;
   }
-  // ESRCH: no such process, so nobody serves this image any more. EPERM means a process with
-  // that pid exists (owned by someone else): treat as alive, never steal a running image.
-  if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) return Existing::kStale;
-  return Existing::kAlive;
+  // The creator holds an exclusive flock on the object for as long as it lives (create()); the
+  // kernel drops it when the process ends, however it ends. A lock we can take means nobody
+  // serves this image any more, even if the recorded pid now belongs to another process (a pid
+  // reused after a crash, which kill(pid, 0) took for the owner).
+  if (::flock(f.fd, LOCK_SH | LOCK_NB) == 0) return Existing::kStale;  // released with the fd
+  return errno == EWOULDBLOCK ? Existing::kAlive : Existing::kUnknown;
 }
 
 }  // namespace
@@ -93,6 +95,7 @@ ShmMapping& ShmMapping::operator=(ShmMapping&& o) noexcept {
     writable_ = std::exchange(o.writable_, false);
     replaced_pid_ = std::exchange(o.replaced_pid_, 0);
     replaced_ = std::move(o.replaced_);
+    lock_fd_ = std::exchange(o.lock_fd_, -1);
   }
   return *this;
 }
@@ -100,6 +103,8 @@ ShmMapping& ShmMapping::operator=(ShmMapping&& o) noexcept {
 void ShmMapping::reset() noexcept {
   if (addr_ != nullptr) ::munmap(addr_, size_);
   if (owner_) ::shm_unlink(object_.c_str());
+  if (lock_fd_ >= 0) ::close(lock_fd_);  // after the unlink: never a live name without its lock
+  lock_fd_ = -1;
   addr_ = nullptr;
   size_ = 0;
   owner_ = false;
@@ -114,6 +119,13 @@ ShmMapping ShmMapping::create(const std::string& object, std::size_t size, std::
   // Two attempts: the second one after removing a stale leftover.
   for (int attempt = 0; attempt < 2 && f.fd < 0; ++attempt) {
     f.fd = ::shm_open(object.c_str(), O_RDWR | O_CREAT | O_EXCL, 0660);
+    // Locked before anything is written to it: an object whose magic is there is locked while
+    // its creator lives.
+    if (f.fd >= 0 && ::flock(f.fd, LOCK_EX | LOCK_NB) != 0) {
+      const int e = errno;
+      ::shm_unlink(object.c_str());
+      throw IpcError("cannot lock " + dev_shm_path(object) + ": " + errno_text(e));
+    }
     if (f.fd >= 0) break;
     if (errno != EEXIST) {
       throw IpcError("cannot create " + dev_shm_path(object) + ": " + errno_text(errno));
@@ -152,6 +164,7 @@ ShmMapping ShmMapping::create(const std::string& object, std::size_t size, std::
   m.addr_ = p;
   m.size_ = size;
   m.writable_ = true;
+  m.lock_fd_ = std::exchange(f.fd, -1);  // holds the owner's lock until reset()
   if (stale_pid != 0) {
     m.replaced_pid_ = stale_pid;
     m.replaced_ = std::move(stale);

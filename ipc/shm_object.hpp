@@ -39,10 +39,12 @@ class ShmMapping {
   ~ShmMapping() { reset(); }
 
   // Creates `object` (O_CREAT|O_EXCL, mode 0660 regardless of umask) of `size` zeroed bytes.
-  // If it exists already and holds `magic` with a non-zero owner pid (u64 at `pid_offset`) of a
-  // process that no longer exists, it is a leftover of a crashed daemon: it is unlinked and
-  // created anew. In every other case (owner alive, unknown content) it throws IpcError telling
-  // the user which file to remove; a live daemon's image is never taken over.
+  // The creator holds an exclusive flock(2) on it until reset(): the kernel releases it when the
+  // process ends, however it ends. If it exists already, holds `magic` with a non-zero owner pid
+  // (u64 at `pid_offset`) and nobody holds its lock, it is a leftover of a crashed daemon (even
+  // if that pid has since been reused): it is unlinked and created anew. In every other case (owner
+  // alive, unknown content) it throws IpcError telling the user which file to remove; a live
+  // daemon's image is never taken over.
   static ShmMapping create(const std::string& object, std::size_t size, std::string_view magic,
                            std::size_t pid_offset);
   // Opens an existing object of at least `min_size` bytes, read-write if possible, else read-only
@@ -68,6 +70,7 @@ class ShmMapping {
   bool writable_ = false;
   std::uint64_t replaced_pid_ = 0;
   std::vector<std::uint8_t> replaced_;
+  int lock_fd_ = -1;  // create(): the descriptor holding the owner's lock
 };
 
 }  // namespace stepmod::ipc

@@ -7,16 +7,31 @@
 //                    word, high half first)
 //   %IW32 .. %IW47   module type, word size (bytes), output words, input words, scan counter
 //                    bits 15..0 and 31..16, health flags (docs/interface.md 3.3) low and high,
-//                    late-edge faults low and high, %IW42 link (1 while a running stepmodd's
-//                    image is mapped, else 0 and every %IW is 0), %IW43..%IW47 reserved (0)
+//                    late-edge faults low and high, %IW42 link (see below), %IW43..%IW47
+//                    reserved (0)
 //   %QW0  .. %QW31   the module's output words (same layout as the inputs)
 //
 // The module is /dev/shm/stepmod.<name>; <name> comes from the environment variable STEPMOD_NAME
 // (default "stepmod"), set where the OpenPLC runtime is started.
 //
-// Each OpenPLC scan: updateBuffersIn() takes one consistent seqlock snapshot of the input image;
-// updateBuffersOut() writes the whole output image as one seqlock write and increments the PLC
-// heartbeat (docs/interface.md 3.2), so with [module] plc_timeout_ms a stopped runtime stops the axes.
+// How OpenPLC v3 (webserver/core/main.cpp) calls this file: glueVars() binds the program's
+// located variables; initializeHardware(); one updateBuffersIn() and updateBuffersOut(); then
+// mapUnusedIO() points every %IW/%QW the program does NOT declare at OpenPLC's own Modbus
+// registers (so no pointer is NULL any more, and Modbus clients of OpenPLC write those %QW).
+// Each scan: updateBuffersIn(); lock bufferLock; Modbus master in, the program, Modbus master
+// out; unlock; updateBuffersOut(). At stop: disableOutputs() (every %QW pointer set to 0),
+// updateBuffersOut(), finalizeHardware().
+//
+// So: the %QW words the program declares are recorded in initializeHardware() (before
+// mapUnusedIO()), and only they are forwarded to the module; the others are written as 0, never
+// from OpenPLC's Modbus registers. updateBuffersIn() takes one consistent seqlock snapshot of the
+// input image; a snapshot that fails (the module publishing on every try) keeps the last good
+// words, and %IW42 (link) drops to 0, with every %IW 0, only after kLinkLossNs without a good
+// snapshot or when the image goes away (a real loss). updateBuffersOut() writes the output image
+// as one seqlock write and increments the PLC heartbeat (docs/interface.md 3.2): with [module]
+// plc_timeout_ms set, a stopped or dead runtime stops the axes as a PLC leaving Run mode does
+// (the stop's disableOutputs() only writes zeros, which stops nothing). The image is looked for
+// (and its identity checked) on every scan: one stat() of /dev/shm.
 // Only libc and the plain-C header stepmod_image.h (copied next to this file) are needed.
 #include <fcntl.h>
 #include <pthread.h>
@@ -36,8 +51,10 @@ namespace {
 const unsigned kRegs = 32;      // %IW0..31 / %QW0..31: 16 words of at most 32 bits
 const unsigned kHeaderIw = 32;  // %IW32..47
 const unsigned kHeaderRegs = 16;
-const unsigned kLinkOffset = 10;        // %IW42
-const int64_t kRecheckNs = 1000000000;  // how often the image is looked for again
+const unsigned kLinkOffset = 10;  // %IW42
+// How long the input snapshot may keep failing before %IW42 says the link is lost: far longer
+// than a module's publication (microseconds), shorter than any sensible reaction of a program.
+const int64_t kLinkLossNs = 100000000;
 
 struct Link {
   char object[96];  // "/stepmod.<name>"
@@ -45,8 +62,16 @@ struct Link {
   stepmod_image_t* img;
   ino_t ino;  // identity of the mapped object: a restarted daemon makes a new one
   dev_t dev;
-  int64_t next_check_ns;
   int logged_missing;
+  // The last good snapshot of the mapped image (valid while has_good).
+  int has_good;
+  int64_t good_ns;  // when it was taken
+  int32_t in[STEPMOD_MAX_WORDS];
+  uint16_t header[kHeaderRegs];
+  unsigned regs;
+  unsigned word_bytes;
+  // The %QW the program declares (bound by glueVars() before initializeHardware()).
+  unsigned char qw_declared[kRegs];
 };
 
 Link g_link;
@@ -60,13 +85,14 @@ void log_line(const char* fmt, const char* a, const char* b) {
 void unmap() {
   if (g_link.img != nullptr) munmap(g_link.img, STEPMOD_IMAGE_SIZE);
   g_link.img = nullptr;
+  g_link.has_good = 0;
 }
 
 // Maps the image if it exists and is a valid layout-1 stepmod image; 1 on success.
 int map_image() {
   const int fd = shm_open(g_link.object, O_RDWR, 0);
   if (fd < 0) return 0;
-  struct stat st;
+  struct stat st = {};
   void* p = MAP_FAILED;
   if (fstat(fd, &st) == 0 && st.st_size >= (off_t)STEPMOD_IMAGE_SIZE) {
     p = mmap(nullptr, STEPMOD_IMAGE_SIZE, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
@@ -88,13 +114,12 @@ int map_image() {
   return 1;
 }
 
-// Once a second: (re)map the image when it appeared, disappeared or was created anew by a
-// restarted stepmodd (the old mapping would otherwise stay valid memory that nobody scans).
+// Every scan: (re)map the image when it appeared, disappeared or was created anew by a
+// restarted stepmodd (the old mapping would otherwise stay valid memory that nobody scans). Once
+// a second was too slow: a daemon with plc_timeout_ms = 500 declared the PLC stale before the
+// layer had found its image.
 void check_link() {
-  const int64_t now = stepmod_monotonic_ns();
-  if (now < g_link.next_check_ns) return;
-  g_link.next_check_ns = now + kRecheckNs;
-  struct stat st;
+  struct stat st = {};
   const int present = stat(g_link.path, &st) == 0;
   if (g_link.img != nullptr && present && st.st_ino == g_link.ino && st.st_dev == g_link.dev) {
     return;
@@ -123,10 +148,39 @@ void set_iw(unsigned i, uint16_t v) {
   if (int_input[i] != nullptr) *int_input[i] = v;  // NULL: the program does not use this %IW
 }
 
+// Takes a snapshot of the mapped image into g_link; keeps the last good one if it fails.
+void take_snapshot() {
+  stepmod_image_t* im = g_link.img;
+  if (im == nullptr) return;
+  int32_t in[STEPMOD_MAX_WORDS] = {0};
+  uint32_t health = 0;
+  uint32_t late = 0;
+  if (!stepmod_read_inputs(im, in) || !stepmod_read_health(im, &health, &late)) return;
+  const uint64_t scans = stepmod_scan_counter(im);
+  memcpy(g_link.in, in, sizeof in);
+  g_link.word_bytes = im->word_bytes;
+  g_link.regs = im->input_words * im->word_bytes / 2u;
+  uint16_t* h = g_link.header;
+  h[0] = (uint16_t)im->module_type;
+  h[1] = (uint16_t)im->word_bytes;
+  h[2] = (uint16_t)im->output_words;
+  h[3] = (uint16_t)im->input_words;
+  h[4] = (uint16_t)(scans & 0xFFFFu);
+  h[5] = (uint16_t)((scans >> 16) & 0xFFFFu);
+  h[6] = (uint16_t)(health & 0xFFFFu);
+  h[7] = (uint16_t)(health >> 16);
+  h[8] = (uint16_t)(late & 0xFFFFu);
+  h[9] = (uint16_t)(late >> 16);
+  g_link.has_good = 1;
+  g_link.good_ns = stepmod_monotonic_ns();
+}
+
 }  // namespace
 
 void initializeHardware() {
   memset(&g_link, 0, sizeof g_link);
+  // Before mapUnusedIO() binds the rest to OpenPLC's Modbus registers (see the top).
+  for (unsigned r = 0; r < kRegs; ++r) g_link.qw_declared[r] = int_output[r] != nullptr;
   const char* name = getenv("STEPMOD_NAME");
   if (name == nullptr || name[0] == '\0') name = "stepmod";
   snprintf(g_link.object, sizeof g_link.object, "/stepmod.%s", name);
@@ -140,35 +194,16 @@ void finalizeHardware() {
 
 void updateBuffersIn() {
   check_link();
-  int32_t in[STEPMOD_MAX_WORDS] = {0};
-  uint16_t header[kHeaderRegs] = {0};
-  unsigned regs = 0;
-  unsigned word_bytes = 2;
-  stepmod_image_t* im = g_link.img;
-  if (im != nullptr) {
-    uint32_t health = 0;
-    uint32_t late = 0;
-    word_bytes = im->word_bytes;
-    // A snapshot that failed (the module was publishing on every try) keeps the zeros and
-    // drops the link bit for this scan; the next scan tries again.
-    const int ok = stepmod_read_inputs(im, in) && stepmod_read_health(im, &health, &late);
-    const uint64_t scans = stepmod_scan_counter(im);
-    regs = ok ? im->input_words * word_bytes / 2u : 0u;
-    header[0] = (uint16_t)im->module_type;
-    header[1] = (uint16_t)word_bytes;
-    header[2] = (uint16_t)im->output_words;
-    header[3] = (uint16_t)im->input_words;
-    header[4] = (uint16_t)(scans & 0xFFFFu);
-    header[5] = (uint16_t)((scans >> 16) & 0xFFFFu);
-    header[6] = (uint16_t)(health & 0xFFFFu);
-    header[7] = (uint16_t)(health >> 16);
-    header[8] = (uint16_t)(late & 0xFFFFu);
-    header[9] = (uint16_t)(late >> 16);
-    header[kLinkOffset] = (uint16_t)(ok ? 1 : 0);
-  }
+  take_snapshot();
+  const int linked = g_link.has_good && stepmod_monotonic_ns() - g_link.good_ns < kLinkLossNs;
+  const unsigned regs = linked ? g_link.regs : 0u;
   pthread_mutex_lock(&bufferLock);
-  for (unsigned r = 0; r < kRegs; ++r) set_iw(r, r < regs ? reg_of(in, word_bytes, r) : 0);
-  for (unsigned h = 0; h < kHeaderRegs; ++h) set_iw(kHeaderIw + h, header[h]);
+  for (unsigned r = 0; r < kRegs; ++r) {
+    set_iw(r, r < regs ? reg_of(g_link.in, g_link.word_bytes, r) : 0);
+  }
+  for (unsigned h = 0; h < kHeaderRegs; ++h) {
+    set_iw(kHeaderIw + h, !linked ? 0 : h == kLinkOffset ? 1 : g_link.header[h]);
+  }
   pthread_mutex_unlock(&bufferLock);
 }
 
@@ -180,7 +215,9 @@ void updateBuffersOut() {
   int32_t out[STEPMOD_MAX_WORDS] = {0};
   pthread_mutex_lock(&bufferLock);
   for (unsigned r = 0; r < words * word_bytes / 2u; ++r) {
-    const uint16_t v = int_output[r] != nullptr ? *int_output[r] : 0;
+    // A %QW the program does not declare is 0: never OpenPLC's Modbus holding register that
+    // mapUnusedIO() put behind it (a Modbus client of OpenPLC would otherwise drive the module).
+    const uint16_t v = g_link.qw_declared[r] && int_output[r] != nullptr ? *int_output[r] : 0;
     if (word_bytes == 2u) {
       out[r] = (int16_t)v;
     } else if (r % 2 == 0) {

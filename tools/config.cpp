@@ -207,6 +207,29 @@ class Parser {
       m.address = text.substr(0, colon);
       m.port = static_cast<std::uint16_t>(port);
     }
+    parse_modbus_allow(t, m);
+  }
+
+  // [modbus] allow = ["127.0.0.1", "10.0.0.0/8", ...]: where connections may come from.
+  void parse_modbus_allow(const toml::table* t, ipc::ModbusOptions& m) const {
+    const toml::node* n = t->get("allow");
+    if (n == nullptr) return;
+    const auto* list = n->as_array();
+    if (list == nullptr || list->empty()) {
+      fail(n->source(), "modbus.allow",
+           "must be a non-empty list of IPv4 addresses or networks, e.g. [\"127.0.0.1\", "
+           "\"10.0.0.0/8\"]");
+    }
+    for (const toml::node& e : *list) {
+      const auto* s = e.as_string();
+      const auto net = s != nullptr ? ipc::parse_allow_net(s->get()) : std::nullopt;
+      if (!net) {
+        fail(e.source(), "modbus.allow",
+             "each entry must be an IPv4 address or ADDRESS/PREFIX (0..32) in quotes, e.g. "
+             "\"10.0.0.0/8\"");
+      }
+      m.allow.push_back(*net);
+    }
   }
 
   void parse_module(const toml::table* m, Config& c) const {
@@ -218,10 +241,15 @@ class Parser {
       if (m != nullptr) where = m->source();
       fail(where, "module.type", "required: \"3601\", \"3602\" or \"3202\"");
     }
-    // The contract writes the type as a string; a bare integer is the same intent, so accept it.
+    // A string, as the contract writes it: a bare 3602 is refused like every other mistyped
+    // value (one spelling, so that scripts and the docs agree).
     std::string ts;
     if (const auto* s = type->as_string()) ts = s->get();
-    if (const auto* i = type->as_integer()) ts = std::to_string(i->get());
+    if (type->as_integer() != nullptr) {
+      fail(type->source(), "module.type",
+           "must be a string in quotes: type = \"" + std::to_string(type->as_integer()->get()) +
+               "\"");
+    }
     if (const auto t = module_type_from_name(ts)) {
       c.type = *t;
     } else {
@@ -369,6 +397,7 @@ class Parser {
     a.lag_limit_steps =
         static_cast<std::uint32_t>(get_int(&t, p, "lag_limit_steps", 8, 1, 1'000'000));
     a.sim = parse_sim(sub_table(t, p, "sim"), p + ".sim");
+    if (is3602) refuse_sim_encoder(sub_table(t, p, "sim"), p + ".sim");
     return a;
   }
 
@@ -443,6 +472,17 @@ class Parser {
                                                     : 0;
       if (bit == 0) fail(e.source(), join(p, "enable_release_on"), what);
       a.enable_release |= bit;
+    }
+  }
+
+  // The 3602 has no encoder input: a simulated encoder for it is a config meant for another
+  // module (the 3601/3202 examples have one).
+  void refuse_sim_encoder(const toml::table* s, const std::string& p) const {
+    if (s == nullptr) return;
+    for (std::string_view k : {"encoder_ratio", "marker_every"}) {
+      if (const toml::node* n = s->get(k)) {
+        fail(n->source(), join(p, k), "the 3602 has no encoder input: remove this key");
+      }
     }
   }
 

@@ -63,6 +63,7 @@ inline constexpr ConfigKey kConfigKeys[] = {
     {"modbus", "unit_id"},
     {"modbus", "writes"},
     {"modbus", "max_clients"},
+    {"modbus", "allow"},
 };
 
 // The keys allowed directly in `table` (values and sub-tables), in the order above.

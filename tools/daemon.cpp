@@ -251,19 +251,23 @@ bool Daemon::run(const std::atomic<bool>& stop) {
   spdlog::info(
       "wake-ups: pulse thread {} loops, {} sleeps ({} starved polls); planner thread {} passes",
       pulse.loops(), pulse.sleeps(), pulse.starved_polls(), planner.loops());
+  bool trace_complete = true;
   if (d.trace) {
-    d.trace->stop(d.stack->engine().trace_dropped(), d.input_trace_dropped.load());
+    const gpio::TraceOutcome t =
+        d.trace->stop(d.stack->engine().trace_dropped(), d.input_trace_dropped.load());
     if (d.trace_dropped() > 0) {
       spdlog::error(
           "trace: {} output and {} input records lost (ring full): the VCD is "
           "incomplete (it says so, and marks where)",
           d.stack->engine().trace_dropped(), d.input_trace_dropped.load());
     }
+    if (!t.complete) spdlog::error("trace: {}", t.problem);
+    trace_complete = t.complete && d.trace_dropped() == 0;
   }
   if (d.backend->lost_events() > 0) {
     spdlog::warn("{} input events were lost in all", d.backend->lost_events());
   }
-  return !d.trace || d.trace_dropped() == 0;
+  return trace_complete;
 }
 
 // The control thread: input events as they come, the PLC image once per scan.
@@ -368,11 +372,15 @@ ipc::Health Daemon::Impl::health(std::uint32_t supervisor_flags) {
       std::min<Nanos>(worst / kNsPerUs, std::numeric_limits<std::uint32_t>::max()));
   if (input_loss_lasts()) h.flags |= STEPMOD_HEALTH_INPUT_LOST;
   // Bit 4 from the first lost record on: the trace stays incomplete (the VCD says so too).
-  if (output_trace && trace_dropped() > 0) {
+  // A spool write that failed (disk full) as well, at once.
+  const bool spool_failed = trace && trace->failed();
+  if (output_trace && (trace_dropped() > 0 || spool_failed)) {
     h.flags |= STEPMOD_HEALTH_TRACE_LOST;
     if (!trace_loss_logged) {
       trace_loss_logged = true;
-      spdlog::error("trace: records lost (the trace ring was full): the VCD will be incomplete");
+      spdlog::error("trace: records lost ({}): the VCD will be incomplete",
+                    spool_failed ? "a trace spool could not be written: disk full?"
+                                 : "the trace ring was full");
     }
   }
   return h;

@@ -13,6 +13,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdint>
+#include <cstdio>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include "core/version.hpp"
+#include "gpio/trace_recover.hpp"
 #include "ipc/client.hpp"
 #include "ipc/sim_panel.hpp"
 #include "plc/shm_port.hpp"
@@ -143,6 +145,22 @@ std::string stalled_text(const std::string& name, const ipc::Client& client) {
 }
 
 }  // namespace
+
+// `stepmodctl trace recover`: no module needed, only the files.
+int recover_spools(const std::vector<std::string>& spools, const std::string& vcd, bool keep) {
+  try {
+    const gpio::RecoverResult r = gpio::recover_trace(spools, vcd);
+    std::cout << vcd << ": " << r.changes << " line changes recovered (" << r.late
+              << " late); marked TRACE INCOMPLETE\n";
+  } catch (const std::exception& e) {
+    std::cerr << "stepmodctl: " << e.what() << "\n";
+    return kExitModuleError;
+  }
+  if (!keep) {
+    for (const std::string& s : spools) std::remove(s.c_str());
+  }
+  return kExitOk;
+}
 
 int main(int argc, char** argv) {
   CLI::App app{kDescription};
@@ -411,6 +429,21 @@ int main(int argc, char** argv) {
   panel_release->add_option("AXIS", p_axis, "axis number, 1-based")->required();
   panel_release->add_option("INPUT", p_input, "input name, or 'all'")->required();
 
+  // ---- trace files ----
+  auto* trace = app.add_subcommand("trace", "trace files (--trace FILE.vcd of stepmodd)");
+  auto* trace_recover =
+      trace->add_subcommand("recover",
+                            "write the VCD from the spools a daemon left behind (killed, or a "
+                            "full disk); the spools are removed once it is written");
+  std::vector<std::string> spool_paths;
+  std::string recovered_vcd;
+  bool keep_spools = false;
+  trace_recover->add_option("SPOOL", spool_paths, "FILE.vcd.out.spool FILE.vcd.in.spool")
+      ->required();
+  trace_recover->add_option("-o,--output", recovered_vcd, "the VCD to write")->required();
+  trace_recover->add_flag("--keep", keep_spools, "leave the spools in place");
+  trace->require_subcommand(1);
+
   if (const auto typo = unknown_command(argc, argv, app)) {
     std::cerr << "stepmodctl: " << *typo << "\n";
     return kExitUsage;
@@ -431,6 +464,9 @@ int main(int argc, char** argv) {
   try {
     const auto timeout = std::chrono::milliseconds(timeout_ms);
 
+    if (trace_recover->parsed()) {
+      return recover_spools(spool_paths, recovered_vcd, keep_spools);
+    }
     if (panel->parsed()) {
       ipc::SimPanelClient p(name);
       if (p_axis < 1 || p_axis > p.axes()) {

@@ -1,6 +1,7 @@
 // The shared-memory image (INTERFACE.md 3): layout, creation rules, client checks, the seqlock
 // single-threaded behaviour, heartbeat and scan counter.
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -8,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cerrno>
 #include <cstring>
 #include <string>
 
@@ -145,6 +147,30 @@ TEST(ShmImage, StaleImageOfCrashedDaemonReplaced) {
   make_leftover(n, static_cast<std::uint64_t>(dead_pid()), "STEPMOD\0");
   ShmImage img(n, k3601);
   EXPECT_EQ(img.raw().owner_pid, static_cast<std::uint64_t>(::getpid()));
+}
+
+// The pid recorded in a crashed daemon's image may belong to another process by now (pids are
+// reused): what tells a live owner is its lock on the object, not kill(pid, 0).
+TEST(ShmImage, StaleImageWhosePidWasReusedIsReplaced) {
+  const std::string n = test_name("reused");
+  make_leftover(n, static_cast<std::uint64_t>(::getpid()), "STEPMOD\0");  // a live pid, no lock
+  ShmImage img(n, k3601);
+  EXPECT_EQ(img.raw().owner_pid, static_cast<std::uint64_t>(::getpid()));
+  EXPECT_NE(img.replaced_description().find("stale"), std::string::npos);
+}
+
+TEST(ShmImage, ImageIsLockedWhileItsOwnerHoldsIt) {
+  const std::string n = test_name("locked");
+  const std::string obj = "/stepmod." + n;
+  {
+    ShmImage img(n, k3601);
+    const int fd = ::shm_open(obj.c_str(), O_RDONLY, 0);
+    ASSERT_GE(fd, 0);
+    EXPECT_NE(::flock(fd, LOCK_SH | LOCK_NB), 0) << "the owner's lock is held";
+    EXPECT_EQ(errno, EWOULDBLOCK);
+    ::close(fd);
+  }
+  EXPECT_LT(::shm_open(obj.c_str(), O_RDONLY, 0), 0) << "unlinked with its owner";
 }
 
 TEST(ShmImage, UnknownExistingObjectRefusedWithHint) {

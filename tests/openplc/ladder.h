@@ -48,11 +48,22 @@ extern IEC_ULINT* special_functions[BUFFER_SIZE];
 extern pthread_mutex_t bufferLock;
 extern unsigned long long common_ticktime__;
 
-// The hardware layer's four functions (main.cpp calls them; see the scan cycle in the driver).
+// glueVars.cpp: binds the program's located variables (the driver's Program does it).
+void glueVars();
+
+// The hardware layer's four functions (main.cpp calls them; see openplc_runtime.hpp).
 void initializeHardware();
 void finalizeHardware();
 void updateBuffersIn();
 void updateBuffersOut();
+
+// utils.cpp: every non-NULL output pointer set to 0 (main.cpp at stop, then updateBuffersOut()).
+void disableOutputs();
+
+// modbus.cpp: every NULL %IX/%QX/%IW/%QW/%MW pointer pointed at OpenPLC's own Modbus slave
+// registers (main.cpp, after the first updateBuffersIn/Out), which its Modbus clients read and
+// write under bufferLock.
+void mapUnusedIO();
 
 // utils.cpp
 extern "C" void openplc_log(char* logmsg);

@@ -1,12 +1,17 @@
 // openplc/stepmod_hardware_layer.cpp, compiled against the stand-in of OpenPLC's ladder.h and
-// driven by OpenPLC's scan cycle (main.cpp: updateBuffersIn; lock; program; unlock;
-// updateBuffersOut): a PLC program written on %IW/%QW configures a real stepmodd's 3601 and runs
-// a relative move; a runtime that stops scanning stops the axis (heartbeat). The 3202 register
-// split is checked on an image without a daemon.
+// driven as OpenPLC v3's main.cpp drives it (tests/openplc/openplc_runtime.hpp: start with the
+// first updateBuffersIn/Out before mapUnusedIO(), scans under bufferLock, the stop with
+// disableOutputs()): a PLC program written on %IW/%QW configures a real stepmodd's 3601 and runs
+// a relative move; a runtime that stops stops the axis (heartbeat). On images without a daemon:
+// the 3202 register split, %QW words the program does not declare (OpenPLC's Modbus registers
+// behind them since mapUnusedIO()), a forced snapshot failure, and an image found at once.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -17,26 +22,9 @@
 #include "ipc/sim_panel.hpp"
 #include "module/m3601/words_3601.hpp"
 #include "tests/openplc/ladder.h"
+#include "tests/openplc/openplc_runtime.hpp"
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/sim_config.hpp"
-
-// ---- what OpenPLC's glueVars.cpp, main.cpp and utils.cpp define --------------------------------
-IEC_BOOL* bool_input[BUFFER_SIZE][8];
-IEC_BOOL* bool_output[BUFFER_SIZE][8];
-IEC_BYTE* byte_input[BUFFER_SIZE];
-IEC_BYTE* byte_output[BUFFER_SIZE];
-IEC_UINT* int_input[BUFFER_SIZE];
-IEC_UINT* int_output[BUFFER_SIZE];
-IEC_UDINT* dint_input[BUFFER_SIZE];
-IEC_UDINT* dint_output[BUFFER_SIZE];
-IEC_ULINT* lint_input[BUFFER_SIZE];
-IEC_ULINT* lint_output[BUFFER_SIZE];
-IEC_UINT* int_memory[BUFFER_SIZE];
-IEC_UDINT* dint_memory[BUFFER_SIZE];
-IEC_ULINT* lint_memory[BUFFER_SIZE];
-IEC_ULINT* special_functions[BUFFER_SIZE];
-pthread_mutex_t bufferLock = PTHREAD_MUTEX_INITIALIZER;
-unsigned long long common_ticktime__ = 5'000'000;  // 5 ms task
 
 namespace {
 std::string g_log;
@@ -53,31 +41,26 @@ using namespace m::status_msw;
 using std::chrono::milliseconds;
 
 // The PLC program's located variables, bound as glueVars() binds them. Some addresses are left
-// unbound (NULL) on purpose: the layer must skip them.
+// unbound on purpose: mapUnusedIO() puts OpenPLC's Modbus registers behind them.
 struct Program {
   IEC_UINT iw[48] = {};
-  IEC_UINT qw[8] = {};
-  Program() {
-    for (auto& p : int_input) p = nullptr;
-    for (auto& p : int_output) p = nullptr;
-    for (unsigned i = 0; i < 6; ++i) int_input[i] = &iw[i];  // %IW6, %IW7 (capture): unused
-    for (unsigned i = 32; i < 43; ++i) int_input[i] = &iw[i];
-    for (unsigned i = 0; i < 8; ++i) int_output[i] = &qw[i];
+  IEC_UINT qw[32] = {};
+  unsigned qw_first = 0;  // the %QW the program declares: qw_first .. qw_end-1
+  unsigned qw_end = 8;
+  std::function<void()> bind() {
+    return [this] {
+      for (unsigned i = 0; i < 6; ++i) int_input[i] = &iw[i];  // %IW6, %IW7 (capture): unused
+      for (unsigned i = 32; i < 43; ++i) int_input[i] = &iw[i];
+      for (unsigned i = qw_first; i < qw_end; ++i) int_output[i] = &qw[i];
+    };
   }
-  ~Program() {
-    for (auto& p : int_input) p = nullptr;
-    for (auto& p : int_output) p = nullptr;
-  }
+  ~Program() { openplc::reset(); }
 };
 
-// One OpenPLC scan, as main.cpp runs it.
+// One OpenPLC scan, then the rest of the task's period.
 template <typename Logic>
 void scan(Logic&& logic) {
-  updateBuffersIn();
-  pthread_mutex_lock(&bufferLock);
-  logic();
-  pthread_mutex_unlock(&bufferLock);
-  updateBuffersOut();
+  openplc::scan(logic);
   std::this_thread::sleep_for(std::chrono::nanoseconds(common_ticktime__));
 }
 
@@ -87,15 +70,31 @@ void put_split(IEC_UINT* qw, std::int32_t v) {
   qw[1] = static_cast<IEC_UINT>(p.lsw);
 }
 
-TEST(OpenPlcLayer, ProgramConfiguresAndMovesA3601ThenAStoppedRuntimeStopsIt) {
-  DaemonProcess daemon(
-      sim_3601_config("plc_timeout_ms = 300\n", "cw_limit_at = 1000000\nccw_limit_at = -1000000\n"),
-      false);
+// The shipped OpenPLC example, named {NAME} for the harness.
+std::string openplc_example() {
+  std::ifstream f(std::string(STEPMOD_SOURCE_DIR) + "/examples/3601-openplc-sim.toml");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  std::string t = ss.str();
+  const std::string from = "name = \"openplc\"";
+  const auto at = t.find(from);
+  if (at != std::string::npos) t.replace(at, from.size(), "name = \"{NAME}\"");
+  // The late-edge guard's maximum, as in every end-to-end test that is not about it: a loaded
+  // test machine must not cut the move (sim_config.hpp).
+  const std::string guard = "late_limit_us = 1000\n";
+  const auto g = t.find(guard);
+  if (g != std::string::npos) t.replace(g, guard.size(), kRelaxedLateLimit);
+  return t;
+}
+
+// A PLC program configures the 3601, runs a move and a long move; then the runtime stops.
+void configure_move_and_stop(const std::string& config) {
+  DaemonProcess daemon(config, false);
   ASSERT_TRUE(daemon.wait_ready()) << daemon.log();
   ::setenv("STEPMOD_NAME", daemon.name().c_str(), 1);
   Program prog;
   g_log.clear();
-  initializeHardware();
+  openplc::start(prog.bind());
   EXPECT_NE(g_log.find("stepmod: linked to /dev/shm/stepmod." + daemon.name()), std::string::npos)
       << g_log;
 
@@ -159,13 +158,15 @@ TEST(OpenPlcLayer, ProgramConfiguresAndMovesA3601ThenAStoppedRuntimeStopsIt) {
   scan(logic);
   EXPECT_NE(prog.iw[36], scans);
 
-  // A long move, then the runtime stops calling the layer: the heartbeat stops with it.
+  // A long move, then the runtime is stopped (main.cpp: disableOutputs(), updateBuffersOut(),
+  // finalizeHardware()): the zeros stop nothing, the heartbeat that stops with it does.
   target = 400'000;
   step = kLong;
   for (int i = 0; i < 400 && step != kRunning; ++i) scan(logic);
   ASSERT_EQ(step, kRunning);
-  for (int i = 0; i < 120; ++i) scan(logic);  // 0.6 s of scans: twice the timeout, still moving
+  for (int i = 0; i < 120; ++i) scan(logic);  // 0.6 s of scans: beyond the timeout, still moving
   ASSERT_NE(prog.iw[0] & (kMovingCw | kMovingCcw), 0);
+  openplc::stop();
   ipc::Client watch(daemon.name());
   ImageWords in;
   const auto end = std::chrono::steady_clock::now() + milliseconds(3000);
@@ -177,8 +178,19 @@ TEST(OpenPlcLayer, ProgramConfiguresAndMovesA3601ThenAStoppedRuntimeStopsIt) {
   }
   EXPECT_TRUE(stopped);
   EXPECT_NE(in.w[0] & kPositionInvalid, 0);
-  finalizeHardware();
   EXPECT_EQ(daemon.terminate(), 0) << daemon.log();
+}
+
+TEST(OpenPlcLayer, ProgramConfiguresAndMovesA3601ThenAStoppedRuntimeStopsIt) {
+  configure_move_and_stop(sim_3601_config("plc_timeout_ms = 300\n",
+                                          "cw_limit_at = 1000000\nccw_limit_at = -1000000\n"));
+}
+
+// With the shipped example (plc_timeout_ms set), stopping the program in OpenPLC stops the axis.
+TEST(OpenPlcLayer, ShippedExampleConfigStopsTheAxisWhenTheRuntimeStops) {
+  const std::string config = openplc_example();
+  ASSERT_NE(config.find("\nplc_timeout_ms = "), std::string::npos) << config;
+  configure_move_and_stop(config);
 }
 
 TEST(OpenPlcLayer, NoDaemonMeansNoLinkAndZeroInputs) {
@@ -187,13 +199,12 @@ TEST(OpenPlcLayer, NoDaemonMeansNoLinkAndZeroInputs) {
   prog.iw[0] = 0x1234;
   prog.iw[42] = 7;
   g_log.clear();
-  initializeHardware();
+  openplc::start(prog.bind());
   EXPECT_NE(g_log.find("no module image /dev/shm/stepmod.openplc-absent"), std::string::npos);
-  updateBuffersIn();
   EXPECT_EQ(prog.iw[0], 0);
   EXPECT_EQ(prog.iw[42], 0);
-  updateBuffersOut();  // nothing to write to: must not fail
-  finalizeHardware();
+  openplc::scan([] {});
+  openplc::stop();  // nothing to write to: must not fail
 }
 
 TEST(OpenPlcLayer, ThirtyTwoBitWordsOfA3202AreTwoRegistersHighHalfFirst) {
@@ -206,10 +217,10 @@ TEST(OpenPlcLayer, ThirtyTwoBitWordsOfA3202AreTwoRegistersHighHalfFirst) {
   ::setenv("STEPMOD_NAME", name.c_str(), 1);
   IEC_UINT iw[48] = {};
   IEC_UINT qw[32] = {};
-  for (unsigned i = 0; i < 48; ++i) int_input[i] = &iw[i];
-  for (unsigned i = 0; i < 32; ++i) int_output[i] = &qw[i];
-  initializeHardware();
-  updateBuffersIn();
+  openplc::start([&] {
+    for (unsigned i = 0; i < 48; ++i) int_input[i] = &iw[i];
+    for (unsigned i = 0; i < 32; ++i) int_output[i] = &qw[i];
+  });
   EXPECT_EQ(iw[0], 0x1234);
   EXPECT_EQ(iw[1], 0x5678);
   EXPECT_EQ(iw[30], 0xFFFF);
@@ -233,8 +244,86 @@ TEST(OpenPlcLayer, ThirtyTwoBitWordsOfA3202AreTwoRegistersHighHalfFirst) {
   EXPECT_EQ(out.w[15], 1);
   EXPECT_EQ(image.heartbeat(), hb + 1);
   finalizeHardware();
-  for (auto& p : int_input) p = nullptr;
-  for (auto& p : int_output) p = nullptr;
+  openplc::reset();
+}
+
+// A 3601 image without a daemon, linked through the runtime's start.
+struct ImageRig {
+  std::string name = "openplc-rig-" + std::to_string(::getpid());
+  ipc::ShmImage image{name, shape_of(ModuleType::k3601)};
+  Program prog;
+  void publish(std::int32_t w0) {
+    ImageWords in{};
+    in.w[0] = w0;
+    image.publish_inputs(in, ipc::Health{});
+  }
+  stepmod_image_t& raw() { return const_cast<stepmod_image_t&>(image.raw()); }
+};
+
+// Real OpenPLC binds every %QW the program does not declare to its Modbus holding registers
+// (mapUnusedIO()): a Modbus client of OpenPLC once put a 3601 into configuration mode through
+// %QW0 of a program that never wrote it.
+TEST(OpenPlcLayer, QwTheProgramDoesNotDeclareIsNeverDrivenFromOpenPlcsModbusRegisters) {
+  ImageRig rig;
+  ::setenv("STEPMOD_NAME", rig.name.c_str(), 1);
+  rig.prog.qw_first = 2;  // declares %QW2..%QW7 only
+  openplc::start(rig.prog.bind());
+  pthread_mutex_lock(&bufferLock);  // as OpenPLC's Modbus slave thread writes
+  mb_holding_regs[0] = m::cfg_msw::kConfigMode;
+  mb_holding_regs[1] = 0x3F;
+  pthread_mutex_unlock(&bufferLock);
+  openplc::scan([&] { rig.prog.qw[2] = 1234; });
+  ImageWords out;
+  ASSERT_TRUE(rig.image.read_outputs(out));
+  EXPECT_EQ(out.w[0], 0) << "%QW0 is not the program's: 0, not OpenPLC's holding register 0";
+  EXPECT_EQ(out.w[1], 0);
+  EXPECT_EQ(out.w[2], 1234);
+  openplc::stop();
+}
+
+// A snapshot that fails (the module caught publishing on every try: here its sequence held odd)
+// keeps the last good words and the link; only a loss longer than the layer's 100 ms drops them.
+TEST(OpenPlcLayer, FailedSnapshotKeepsTheLastGoodWordsAndTheLinkUntilARealLoss) {
+  ImageRig rig;
+  ::setenv("STEPMOD_NAME", rig.name.c_str(), 1);
+  rig.publish(0x1234);
+  openplc::start(rig.prog.bind());
+  ASSERT_EQ(rig.prog.iw[0], 0x1234);
+  ASSERT_EQ(rig.prog.iw[42], 1);
+  const std::uint32_t seq = __atomic_load_n(&rig.raw().input_seq, __ATOMIC_ACQUIRE);
+  __atomic_store_n(&rig.raw().input_seq, seq + 1, __ATOMIC_RELEASE);  // a writer "inside"
+  openplc::scan([] {});
+  EXPECT_EQ(rig.prog.iw[0], 0x1234) << "the last good words, not zeros";
+  EXPECT_EQ(rig.prog.iw[42], 1) << "one failed snapshot is not a lost link";
+  std::this_thread::sleep_for(milliseconds(150));
+  openplc::scan([] {});
+  EXPECT_EQ(rig.prog.iw[42], 0) << "no good snapshot for 150 ms: the link is lost";
+  EXPECT_EQ(rig.prog.iw[0], 0);
+  __atomic_store_n(&rig.raw().input_seq, seq + 2, __ATOMIC_RELEASE);
+  openplc::scan([] {});
+  EXPECT_EQ(rig.prog.iw[42], 1);
+  EXPECT_EQ(rig.prog.iw[0], 0x1234);
+  openplc::stop();
+}
+
+// The layer looks for the image on every scan: a daemon started after the runtime is linked on
+// the next scan, well inside any plc_timeout_ms (it was once a second).
+TEST(OpenPlcLayer, ImageCreatedAfterTheStartIsLinkedOnTheNextScan) {
+  const std::string name = "openplc-late-" + std::to_string(::getpid());
+  ::setenv("STEPMOD_NAME", name.c_str(), 1);
+  Program prog;
+  openplc::start(prog.bind());
+  EXPECT_EQ(prog.iw[42], 0);
+  ipc::ShmImage image(name, shape_of(ModuleType::k3601));
+  ImageWords in{};
+  in.w[1] = 77;
+  image.publish_inputs(in, ipc::Health{});
+  const std::uint64_t hb = image.heartbeat();
+  openplc::scan([] {});
+  EXPECT_EQ(prog.iw[42], 1);
+  EXPECT_EQ(prog.iw[1], 77);
+  EXPECT_EQ(image.heartbeat(), hb + 1) << "and its heartbeat from that scan on";
+  openplc::stop();
 }
 
 }  // namespace

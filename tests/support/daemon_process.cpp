@@ -80,7 +80,8 @@ std::string DaemonProcess::daemon_path() {
   return STEPMOD_DAEMON_PATH;
 }
 
-DaemonProcess::DaemonProcess(const std::string& toml, bool trace, const std::string& name) {
+DaemonProcess::DaemonProcess(const std::string& toml, bool trace, const std::string& name,
+                             const std::string& trace_path) {
   static std::atomic<int> counter{0};
   char tmpl[] = "/tmp/stepmod-test-XXXXXX";
   if (mkdtemp(tmpl) == nullptr) throw std::runtime_error("mkdtemp failed");
@@ -92,7 +93,7 @@ DaemonProcess::DaemonProcess(const std::string& toml, bool trace, const std::str
   std::snprintf(unique, sizeof unique, "t%ld-%d", static_cast<long>(getpid()), counter++);
   name_ = name.empty() ? std::string(unique) : name;
   config_ = dir_ + "/module.toml";
-  trace_ = dir_ + "/trace.vcd";
+  trace_ = trace_path.empty() ? dir_ + "/trace.vcd" : trace_path;
   log_ = dir_ + "/stepmodd.log";
   std::ofstream(config_) << replace_all(toml, "{NAME}", name_);
   std::vector<std::string> args{daemon_path(), "--config", config_};

@@ -13,8 +13,9 @@ class DaemonProcess {
   // the module name goes.
   // `name`: the module name to use instead of a fresh unique one (a test of what a daemon finds
   // left behind by another of the same name).
+  // `trace_path`: the --trace file instead of one in the private directory.
   explicit DaemonProcess(const std::string& config_toml_with_name_placeholder, bool trace = true,
-                         const std::string& name = "");
+                         const std::string& name = "", const std::string& trace_path = "");
   ~DaemonProcess();  // kills the daemon if still running and removes the temporary directory
   DaemonProcess(const DaemonProcess&) = delete;
   DaemonProcess& operator=(const DaemonProcess&) = delete;

@@ -59,7 +59,7 @@ max_clients = 9
 TEST(ConfigModbusError, UnknownKey) {
   EXPECT_EQ(error_of("[modbus]\nport = 502\n"),
             "test.toml:9: key 'modbus.port': unknown key (expected one of: enabled, listen, "
-            "unit_id, writes, max_clients)");
+            "unit_id, writes, max_clients, allow)");
 }
 
 TEST(ConfigModbusError, BooleansMustBeBooleans) {
@@ -98,6 +98,32 @@ TEST(ConfigModbusError, MustBeATable) {
   } catch (const ConfigError& e) {
     EXPECT_STREQ(e.what(), "test.toml:1: key 'modbus': must be a table [modbus]");
   }
+}
+
+TEST(ConfigModbus, AllowListOfAddressesAndNetworks) {
+  const Config c = parse_config(
+      std::string(kBase) + "[modbus]\nallow = [\"127.0.0.1\", \"10.0.0.0/8\"]\n", "t.toml");
+  ASSERT_EQ(c.modbus.allow.size(), 2u);
+  EXPECT_EQ(c.modbus.allow[0].network, 0x7F000001u);
+  EXPECT_EQ(c.modbus.allow[0].mask, 0xFFFFFFFFu);
+  EXPECT_EQ(c.modbus.allow[1].network, 0x0A000000u);
+  EXPECT_EQ(c.modbus.allow[1].mask, 0xFF000000u);
+  EXPECT_TRUE(parse_config(kBase, "t.toml").modbus.allow.empty()) << "no list: any source";
+}
+
+TEST(ConfigModbusError, AllowEntriesMustBeIpv4AddressesOrNetworks) {
+  const std::string entry =
+      "test.toml:9: key 'modbus.allow': each entry must be an IPv4 address or ADDRESS/PREFIX "
+      "(0..32) in quotes, e.g. \"10.0.0.0/8\"";
+  for (const char* bad : {"[\"localhost\"]", "[\"10.0.0.0/33\"]", "[\"::1\"]", "[10]",
+                          "[\"127.0.0.1\", \"10.0.0.0/\"]"}) {
+    EXPECT_EQ(error_of(std::string("[modbus]\nallow = ") + bad + "\n"), entry) << bad;
+  }
+  const std::string list =
+      "test.toml:9: key 'modbus.allow': must be a non-empty list of IPv4 addresses or networks, "
+      "e.g. [\"127.0.0.1\", \"10.0.0.0/8\"]";
+  EXPECT_EQ(error_of("[modbus]\nallow = \"127.0.0.1\"\n"), list);
+  EXPECT_EQ(error_of("[modbus]\nallow = []\n"), list);
 }
 
 }  // namespace

@@ -201,6 +201,15 @@ TEST(ConfigError, ModuleTypeInvalid) {
                       "test.toml:2: key 'module.type': must be \"3601\", \"3602\" or \"3202\"");
 }
 
+TEST(ConfigError, ModuleTypeMustBeQuoted) {
+  EXPECT_CONFIG_ERROR(
+      "[module]\ntype = 3602\n",
+      "test.toml:2: key 'module.type': must be a string in quotes: type = \"3602\"");
+  EXPECT_CONFIG_ERROR(
+      "[module]\ntype = 3601\n[[axis]]\nstep = 1\ndir = 2\n",
+      "test.toml:2: key 'module.type': must be a string in quotes: type = \"3601\"");
+}
+
 TEST(ConfigError, UnknownKeysAreErrors) {
   EXPECT_CONFIG_ERROR(
       "[module]\ntype = \"3601\"\nscan_usec = 500\n",
@@ -317,6 +326,17 @@ TEST(ConfigError, EStopAndEncoderNotOn3602) {
             0u);
   EXPECT_CONFIG_ERROR(head + "enc_z = 5\n" + tail,
                       "test.toml:6: key 'axis[1].enc_z': the 3602 has no encoder input");
+}
+
+TEST(ConfigError, SimulatedEncoderNotOn3602) {
+  const std::string head = "[module]\ntype = \"3602\"\n[[axis]]\nstep = 1\ndir = 2\n";
+  const std::string tail = "[[axis]]\nstep = 3\ndir = 4\n";
+  EXPECT_CONFIG_ERROR(head + tail + "[axis.sim]\nencoder_ratio = 2.0\n",
+                      "test.toml:10: key 'axis[2].sim.encoder_ratio': the 3602 has no encoder "
+                      "input: remove this key");
+  EXPECT_CONFIG_ERROR(head + "[axis.sim]\nmarker_every = 100\n" + tail,
+                      "test.toml:7: key 'axis[1].sim.marker_every': the 3602 has no encoder "
+                      "input: remove this key");
 }
 
 TEST(ConfigError, GpoOnlyOn3602) {
