@@ -176,9 +176,13 @@ TEST_F(Daemon3601, RelativeMoveExactPulsesAndProfileTiming) {
   for (std::size_t i = 6'000; i < 14'000; ++i) periods.push_back(steps[i + 1] - steps[i]);
   std::nth_element(periods.begin(), periods.begin() + periods.size() / 2, periods.end());
   EXPECT_NEAR(periods[periods.size() / 2] * 1e-9, 1 / vp, 0.01 / vp);
-  // Total move time (first to last pulse) within 1 % of the manual's equations.
+  // Total move time (first to last pulse) against the manual's equations. Late edges slip the
+  // rest of the move (docs/slip.md), so the move is never shorter than the equations' time (less
+  // 1 %), and longer by the pauses a loaded machine adds: bounded here by the late-edge limit.
   const double tt = 2.81 - ramp_step_time(vs, a, 1);
-  EXPECT_NEAR((steps.back() - steps.front()) * 1e-9, tt, 0.01 * tt);
+  const double took = (steps.back() - steps.front()) * 1e-9;
+  EXPECT_GE(took, 0.99 * tt);
+  EXPECT_LE(took, tt + 1.0);
 }
 
 TEST_F(Daemon3601, HoldAndResumeEndAtTheExactTarget) {

@@ -124,6 +124,10 @@ enc_b = 10
 enc_z = 11
 step_pulse_ns = 2000
 dir_setup_ns = 5000
+lag_limit_steps = 8
+enable = 12
+enable_delay_us = 10000
+enable_release_on = ["estop"]
 [axis.sim]
 start_position = 0
 cw_limit_at = 100
@@ -133,6 +137,7 @@ home_to = 20
 contacts = "NO"
 encoder_ratio = 1.0
 marker_every = 4000
+event_ring = 4096
 [modbus]
 enabled = false
 listen = "127.0.0.1:1502"
