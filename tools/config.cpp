@@ -10,8 +10,8 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <limits>
 #include <initializer_list>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string_view>
@@ -79,22 +79,18 @@ class Parser {
   // `table` names the table in kConfigKeys ("axis.sim"); `prefix` is how the message names it
   // ("axis[1].sim").
   void check_keys(const toml::table& t, const std::string& prefix, std::string_view table) const {
-    const std::vector<std::string_view> allowed = config_keys_of(table);
-    for (auto&& [k, v] : t) {
-      bool ok = false;
-      for (std::string_view a : allowed) ok = ok || k.str() == a;
-      if (!ok) {
-        std::string list;
-        for (std::string_view a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-        fail(k.source(), join(prefix, k.str()), "unknown key (expected one of: " + list + ")");
-      }
-    }
+    check_keys_in(t, prefix, config_keys_of(table));
   }
 
   // An inline line table's options (`home = { offset = 13, bias = "pull-up" }`): their own short
   // lists, per direction (docs/gpio-boards.md), not rows of kConfigKeys.
   void check_keys(const toml::table& t, const std::string& prefix,
                   std::initializer_list<std::string_view> allowed) const {
+    check_keys_in(t, prefix, std::vector<std::string_view>(allowed));
+  }
+
+  void check_keys_in(const toml::table& t, const std::string& prefix,
+                     const std::vector<std::string_view>& allowed) const {
     for (auto&& [k, v] : t) {
       bool ok = false;
       for (std::string_view a : allowed) ok = ok || k.str() == a;
