@@ -130,11 +130,13 @@ GpiodBackend::GpiodBackend(const std::string& chip, std::span<const AxisLines> a
   try {
     std::vector<std::string> used(gpiod_chip_num_lines(d.chip));  // offset -> "axis1.step"
     const auto claim = [&](unsigned a, bool input, unsigned line, unsigned offset) {
-      gpiod_line* l = d.get_line(a, input, line, offset);
-      if (!used[offset].empty()) {
+      // Our own use first: the lines are requested as they are claimed, so the kernel would
+      // report a line this configuration names twice as busy "used by 'stepmod'".
+      if (offset < used.size() && !used[offset].empty()) {
         throw std::runtime_error(d.where(a, input, line, offset) + ": offset already used by " +
                                  used[offset]);
       }
+      gpiod_line* l = d.get_line(a, input, line, offset);
       used[offset] = Impl::key(a, input, line);
       return l;
     };

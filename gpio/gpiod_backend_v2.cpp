@@ -260,11 +260,12 @@ GpiodBackend::GpiodBackend(const std::string& chip, std::span<const AxisLines> a
     gpiod_chip_info_free(info);
     std::vector<std::string> used(n);  // offset -> "axis1.step"
     const auto claim = [&](unsigned a, bool input, unsigned line, unsigned offset) {
-      d.check_line(a, input, line, offset, n);
-      if (!used[offset].empty()) {
+      // Our own use first: a line this configuration names twice is not "busy" (see v1).
+      if (offset < used.size() && !used[offset].empty()) {
         throw std::runtime_error(d.where(a, input, line, offset) + ": offset already used by " +
                                  used[offset]);
       }
+      d.check_line(a, input, line, offset, n);
       used[offset] = Impl::key(a, input, line);
     };
     d.out_offset.assign(axes.size(), {-1, -1, -1});
