@@ -39,6 +39,7 @@ std::string config_3601(int plc_timeout_ms = 0) {
   };
   line("name = \"stepmod\"", "name = \"{NAME}\"");
   line("late_limit_us = ", "late_limit_us = 1000000");
+  line("lag_limit_steps = ", "lag_limit_steps = 1000000");  // not about timing (sim_config.hpp)
   if (plc_timeout_ms > 0) {
     line("scan_us = 1000", "scan_us = 1000\nplc_timeout_ms = " + std::to_string(plc_timeout_ms));
   }
@@ -279,6 +280,9 @@ TEST_F(Commissioning, NoLeaseWhileAPlcHeartbeatIsLive) {
       std::this_thread::sleep_for(milliseconds(10));
     }
   });
+  // Live as the daemon sees it (health bit 1 cleared), not only as this thread writes it.
+  ASSERT_TRUE(
+      eventually([&] { return (health() & STEPMOD_HEALTH_PLC_STALE) == 0; }, milliseconds(3000)));
   const CtlRun r = ctl("move rel 2000 -s 10000 -a 100 -d 100 --wait", 0);
   stop = true;
   plc.join();
