@@ -89,7 +89,9 @@ TEST_F(Lease, TakenRenewedAndReleased) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
     const LeaseWatch::Event e = scan();
     EXPECT_FALSE(e.expired);
-    const auto ahead = static_cast<std::int64_t>(img().lease_expiry_ns) - stepmod_monotonic_ns();
+    // Atomic, as the daemon reads it: the tool's thread writes it.
+    const auto expiry = __atomic_load_n(&img().lease_expiry_ns, __ATOMIC_ACQUIRE);
+    const auto ahead = static_cast<std::int64_t>(expiry) - stepmod_monotonic_ns();
     EXPECT_GT(ahead, 0);
     EXPECT_LE(ahead, 500'000'000);
   }
