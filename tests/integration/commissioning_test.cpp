@@ -38,7 +38,7 @@ std::string config_3601(int plc_timeout_ms = 0) {
     t.replace(at, t.find('\n', at) - at, to);
   };
   line("name = \"stepmod\"", "name = \"{NAME}\"");
-  line("late_limit_us = ", "late_limit_us = 1000000");
+  line("[rt]", "[rt]\nlate_limit_us = 1000000");
   line("lag_limit_steps = ", "lag_limit_steps = 1000000");  // not about timing (sim_config.hpp)
   if (plc_timeout_ms > 0) {
     line("scan_us = 1000", "scan_us = 1000\nplc_timeout_ms = " + std::to_string(plc_timeout_ms));

@@ -39,7 +39,7 @@ std::string example(const char* file) {
   };
   replace("name = \"stepmod\"", "name = \"{NAME}\"");
   // The guard at its loosest: a loaded, shared VM (tests/support/sim_config.hpp says why).
-  replace("late_limit_us = ", "late_limit_us = 1000000");
+  replace("[rt]", "[rt]\nlate_limit_us = 1000000");
   for (std::size_t at = t.find("lag_limit_steps = "); at != std::string::npos;
        at = t.find("lag_limit_steps = ", at + 1)) {
     t.replace(at, t.find('\n', at) - at, "lag_limit_steps = 1000000");

@@ -25,7 +25,7 @@ std::string example_config(const std::string& module) {
   std::string t = slurp_file(std::string(STEPMOD_SOURCE_DIR) + "/examples/" + module + "-sim.toml");
   for (const auto& [from, to] :
        {std::pair<std::string, std::string>{"name = \"stepmod\"", "name = \"{NAME}\""},
-        {"late_limit_us = ", "late_limit_us = 1000000"}}) {
+        {"[rt]", "[rt]\nlate_limit_us = 1000000"}}) {
     const auto at = t.find(from);
     EXPECT_NE(at, std::string::npos) << module << ": " << from;
     if (at != std::string::npos) t.replace(at, t.find('\n', at) - at, to);

@@ -82,13 +82,13 @@ std::string openplc_example() {
   if (at != std::string::npos) t.replace(at, from.size(), "name = \"{NAME}\"");
   // The late-edge guard's maximum, as in every end-to-end test that is not about it: a loaded
   // test machine must not cut the move (sim_config.hpp). The example's own values are the
-  // product's defaults; each is found by its key and must be there.
+  // product's defaults: the pause limit is added to [rt], the lag limit replaced by its key.
   const auto relax = [&t](const std::string& key_value, const char* relaxed) {
     const auto g = t.find(key_value);
     if (g == std::string::npos) throw std::runtime_error("example lacks '" + key_value + "'");
     t.replace(g, t.find('\n', g) + 1 - g, relaxed);
   };
-  relax("late_limit_us = 200000", kRelaxedLateLimit);
+  relax("[rt]", (std::string("[rt]\n") + kRelaxedLateLimit).c_str());
   relax("lag_limit_steps = 8", kRelaxedLagLimit);
   return t;
 }

@@ -111,7 +111,7 @@ name="pkgtest-$$"
 # loosest (pause 1 s, no lag limit in practice) for a shared test machine: the unprivileged
 # daemon has no SCHED_FIFO here, and what is under test is the package, not this machine's timer
 # latency (the guard has its own tests).
-sed -e "s/^name = .*/name = \"$name\"/" -e "s/^late_limit_us = .*/late_limit_us = 1000000/" \
+sed -e "s/^name = .*/name = \"$name\"/" -e "s/^\[rt\]$/[rt]\nlate_limit_us = 1000000/" \
   -e "s/^lag_limit_steps = .*/lag_limit_steps = 1000000/" \
   /etc/stepmod/3601-sim.toml >"$tmp/3601-sim.toml"
 grep -q '^late_limit_us = 1000000' "$tmp/3601-sim.toml" || fail "example config has no late_limit_us"

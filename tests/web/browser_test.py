@@ -56,7 +56,7 @@ class Machine:
             cfg = f.read()
         cfg = re.sub(r'(?m)^name = "stepmod"', 'name = "%s"' % self.name, cfg)
         # This shared, loaded machine: the late-edge guard at its maximum (as the daemon tests).
-        cfg = re.sub(r"(?m)^late_limit_us = .*$", "late_limit_us = 1000000", cfg)
+        cfg = re.sub(r"(?m)^\[rt\]$", "[rt]\nlate_limit_us = 1000000", cfg)
         cfg = re.sub(r"(?m)^lag_limit_steps = .*$", "lag_limit_steps = 1000000", cfg)
         self.config = os.path.join(self.dir, "c.toml")
         with open(self.config, "w") as f:
