@@ -21,8 +21,6 @@
 // Output: human-readable lines plus "RESULT key=value ..." lines for scripts/bench.
 #include <dirent.h>
 #include <signal.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -30,7 +28,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <map>
 #include <random>
@@ -41,13 +38,18 @@
 
 #include "core/clock.hpp"
 #include "ipc/client.hpp"
-#include "ipc/codec.hpp"
 #include "module/axis/rules.hpp"
 #include "module/m3601/words_3601.hpp"
 #include "planner/motion_request.hpp"
 #include "planner/planner.hpp"
+#include "plc/plc_3601.hpp"
+#include "plc/shm_port.hpp"
+#include "plc/status_3601.hpp"
+#include "plc/words_3601.hpp"
 #include "rt/axis_feedback.hpp"
 #include "rt/edge.hpp"
+#include "tests/support/daemon_process.hpp"
+#include "tests/support/vcd_reader.hpp"
 
 namespace {
 
@@ -69,152 +71,94 @@ std::string slurp(const std::string& path) {
   return s.str();
 }
 
-// A stepmodd child process on a private config; SIGTERM on destruction.
+// The benches' module: a 3601 on the simulated machine with step/direction outputs, home and
+// end limits only. `late_limit_us`: the late-edge guard; the default is its maximum so that a
+// fault does not end a measured move early (the guard has its own benchmarks: `guard`, `slip`);
+// <= 0: the product's default (no key written).
+std::string bench_config(unsigned scan_us, long late_limit_us) {
+  return "[module]\ntype = \"3601\"\nname = \"{NAME}\"\nscan_us = " + std::to_string(scan_us) +
+         "\n[gpio]\nbackend = \"sim\"\n[rt]\npriority = 80\n" +
+         (late_limit_us > 0 ? "late_limit_us = " + std::to_string(late_limit_us) + "\n"
+                            : std::string()) +
+         "[[axis]]\nstep = 1\ndir = 2\nhome = 3\ncw_limit = 4\nccw_limit = 5\n"
+         "[axis.sim]\ncw_limit_at = 100000000\nccw_limit_at = -100000000\n"
+         "home_from = -200\nhome_to = -100\n";
+}
+
+// A stepmodd child process (the tests' harness, tests/support/daemon_process) on the bench's
+// config, up and scanning when constructed.
 class Daemon {
  public:
-  // `late_limit_us`: the late-edge guard; the default is its maximum so that a fault does not
-  // end a measured move early (the guard has its own benchmarks: `guard`, `slip`); <= 0: the
-  // product's default (no key written).
-  Daemon(const std::string& exe, unsigned scan_us, bool trace, long late_limit_us = 1'000'000) {
-    char tmpl[] = "/tmp/stepmod-bench-XXXXXX";
-    dir_ = mkdtemp(tmpl);
-    name_ = "bench" + std::to_string(getpid());
-    config_ = dir_ + "/3601.toml";
-    log_ = dir_ + "/stepmodd.log";
-    if (trace) trace_ = dir_ + "/trace.vcd";
-    std::ofstream(config_) << "[module]\ntype = \"3601\"\nname = \"" << name_
-                           << "\"\nscan_us = " << scan_us
-                           << "\n[gpio]\nbackend = \"sim\"\n[rt]\npriority = 80\n"
-                           << (late_limit_us > 0
-                                   ? "late_limit_us = " + std::to_string(late_limit_us) + "\n"
-                                   : std::string())
-                           << "[[axis]]\nstep = 1\ndir = 2\nhome = 3\ncw_limit = 4\nccw_limit = 5\n"
-                              "[axis.sim]\ncw_limit_at = 100000000\nccw_limit_at = -100000000\n"
-                              "home_from = -200\nhome_to = -100\n";
-    pid_ = fork();
-    if (pid_ == 0) {
-      if (std::freopen(log_.c_str(), "w", stderr) == nullptr) _exit(126);  // no log, no run
-      std::vector<std::string> a{exe, "--config", config_};
-      if (trace) {
-        a.push_back("--trace");
-        a.push_back(trace_);
-      }
-      std::vector<char*> av;
-      for (auto& s : a) av.push_back(s.data());
-      av.push_back(nullptr);
-      execv(av[0], av.data());
-      _exit(127);
-    }
-    const std::string shm = "/dev/shm/stepmod." + name_;
-    for (int i = 0; i < 1000; ++i) {
-      struct stat st {};
-      if (stat(shm.c_str(), &st) == 0) {
-        std::this_thread::sleep_for(milliseconds(50));  // let it start scanning
-        return;
-      }
-      std::this_thread::sleep_for(milliseconds(10));
-    }
-    throw std::runtime_error("stepmodd did not start: " + slurp(log_));
+  Daemon(const std::string& exe, unsigned scan_us, bool trace, long late_limit_us = 1'000'000)
+      : proc_(bench_config(scan_us, late_limit_us),
+              testing::DaemonOptions{.trace = trace, .exe = exe}) {
+    if (!proc_.wait_ready()) throw std::runtime_error("stepmodd did not start: " + proc_.log());
   }
-  ~Daemon() {
-    stop();
-    std::error_code ignored;  // a bench leaves at worst a temp dir behind
-    std::filesystem::remove_all(dir_, ignored);
+  // SIGTERM and wait (the trace is complete after it); the exit code, 128 + signal, or -1 when it
+  // did not exit within a minute (a long trace still being written).
+  int stop() { return proc_.terminate(60'000); }
+  pid_t pid() const { return proc_.pid(); }
+  const std::string& name() const { return proc_.name(); }
+  std::string log() const { return proc_.log(); }
+  // Rising-edge times (ns from #0) of axis 1's step line in the trace.
+  std::vector<Nanos> steps() const {
+    return testing::read_vcd(proc_.trace_path()).rising("axis1.step");
   }
-  int stop() {
-    if (pid_ <= 0) return 0;
-    kill(pid_, SIGTERM);
-    int status = 0;
-    waitpid(pid_, &status, 0);
-    pid_ = -1;
-    return status;
-  }
-  pid_t pid() const { return pid_; }
-  const std::string& name() const { return name_; }
-  const std::string& trace() const { return trace_; }
-  std::string log() const { return slurp(log_); }
 
  private:
-  std::string dir_, name_, config_, log_, trace_;
-  pid_t pid_ = -1;
+  testing::DaemonProcess proc_;
 };
 
-struct Plc {
-  explicit Plc(const std::string& name) : c(name) {}
-  ipc::Client c;
+// The bench's PLC: plc/'s 3601 dialect over the daemon's shared memory. Each command is held 3
+// scans and its release waited 2 (the sequencing the figures were first taken with).
+class Plc {
+ public:
+  explicit Plc(const std::string& name)
+      : client_(name),
+        port_(client_),
+        plc_(port_, milliseconds(2000),
+             plc::Sequencing{.hold_scans = 3, .release_scans = 2, .config_scans = 3}) {}
+  ipc::Client& client() { return client_; }
   void scans(unsigned n) {
-    if (!c.wait_scans(n, milliseconds(2000))) throw std::runtime_error("module not scanning");
+    if (!port_.wait_scans(n)) throw std::runtime_error("module not scanning");
   }
-  std::uint16_t status() {
-    ImageWords w;
-    c.read_inputs(w);
-    return static_cast<std::uint16_t>(w.w[0]);
-  }
-  ImageWords words(std::uint16_t msw, std::uint16_t lsw, std::int32_t a, std::int32_t b,
-                   std::int16_t w6, std::int16_t w7) {
-    const auto x = ipc::codec::encode_3601(a), y = ipc::codec::encode_3601(b);
-    ImageWords o{};
-    o.w = {static_cast<std::int16_t>(msw),
-           static_cast<std::int16_t>(lsw),
-           x.msw,
-           x.lsw,
-           y.msw,
-           y.lsw,
-           w6,
-           w7};
-    return o;
+  plc::m3601::Status status() const {
+    ImageWords in;
+    port_.read_inputs(in);
+    return plc::m3601::decode_status(in);
   }
   // Step/direction outputs, home and end limits (the minimum the 3601 accepts), starting speed.
   void configure(std::int32_t vs) {
     const std::uint16_t used =
         m::cfg_msw::kHomeUsed | m::cfg_msw::kCwLimitUsed | m::cfg_msw::kCcwLimitUsed;
-    c.write_outputs(
-        words(m::cfg_msw::kStepDirOutput | used | m::cfg_msw::kConfigMode, used, vs, 0, 0, 0));
-    scans(3);
-    if (status() & m::status_msw::kConfigurationError) throw std::runtime_error("config error");
-    c.write_outputs(words(0, 0, 0, 0, 0, 0));
-    scans(3);
+    const plc::Outcome o = plc_.configure(m::cfg_msw::kStepDirOutput | used, used, vs);
+    if (o.timed_out) throw std::runtime_error("module not scanning");
+    if (!o.ok) throw std::runtime_error("config error: " + o.message);
   }
-  // Writes a relative move (the PLC's one write of the command); returns the write's time.
-  Nanos relative_move(std::int32_t steps, std::int32_t speed) {
-    const auto w = words(m::cmd_msw::kRelativeMove, 0, steps, speed, 2000, 2000);
-    c.write_outputs(w);
+  // Writes a relative move (the PLC's one write of the command, its bit left set: release()
+  // clears it); returns the write's time (the latency bench starts its clock there).
+  Nanos write_relative_move(std::int32_t steps, std::int32_t speed) {
+    port_.write_outputs(
+        plc::m3601::command_words(m::cmd_msw::kRelativeMove, 0, steps, speed, 2000, 2000));
     return monotonic_now();
   }
   void release() {
-    c.write_word(0, 0);
+    client_.write_word(0, 0);
     scans(2);
   }
-  // A relative move with its acceleration words (steps/ms/s) and S-curve bits in the LSW.
-  void move(std::int32_t steps, std::int32_t speed, std::int16_t accel, std::uint16_t lsw) {
-    c.write_outputs(words(m::cmd_msw::kRelativeMove, lsw, steps, speed, accel, accel));
+  // A relative move as a PLC commands it (written, held, released).
+  void move(std::int32_t steps, const plc::Profile& p) {
+    if (plc_.move(false, steps, p).timed_out) throw std::runtime_error("module not scanning");
   }
-};
+  void move(std::int32_t steps, std::int32_t speed) {
+    move(steps, {.speed = speed, .accel = 2000, .decel = 2000});
+  }
 
-// Rising-edge times (ns from #0) of one VCD wire.
-std::vector<Nanos> vcd_rising(const std::string& path, const std::string& wire) {
-  std::ifstream f(path);
-  std::string line, id;
-  Nanos t = 0;
-  int level = 0;
-  std::vector<Nanos> out;
-  while (std::getline(f, line)) {
-    if (line.rfind("$var", 0) == 0) {
-      std::istringstream s(line);
-      std::string var, type, width, ident, name;
-      s >> var >> type >> width >> ident >> name;
-      if (name == wire) id = ident;
-    } else if (!line.empty() && line[0] == '#') {
-      t = std::stoll(line.substr(1));
-    } else if (!id.empty() && line.size() >= 2 && (line[0] == '0' || line[0] == '1') &&
-               line.substr(1) == id) {
-      const int l = line[0] - '0';
-      if (l == 1 && level == 0) out.push_back(t);
-      level = l;
-    }
-  }
-  return out;
-}
+ private:
+  ipc::Client client_;
+  plc::ShmPort port_;
+  plc::Plc3601 plc_;
+};
 
 double pct(std::vector<double> v, double q) {
   if (v.empty()) return 0;
@@ -236,7 +180,7 @@ int latency(int argc, char** argv) {
   for (int i = 0; i < n; ++i) {
     // A PLC's scan is not synchronised with the module's: write at a random phase.
     std::this_thread::sleep_for(std::chrono::microseconds(phase(rng)));
-    writes.push_back(plc.relative_move(i % 2 == 0 ? 2 : -2, 1'000'000));
+    writes.push_back(plc.write_relative_move(i % 2 == 0 ? 2 : -2, 1'000'000));
     plc.scans(3);
     plc.release();
   }
@@ -249,7 +193,7 @@ int latency(int argc, char** argv) {
     return 1;
   }
   const Nanos origin = std::stoll(log_all.substr(at + 22));
-  const std::vector<Nanos> rising = vcd_rising(d.trace(), "axis1.step");
+  const std::vector<Nanos> rising = d.steps();
   std::vector<double> lat;
   std::size_t j = 0;
   for (const Nanos w : writes) {
@@ -371,11 +315,9 @@ int cpu(int argc, char** argv) {
   Plc plc(d.name());
   plc.configure(rate);
   const auto steps = static_cast<std::int32_t>(static_cast<double>(rate) * (seconds + 3));
-  plc.relative_move(steps, rate);
-  plc.scans(3);
-  plc.release();
+  plc.move(steps, rate);
   std::this_thread::sleep_for(milliseconds(500));
-  const bool moving = (plc.status() & (m::status_msw::kMovingCw | m::status_msw::kMovingCcw)) != 0;
+  const bool moving = plc.status().moving();
   const double pct_cpu = measure_cpu(d.pid(), seconds, "moving");
   std::printf("daemon CPU at %d steps/s: %.1f %% of a core (moving: %s)\n", rate, pct_cpu,
               moving ? "yes" : "NO");
@@ -384,7 +326,7 @@ int cpu(int argc, char** argv) {
 }
 
 bool moving(Plc& plc) {
-  return (plc.status() & (m::status_msw::kMovingCw | m::status_msw::kMovingCcw)) != 0;
+  return plc.status().moving();
 }
 
 // Waits until the axis is at rest (at most `limit`).
@@ -399,9 +341,7 @@ void wait_rest(Plc& plc, milliseconds limit) {
 // A constant-speed move (Vs = Vp = rate) of `steps`, to its end.
 void constant_move(Plc& plc, int rate, std::int32_t steps) {
   plc.configure(rate);
-  plc.relative_move(steps, rate);
-  plc.scans(3);
-  plc.release();
+  plc.move(steps, rate);
   wait_rest(plc, milliseconds(static_cast<long>(steps) * 1000 / rate + 10'000));
 }
 
@@ -418,7 +358,7 @@ int grid(int argc, char** argv) {
     Plc plc(d.name());
     constant_move(plc, rate, steps);
     d.stop();
-    rising = vcd_rising(d.trace(), "axis1.step");
+    rising = d.steps();
   }
   if (rising.size() < 2) {
     std::printf("grid: no steps traced\n");
@@ -454,9 +394,10 @@ std::size_t densest(const std::vector<Nanos>& t, Nanos window) {
 }
 
 // Issue 12: the late-edge guard under load (scripts/bench loads the machine). --runs moves at
-// --rate with the product's guard (issue 18; before, a 1 ms limit): each completes (Move Complete) or faults (Stopped +
-// Position Invalid, a late-edge fault counted); and never a burst: the most steps in any 1 ms of
-// the VCD against the commanded rate (catching up within 1 ms of lateness may double it).
+// --rate with the product's guard (issue 18; before, a 1 ms limit): each completes (Move Complete)
+// or faults (Stopped + Position Invalid, a late-edge fault counted); and never a burst: the most
+// steps in any 1 ms of the VCD against the commanded rate (catching up within 1 ms of lateness may
+// double it).
 int guard(int argc, char** argv) {
   const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
   const int rate = std::atoi(arg(argc, argv, "--rate", "50000"));
@@ -470,17 +411,15 @@ int guard(int argc, char** argv) {
     Plc plc(d.name());
     plc.configure(rate);
     for (int r = 0; r < runs; ++r) {
-      const std::uint32_t before = plc.c.read_health().late_faults;
-      plc.relative_move(steps, rate);
-      plc.scans(3);
-      plc.release();
+      const std::uint32_t before = plc.client().read_health().late_faults;
+      plc.move(steps, rate);
       wait_rest(plc, milliseconds(static_cast<long>(steps) * 1000 / rate + 10'000));
       plc.scans(2);
-      const std::uint16_t st = plc.status();
-      const ipc::Health h = plc.c.read_health();
-      if ((st & m::status_msw::kMoveComplete) && h.late_faults == before) {
+      const plc::m3601::Status st = plc.status();
+      const ipc::Health h = plc.client().read_health();
+      if (st.has(m::status_msw::kMoveComplete) && h.late_faults == before) {
         ++clean;
-      } else if ((st & m::status_msw::kPositionInvalid) && h.late_faults > before) {
+      } else if (st.has(m::status_msw::kPositionInvalid) && h.late_faults > before) {
         ++faulted;
       } else {
         ++other;
@@ -488,10 +427,10 @@ int guard(int argc, char** argv) {
       faults = h.late_faults;
       worst_us = h.worst_late_us;
       std::printf("guard run %d: %s\n", r + 1,
-                  (st & m::status_msw::kMoveComplete) ? "complete" : "faulted");
+                  st.has(m::status_msw::kMoveComplete) ? "complete" : "faulted");
     }
     d.stop();
-    rising = vcd_rising(d.trace(), "axis1.step");
+    rising = d.steps();
   }
   const std::size_t dense = densest(rising, kNsPerMs);
   const double nominal = rate / 1000.0;
@@ -639,12 +578,13 @@ int slip(int argc, char** argv) {
       const auto accel = static_cast<std::int16_t>(c.rate / 500);  // steps/ms/s: ~0.5 s ramps
       const std::int32_t steps = c.rate;                           // about a second
       plc.configure(vs);
-      const std::uint32_t before = plc.c.read_health().late_faults;
-      plc.move(steps, c.rate, accel, scurve ? m::cmd_lsw::kSCurve | m::cmd_lsw::kTrapezoidalS : 0);
-      plc.scans(3);
-      plc.release();
+      const std::uint32_t before = plc.client().read_health().late_faults;
+      plc.move(steps, {.speed = c.rate,
+                       .accel = accel,
+                       .decel = accel,
+                       .type = scurve ? plc::AccelType::kTrapezoidalS : plc::AccelType::kConstant});
       wait_rest(plc, milliseconds(static_cast<long>(steps) * 5000 / c.rate + 10'000));
-      faulted.push_back(plc.c.read_health().late_faults > before);
+      faulted.push_back(plc.client().read_health().late_faults > before);
       planner::MoveSpec s;
       s.steps = steps;
       s.vs = vs;
@@ -659,7 +599,7 @@ int slip(int argc, char** argv) {
       std::this_thread::sleep_for(milliseconds(400));  // a rest the VCD is split at
     }
     d.stop();
-    rising = vcd_rising(d.trace(), "axis1.step");
+    rising = d.steps();
   }
   report_slip(cases, specs, faulted, split_moves(rising, 300 * kNsPerMs));
   return 0;
@@ -680,24 +620,19 @@ int trace(int argc, char** argv) {
     Plc plc(d.name());
     plc.configure(1000);
     const Nanos t0 = monotonic_now();
-    plc.relative_move(steps, rate);
-    plc.scans(3);
-    plc.release();
+    plc.move(steps, rate);
     wait_rest(plc, milliseconds(static_cast<long>(steps) * 1000 / rate + 20'000));
     seconds = static_cast<double>(monotonic_now() - t0) / 1e9;
-    ImageWords w;
-    plc.c.read_inputs(w);
-    position = ipc::codec::decode_3601_report(w.w[2], w.w[3]);
+    position = plc.status().position;
     status = d.stop();
-    n = vcd_rising(d.trace(), "axis1.step").size();
+    n = d.steps().size();
   }
-  const bool complete =
-      WIFEXITED(status) && WEXITSTATUS(status) == 0 && n == static_cast<std::size_t>(position);
+  const bool complete = status == 0 && n == static_cast<std::size_t>(position);
   std::printf(
       "trace at %d steps/s (%.1f M records/s): %lld steps moved, %zu rising edges in the "
       "VCD, exit status %d: %s\n",
-      rate, 2.0 * rate / 1e6, static_cast<long long>(position), n,
-      WIFEXITED(status) ? WEXITSTATUS(status) : -1, complete ? "complete" : "INCOMPLETE");
+      rate, 2.0 * rate / 1e6, static_cast<long long>(position), n, status,
+      complete ? "complete" : "INCOMPLETE");
   std::printf(
       "RESULT bench=trace rate=%d records_per_s=%d steps=%lld rising=%zu complete=%d "
       "move_s=%.2f\n",

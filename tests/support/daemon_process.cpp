@@ -80,8 +80,7 @@ std::string DaemonProcess::daemon_path() {
   return STEPMOD_DAEMON_PATH;
 }
 
-DaemonProcess::DaemonProcess(const std::string& toml, bool trace, const std::string& name,
-                             const std::string& trace_path) {
+DaemonProcess::DaemonProcess(const std::string& toml, const DaemonOptions& options) {
   static std::atomic<int> counter{0};
   char tmpl[] = "/tmp/stepmod-test-XXXXXX";
   if (mkdtemp(tmpl) == nullptr) throw std::runtime_error("mkdtemp failed");
@@ -91,13 +90,14 @@ DaemonProcess::DaemonProcess(const std::string& toml, bool trace, const std::str
   // -Werror failed on it).
   char unique[64];
   std::snprintf(unique, sizeof unique, "t%ld-%d", static_cast<long>(getpid()), counter++);
-  name_ = name.empty() ? std::string(unique) : name;
+  name_ = options.name.empty() ? std::string(unique) : options.name;
   config_ = dir_ + "/module.toml";
-  trace_ = trace_path.empty() ? dir_ + "/trace.vcd" : trace_path;
+  trace_ = options.trace_path.empty() ? dir_ + "/trace.vcd" : options.trace_path;
   log_ = dir_ + "/stepmodd.log";
   std::ofstream(config_) << replace_all(toml, "{NAME}", name_);
-  std::vector<std::string> args{daemon_path(), "--config", config_};
-  if (trace) {
+  std::vector<std::string> args{options.exe.empty() ? daemon_path() : options.exe, "--config",
+                                config_};
+  if (options.trace) {
     args.push_back("--trace");
     args.push_back(trace_);
   }

@@ -7,15 +7,25 @@
 
 namespace stepmod::testing {
 
+// How a DaemonProcess starts stepmodd.
+struct DaemonOptions {
+  bool trace = true;  // run with --trace
+  // The module name to use instead of a fresh unique one (a test of what a daemon finds left
+  // behind by another of the same name).
+  std::string name{};
+  std::string trace_path{};  // the --trace file instead of one in the private directory
+  // The stepmodd to run instead of this build's (the benchmarks' --stepmodd).
+  std::string exe{};
+};
+
 class DaemonProcess {
  public:
-  // `config_body`: the TOML after the [module] table's name line is inserted; use "{NAME}" where
-  // the module name goes.
-  // `name`: the module name to use instead of a fresh unique one (a test of what a daemon finds
-  // left behind by another of the same name).
-  // `trace_path`: the --trace file instead of one in the private directory.
+  // `config_toml_with_name_placeholder`: the config file; "{NAME}" where the module name goes.
+  DaemonProcess(const std::string& config_toml_with_name_placeholder, const DaemonOptions& options);
   explicit DaemonProcess(const std::string& config_toml_with_name_placeholder, bool trace = true,
-                         const std::string& name = "", const std::string& trace_path = "");
+                         const std::string& name = "", const std::string& trace_path = "")
+      : DaemonProcess(config_toml_with_name_placeholder,
+                      DaemonOptions{trace, name, trace_path, ""}) {}
   ~DaemonProcess();  // kills the daemon if still running and removes the temporary directory
   DaemonProcess(const DaemonProcess&) = delete;
   DaemonProcess& operator=(const DaemonProcess&) = delete;
