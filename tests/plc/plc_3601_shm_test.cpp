@@ -135,18 +135,28 @@ ImageWords words(std::initializer_list<std::int32_t> v) {
   return w;
 }
 
+// A PLC's side of the fake module above: the dialect over the shared-memory port, each test on an
+// image of its own.
+class CtlCommands : public ::testing::Test {
+ protected:
+  static std::string unique_name() {
+    static int counter = 0;
+    return test_name(std::to_string(counter++).c_str());
+  }
+  const std::string n = unique_name();
+  FakeModule fake{n};
+  ipc::Client c{n};
+  ShmPort port{c};
+  Plc3601 plc{port};
+};
+
 ImageWords outputs_of(ipc::Client& c) {
   ImageWords w;
   c.read_outputs(w);
   return w;
 }
 
-TEST(CtlCommands, MoveWritesDecimalSplitWithEdgeThenReleases) {
-  const std::string n = test_name("move");
-  FakeModule fake(n);
-  ipc::Client c(n);
-  ShmPort port(c);
-  Plc3601 plc(port);
+TEST_F(CtlCommands, MoveWritesDecimalSplitWithEdgeThenReleases) {
   const Outcome o = plc.move(true, -12'345, {1'500, 10, 20, AccelType::kTrapezoidalS});
   EXPECT_TRUE(o.ok) << o.message;
   ASSERT_EQ(fake.edges().size(), 1u);
@@ -157,23 +167,13 @@ TEST(CtlCommands, MoveWritesDecimalSplitWithEdgeThenReleases) {
   EXPECT_EQ(static_cast<std::int16_t>(o.in.w[3]), -345);
 }
 
-TEST(CtlCommands, RelativeEncoderMoveAndScurveBits) {
-  const std::string n = test_name("rel");
-  FakeModule fake(n);
-  ipc::Client c(n);
-  ShmPort port(c);
-  Plc3601 plc(port);
+TEST_F(CtlCommands, RelativeEncoderMoveAndScurveBits) {
   EXPECT_TRUE(plc.move(false, 500, {2'000, 1, 1, AccelType::kTriangularS}, true).ok);
   ASSERT_EQ(fake.edges().size(), 1u);
   EXPECT_EQ(fake.edges()[0], words({2, 1 | 4, 0, 500, 2, 0, 1, 1}));
 }
 
-TEST(CtlCommands, CommandErrorReportedAndResetClearsIt) {
-  const std::string n = test_name("ce");
-  FakeModule fake(n);
-  ipc::Client c(n);
-  ShmPort port(c);
-  Plc3601 plc(port);
+TEST_F(CtlCommands, CommandErrorReportedAndResetClearsIt) {
   const Outcome bad = plc.move(true, 100, {0, 10, 10});
   EXPECT_FALSE(bad.ok);
   EXPECT_FALSE(bad.timed_out);
@@ -184,26 +184,16 @@ TEST(CtlCommands, CommandErrorReportedAndResetClearsIt) {
   EXPECT_EQ(fake.edges().back().w[1], 0) << "LSW must be 0 with Reset Errors";
 }
 
-TEST(CtlCommands, StaleCommandBitIsReleasedBeforeTheNewEdge) {
-  const std::string n = test_name("stale");
-  FakeModule fake(n);
-  ipc::Client c(n);
+TEST_F(CtlCommands, StaleCommandBitIsReleasedBeforeTheNewEdge) {
   // A PLC left the bit of a valid move at 1.
   c.write_outputs(words({m::cmd_msw::kAbsoluteMove, 0, 0, 0, 1, 0, 1, 1}));
   ASSERT_TRUE(c.wait_scans(3, 2s));
   const auto before = fake.edges().size();
-  ShmPort port(c);
-  Plc3601 plc(port);
   EXPECT_TRUE(plc.move(true, 1, {1'000, 1, 1}).ok);
   ASSERT_EQ(fake.edges().size(), before + 1) << "the module saw a new 0->1 edge";
 }
 
-TEST(CtlCommands, PresetAndStopWordLayouts) {
-  const std::string n = test_name("preset");
-  FakeModule fake(n);
-  ipc::Client c(n);
-  ShmPort port(c);
-  Plc3601 plc(port);
+TEST_F(CtlCommands, PresetAndStopWordLayouts) {
   EXPECT_TRUE(plc.move(true, 7, {3'000, 5, 6}).ok);
   EXPECT_TRUE(plc.preset_position(-1'000).ok);
   EXPECT_EQ(fake.edges().back(), words({m::cmd_msw::kPresetPosition, 0, -1, 0, 0, 0, 0, 0}))
@@ -222,25 +212,15 @@ TEST(CtlCommands, PresetAndStopWordLayouts) {
   EXPECT_EQ(fake.edges().back(), words({m::cmd_msw::kRunBlendCcw, 0, 0, 0, 0, 0, 0, 0}));
 }
 
-TEST(CtlCommands, HomeKeepsProximityBitAndZeroTarget) {
-  const std::string n = test_name("home");
-  FakeModule fake(n);
-  ipc::Client c(n);
+TEST_F(CtlCommands, HomeKeepsProximityBitAndZeroTarget) {
   c.write_word(1, m::cmd_lsw::kBackplaneProximity | m::cmd_lsw::kSCurve);
   c.write_word(2, 5);
-  ShmPort port(c);
-  Plc3601 plc(port);
   EXPECT_TRUE(plc.home(false, {1'000, 2, 3}).ok);
   EXPECT_EQ(fake.edges().back(),
             words({m::cmd_msw::kFindHomeCcw, m::cmd_lsw::kBackplaneProximity, 0, 0, 1, 0, 2, 3}));
 }
 
-TEST(CtlCommands, ConfigureEntersConfigModeAndReturns) {
-  const std::string n = test_name("cfg");
-  FakeModule fake(n);
-  ipc::Client c(n);
-  ShmPort port(c);
-  Plc3601 plc(port);
+TEST_F(CtlCommands, ConfigureEntersConfigModeAndReturns) {
   const std::uint16_t cfg = m::cfg_msw::kHomeUsed | m::cfg_msw::kCwLimitUsed |
                             m::cfg_msw::kCcwLimitUsed | m::cfg_msw::kStepDirOutput;
   const Outcome o = plc.configure(cfg, 0x3F, 1'500);
@@ -254,12 +234,7 @@ TEST(CtlCommands, ConfigureEntersConfigModeAndReturns) {
   EXPECT_NE(bad.message.find("Configuration Error"), std::string::npos) << bad.message;
 }
 
-TEST(CtlCommands, BlendProgramHandshakeOneBlockPerSegment) {
-  const std::string n = test_name("blend");
-  FakeModule fake(n);
-  ipc::Client c(n);
-  ShmPort port(c);
-  Plc3601 plc(port);
+TEST_F(CtlCommands, BlendProgramHandshakeOneBlockPerSegment) {
   BlendProfile b;
   b.segments = {{10'000, 5'000, 10, AccelType::kConstant},
                 {12'345, 8'000, 20, AccelType::kTrapezoidalS}};
@@ -277,12 +252,7 @@ TEST(CtlCommands, BlendProgramHandshakeOneBlockPerSegment) {
   EXPECT_EQ(outputs_of(c), ImageWords{}) << "program bit cleared at the end";
 }
 
-TEST(CtlCommands, JogHoldsLevelThenReleasesAndWaitsIdle) {
-  const std::string n = test_name("jog");
-  FakeModule fake(n);
-  ipc::Client c(n);
-  ShmPort port(c);
-  Plc3601 plc(port);
+TEST_F(CtlCommands, JogHoldsLevelThenReleasesAndWaitsIdle) {
   const auto t0 = std::chrono::steady_clock::now();
   const Outcome o = plc.jog(true, {500, 1, 1}, 50ms);
   EXPECT_GE(std::chrono::steady_clock::now() - t0, 50ms);
@@ -293,7 +263,7 @@ TEST(CtlCommands, JogHoldsLevelThenReleasesAndWaitsIdle) {
   EXPECT_EQ(o.in.w[0] & (m::status_msw::kMovingCw | m::status_msw::kMovingCcw), 0);
 }
 
-TEST(CtlCommands, TimeoutWithoutModuleScanning) {
+TEST(CtlPort, TimeoutWithoutModuleScanning) {
   const std::string n = test_name("dead");
   ipc::ShmImage img(n, k3601);  // an image nobody scans
   ipc::Client c(n);
@@ -305,7 +275,7 @@ TEST(CtlCommands, TimeoutWithoutModuleScanning) {
   EXPECT_NE(o.message.find("no answer"), std::string::npos);
 }
 
-TEST(CtlCommands, OnlyFor3601) {
+TEST(CtlPort, OnlyFor3601) {
   const std::string n = test_name("3202");
   ipc::ShmImage img(n, {ModuleType::k3202, 2, 4, 16, 16});
   ipc::Client c(n);
