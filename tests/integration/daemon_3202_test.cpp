@@ -14,6 +14,7 @@
 #include "plc/plc_3202.hpp"
 #include "plc/shm_port.hpp"
 #include "tests/support/daemon_process.hpp"
+#include "tests/support/sim_config.hpp"
 #include "tests/support/vcd_reader.hpp"
 
 namespace stepmod::testing {
@@ -24,61 +25,14 @@ namespace sb = m::status_bit;
 using plc::m3202::decode_status;
 using std::chrono::milliseconds;
 
-constexpr const char* kConfig = R"(
-[module]
-type = "3202"
-name = "{NAME}"
-scan_us = 1000
-
-[gpio]
-backend = "sim"
-
-[rt]
-priority = 80
-late_limit_us = 1000000  # the maximum: a shared, loaded test VM; the guard has its own tests
-
-[[axis]]
-lag_limit_steps = 1000000  # with late_limit_us: the guard has its own tests
-step = 1
-dir = 2
-capture = 3
-external = 4
-home = 5
-estop = 6
-cw_limit = 7
-ccw_limit = 8
-enc_a = 9
-enc_b = 10
-enc_z = 11
-
-[axis.sim]
-cw_limit_at = 200000
-ccw_limit_at = -200000
-home_from = 5000
-home_to = 5100
-encoder_ratio = 1.0
-
-[[axis]]
-lag_limit_steps = 1000000  # with late_limit_us: the guard has its own tests
-step = 12
-dir = 13
-capture = 14
-external = 15
-home = 16
-estop = 17
-cw_limit = 18
-ccw_limit = 19
-enc_a = 20
-enc_b = 21
-enc_z = 22
-
-[axis.sim]
-cw_limit_at = 200000
-ccw_limit_at = -200000
-home_from = 5000
-home_to = 5100
-encoder_ratio = 1.0
-)";
+// Two channels with every line wired (1..11, 12..22) and the same machine.
+std::string config_3202() {
+  const std::string sim =
+      "cw_limit_at = 200000\nccw_limit_at = -200000\nhome_from = 5000\nhome_to = 5100\n"
+      "encoder_ratio = 1.0\n";
+  return sim_module_tables("3202") + sim_axis(every_axis_line(1), sim) +
+         sim_axis(every_axis_line(12), sim);
+}
 
 constexpr std::uint32_t kBits = m::cfg_bit::kHomeUsed | m::cfg_bit::kCwLimitUsed |
                                 m::cfg_bit::kCcwLimitUsed | m::cfg_bit::kQuadratureEncoder |
@@ -88,7 +42,7 @@ constexpr plc::Profile kProfile{.speed = 10'000, .accel = 50'000, .decel = 50'00
 class Daemon3202 : public ::testing::Test {
  protected:
   void SetUp() override {
-    daemon_ = std::make_unique<DaemonProcess>(kConfig);
+    daemon_ = std::make_unique<DaemonProcess>(config_3202());
     ASSERT_TRUE(daemon_->wait_ready()) << daemon_->log();
     client_ = std::make_unique<ipc::Client>(daemon_->name());
     port_ = std::make_unique<plc::ShmPort>(*client_, milliseconds(3000));

@@ -31,6 +31,7 @@
 #include "plc/shm_port.hpp"
 #include "tests/planner/path_test_util.hpp"
 #include "tests/support/daemon_process.hpp"
+#include "tests/support/sim_config.hpp"
 #include "tests/support/vcd_path.hpp"
 #include "tests/support/vcd_reader.hpp"
 
@@ -44,29 +45,14 @@ using planner::PathSpec;
 using Method = plc::PathMove3602::Method;
 using std::chrono::milliseconds;
 
+// Two axes (lines 1..4, 11..14), the limits far out.
 std::string config_3602() {
   std::string axes;
-  for (unsigned a = 0; a < 2; ++a) {
-    const unsigned o = 10 * a;
-    // No lag limit in practice: see late_limit_us below.
-    axes += "\n[[axis]]\nlag_limit_steps = 1000000\nstep = " + std::to_string(o + 1) +
-            "\ndir = " + std::to_string(o + 2) + "\ngpo = " + std::to_string(o + 3) +
-            "\nhome = " + std::to_string(o + 4) +
-            "\n[axis.sim]\ncw_limit_at = 1000000\nccw_limit_at = -1000000\n";
+  for (const unsigned first : {1u, 11u}) {
+    axes += sim_axis(numbered_lines(first, {"step", "dir", "gpo", "home"}),
+                     "cw_limit_at = 1000000\nccw_limit_at = -1000000\n");
   }
-  return R"(
-[module]
-type = "3602"
-name = "{NAME}"
-scan_us = 1000
-
-[gpio]
-backend = "sim"
-
-[rt]
-priority = 80
-late_limit_us = 1000000  # the maximum: a shared, loaded test VM; the guard has its own tests
-)" + axes;
+  return sim_module_tables("3602") + axes;
 }
 
 // The path's parameter at a point: the distance along a line, the angle swept along an arc.

@@ -19,6 +19,7 @@
 #include "plc/plc_3602.hpp"
 #include "plc/shm_port.hpp"
 #include "tests/support/daemon_process.hpp"
+#include "tests/support/sim_config.hpp"
 #include "tests/support/vcd_reader.hpp"
 
 namespace stepmod::testing {
@@ -28,32 +29,16 @@ namespace m = module::m3602;
 using namespace m::status_msw;
 using std::chrono::milliseconds;
 
+// Two axes (lines 1..8, 11..18), the limits far out, a home switch at 5,000..5,100.
 std::string config_3602() {
   std::string axes;
-  for (unsigned a = 0; a < 2; ++a) {
-    const unsigned o = 10 * a;
-    // No lag limit in practice: see late_limit_us below.
-    axes += "\n[[axis]]\nlag_limit_steps = 1000000\nstep = " + std::to_string(o + 1) +
-            "\ndir = " + std::to_string(o + 2) + "\ngpo = " + std::to_string(o + 3) +
-            "\ncapture = " + std::to_string(o + 4) + "\nexternal = " + std::to_string(o + 5) +
-            "\nhome = " + std::to_string(o + 6) + "\ncw_limit = " + std::to_string(o + 7) +
-            "\nccw_limit = " + std::to_string(o + 8) +
-            "\n[axis.sim]\ncw_limit_at = 1000000\nccw_limit_at = -1000000\nhome_from = 5000\n"
-            "home_to = 5100\n";
+  for (const unsigned first : {1u, 11u}) {
+    axes += sim_axis(numbered_lines(first, {"step", "dir", "gpo", "capture", "external", "home",
+                                            "cw_limit", "ccw_limit"}),
+                     "cw_limit_at = 1000000\nccw_limit_at = -1000000\nhome_from = 5000\n"
+                     "home_to = 5100\n");
   }
-  return R"(
-[module]
-type = "3602"
-name = "{NAME}"
-scan_us = 1000
-
-[gpio]
-backend = "sim"
-
-[rt]
-priority = 80
-late_limit_us = 1000000  # the maximum: a shared, loaded test VM; the guard has its own tests
-)" + axes;
+  return sim_module_tables("3602") + axes;
 }
 
 // Home, capture and external enabled, CW/CCW inputs as limits, step/direction, active high.

@@ -1,6 +1,7 @@
 #pragma once
-// The config file of the end-to-end tests: a 3601 on the simulated machine with every input
-// wired, named {NAME} (DaemonProcess fills in a unique name).
+// The config files of the end-to-end tests: modules on the simulated machine, named {NAME}
+// (DaemonProcess fills in a unique name); a 3601 with every input wired in one call.
+#include <initializer_list>
 #include <string>
 
 namespace stepmod::testing {
@@ -17,42 +18,42 @@ inline constexpr const char* kRelaxedLateLimit = "late_limit_us = 1000000\n";
 inline constexpr const char* kRelaxedLagLimit = "lag_limit_steps = 1000000\n";
 inline constexpr const char* kDefaultLateLimit = "late_limit_us = 200000\n";
 
+// The [module], [gpio] and [rt] tables of every end-to-end test: a module of `type` on the
+// simulated machine, named {NAME}, scanning every 1 ms, its pulse thread at SCHED_FIFO 80.
+// `module_extra`: more [module] keys; `rt_extra`: more [rt] keys.
+inline std::string sim_module_tables(const std::string& type, const std::string& module_extra = "",
+                                     const std::string& rt_extra = kRelaxedLateLimit) {
+  return "\n[module]\ntype = \"" + type + "\"\nname = \"{NAME}\"\nscan_us = 1000\n" + module_extra +
+         "\n[gpio]\nbackend = \"sim\"\n\n[rt]\npriority = 80\n" + rt_extra;
+}
+
+// "key = n" lines: `keys` numbered from `first` up.
+inline std::string numbered_lines(unsigned first, std::initializer_list<const char*> keys) {
+  std::string out;
+  for (const char* key : keys) out += std::string(key) + " = " + std::to_string(first++) + "\n";
+  return out;
+}
+
+// Every line a 3601/3202 axis has, numbered from `first` up in the order the tests use.
+inline std::string every_axis_line(unsigned first) {
+  return numbered_lines(first, {"step", "dir", "capture", "external", "home", "estop", "cw_limit",
+                                "ccw_limit", "enc_a", "enc_b", "enc_z"});
+}
+
+// One [[axis]] table: its `lines` ("step = 1\n..."), `axis_extra` (more [[axis]] keys), then its
+// [axis.sim] table with the keys `sim`.
+inline std::string sim_axis(const std::string& lines, const std::string& sim,
+                            const std::string& axis_extra = kRelaxedLagLimit) {
+  return "\n[[axis]]\n" + lines + axis_extra + "\n[axis.sim]\n" + sim;
+}
+
 // `module_extra`: more [module] keys (e.g. "plc_timeout_ms = 300"); `sim`: the [axis.sim] keys;
 // `rt_extra`: more [rt] keys; `axis_extra`: more [[axis]] keys.
 inline std::string sim_3601_config(const std::string& module_extra, const std::string& sim,
                                    const std::string& rt_extra = kRelaxedLateLimit,
                                    const std::string& axis_extra = kRelaxedLagLimit) {
-  return R"(
-[module]
-type = "3601"
-name = "{NAME}"
-scan_us = 1000
-)" + module_extra +
-         R"(
-[gpio]
-backend = "sim"
-
-[rt]
-priority = 80
-)" + rt_extra +
-         R"(
-
-[[axis]]
-step = 1
-dir = 2
-capture = 3
-external = 4
-home = 5
-estop = 6
-cw_limit = 7
-ccw_limit = 8
-enc_a = 9
-enc_b = 10
-enc_z = 11
-)" + axis_extra +
-         R"(
-[axis.sim]
-)" + sim;
+  return sim_module_tables("3601", module_extra, rt_extra) +
+         sim_axis(every_axis_line(1), sim, axis_extra);
 }
 
 }  // namespace stepmod::testing
