@@ -3,28 +3,17 @@
 // one test per error list (CFG, CE, IP, IE, HI, PI) of each module, named after the item.
 #include <gtest/gtest.h>
 
-#include <string>
-
 #include "ipc/stepmod_image.h"
-#include "module/axis/error_items.hpp"
 #include "module/m3202/blend_message_3202.hpp"
 #include "tests/module/plc_3202.hpp"
+#include "tests/module/reasons_rig.hpp"
 
 namespace stepmod::testing {
 namespace {
 
-using module::axis::ErrorReason;
-
-std::string text(const ErrorReason& r) {
-  return std::string(r.text.data());
-}
-
 // ---- 3202 --------------------------------------------------------------------------------------
 
-class Reasons3202 : public Plc3202 {
- protected:
-  ErrorReason reason(unsigned ch) { return vm_.stack().personality().reason(ch); }
-};
+using Reasons3202 = ReasonsRig<Plc3202>;
 
 TEST_F(Reasons3202, CFG_09_ReservedBitNamesItsItem) {
   configure(0, kFull3202 | (1u << 7));  // bit 7 reserved; CFG-08 is old firmware's only

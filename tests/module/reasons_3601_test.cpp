@@ -3,26 +3,15 @@
 // one test per error list (CFG, CE, IP, IE, HI, PI) of each module, named after the item.
 #include <gtest/gtest.h>
 
-#include <string>
-
-#include "module/axis/error_items.hpp"
 #include "tests/module/plc_3601.hpp"
+#include "tests/module/reasons_rig.hpp"
 
 namespace stepmod::testing {
 namespace {
 
-using module::axis::ErrorReason;
-
-std::string text(const ErrorReason& r) {
-  return std::string(r.text.data());
-}
-
 // ---- 3601 --------------------------------------------------------------------------------------
 
-class Reasons3601 : public Plc3601 {
- protected:
-  ErrorReason reason() { return vm_.stack().personality().reason(0); }
-};
+using Reasons3601 = ReasonsRig<Plc3601>;
 
 TEST_F(Reasons3601, CFG_01_PowerUpHasItsReason) {
   vm_.scans(2);

@@ -3,26 +3,15 @@
 // one test per error list (CFG, CE, IP, IE, HI, PI) of each module, named after the item.
 #include <gtest/gtest.h>
 
-#include <string>
-
-#include "module/axis/error_items.hpp"
+#include "tests/module/reasons_rig.hpp"
 #include "tests/module/rig_3602.hpp"
 
 namespace stepmod::testing {
 namespace {
 
-using module::axis::ErrorReason;
-
-std::string text(const ErrorReason& r) {
-  return std::string(r.text.data());
-}
-
 // ---- 3602 --------------------------------------------------------------------------------------
 
-class Reasons3602 : public Rig3602 {
- protected:
-  ErrorReason reason(unsigned axis) { return vm_.stack().personality().reason(axis); }
-};
+using Reasons3602 = ReasonsRig<Rig3602>;
 
 TEST_F(Reasons3602, CFG_03_CwInputFunction11) {
   write_config(kAxis2, kLimitsConfigMsw | (3u << m2::cfg_msw::kCwFunctionShift));
