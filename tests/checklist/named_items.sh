@@ -2,6 +2,7 @@
 # Every item of a module's checklist in the digest (MODULES.md section 6.x, items written
 # **3601-CE-17**) has a GoogleTest whose name contains the item id with underscores (CE_17), in a
 # test suite named after the module (Commands3601, Homing3601, ...): ids repeat across modules.
+# A row of a table-driven test counts as a test of that name (see `tables` below).
 # Usage: named_items.sh DIGEST MODULE SECTION_HEADING NEXT_HEADING TESTS_DIR [PENDING]
 # PENDING: item ids (e.g. "CE-I1 PI-07") of a part not written yet; they are listed, not failed.
 # Exit 77 (ctest: skipped) when the digest is not beside the checkout.
@@ -12,8 +13,18 @@ digest=$1 module=$2 from=$3 to=$4 tests=$5 pending=${6:-}
 items=$(sed -n "/^$from/,/^$to/p" "$digest" | grep -oE "\*\*$module-[A-Z]+-[A-Z0-9]+\*\*" |
   tr -d '*' | sed "s/^$module-//" | sort -u)
 [ -n "$items" ] || { echo "no $module items found between '$from' and '$to'"; exit 1; }
-names=$(grep -rhoE "TEST(_F|_P)?\\([[:space:]]*[A-Za-z0-9_]*${module}[A-Za-z0-9_]*[[:space:]]*,[[:space:]]*[A-Za-z0-9_]+" \
-  "$tests" | sed -E 's/.*,[[:space:]]*//')
+suite="[[:space:]]*[A-Za-z0-9_]*${module}[A-Za-z0-9_]*[[:space:]]*,"
+names=$(grep -rhoE "TEST(_F|_P)?\\(${suite}[[:space:]]*[A-Za-z0-9_]+" "$tests" |
+  sed -E 's/.*,[[:space:]]*//')
+# Table-driven tests (tests/support/checklist_rows.hpp): in a file with a TEST_P of the module's
+# suite, each row opens with its name, the test's name: {"CE_05_VpBelowVs", ...} or
+# {.name = "CE_05_VpBelowVs", ...}.
+tables=$(grep -rlE "TEST_P\\(${suite}" "$tests" || true)
+if [ -n "$tables" ]; then
+  rows=$(grep -hoE '\{[[:space:]]*(\.name[[:space:]]*=[[:space:]]*)?"[A-Z][A-Za-z0-9_]*"' $tables |
+    sed -E 's/.*"(.*)"/\1/')
+  names=$(printf '%s\n%s\n' "$names" "$rows")
+fi
 
 missing=0
 for item in $items; do

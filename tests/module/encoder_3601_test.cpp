@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "tests/module/plc_3601.hpp"
+#include "tests/support/checklist_rows.hpp"
 
 namespace stepmod::testing {
 namespace {
@@ -589,14 +590,6 @@ TEST_F(Follower3601, EStopDuringFollowerStopsImmediately) {
   EXPECT_LE(motor(), 300);
 }
 
-TEST_F(Follower3601, CE_34_FollowerWithoutEncoderConfigured) {
-  configure(kNoEncoderConfig);
-  follower(cmd::kManualCw);
-  vm_.scans(3);
-  EXPECT_TRUE(status(kCommandError));
-  EXPECT_FALSE(follower_mode());
-}
-
 TEST_F(Follower3601, CE_35_FollowerRequestedDuringAnotherMotionWhichCompletes) {
   command(cmd::kRelativeMove, {.target = 5'000});
   ASSERT_TRUE(moving());
@@ -634,16 +627,6 @@ TEST_F(Follower3601, CE_36_MultiplierOrDivisorOutOfRange) {
   master(100, 20'000);
   settle();
   EXPECT_EQ(motor(), 100);
-}
-
-TEST_F(Follower3601, CE_37_SpeedWordsMustBeZero) {
-  follower(cmd::kManualCw);
-  word(5) = 1;
-  vm_.scans(3);
-  EXPECT_TRUE(status(kCommandError));
-  master(100, 20'000);
-  settle();
-  EXPECT_EQ(motor(), 0);
 }
 
 TEST_F(Follower3601, CE_38_DirectionChangedWithoutAZeroScan) {
@@ -696,9 +679,40 @@ TEST_F(Follower3601, CE_40_LswBit7ClearedWhileADirectionBitIsSet) {
   EXPECT_TRUE(status(kStopped));
 }
 
-TEST_F(Follower3601, CE_41_SCurveWithFollower) {
-  follower(cmd::kManualCw, 1, 1, 10, 10,
-           static_cast<std::uint16_t>(lsw::kEncoderFollower | lsw::kSCurve));
+// Follower mode refused at the request: Command Error, not in follower mode, no output for the
+// master's counts.
+struct RefusedFollower {
+  const char* name;
+  std::uint16_t config = 0;  // a configuration instead of the fixture's (0: the fixture's)
+  bool ccw_limit_active = false;
+  std::int16_t accel = 0;
+  std::int16_t decel = 0;
+  std::uint16_t lsw = lsw::kEncoderFollower;
+  std::int16_t word5 = 0;  // the speed LSW word (must be 0)
+};
+
+const RefusedFollower kRefusedFollowers[] = {
+    {.name = "CE_34_FollowerWithoutEncoderConfigured", .config = kNoEncoderConfig},
+    {.name = "CE_37_SpeedWordsMustBeZero", .word5 = 1},
+    {.name = "CE_41_SCurveWithFollower",
+     .accel = 10,
+     .decel = 10,
+     .lsw = static_cast<std::uint16_t>(lsw::kEncoderFollower | lsw::kSCurve)},
+    {.name = "CE_42_FollowerRequestedWithAnEndLimitActive", .ccw_limit_active = true},  // A24
+};
+
+class RefusedFollower3601 : public Follower3601,
+                            public ::testing::WithParamInterface<RefusedFollower> {};
+
+TEST_P(RefusedFollower3601, NoOutput) {
+  const RefusedFollower& r = GetParam();
+  if (r.config != 0) configure(r.config);
+  if (r.ccw_limit_active) {
+    force(InputLine::kCcwLimit, true);
+    vm_.scans(2);
+  }
+  follower(cmd::kManualCw, 1, 1, r.accel, r.decel, r.lsw);
+  if (r.word5 != 0) word(5) = r.word5;
   vm_.scans(3);
   EXPECT_TRUE(status(kCommandError));
   EXPECT_FALSE(follower_mode());
@@ -707,17 +721,8 @@ TEST_F(Follower3601, CE_41_SCurveWithFollower) {
   EXPECT_EQ(motor(), 0);
 }
 
-TEST_F(Follower3601, CE_42_FollowerRequestedWithAnEndLimitActive) {
-  force(InputLine::kCcwLimit, true);
-  vm_.scans(2);
-  follower(cmd::kManualCw);
-  vm_.scans(3);
-  EXPECT_TRUE(status(kCommandError));  // A24
-  EXPECT_FALSE(follower_mode());
-  master(100, 20'000);
-  settle();
-  EXPECT_EQ(motor(), 0);
-}
+INSTANTIATE_TEST_SUITE_P(Items, RefusedFollower3601, ::testing::ValuesIn(kRefusedFollowers),
+                         RowName{});
 
 }  // namespace
 }  // namespace stepmod::testing

@@ -4,9 +4,11 @@
 // 6.1 HI/IE/PI/AH/STP items, 8 A8 A12 A15 A44 A49).
 #include <functional>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "tests/module/plc_3601.hpp"
+#include "tests/support/checklist_rows.hpp"
 
 namespace stepmod::testing {
 namespace {
@@ -171,66 +173,224 @@ class Homing3601NoSwitch : public Homing3601 {
                     .ccw_limit = -30'000}) {}
 };
 
-// ---- Option 1, H-A: home limit switch only -----------------------------------------------------
+// ---- Homings that end At Home: options 1 (H-A), 2 (H-B), 3 and 4 (H-D), from below, above and on
+// the switch, and from an end limit (H-C) ---------------------------------------------------------
 
-TEST_F(Homing3601, HA_FindHomePlusFromBelowStopsAtTheSwitchEdge) {
-  home(cmd::kFindHomeCw);
-  EXPECT_TRUE(status(kMovingCw));
+// The motor's extremes over the motion (run_track), where a row checks them.
+struct Extremes {
+  std::optional<std::int64_t> max_eq{}, max_above{}, max_at_most{}, min_eq{}, min_below{};
+};
+
+struct Homes {
+  const char* name;
+  std::int64_t start = 0;              // where the axis starts (0: below the switch)
+  std::uint16_t config = kSwitchOnly;  // the homing option
+  std::optional<std::pair<std::int64_t, std::int64_t>> prox{};  // the PLC's proximity zone
+  std::uint16_t command = cmd::kFindHomeCw;
+  Move profile = kProfile;
+  std::uint16_t active_lsw = 0;  // a status LSW bit that must be set before the start
+  std::uint16_t moving = 0;      // the status MSW direction bit right after the command
+  Extremes seen{};
+  std::int64_t homed_at = 0;  // the motor position At Home (expect_homed_at)
+  std::optional<std::size_t> pauses{};
+  bool last_at_vs = false;      // the last steps at the starting speed (the creep, the approach)
+  bool encoder_zeroed = false;  // the encoder count 0 At Home
+  std::optional<std::int64_t> machine_encoder{};  // the machine's own encoder count At Home
+};
+
+constexpr std::int64_t kAbove = 10'000;  // above the switch (5,000..5,100)
+constexpr std::int64_t kOnHome = 5'050;
+constexpr std::pair<std::int64_t, std::int64_t> kProxZone{4'000, 6'000};
+constexpr std::pair<std::int64_t, std::int64_t> kMarkerProxZone{3'000, 6'000};
+
+const Homes kHomings[] = {
+    // Step 3 decelerated past the 100-step switch (495 steps), step 5 crossed it again, step 7
+    // crept back up to its lower edge.
+    {.name = "HA_FindHomePlusFromBelowStopsAtTheSwitchEdge",
+     .moving = kMovingCw,
+     .seen = {.max_above = 5'100, .min_below = 5'000},
+     .homed_at = 5'000,
+     .pauses = 2,
+     .last_at_vs = true},
+    {.name = "HA_FindHomeMinusFromAboveStopsAtTheUpperEdge",
+     .start = kAbove,
+     .command = cmd::kFindHomeCcw,
+     .moving = kMovingCcw,
+     .homed_at = 5'100,
+     .pauses = 2,
+     .last_at_vs = true},
+    // The switch lies behind: the CCW limit is met (H-C), the reversal crosses the switch.
+    {.name = "HA_FindHomeMinusFromBelowReversesAtTheCcwLimit",
+     .command = cmd::kFindHomeCcw,
+     .seen = {.min_eq = -100'000},
+     .homed_at = 5'100,
+     .pauses = 2},
+    // A steep decel (2,000 steps/ms/s: 25 steps) stops inside the switch: the reversal only has
+    // to leave it.
+    {.name = "HA_DecelerationInsideTheSwitch",
+     .profile = {.target = 0, .speed = 10'000, .accel = 100, .decel = 2'000},
+     .seen = {.max_at_most = 5'100},
+     .homed_at = 5'000,
+     .pauses = 2},
+    // Step 4/5 at once: off the switch, opposite direction; no pause before moving off.
+    {.name = "HA_HomeActiveAtStartMovesOffFirst",
+     .start = kOnHome,
+     .active_lsw = m::status_lsw::kHomeActive,
+     .moving = kMovingCcw,
+     .seen = {.max_at_most = 5'050},
+     .homed_at = 5'000,
+     .pauses = 1},
+    {.name = "HA_HomeActiveAtStartMinus",
+     .start = kOnHome,
+     .command = cmd::kFindHomeCcw,
+     .moving = kMovingCw,
+     .homed_at = 5'100,
+     .pauses = 1},
+    {.name = "HC_OppositeLimitActiveAtStartHomesNormally",
+     .start = -100'000,
+     .active_lsw = m::status_lsw::kCcwLimitActive,
+     .moving = kMovingCw,
+     .homed_at = 5'000,
+     .pauses = 2},
+    // No overshoot, no reversal: decelerated to Vs on the bit (495 steps < 1,000).
+    {.name = "HB_FindHomePlusFromBelowSlowsOnTheBitAndStopsOnHome",
+     .config = kSwitchBackplane,
+     .prox = kProxZone,
+     .seen = {.max_eq = 5'000},
+     .homed_at = 5'000,
+     .pauses = 0,
+     .last_at_vs = true},
+    {.name = "HB_FindHomeMinusFromAbove",
+     .start = kAbove,
+     .config = kSwitchBackplane,
+     .prox = kProxZone,
+     .command = cmd::kFindHomeCcw,
+     .seen = {.min_eq = 5'100},
+     .homed_at = 5'100,
+     .pauses = 0},
+    // [01] Ch.4 Note 2: off until the proximity bit (not the home input) goes off: below 4,000.
+    {.name = "HB_HomeActiveAtStartMovesOffUntilTheBitFalls",
+     .start = kOnHome,
+     .config = kSwitchBackplane,
+     .prox = kProxZone,
+     .moving = kMovingCcw,
+     .seen = {.min_below = 4'000},
+     .homed_at = 5'000,
+     .pauses = 1},
+    // Back through the whole proximity zone, not just the switch.
+    {.name = "HB_EndLimitReversalWatchesTheProximityBit",
+     .start = kAbove,
+     .config = kSwitchBackplane,
+     .prox = kProxZone,
+     .seen = {.max_eq = 100'000, .min_below = 4'000},
+     .homed_at = 5'000,
+     .pauses = 2},
+    // Home (the proximity) at 5,000 slows to Vs; the next marker is at 8,000.
+    {.name = "HD_MarkerWithHomeProximityPlusFromBelow",
+     .config = kMarkerHome,
+     .homed_at = 8'000,
+     .pauses = 0,
+     .last_at_vs = true,
+     .encoder_zeroed = true,
+     .machine_encoder = 8'000},
+    // Home at 5,100, the next marker going down at 4,000.
+    {.name = "HD_MarkerWithHomeProximityMinusFromAbove",
+     .start = kAbove,
+     .config = kMarkerHome,
+     .command = cmd::kFindHomeCcw,
+     .homed_at = 4'000,
+     .encoder_zeroed = true},
+    {.name = "HD_MarkerWithHomeProximityActiveAtStart",
+     .start = kOnHome,
+     .config = kMarkerHome,
+     .moving = kMovingCcw,
+     .seen = {.min_below = 5'000},
+     .homed_at = 8'000,
+     .pauses = 1},
+    {.name = "HD_MarkerWithHomeProximityEndLimitReversal",
+     .start = kAbove,
+     .config = kMarkerHome,
+     .seen = {.max_eq = 100'000},
+     .homed_at = 8'000,
+     .pauses = 2},
+    // The bit at 3,000, the next marker at 4,000.
+    {.name = "HD_MarkerWithBackplaneProximityPlusFromBelow",
+     .config = kMarkerBackplane,
+     .prox = kMarkerProxZone,
+     .homed_at = 4'000,
+     .pauses = 0,
+     .encoder_zeroed = true},
+    // The bit at 6,000, the next marker going down at 4,000.
+    {.name = "HD_MarkerWithBackplaneProximityMinusFromAbove",
+     .start = kAbove,
+     .config = kMarkerBackplane,
+     .prox = kMarkerProxZone,
+     .command = cmd::kFindHomeCcw,
+     .homed_at = 4'000,
+     .pauses = 0},
+    // Moved off until the bit went off (below 3,000).
+    {.name = "HD_MarkerWithBackplaneProximityActiveAtStart",
+     .start = kOnHome,
+     .config = kMarkerBackplane,
+     .prox = kMarkerProxZone,
+     .moving = kMovingCcw,
+     .seen = {.min_below = 3'000},
+     .homed_at = 4'000,
+     .pauses = 1},
+    // The marker at 4,000 came before the home input: the axis went on at Vp to 8,000.
+    {.name = "HD_MarkersIgnoredBeforeTheProximity",
+     .config = kMarkerHome,
+     .seen = {.max_eq = 8'000},
+     .homed_at = 8'000},
+};
+
+class Homes3601 : public Homing3601, public ::testing::WithParamInterface<Homes> {
+ protected:
+  Homes3601() : Homing3601({.start = ::testing::WithParamInterface<Homes>::GetParam().start}) {}
+  void expect_seen(const Extremes& e) const {
+    if (e.max_eq) {
+      EXPECT_EQ(max_seen_, *e.max_eq);
+    }
+    if (e.max_above) {
+      EXPECT_GT(max_seen_, *e.max_above);
+    }
+    if (e.max_at_most) {
+      EXPECT_LE(max_seen_, *e.max_at_most);
+    }
+    if (e.min_eq) {
+      EXPECT_EQ(min_seen_, *e.min_eq);
+    }
+    if (e.min_below) {
+      EXPECT_LT(min_seen_, *e.min_below);
+    }
+  }
+};
+
+TEST_P(Homes3601, AtHome) {
+  const Homes& r = GetParam();
+  if (r.config != kSwitchOnly) configure(r.config);
+  if (r.prox) prox_zone(r.prox->first, r.prox->second);
+  if (r.active_lsw != 0) {
+    ASSERT_TRUE(lsw_status(r.active_lsw));
+  }
+  home(r.command, r.profile);
+  if (r.moving != 0) {
+    EXPECT_TRUE(status(r.moving));
+  }
   ASSERT_TRUE(run_track());
-  // Step 3 decelerated past the 100-step switch (495 steps), step 5 crossed it again, step 7
-  // crept back up to its lower edge.
-  EXPECT_GT(max_seen_, 5'100);
-  EXPECT_LT(min_seen_, 5'000);
-  expect_homed_at(5'000);
-  expect_pauses(2);
-  expect_last_steps_at_vs();
+  expect_seen(r.seen);
+  expect_homed_at(r.homed_at);
+  if (r.machine_encoder) {
+    EXPECT_EQ(vm_.sim().encoder(0), *r.machine_encoder);
+  }
+  if (r.encoder_zeroed) {
+    EXPECT_EQ(encoder(), 0);
+  }
+  if (r.pauses) expect_pauses(*r.pauses);
+  if (r.last_at_vs) expect_last_steps_at_vs();
 }
 
-TEST_F(Homing3601Above, HA_FindHomeMinusFromAboveStopsAtTheUpperEdge) {
-  home(cmd::kFindHomeCcw);
-  EXPECT_TRUE(status(kMovingCcw));
-  ASSERT_TRUE(wait_end());
-  expect_homed_at(5'100);
-  expect_pauses(2);
-  expect_last_steps_at_vs();
-}
-
-TEST_F(Homing3601, HA_FindHomeMinusFromBelowReversesAtTheCcwLimit) {
-  // The switch lies behind: the CCW limit is met (H-C), the reversal crosses the switch.
-  home(cmd::kFindHomeCcw);
-  ASSERT_TRUE(run_track());
-  EXPECT_EQ(min_seen_, -100'000);
-  expect_homed_at(5'100);
-  expect_pauses(2);
-}
-
-TEST_F(Homing3601, HA_DecelerationInsideTheSwitch) {
-  // A steep decel (2,000 steps/ms/s: 25 steps) stops inside the switch: the reversal only has
-  // to leave it.
-  home(cmd::kFindHomeCw, {.target = 0, .speed = 10'000, .accel = 100, .decel = 2'000});
-  ASSERT_TRUE(run_track());
-  EXPECT_LE(max_seen_, 5'100);
-  expect_homed_at(5'000);
-  expect_pauses(2);
-}
-
-TEST_F(Homing3601OnHome, HA_HomeActiveAtStartMovesOffFirst) {
-  ASSERT_TRUE(lsw_status(m::status_lsw::kHomeActive));
-  home(cmd::kFindHomeCw);
-  EXPECT_TRUE(status(kMovingCcw));  // step 4/5 at once: off the switch, opposite direction
-  ASSERT_TRUE(run_track());
-  EXPECT_LE(max_seen_, 5'050);
-  expect_homed_at(5'000);
-  expect_pauses(1);  // no pause before moving off
-}
-
-TEST_F(Homing3601OnHome, HA_HomeActiveAtStartMinus) {
-  home(cmd::kFindHomeCcw);
-  EXPECT_TRUE(status(kMovingCw));
-  ASSERT_TRUE(wait_end());
-  expect_homed_at(5'100);
-  expect_pauses(1);
-}
+INSTANTIATE_TEST_SUITE_P(Options, Homes3601, ::testing::ValuesIn(kHomings), RowName{});
 
 // ---- H-C: end limits ---------------------------------------------------------------------------
 
@@ -262,38 +422,6 @@ TEST_F(Homing3601AtCwLimit, HC_EndLimitActiveAtStartBeginsAtTheReversal) {
   expect_pauses(1);
 }
 
-TEST_F(Homing3601AtCcwLimit, HC_OppositeLimitActiveAtStartHomesNormally) {
-  ASSERT_TRUE(lsw_status(m::status_lsw::kCcwLimitActive));
-  home(cmd::kFindHomeCw);
-  EXPECT_TRUE(status(kMovingCw));
-  ASSERT_TRUE(wait_end());
-  expect_homed_at(5'000);
-  expect_pauses(2);
-}
-
-// ---- Option 2, H-B: home switch gated by the backplane proximity bit ---------------------------
-
-TEST_F(Homing3601, HB_FindHomePlusFromBelowSlowsOnTheBitAndStopsOnHome) {
-  configure(kSwitchBackplane);
-  prox_zone(4'000, 6'000);
-  home(cmd::kFindHomeCw);
-  ASSERT_TRUE(run_track());
-  EXPECT_EQ(max_seen_, 5'000);  // no overshoot, no reversal
-  expect_homed_at(5'000);
-  expect_pauses(0);
-  expect_last_steps_at_vs();  // decelerated to Vs on the bit (495 steps < 1,000)
-}
-
-TEST_F(Homing3601Above, HB_FindHomeMinusFromAbove) {
-  configure(kSwitchBackplane);
-  prox_zone(4'000, 6'000);
-  home(cmd::kFindHomeCcw);
-  ASSERT_TRUE(run_track());
-  EXPECT_EQ(min_seen_, 5'100);
-  expect_homed_at(5'100);
-  expect_pauses(0);
-}
-
 TEST_F(Homing3601, HB_HomeInputIgnoredUntilTheProximityBitRises) {
   configure(kSwitchBackplane);
   prox_zone(4'000, 6'000);
@@ -307,136 +435,61 @@ TEST_F(Homing3601, HB_HomeInputIgnoredUntilTheProximityBitRises) {
   expect_homed_at(5'000);
 }
 
-TEST_F(Homing3601OnHome, HB_HomeActiveAtStartMovesOffUntilTheBitFalls) {
-  configure(kSwitchBackplane);
-  prox_zone(4'000, 6'000);
-  home(cmd::kFindHomeCw);
-  EXPECT_TRUE(status(kMovingCcw));
-  ASSERT_TRUE(run_track());
-  // [01] Ch.4 Note 2: off until the proximity bit (not the home input) goes off: below 4,000.
-  EXPECT_LT(min_seen_, 4'000);
-  expect_homed_at(5'000);
-  expect_pauses(1);
-}
-
-TEST_F(Homing3601Above, HB_EndLimitReversalWatchesTheProximityBit) {
-  configure(kSwitchBackplane);
-  prox_zone(4'000, 6'000);
-  home(cmd::kFindHomeCw);
-  ASSERT_TRUE(run_track());
-  EXPECT_EQ(max_seen_, 100'000);
-  EXPECT_LT(min_seen_, 4'000);  // passed the whole proximity zone, not just the switch
-  expect_homed_at(5'000);
-  expect_pauses(2);
-}
-
-// ---- Options 3 and 4, H-D: marker pulse ------------------------------------------------------
-
-TEST_F(Homing3601, HD_MarkerWithHomeProximityPlusFromBelow) {
-  configure(kMarkerHome);
-  home(cmd::kFindHomeCw);
-  ASSERT_TRUE(run_track());
-  // Home (the proximity) at 5,000 slows to Vs; the next marker is at 8,000.
-  expect_homed_at(8'000);
-  EXPECT_EQ(vm_.sim().encoder(0), 8'000);
-  EXPECT_EQ(encoder(), 0);
-  expect_pauses(0);
-  expect_last_steps_at_vs();
-}
-
-TEST_F(Homing3601Above, HD_MarkerWithHomeProximityMinusFromAbove) {
-  configure(kMarkerHome);
-  home(cmd::kFindHomeCcw);
-  ASSERT_TRUE(wait_end());
-  expect_homed_at(4'000);  // home at 5,100, next marker going down at 4,000
-  EXPECT_EQ(encoder(), 0);
-}
-
-TEST_F(Homing3601OnHome, HD_MarkerWithHomeProximityActiveAtStart) {
-  configure(kMarkerHome);
-  home(cmd::kFindHomeCw);
-  EXPECT_TRUE(status(kMovingCcw));
-  ASSERT_TRUE(run_track());
-  EXPECT_LT(min_seen_, 5'000);
-  expect_homed_at(8'000);
-  expect_pauses(1);
-}
-
-TEST_F(Homing3601Above, HD_MarkerWithHomeProximityEndLimitReversal) {
-  configure(kMarkerHome);
-  home(cmd::kFindHomeCw);
-  ASSERT_TRUE(run_track());
-  EXPECT_EQ(max_seen_, 100'000);
-  expect_homed_at(8'000);
-  expect_pauses(2);
-}
-
-TEST_F(Homing3601, HD_MarkerWithBackplaneProximityPlusFromBelow) {
-  configure(kMarkerBackplane);
-  prox_zone(3'000, 6'000);
-  home(cmd::kFindHomeCw);
-  ASSERT_TRUE(wait_end());
-  expect_homed_at(4'000);  // bit at 3,000, next marker at 4,000
-  EXPECT_EQ(encoder(), 0);
-  expect_pauses(0);
-}
-
-TEST_F(Homing3601Above, HD_MarkerWithBackplaneProximityMinusFromAbove) {
-  configure(kMarkerBackplane);
-  prox_zone(3'000, 6'000);
-  home(cmd::kFindHomeCcw);
-  ASSERT_TRUE(wait_end());
-  expect_homed_at(4'000);  // bit at 6,000, next marker going down at 4,000
-  expect_pauses(0);
-}
-
-TEST_F(Homing3601OnHome, HD_MarkerWithBackplaneProximityActiveAtStart) {
-  configure(kMarkerBackplane);
-  prox_zone(3'000, 6'000);
-  home(cmd::kFindHomeCw);
-  EXPECT_TRUE(status(kMovingCcw));
-  ASSERT_TRUE(run_track());
-  EXPECT_LT(min_seen_, 3'000);  // moved off until the bit went off
-  expect_homed_at(4'000);
-  expect_pauses(1);
-}
-
-TEST_F(Homing3601, HD_MarkersIgnoredBeforeTheProximity) {
-  configure(kMarkerHome);
-  home(cmd::kFindHomeCw);
-  ASSERT_TRUE(run_track());
-  // The marker at 4,000 came before the home input: the axis went on at Vp to 8,000.
-  EXPECT_EQ(max_seen_, 8'000);
-  expect_homed_at(8'000);
-}
-
 // ---- Start checks (3601 manual Ch.4 "Find Home", Ch.6 HI #1..#3, CE #5 #10) ------------------
 
-TEST_F(Homing3601, HI_01_SpeedBelowStartingSpeed) {
-  home(cmd::kFindHomeCw, {.target = 0, .speed = 999, .accel = 100, .decel = 100});
-  EXPECT_TRUE(status(kHomeInvalid));
-  EXPECT_TRUE(status(kCommandError));    // 3601-CE-05
-  EXPECT_TRUE(status(kInvalidProfile));  // 3601-IP-01 (digest 6.4)
+// Refused at the start: the error bits, no step and no At Home.
+struct RefusedHoming {
+  const char* name;
+  Move profile = kProfile;
+  std::uint16_t config = kSwitchOnly;
+  bool estop_active = false;           // E-Stop active before the command
+  std::vector<std::uint16_t> set{};    // status MSW bits set after the command
+  std::vector<std::uint16_t> clear{};  // and not set
+};
+
+const RefusedHoming kRefusedHomings[] = {
+    // CE: 3601-CE-05; IP: 3601-IP-01 (digest 6.4).
+    {.name = "HI_01_SpeedBelowStartingSpeed",
+     .profile = {.target = 0, .speed = 999, .accel = 100, .decel = 100},
+     .set = {kHomeInvalid, kCommandError, kInvalidProfile}},
+    {.name = "HI_02_A8_TargetNotZero",  // A8: CE too
+     .profile = {.target = 100, .speed = 10'000, .accel = 100, .decel = 100},
+     .set = {kHomeInvalid, kCommandError},
+     .clear = {kInvalidProfile}},
+    {.name = "CE_13_FindHomePlusWithoutCwLimit",  // and 3601-HI-03
+     .config = kSwitchOnly & ~cfg::kCwLimitUsed,
+     .set = {kCommandError, kHomeInvalid}},
+    {.name = "A15_EStopActiveAtStartRefusesTheHoming",
+     .estop_active = true,
+     .set = {kInputError},
+     .clear = {kHomeInvalid}},
+};
+
+class RefusedHoming3601 : public Homing3601, public ::testing::WithParamInterface<RefusedHoming> {};
+
+TEST_P(RefusedHoming3601, NoStep) {
+  const RefusedHoming& r = GetParam();
+  if (r.config != kSwitchOnly) configure(r.config);
+  if (r.estop_active) {
+    force(InputLine::kEStop, true);
+    vm_.scans(2);
+  }
+  home(cmd::kFindHomeCw, r.profile);
+  for (const std::uint16_t bit : r.set) EXPECT_TRUE(status(bit)) << "status bit " << bit;
+  for (const std::uint16_t bit : r.clear) EXPECT_FALSE(status(bit)) << "status bit " << bit;
   run_plc_for(100 * kNsPerMs);
   EXPECT_EQ(motor(), 0);
+  EXPECT_TRUE(vm_.step_times(0).empty());
   EXPECT_FALSE(status(kAtHome));
 }
+
+INSTANTIATE_TEST_SUITE_P(Items, RefusedHoming3601, ::testing::ValuesIn(kRefusedHomings), RowName{});
 
 TEST_F(Homing3601, HI_01_SpeedEqualToStartingSpeedIsAccepted) {
   home(cmd::kFindHomeCw, {.target = 0, .speed = 1'000, .accel = 100, .decel = 100});
   EXPECT_FALSE(errors());
   ASSERT_TRUE(wait_end());
   expect_homed_at(5'000);
-}
-
-TEST_F(Homing3601, HI_02_A8_TargetNotZero) {
-  home(cmd::kFindHomeCw, {.target = 100, .speed = 10'000, .accel = 100, .decel = 100});
-  EXPECT_TRUE(status(kHomeInvalid));
-  EXPECT_TRUE(status(kCommandError));  // A8: CE too
-  EXPECT_FALSE(status(kInvalidProfile));
-  run_plc_for(100 * kNsPerMs);
-  EXPECT_EQ(motor(), 0);
-  EXPECT_TRUE(vm_.step_times(0).empty());
 }
 
 TEST_F(Homing3601, HI_03_NoEndLimitConfiguredInThatDirection) {
@@ -452,15 +505,6 @@ TEST_F(Homing3601, HI_03_NoEndLimitConfiguredInThatDirection) {
   home(cmd::kFindHomeCw);
   ASSERT_TRUE(wait_end());
   expect_homed_at(5'000);
-}
-
-TEST_F(Homing3601, CE_13_FindHomePlusWithoutCwLimit) {
-  configure(kSwitchOnly & ~cfg::kCwLimitUsed);
-  home(cmd::kFindHomeCw);
-  EXPECT_TRUE(status(kCommandError));
-  EXPECT_TRUE(status(kHomeInvalid));  // 3601-HI-03
-  run_plc_for(100 * kNsPerMs);
-  EXPECT_EQ(motor(), 0);
 }
 
 TEST_F(Homing3601, CE_10_SCurveRefused) {
@@ -493,16 +537,6 @@ TEST_F(Homing3601, CE_04_ParameterOutOfRangeRaisesCeAndHi) {
     EXPECT_EQ(motor(), 0);
     command(cmd::kResetErrors);
   }
-}
-
-TEST_F(Homing3601, A15_EStopActiveAtStartRefusesTheHoming) {
-  force(InputLine::kEStop, true);
-  vm_.scans(2);
-  home(cmd::kFindHomeCw);
-  EXPECT_TRUE(status(kInputError));
-  EXPECT_FALSE(status(kHomeInvalid));
-  run_plc_for(100 * kNsPerMs);
-  EXPECT_EQ(motor(), 0);
 }
 
 // ---- Homing errors (Ch.6 HI #4 #5, IE #4 #5, PI #5 #6; digest 7.11 H-C errors) -----------------

@@ -1,7 +1,10 @@
 // 3602 homing (3602 manual Ch.4 "Homing the 3602", Ch.8 "Homing Timeout"; digest 7.11, 6.2
 // Home Invalid and CE-12): the home input alone, the 2-s pause after each stop inside the
 // sequence, the homing timeout, the command checks.
+#include <vector>
+
 #include "tests/module/rig_3602.hpp"
+#include "tests/support/checklist_rows.hpp"
 
 namespace stepmod::testing {
 namespace {
@@ -9,10 +12,11 @@ namespace {
 using namespace m2::status_msw;
 namespace cmd = m2::cmd_msw;
 
+// Find Home + on axis 1 (home switch at 5,000..5,100): Vp 10,000, Vs 1,000.
+constexpr Move3602 kHome{.target = 0, .speed = 10'000, .accel = 20, .decel = 20};
+
 class Homing3602 : public Rig3602 {
  protected:
-  // Find Home + on axis 1 (home switch at 5,000..5,100): Vp 10,000, Vs 1,000.
-  static constexpr Move3602 kHome{.target = 0, .speed = 10'000, .accel = 20, .decel = 20};
   static constexpr Nanos kLimit = 60 * kNsPerSec;
 
   bool wait_homed(unsigned axis) {
@@ -53,35 +57,6 @@ TEST_F(Homing3602, AH_01_HomeInputAloneEndsAtHomeWithPositionZero) {
   command(kAxis1, cmd::kRelativeMove, {.target = 300});
   ASSERT_TRUE(wait_idle(kAxis1));
   EXPECT_FALSE(status(kAxis1, kAtHome));
-}
-
-TEST_F(Homing3602, CE_12_FindHomeWithoutTheHomeInputEnabled) {
-  configure(kAxis1, static_cast<std::uint16_t>(kLimitsConfigMsw & ~m2::cfg_msw::kHomeEnabled));
-  command(kAxis1, cmd::kFindHomeCw, kHome);
-  EXPECT_TRUE(status(kAxis1, kCommandError));
-  vm_.run_for(200 * kNsPerMs);
-  EXPECT_EQ(motor(kAxis1), 0);
-}
-
-TEST_F(Homing3602, HI_04_FindHomeWithNonZeroReservedWords) {
-  configure(kAxis1);
-  Move3602 p = kHome;
-  p.target = 1;
-  command(kAxis1, cmd::kFindHomeCw, p);
-  EXPECT_TRUE(status(kAxis1, kHomeInvalid));
-  EXPECT_TRUE(status(kAxis1, kCommandError));
-  vm_.run_for(200 * kNsPerMs);
-  EXPECT_EQ(motor(kAxis1), 0);
-}
-
-TEST_F(Homing3602, HI_01_FindHomeWithVpBelowVs) {
-  configure(kAxis1);
-  Move3602 p = kHome;
-  p.speed = 999;
-  command(kAxis1, cmd::kFindHomeCw, p);
-  EXPECT_TRUE(status(kAxis1, kHomeInvalid));
-  vm_.run_for(200 * kNsPerMs);
-  EXPECT_EQ(motor(kAxis1), 0);
 }
 
 // 3602-HI-07, A16: the timeout stops the search with a controlled stop and sets HI; PI is left
@@ -146,27 +121,6 @@ TEST_F(Homing3602, AH_01_BothAxesHomeIndependently) {
   EXPECT_LE(motor(kAxis1), 5'001);
   EXPECT_LE(motor(kAxis2), -2'900);
   EXPECT_GE(motor(kAxis2), -2'901);
-}
-
-TEST_F(Homing3602, CE_11_HI_02_FindHomeWithSCurve) {
-  configure(kAxis1);
-  Move3602 p = kHome;
-  p.lsw = m2::cmd_lsw::kSCurve;
-  command(kAxis1, cmd::kFindHomeCw, p);
-  EXPECT_TRUE(status(kAxis1, kCommandError));
-  EXPECT_TRUE(status(kAxis1, kHomeInvalid));
-  vm_.run_for(200 * kNsPerMs);
-  EXPECT_EQ(motor(kAxis1), 0);
-}
-
-TEST_F(Homing3602, HI_03_FindHomeWithAccelOutOfRange) {
-  configure(kAxis1);
-  Move3602 p = kHome;
-  p.accel = 2'001;
-  command(kAxis1, cmd::kFindHomeCw, p);
-  EXPECT_TRUE(status(kAxis1, kHomeInvalid));
-  vm_.run_for(200 * kNsPerMs);
-  EXPECT_EQ(motor(kAxis1), 0);
 }
 
 // 3602-HI-05 / IE-04 / PI-06: the limit opposite to the homing direction during the search.
@@ -301,6 +255,46 @@ TEST_F(Homing3602, AH_01_ProximityBitIgnoredWhenNotConfigured) {
   EXPECT_GE(motor(kAxis1), 5'000);
   EXPECT_LE(motor(kAxis1), 5'001);
 }
+
+// ---- Find Home refused at the start: the error bits, and no step --------------------------------
+
+struct RefusedHoming {
+  const char* name;
+  std::uint16_t config = kLimitsConfigMsw;
+  Move3602 words = kHome;
+  std::vector<std::uint16_t> set{};  // status MSW bits set after the command
+};
+
+const RefusedHoming kRefusedHomings[] = {
+    {.name = "CE_12_FindHomeWithoutTheHomeInputEnabled",
+     .config = static_cast<std::uint16_t>(kLimitsConfigMsw & ~m2::cfg_msw::kHomeEnabled),
+     .set = {kCommandError}},
+    {.name = "HI_04_FindHomeWithNonZeroReservedWords",
+     .words = {.target = 1, .speed = 10'000, .accel = 20, .decel = 20},
+     .set = {kHomeInvalid, kCommandError}},
+    {.name = "HI_01_FindHomeWithVpBelowVs",
+     .words = {.target = 0, .speed = 999, .accel = 20, .decel = 20},
+     .set = {kHomeInvalid}},
+    {.name = "CE_11_HI_02_FindHomeWithSCurve",
+     .words = {.target = 0, .speed = 10'000, .accel = 20, .decel = 20, .lsw = m2::cmd_lsw::kSCurve},
+     .set = {kCommandError, kHomeInvalid}},
+    {.name = "HI_03_FindHomeWithAccelOutOfRange",
+     .words = {.target = 0, .speed = 10'000, .accel = 2'001, .decel = 20},
+     .set = {kHomeInvalid}},
+};
+
+class RefusedHoming3602 : public Homing3602, public ::testing::WithParamInterface<RefusedHoming> {};
+
+TEST_P(RefusedHoming3602, NoStep) {
+  const RefusedHoming& r = GetParam();
+  configure(kAxis1, r.config);
+  command(kAxis1, cmd::kFindHomeCw, r.words);
+  for (const std::uint16_t bit : r.set) EXPECT_TRUE(status(kAxis1, bit)) << "status bit " << bit;
+  vm_.run_for(200 * kNsPerMs);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Items, RefusedHoming3602, ::testing::ValuesIn(kRefusedHomings), RowName{});
 
 }  // namespace
 }  // namespace stepmod::testing

@@ -1,7 +1,11 @@
 // 3602 command mode through the module's words, motion commands and their errors (digest 6.2
 // CE, IP, PI, IE, HLD; 7.4-7.10): moves, hold/resume, immediate stop, jog, registration and the
 // minimum registration distance, blend programming and run.
+#include <array>
+#include <vector>
+
 #include "tests/module/rig_3602.hpp"
+#include "tests/support/checklist_rows.hpp"
 
 namespace stepmod::testing {
 namespace {
@@ -90,14 +94,6 @@ TEST_F(Motion3602, CE_04_MoveWhileMovingIsRefusedAndTheMoveRunsOn) {
   EXPECT_TRUE(status(kAxis1, kCommandError));
   ASSERT_TRUE(wait_idle(kAxis1));
   EXPECT_EQ(motor(kAxis1), 6'000);
-}
-
-TEST_F(Motion3602, CE_06_IP_01_VpBelowVsForAMove) {
-  command(kAxis1, cmd::kRelativeMove, {.target = 100, .speed = 999});
-  EXPECT_TRUE(status(kAxis1, kCommandError));
-  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
-  vm_.scans(20);
-  EXPECT_EQ(motor(kAxis1), 0);
 }
 
 TEST_F(Motion3602, CE_07_AbsoluteMoveWithPositionInvalid) {
@@ -290,14 +286,6 @@ TEST_F(Motion3602, RegistrationMovesTheOffsetAfterTheExternalEdge) {
   EXPECT_NEAR(static_cast<double>(motor(kAxis1)), static_cast<double>(steps_then + 6'000), 25.0);
 }
 
-TEST_F(Motion3602, CE_R5_IP_13_NegativeRegistrationOffset) {
-  command(kAxis1, cmd::kJogCw, {.target = -5'000, .speed = 10'000});
-  EXPECT_TRUE(status(kAxis1, kCommandError));
-  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
-  vm_.scans(20);
-  EXPECT_EQ(motor(kAxis1), 0);
-}
-
 TEST_F(Motion3602, CE_R4_IP_12_OffsetShorterThanTheStop) {
   // Vs 1,000 -> Vp 10,000 at 10 steps/ms/s needs 4,950 steps to stop (digest 7.9).
   command(kAxis1, cmd::kJogCw, {.target = 4'949, .speed = 10'000, .accel = 10, .decel = 10});
@@ -310,15 +298,6 @@ TEST_F(Motion3602, CE_R4_IP_12_OffsetShorterThanTheStop) {
   vm_.scans(5);
   EXPECT_FALSE(status(kAxis1, kCommandError));
   EXPECT_TRUE(moving(kAxis1));
-}
-
-TEST_F(Motion3602, CE_R3_IP_11_ExternalActiveWithMinimumDistanceZero) {
-  force(kAxis1, InputLine::kExternal, true);
-  command(kAxis1, cmd::kJogCw, {.target = 6'000, .speed = 10'000});
-  EXPECT_TRUE(status(kAxis1, kCommandError));
-  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
-  vm_.scans(20);
-  EXPECT_EQ(motor(kAxis1), 0);
 }
 
 // LSW bit 2: program the minimum registration distance (words 2/3); status LSW bit 10 reports a
@@ -410,65 +389,6 @@ TEST_F(Motion3602, CE_B1_RunBlendBeforeAProfileWasProgrammed) {
   EXPECT_EQ(motor(kAxis2), 0);
 }
 
-TEST_F(Motion3602, CE_B2_ProfileWithoutFinalDeceleration) {
-  const std::array<std::int16_t, 6> first = {2, 0, 0, 0, 0, 0};
-  program_blend(kAxis1, {first, segment(1'000, 5'000, 20), segment(1'000, 3'000, 20)});
-  EXPECT_TRUE(status(kAxis1, kCommandError));
-}
-
-TEST_F(Motion3602, IP_04_BlendSegmentCountOutOfRange) {
-  const std::array<std::int16_t, 6> first = {1, 0, 0, 10, 0, 0};
-  program_blend(kAxis1, {first});
-  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
-}
-
-TEST_F(Motion3602, IP_07_IP_19_AccelerationPairOfBinary10) {
-  const std::array<std::int16_t, 6> first = {2, 0, 0b10, 10, 0, 0};  // segment 1: pair 10
-  program_blend(kAxis1, {first, segment(1'000, 5'000, 20), segment(1'000, 3'000, 20)});
-  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
-}
-
-TEST_F(Motion3602, CE_J2_IP_09_InvalidSpeedChangeWhileJoggingStopsImmediately) {
-  command(kAxis1, cmd::kPresetPosition, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
-  set_command(kAxis1, cmd::kJogCw, {.target = 0, .speed = 5'000});
-  vm_.run_for(300 * kNsPerMs);
-  put_split(kAxis1, m2::out_word::kSpeedMsw, 1'000'001);
-  vm_.scans(3);
-  EXPECT_TRUE(status(kAxis1, kCommandError));
-  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
-  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerMs));  // immediate: within a few steps
-}
-
-TEST_F(Motion3602, CE_J3_IP_10_OffsetWrittenWhileJoggingStopsImmediately) {
-  set_command(kAxis1, cmd::kJogCcw, {.target = 0, .speed = 5'000});
-  vm_.run_for(300 * kNsPerMs);
-  put_split(kAxis1, m2::out_word::kTargetMsw, 2'000);
-  vm_.scans(3);
-  EXPECT_TRUE(status(kAxis1, kCommandError));
-  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
-  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerMs));
-}
-
-TEST_F(Motion3602, CE_R6_IP_14_OffsetChangedDuringRegistration) {
-  set_command(kAxis1, cmd::kJogCw, {.target = 6'000, .speed = 10'000});
-  vm_.run_for(300 * kNsPerMs);
-  put_split(kAxis1, m2::out_word::kTargetMsw, 7'000);
-  vm_.scans(3);
-  EXPECT_TRUE(status(kAxis1, kCommandError));
-  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
-  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerMs));
-}
-
-TEST_F(Motion3602, CE_R7_IP_15_SpeedIncreasedDuringRegistration) {
-  set_command(kAxis1, cmd::kJogCw, {.target = 6'000, .speed = 10'000});
-  vm_.run_for(300 * kNsPerMs);
-  put_split(kAxis1, m2::out_word::kSpeedMsw, 12'000);
-  vm_.scans(3);
-  EXPECT_TRUE(status(kAxis1, kCommandError));
-  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
-  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerMs));
-}
-
 TEST_F(Motion3602, CE_R8_IP_16_AccelChangedWithASpeedChangeDuringRegistration) {
   set_command(kAxis1, cmd::kJogCw, {.target = 6'000, .speed = 10'000});
   vm_.run_for(300 * kNsPerMs);
@@ -532,18 +452,6 @@ TEST_F(Motion3602, CE_B4_ProgrammingStartedWhileABlendRuns) {
   EXPECT_LT(motor(kAxis1), 40'000);  // brought down with the final deceleration
 }
 
-TEST_F(Motion3602, IP_06_ConsecutiveSegmentsWithTheSameSpeed) {
-  const std::array<std::int16_t, 6> first = {2, 0, 0, 10, 0, 0};
-  program_blend(kAxis1, {first, segment(20'000, 5'000, 20), segment(20'000, 5'000, 20)});
-  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
-}
-
-TEST_F(Motion3602, IP_05_SegmentTooShortToReachItsSpeed) {
-  const std::array<std::int16_t, 6> first = {2, 0, 0, 10, 0, 0};
-  program_blend(kAxis1, {first, segment(100, 50'000, 1), segment(20'000, 5'000, 20)});
-  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
-}
-
 TEST_F(Motion3602, IP_20_SegmentLengthOutOfRange) {
   const std::array<std::int16_t, 6> first = {2, 0, 0, 10, 0, 0};
   program_blend(kAxis1, {first, segment(1'073'741'823, 5'000, 20), segment(20'000, 3'000, 20)});
@@ -552,6 +460,138 @@ TEST_F(Motion3602, IP_20_SegmentLengthOutOfRange) {
   program_blend(kAxis1, {first, segment(0, 5'000, 20), segment(20'000, 3'000, 20)});
   EXPECT_TRUE(status(kAxis1, kInvalidProfile));
 }
+
+// ---- Refused at the start: Command Error + Invalid Profile, and no step ------------------------
+
+struct RefusedStart {
+  const char* name;
+  std::uint16_t command;
+  Move3602 words;
+  bool external_active = false;  // the External input active before the command
+};
+
+const RefusedStart kRefusedStarts[] = {
+    {"CE_06_IP_01_VpBelowVsForAMove", cmd::kRelativeMove, {.target = 100, .speed = 999}},
+    {"CE_R5_IP_13_NegativeRegistrationOffset", cmd::kJogCw, {.target = -5'000, .speed = 10'000}},
+    {"CE_R3_IP_11_ExternalActiveWithMinimumDistanceZero",
+     cmd::kJogCw,
+     {.target = 6'000, .speed = 10'000},
+     true},
+};
+
+class RefusedStart3602 : public Motion3602, public ::testing::WithParamInterface<RefusedStart> {};
+
+TEST_P(RefusedStart3602, NoStep) {
+  const RefusedStart& r = GetParam();
+  if (r.external_active) force(kAxis1, InputLine::kExternal, true);
+  command(kAxis1, r.command, r.words);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  vm_.scans(20);
+  EXPECT_EQ(motor(kAxis1), 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Items, RefusedStart3602, ::testing::ValuesIn(kRefusedStarts), RowName{});
+
+// ---- A jog's or registration's word changed while it runs: Command Error + Invalid Profile, and
+// an immediate stop (within a few steps) ---------------------------------------------------------
+
+struct ChangeOnTheFly {
+  const char* name;
+  std::uint16_t jog;
+  Move3602 words;  // the jog as started (target: the registration offset)
+  unsigned word;   // the MSW of the split value then written
+  std::int32_t value;
+  bool preset = false;  // Preset Position (0) before the jog
+};
+
+const ChangeOnTheFly kChangesOnTheFly[] = {
+    {"CE_J2_IP_09_InvalidSpeedChangeWhileJoggingStopsImmediately",
+     cmd::kJogCw,
+     {.target = 0, .speed = 5'000},
+     m2::out_word::kSpeedMsw,
+     1'000'001,
+     true},
+    {"CE_J3_IP_10_OffsetWrittenWhileJoggingStopsImmediately",
+     cmd::kJogCcw,
+     {.target = 0, .speed = 5'000},
+     m2::out_word::kTargetMsw,
+     2'000},
+    {"CE_R6_IP_14_OffsetChangedDuringRegistration",
+     cmd::kJogCw,
+     {.target = 6'000, .speed = 10'000},
+     m2::out_word::kTargetMsw,
+     7'000},
+    {"CE_R7_IP_15_SpeedIncreasedDuringRegistration",
+     cmd::kJogCw,
+     {.target = 6'000, .speed = 10'000},
+     m2::out_word::kSpeedMsw,
+     12'000},
+};
+
+class ChangeOnTheFly3602 : public Motion3602,
+                           public ::testing::WithParamInterface<ChangeOnTheFly> {};
+
+TEST_P(ChangeOnTheFly3602, StopsImmediately) {
+  const ChangeOnTheFly& r = GetParam();
+  if (r.preset) {
+    command(kAxis1, cmd::kPresetPosition, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
+  }
+  set_command(kAxis1, r.jog, r.words);
+  vm_.run_for(300 * kNsPerMs);
+  put_split(kAxis1, r.word, r.value);
+  vm_.scans(3);
+  EXPECT_TRUE(status(kAxis1, kCommandError));
+  EXPECT_TRUE(status(kAxis1, kInvalidProfile));
+  ASSERT_TRUE(wait_idle(kAxis1, 20 * kNsPerMs));
+}
+
+INSTANTIATE_TEST_SUITE_P(Items, ChangeOnTheFly3602, ::testing::ValuesIn(kChangesOnTheFly),
+                         RowName{});
+
+// ---- Blend profiles refused when programmed
+// ------------------------------------------------------
+
+struct RefusedBlend {
+  const char* name;
+  std::array<std::int16_t, 6> first;  // segment count, type pairs, final deceleration
+  std::vector<std::array<std::int32_t, 3>> segments;  // length, speed, acceleration
+  std::uint16_t error;                                // the status MSW bit the profile raises
+};
+
+const RefusedBlend kRefusedBlends[] = {
+    {"CE_B2_ProfileWithoutFinalDeceleration",
+     {2, 0, 0, 0, 0, 0},
+     {{1'000, 5'000, 20}, {1'000, 3'000, 20}},
+     kCommandError},
+    {"IP_04_BlendSegmentCountOutOfRange", {1, 0, 0, 10, 0, 0}, {}, kInvalidProfile},
+    {"IP_07_IP_19_AccelerationPairOfBinary10",
+     {2, 0, 0b10, 10, 0, 0},  // segment 1: pair 10
+     {{1'000, 5'000, 20}, {1'000, 3'000, 20}},
+     kInvalidProfile},
+    {"IP_06_ConsecutiveSegmentsWithTheSameSpeed",
+     {2, 0, 0, 10, 0, 0},
+     {{20'000, 5'000, 20}, {20'000, 5'000, 20}},
+     kInvalidProfile},
+    {"IP_05_SegmentTooShortToReachItsSpeed",
+     {2, 0, 0, 10, 0, 0},
+     {{100, 50'000, 1}, {20'000, 5'000, 20}},
+     kInvalidProfile},
+};
+
+class RefusedBlend3602 : public Motion3602, public ::testing::WithParamInterface<RefusedBlend> {};
+
+TEST_P(RefusedBlend3602, ErrorBitSet) {
+  const RefusedBlend& r = GetParam();
+  std::vector<std::array<std::int16_t, 6>> blocks{r.first};
+  for (const auto& [length, speed, accel] : r.segments) {
+    blocks.push_back(segment(length, speed, static_cast<std::int16_t>(accel)));
+  }
+  program_blend(kAxis1, blocks);
+  EXPECT_TRUE(status(kAxis1, r.error));
+}
+
+INSTANTIATE_TEST_SUITE_P(Items, RefusedBlend3602, ::testing::ValuesIn(kRefusedBlends), RowName{});
 
 }  // namespace
 }  // namespace stepmod::testing
