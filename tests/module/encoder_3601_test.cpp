@@ -360,6 +360,16 @@ class Follower3601 : public Encoder3601 {
   bool follower_mode() const { return lsw_status(m::status_lsw::kFollowerMode); }
   // Master counts then a settling time for the follower.
   void settle(Nanos d = 50 * kMs) { vm_.run_for(d); }
+  // 2,000 steps, the step rate never above what ramps of 1,000 steps/s^2 allow: the peak of a
+  // 2,000-step triangle from 1,000 steps/s is sqrt(1,000^2 + 2,000 x 1,000) = 1,732 steps/s.
+  void expect_2000_steps_within_the_ramps() {
+    const auto& t = vm_.step_times(0);
+    ASSERT_EQ(t.size(), 2'000u);
+    Nanos shortest = t[1] - t[0];
+    for (std::size_t i = 1; i < t.size(); ++i) shortest = std::min(shortest, t[i] - t[i - 1]);
+    EXPECT_GT(shortest, static_cast<Nanos>(1e9 / 1'800.0));
+    EXPECT_FALSE(errors());
+  }
 
   unsigned phase_ = 0;
 };
@@ -461,15 +471,8 @@ TEST_F(Follower3601, AccelAndDecelSlewTheOutputItLagsThenCatchesUpExactly) {
   EXPECT_GT(motor(), 0);
   EXPECT_TRUE(status(kMovingCw));
   vm_.run_for(4'000 * kMs);
-  EXPECT_EQ(motor(), 2'000);  // caught up to the exact count, no overshoot
-  // The step rate never exceeded what the ramps allow: peak of a 2,000-step triangle from
-  // 1,000 steps/s at 1,000 steps/s^2: sqrt(1,000^2 + 2,000 x 1,000) = 1,732 steps/s.
-  const auto& t = vm_.step_times(0);
-  ASSERT_EQ(t.size(), 2'000u);
-  Nanos shortest = t[1] - t[0];
-  for (std::size_t i = 1; i < t.size(); ++i) shortest = std::min(shortest, t[i] - t[i - 1]);
-  EXPECT_GT(shortest, static_cast<Nanos>(1e9 / 1'800.0));
-  EXPECT_FALSE(errors());
+  EXPECT_EQ(motor(), 2'000);             // caught up to the exact count, no overshoot
+  expect_2000_steps_within_the_ramps();  // never faster than the ramps allow
 }
 
 // Issue 18: pauses of the pulse thread slip the follower's steps; it never steps faster than its
@@ -486,12 +489,7 @@ TEST_F(Follower3601, StallsNeverMakeTheFollowerStepFasterThanItsRamps) {
   EXPECT_EQ(motor(), 2'000);
   EXPECT_EQ(vm_.stack().motion(0).late_fault().count, 0u);
   EXPECT_GE(vm_.stack().motion(0).slip_ns(), 40 * kMs);  // the stalls did slip it
-  const auto& t = vm_.step_times(0);
-  ASSERT_EQ(t.size(), 2'000u);
-  Nanos shortest = t[1] - t[0];
-  for (std::size_t i = 1; i < t.size(); ++i) shortest = std::min(shortest, t[i] - t[i - 1]);
-  EXPECT_GT(shortest, static_cast<Nanos>(1e9 / 1'800.0));
-  EXPECT_FALSE(errors());
+  expect_2000_steps_within_the_ramps();
 }
 
 TEST_F(Follower3601, DirectionBit7SameSenseBit8ReverseSense) {
