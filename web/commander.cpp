@@ -1,7 +1,5 @@
 #include "web/commander.hpp"
 
-#include <unistd.h>
-
 #include <stdexcept>
 
 #include "web/reason.hpp"
@@ -17,15 +15,11 @@ nlohmann::json reply(const std::string& op, bool ok, const std::string& message)
 
 Commander::Commander(const std::string& module_name, const Sampler& sampler, Options opt)
     : client_(module_name),
-      port_(client_),
-      lease_(client_, static_cast<std::uint32_t>(::getpid())),
+      port_(client_, std::chrono::milliseconds(2000), plc::ShmPort::Heartbeat::kOff),
+      lease_(client_),
       sampler_(sampler),
-      opt_(opt) {
-  try {
-    controls_ = make_controls(port_);
-  } catch (const std::invalid_argument& e) {
-    controls_error_ = e.what();
-  }
+      opt_(opt),
+      controls_(make_controls(port_)) {
   deadman_ = std::thread([this] { deadman_loop(); });
 }
 
@@ -38,7 +32,7 @@ Commander::~Commander() {
   deadman_.join();
   // A clean exit (SIGTERM) gives the lease back after letting go of any held jog; a crash
   // leaves it to expire, and the daemon stops the axes.
-  if (lease_.held() && controls_) controls_->release_jogs();
+  if (lease_.held()) controls_->release_jogs();
   lease_.release();
 }
 
@@ -52,7 +46,6 @@ void Commander::deadman_loop() {
 }
 
 nlohmann::json Commander::take(std::uintptr_t conn) {
-  if (!controls_) return reply("take", false, controls_error_);
   if (operator_ != 0 && operator_ != conn) {
     return reply("take", false, "another page of this console holds the lease");
   }
