@@ -1,5 +1,6 @@
 #include "web/commander.hpp"
 
+#include <cstdio>
 #include <stdexcept>
 
 #include "web/reason.hpp"
@@ -40,8 +41,23 @@ void Commander::deadman_loop() {
   std::unique_lock lock(m_);
   while (!cv_.wait_for(lock, std::chrono::milliseconds(50), [this] { return stop_; })) {
     if (operator_ == 0) continue;
-    if (Clock::now() - last_keepalive_ > opt_.keepalive_limit) continue;  // let it expire
-    if (!lease_.renew()) operator_ = 0;  // the daemon freed it after an expiry
+    const auto silent = Clock::now() - last_keepalive_;
+    if (silent > opt_.keepalive_limit) {  // let it expire
+      if (renewing_) {
+        std::fprintf(stderr,
+                     "stepmod-web: no keep-alive from the page for %lld ms: the lease is no "
+                     "longer renewed\n",
+                     static_cast<long long>(
+                         std::chrono::duration_cast<std::chrono::milliseconds>(silent).count()));
+      }
+      renewing_ = false;
+      continue;
+    }
+    renewing_ = lease_.renew();
+    if (!renewing_) {
+      std::fprintf(stderr, "stepmod-web: the daemon freed the lease (it expired)\n");
+      operator_ = 0;
+    }
   }
 }
 
@@ -64,6 +80,7 @@ nlohmann::json Commander::take(std::uintptr_t conn) {
   }
   operator_ = conn;
   last_keepalive_ = Clock::now();
+  renewing_ = true;
   return reply("take", true, "lease taken by process " + std::to_string(lease_.id()));
 }
 

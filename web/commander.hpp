@@ -55,6 +55,7 @@ class Commander {
   std::mutex m_;  // guards everything below and serialises the plc/ calls
   std::uintptr_t operator_ = 0;
   std::chrono::steady_clock::time_point last_keepalive_{};
+  bool renewing_ = false;  // the deadman renewed at its last turn (its log says when it stops)
   bool stop_ = false;
   std::condition_variable cv_;
   std::thread deadman_;
