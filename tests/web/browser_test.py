@@ -452,11 +452,13 @@ class Web3202(unittest.TestCase):
         self.wait_bit(0, "Invalid Profile", on=False)
 
     def test_4_held_jog_moves_and_release_stops(self):
+        # Channel 1 and its plot in view for the screenshot: scrolled before the press, since a
+        # scroll under a held pointer leaves the button, which ends the jog (as it should).
+        self.c.d.execute_script("window.scrollTo(0, 0)")
         start = self.m.motor_position(1)
         hold_button(self.c, "#unit-0 .b-jog-cw")
         wait_for(lambda: self.m.motor_position(1) > start + 200, 10, "channel 1 to move")
         self.assertIn("Moving CW", bits_on(self.c, 0))
-        self.c.d.execute_script("window.scrollTo(0, 0)")  # channel 1 and its plot
         time.sleep(0.5)
         self.c.d.save_screenshot(os.path.join(SRC, "docs", "web-3202-jog.png"))
         release_button(self.c)
@@ -485,7 +487,8 @@ class Web3202(unittest.TestCase):
         self.command(0, ".b-reset", r"reset: done")
 
     def test_6_home_finds_the_switch(self):
-        self.command(1, ".b-home-cw", r"home: done")
+        # Channel 2's simulated home switch is at -2000..-1900 (examples/3202-sim.toml): CCW.
+        self.command(1, ".b-home-ccw", r"home: done")
         self.wait_bit(1, "At Home", timeout=30)
         wait_for(lambda: self.pos(1) == 0 == self.m.image_position(2), 5, "channel 2 homed at 0")
         self.assertNotIn("Home Invalid", bits_on(self.c, 1))
