@@ -401,11 +401,23 @@ class Web3202(unittest.TestCase):
                     print("---- %s\n%s" % (log, f.read()[-3000:]))
         cls.m.close()
 
+    def wait(self, pred, timeout, what):
+        try:
+            return wait_for(pred, timeout, what)
+        except AssertionError as e:
+            # Says whether the lease ended (a page starved past the deadman's limit on a loaded
+            # machine: the daemon stopped the axes, as it must) or something else went wrong.
+            with open(os.path.join(self.m.dir, "d.log")) as f:
+                expiries = f.read().count("expired without release")
+            gap = self.c.d.execute_script("return window.consoleStats.maxTickGap")
+            raise AssertionError("%s; lease: %s, expiries so far: %d, the page's longest timer "
+                                 "gap: %s ms" % (e, self.c.text("#lease"), expiries, gap)) from None
+
     def pos(self, unit):
         return int(self.c.text("#unit-%d .pos" % unit))
 
     def wait_bit(self, unit, name, on=True, timeout=10):
-        wait_for(lambda: (name in bits_on(self.c, unit)) == on, timeout,
+        self.wait(lambda: (name in bits_on(self.c, unit)) == on, timeout,
                  "channel %d %s %s (on: %r)" % (unit + 1, name, "on" if on else "off",
                                                  bits_on(self.c, unit)))
 
@@ -433,15 +445,15 @@ class Web3202(unittest.TestCase):
         self.c.fill("#unit-0 .f-target", 2000)
         self.command(0, ".b-rel", r"move: done")
         self.wait_bit(0, "Move Complete")
-        wait_for(lambda: self.pos(0) == 2000 == self.m.image_position(1), 10, "channel 1 at 2000")
+        self.wait(lambda: self.pos(0) == 2000 == self.m.image_position(1), 10, "channel 1 at 2000")
         self.assertEqual(self.m.motor_position(1), 2000)
         self.c.fill("#unit-1 .f-target", -1500)  # relative: a configuration invalidates the position
         self.command(1, ".b-rel", r"move: done")
-        wait_for(lambda: self.pos(1) == -1500 == self.m.image_position(2), 10,
+        self.wait(lambda: self.pos(1) == -1500 == self.m.image_position(2), 10,
                  "channel 2 at -1500")
         self.c.fill("#unit-0 .f-preset", 500)
         self.command(0, ".b-preset", r"preset: done")
-        wait_for(lambda: self.pos(0) == 500 == self.m.image_position(1), 5, "channel 1 preset")
+        self.wait(lambda: self.pos(0) == 500 == self.m.image_position(1), 5, "channel 1 preset")
 
     def test_3_refused_move_shows_its_reason(self):
         self.c.fill("#unit-0 .f-accel", 500)  # the manual's range is 1,000..2,000,000 steps/s^2
@@ -457,7 +469,7 @@ class Web3202(unittest.TestCase):
         self.c.d.execute_script("window.scrollTo(0, 0)")
         start = self.m.motor_position(1)
         hold_button(self.c, "#unit-0 .b-jog-cw")
-        wait_for(lambda: self.m.motor_position(1) > start + 200, 10, "channel 1 to move")
+        self.wait(lambda: self.m.motor_position(1) > start + 200, 10, "channel 1 to move")
         self.assertIn("Moving CW", bits_on(self.c, 0))
         time.sleep(0.5)
         self.c.d.save_screenshot(os.path.join(SRC, "docs", "web-3202-jog.png"))
@@ -479,7 +491,7 @@ class Web3202(unittest.TestCase):
         time.sleep(0.3)
         self.assertEqual(self.m.motor_position(1), held)
         self.command(0, ".b-resume", r"resume: done")
-        wait_for(lambda: self.m.motor_position(1) > held + 100, 10, "the resumed move")
+        self.wait(lambda: self.m.motor_position(1) > held + 100, 10, "the resumed move")
         self.command(0, ".b-stop", r"stop: done")
         self.wait_still(0)
         self.assertLess(self.m.motor_position(1), held + 20000)  # cut short
@@ -490,7 +502,7 @@ class Web3202(unittest.TestCase):
         # Channel 2's simulated home switch is at -2000..-1900 (examples/3202-sim.toml): CCW.
         self.command(1, ".b-home-ccw", r"home: done")
         self.wait_bit(1, "At Home", timeout=30)
-        wait_for(lambda: self.pos(1) == 0 == self.m.image_position(2), 5, "channel 2 homed at 0")
+        self.wait(lambda: self.pos(1) == 0 == self.m.image_position(2), 5, "channel 2 homed at 0")
         self.assertNotIn("Home Invalid", bits_on(self.c, 1))
 
 
