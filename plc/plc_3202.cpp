@@ -109,10 +109,10 @@ Outcome Plc3202::jog_release(unsigned ch) {
 }
 
 Outcome Plc3202::jog(unsigned ch, bool cw, const Profile& p, std::chrono::milliseconds duration) {
-  const Outcome pressed = jog_press(ch, cw, p);
+  Outcome pressed = jog_press(ch, cw, p);
   // Level-held: keep the bit for the duration (the port keeps the PLC's heartbeat meanwhile).
   if (!pressed.timed_out) port_.pass(duration);
-  const Outcome released = jog_release(ch);
+  Outcome released = jog_release(ch);
   if (pressed.timed_out) return pressed;
   if (released.timed_out) return released;
   Outcome idle = wait_idle(ch, timeout_ + std::chrono::seconds(30));
