@@ -66,7 +66,7 @@ class Client {
                                            std::chrono::milliseconds timeout);
 
   const stepmod_image_t& raw() const noexcept { return *img_; }
-  // The image itself, for the commissioning lease (ipc/lease_client.hpp, plc/lease.hpp): its
+  // The image itself, for the commissioning lease (ipc/lease.hpp): its
   // fields are atomics shared with the daemon. Throws IpcError when the image is read-only.
   stepmod_image_t& writable_image();
 

@@ -1,13 +1,9 @@
 #include "ipc/lease_client.hpp"
 
-#include <unistd.h>
-
 namespace stepmod::ipc {
 
 LeaseClient::LeaseClient(Client& client, std::uint32_t pid)
-    : client_(client),
-      img_(client.writable_image()),
-      pid_(pid != 0 ? pid : static_cast<std::uint32_t>(::getpid())) {}
+    : client_(client), lease_(client, pid) {}
 
 LeaseClient::~LeaseClient() {
   release();
@@ -24,26 +20,11 @@ bool LeaseClient::plc_quiet(std::chrono::milliseconds quiet) const {
   return client_.heartbeat_value() == hb;
 }
 
-void LeaseClient::renew() noexcept {
-  const auto expiry =
-      stepmod_monotonic_ns() + std::chrono::duration_cast<std::chrono::nanoseconds>(kAhead).count();
-  __atomic_store_n(&img_.lease_expiry_ns, static_cast<std::uint64_t>(expiry), __ATOMIC_RELEASE);
-}
-
 LeaseClient::Take LeaseClient::take(std::chrono::milliseconds quiet) {
   if (taken_) return Take::kTaken;
-  if (__atomic_load_n(&img_.lease_holder, __ATOMIC_ACQUIRE) != 0) return Take::kHeldByOther;
+  if (lease_.holder() != 0) return Take::kHeldByOther;
   if (!plc_quiet(quiet)) return Take::kPlcInControl;
-  // The expiry first: the daemon reads it only once it sees a holder, and a losing taker's
-  // write is overwritten by the winner's next renewal (both at most kAhead ahead).
-  renew();
-  std::uint32_t free = 0;
-  if (!__atomic_compare_exchange_n(&img_.lease_holder, &free, pid_, false, __ATOMIC_ACQ_REL,
-                                   __ATOMIC_ACQUIRE)) {
-    return Take::kHeldByOther;
-  }
-  __atomic_fetch_add(&img_.lease_seq, 1u, __ATOMIC_RELEASE);
-  renew();
+  if (!lease_.take()) return Take::kHeldByOther;
   taken_ = true;
   stop_ = false;
   renewer_ = std::thread([this] { renew_loop(); });
@@ -53,8 +34,7 @@ LeaseClient::Take LeaseClient::take(std::chrono::milliseconds quiet) {
 void LeaseClient::renew_loop() {
   std::unique_lock lock(m_);
   while (!cv_.wait_for(lock, kRenewEvery, [this] { return stop_; })) {
-    if (!held()) return;  // the daemon freed it (expired): nothing to renew
-    renew();
+    if (!lease_.renew()) return;  // the daemon freed it (expired): nothing to renew
   }
 }
 
@@ -66,14 +46,8 @@ void LeaseClient::release() {
   }
   cv_.notify_all();
   if (renewer_.joinable()) renewer_.join();
-  std::uint32_t mine = pid_;
-  __atomic_compare_exchange_n(&img_.lease_holder, &mine, 0u, false, __ATOMIC_ACQ_REL,
-                              __ATOMIC_ACQUIRE);
+  lease_.release();
   taken_ = false;
-}
-
-bool LeaseClient::held() const noexcept {
-  return __atomic_load_n(&img_.lease_holder, __ATOMIC_ACQUIRE) == pid_;
 }
 
 }  // namespace stepmod::ipc

@@ -1,11 +1,9 @@
 #pragma once
-// The tool's side of the commissioning lease (INTERFACE.md 3.5, docs/commissioning.md): a tool
-// that drives the module without a PLC (stepmodctl --wait, a browser console) holds the lease
-// while it waits on its motion, so that the daemon stops the axes if the tool dies or hangs: the
-// deadman a PLC's heartbeat gives. While held, a thread of this object renews it every 50 ms,
-// keeping the expiry 400 ms ahead (the contract: at most 500 ms ahead, renewed at least every
-// 100 ms). The holder must not bump the PLC heartbeat (that is a PLC's: health bit 7).
-#include <atomic>
+// The commissioning lease kept by a thread (INTERFACE.md 3.5, docs/commissioning.md): for a tool
+// whose process being alive is the deadman (stepmodctl --wait holds it while it waits on its
+// motion, so that the daemon stops the axes if the tool dies or hangs). It is ipc::Lease
+// (ipc/lease.hpp, the one lease implementation) plus the check that no PLC is in control and a
+// thread that renews it every 50 ms while held.
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -13,13 +11,15 @@
 #include <thread>
 
 #include "ipc/client.hpp"
+#include "ipc/lease.hpp"
 
 namespace stepmod::ipc {
 
 class LeaseClient {
  public:
-  static constexpr std::chrono::milliseconds kAhead{400};
+  static constexpr std::chrono::milliseconds kAhead = Lease::kAhead;
   static constexpr std::chrono::milliseconds kRenewEvery{50};
+  static_assert(kRenewEvery < Lease::kRenewAtLeastEvery);
 
   // `pid`: the holder id written into the image (this process' by default).
   explicit LeaseClient(Client& client, std::uint32_t pid = 0);
@@ -32,24 +32,22 @@ class LeaseClient {
     kPlcInControl,  // the PLC heartbeat moved within `quiet` (and is not reported stale)
     kHeldByOther,   // another tool holds it
   };
-  // Takes the lease (compare-and-swap from 0) if no PLC is in control: the daemon reports the
-  // heartbeat stale (health bit 1, after [module] plc_timeout_ms), or the heartbeat does not
-  // change for `quiet` (watched here; the contract's 1 s when plc_timeout_ms is 0).
+  // Takes the lease if no PLC is in control: the daemon reports the heartbeat stale (health
+  // bit 1, after [module] plc_timeout_ms), or the heartbeat does not change for `quiet` (watched
+  // here; the contract's 1 s when plc_timeout_ms is 0). Then renews it from a thread.
   Take take(std::chrono::milliseconds quiet = std::chrono::milliseconds(1000));
-  // Gives the lease back (writes 0 if still ours) and stops renewing. Idempotent.
+  // Stops renewing and gives the lease back (writes 0 if still ours). Idempotent.
   void release();
   // Ours, as far as the image says (the daemon frees an expired lease).
-  bool held() const noexcept;
-  std::uint32_t pid() const noexcept { return pid_; }
+  bool held() const noexcept { return lease_.held(); }
+  std::uint32_t pid() const noexcept { return lease_.id(); }
 
  private:
   bool plc_quiet(std::chrono::milliseconds quiet) const;
-  void renew() noexcept;
   void renew_loop();
 
   Client& client_;
-  stepmod_image_t& img_;
-  std::uint32_t pid_;
+  Lease lease_;
   std::mutex m_;
   std::condition_variable cv_;
   bool stop_ = false;

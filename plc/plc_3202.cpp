@@ -93,18 +93,28 @@ Outcome Plc3202::move(unsigned ch, bool absolute, std::int32_t target, const Pro
                       kCommandErrors);
 }
 
-Outcome Plc3202::jog(unsigned ch, bool cw, const Profile& p, std::chrono::milliseconds duration) {
+Outcome Plc3202::jog_press(unsigned ch, bool cw, const Profile& p) {
   const std::uint32_t bit = cw ? m::cmd_bit::kManualCw : m::cmd_bit::kManualCcw;
   // The target must be 0: the 3202 has no registration move.
   write_channel(
       ch, m3202::command_words(bit | m3202::accel_bits(p.type), 0, p.speed, p.accel, p.decel));
-  const bool scanned = port_.wait_scans(seq_.hold_scans);
-  if (scanned) port_.pass(duration);
-  const unsigned w0 = m::channel_base(ch);
-  port_.update_outputs([&](ImageWords& w) { w.w[w0] &= ~static_cast<std::int32_t>(bit); });
-  if (!scanned || !port_.wait_scans(seq_.release_scans)) {
-    return finish(ch, kCommandErrors, true, "jog");
-  }
+  return finish(ch, kCommandErrors, !port_.wait_scans(seq_.hold_scans), "jog");
+}
+
+Outcome Plc3202::jog_release(unsigned ch) {
+  constexpr std::uint32_t kManualBits = m::cmd_bit::kManualCw | m::cmd_bit::kManualCcw;
+  const unsigned w0 = m::channel_base(ch) + m::out_word::kCommand;
+  port_.update_outputs([&](ImageWords& w) { w.w[w0] &= ~static_cast<std::int32_t>(kManualBits); });
+  return finish(ch, kCommandErrors, !port_.wait_scans(seq_.release_scans), "jog release");
+}
+
+Outcome Plc3202::jog(unsigned ch, bool cw, const Profile& p, std::chrono::milliseconds duration) {
+  Outcome pressed = jog_press(ch, cw, p);
+  // Level-held: keep the bit for the duration (the port keeps the PLC's heartbeat meanwhile).
+  if (!pressed.timed_out) port_.pass(duration);
+  Outcome released = jog_release(ch);
+  if (pressed.timed_out) return pressed;
+  if (released.timed_out) return released;
   Outcome idle = wait_idle(ch, timeout_ + std::chrono::seconds(30));
   if (idle.timed_out) return idle;
   return finish(ch, kCommandErrors, false, "jog");

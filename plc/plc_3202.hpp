@@ -30,6 +30,11 @@ class Plc3202 {
                bool encoder_move = false);
   // Manual move (level-held bit) for `duration`, then released and waited until stopped.
   Outcome jog(unsigned ch, bool cw, const Profile& p, std::chrono::milliseconds duration);
+  // The two halves of jog, for a caller that holds the bit itself (a console's jog button):
+  // the bit set with the parameters and held until jog_release clears it (the channel then
+  // decelerates to a stop, as when a PLC releases the bit).
+  Outcome jog_press(unsigned ch, bool cw, const Profile& p);
+  Outcome jog_release(unsigned ch);
   Outcome home(unsigned ch, bool cw, const Profile& p);
   Outcome hold(unsigned ch);
   Outcome resume(unsigned ch, const std::optional<Profile>& p);

@@ -16,8 +16,8 @@ std::optional<ReasonView> ShmPort::reason(unsigned unit) const {
   return ReasonView{r.seq, r.item, std::string(r.text)};
 }
 
-ShmPort::ShmPort(ipc::Client& client, std::chrono::milliseconds scan_timeout)
-    : client_(client), scan_timeout_(scan_timeout) {}
+ShmPort::ShmPort(ipc::Client& client, std::chrono::milliseconds scan_timeout, Heartbeat heartbeat)
+    : client_(client), heartbeat_on_(heartbeat == Heartbeat::kOn), scan_timeout_(scan_timeout) {}
 
 ImageWords ShmPort::outputs() const {
   ImageWords w;

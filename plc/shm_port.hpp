@@ -1,6 +1,9 @@
 #pragma once
-// The PLC port over a running module's shared-memory image (ipc::Client). While it waits it is
-// the PLC's heartbeat (INTERFACE 3.2): stepmodctl and the daemon tests drive the module as a PLC.
+// The PLC port over a running module's shared-memory image (ipc::Client), for every tool that
+// writes the module's words. While it waits it is the PLC's heartbeat (INTERFACE 3.2), as
+// stepmodctl and the daemon tests drive the module as a PLC; a holder of the commissioning lease
+// (ipc/lease.hpp: stepmodctl --wait, stepmod-web) is no PLC and uses it without the heartbeat:
+// a heartbeat bumped while a lease is held reads as two writers to the daemon (health bit 7).
 #include <chrono>
 
 #include "ipc/client.hpp"
@@ -10,9 +13,11 @@ namespace stepmod::plc {
 
 class ShmPort final : public Port {
  public:
+  enum class Heartbeat : bool { kOff = false, kOn = true };
   // `scan_timeout` bounds each wait_scans.
   explicit ShmPort(ipc::Client& client,
-                   std::chrono::milliseconds scan_timeout = std::chrono::milliseconds(2000));
+                   std::chrono::milliseconds scan_timeout = std::chrono::milliseconds(2000),
+                   Heartbeat heartbeat = Heartbeat::kOn);
 
   ModuleType type() const override { return client_.type(); }
   ImageWords outputs() const override;
@@ -22,8 +27,7 @@ class ShmPort final : public Port {
   }
   bool read_inputs(ImageWords& in) const override;
   std::optional<ReasonView> reason(unsigned unit) const override;
-  // Off while the caller holds the commissioning lease (ipc/lease_client.hpp): a lease holder
-  // is no PLC and must not bump the heartbeat (INTERFACE 3.5).
+  // Off while the caller holds the commissioning lease (INTERFACE 3.5).
   void set_heartbeat(bool on) noexcept { heartbeat_on_ = on; }
   bool wait_scans(unsigned n) override;
   void pass(std::chrono::nanoseconds d) override;

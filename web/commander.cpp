@@ -1,7 +1,6 @@
 #include "web/commander.hpp"
 
-#include <unistd.h>
-
+#include <cstdio>
 #include <stdexcept>
 
 #include "web/reason.hpp"
@@ -17,15 +16,11 @@ nlohmann::json reply(const std::string& op, bool ok, const std::string& message)
 
 Commander::Commander(const std::string& module_name, const Sampler& sampler, Options opt)
     : client_(module_name),
-      port_(client_),
-      lease_(client_, static_cast<std::uint32_t>(::getpid())),
+      port_(client_, std::chrono::milliseconds(2000), plc::ShmPort::Heartbeat::kOff),
+      lease_(client_),
       sampler_(sampler),
-      opt_(opt) {
-  try {
-    controls_ = make_controls(port_);
-  } catch (const std::invalid_argument& e) {
-    controls_error_ = e.what();
-  }
+      opt_(opt),
+      controls_(make_controls(port_)) {
   deadman_ = std::thread([this] { deadman_loop(); });
 }
 
@@ -38,7 +33,7 @@ Commander::~Commander() {
   deadman_.join();
   // A clean exit (SIGTERM) gives the lease back after letting go of any held jog; a crash
   // leaves it to expire, and the daemon stops the axes.
-  if (lease_.held() && controls_) controls_->release_jogs();
+  if (lease_.held()) controls_->release_jogs();
   lease_.release();
 }
 
@@ -46,13 +41,27 @@ void Commander::deadman_loop() {
   std::unique_lock lock(m_);
   while (!cv_.wait_for(lock, std::chrono::milliseconds(50), [this] { return stop_; })) {
     if (operator_ == 0) continue;
-    if (Clock::now() - last_keepalive_ > opt_.keepalive_limit) continue;  // let it expire
-    if (!lease_.renew()) operator_ = 0;  // the daemon freed it after an expiry
+    const auto silent = Clock::now() - last_keepalive_;
+    if (silent > opt_.keepalive_limit) {  // let it expire
+      if (renewing_) {
+        std::fprintf(stderr,
+                     "stepmod-web: no keep-alive from the page for %lld ms: the lease is no "
+                     "longer renewed\n",
+                     static_cast<long long>(
+                         std::chrono::duration_cast<std::chrono::milliseconds>(silent).count()));
+      }
+      renewing_ = false;
+      continue;
+    }
+    renewing_ = lease_.renew();
+    if (!renewing_) {
+      std::fprintf(stderr, "stepmod-web: the daemon freed the lease (it expired)\n");
+      operator_ = 0;
+    }
   }
 }
 
 nlohmann::json Commander::take(std::uintptr_t conn) {
-  if (!controls_) return reply("take", false, controls_error_);
   if (operator_ != 0 && operator_ != conn) {
     return reply("take", false, "another page of this console holds the lease");
   }
@@ -71,6 +80,7 @@ nlohmann::json Commander::take(std::uintptr_t conn) {
   }
   operator_ = conn;
   last_keepalive_ = Clock::now();
+  renewing_ = true;
   return reply("take", true, "lease taken by process " + std::to_string(lease_.id()));
 }
 

@@ -15,9 +15,9 @@
 #include <thread>
 
 #include "ipc/client.hpp"
-#include "plc/lease.hpp"
+#include "ipc/lease.hpp"
+#include "plc/shm_port.hpp"
 #include "web/controls.hpp"
-#include "web/lease_port.hpp"
 #include "web/sampler.hpp"
 
 namespace stepmod::web {
@@ -46,16 +46,16 @@ class Commander {
   void deadman_loop();
 
   ipc::Client client_;
-  LeasePort port_;
-  plc::Lease lease_;
-  std::unique_ptr<Controls> controls_;  // null for a module without console controls
-  std::string controls_error_;
+  plc::ShmPort port_;  // without the PLC heartbeat: a lease holder is no PLC
+  ipc::Lease lease_;
   const Sampler& sampler_;
   Options opt_;
+  std::unique_ptr<Controls> controls_;
 
   std::mutex m_;  // guards everything below and serialises the plc/ calls
   std::uintptr_t operator_ = 0;
   std::chrono::steady_clock::time_point last_keepalive_{};
+  bool renewing_ = false;  // the deadman renewed at its last turn (its log says when it stops)
   bool stop_ = false;
   std::condition_variable cv_;
   std::thread deadman_;

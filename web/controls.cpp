@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "plc/plc_3202.hpp"
 #include "plc/plc_3601.hpp"
 #include "plc/plc_3602.hpp"
 
@@ -58,8 +59,9 @@ class Controls3601 final : public Controls {
   plc::Outcome stop(unsigned) override { return plc_.immediate_stop(); }
   plc::Outcome reset(unsigned) override { return plc_.reset_errors(); }
   plc::Outcome preset(unsigned, std::int32_t p) override { return plc_.preset_position(p); }
-  plc::Outcome configure(unsigned, std::uint16_t msw, std::uint16_t lsw, std::int32_t vs) override {
-    return plc_.configure(msw, lsw, vs);
+  plc::Outcome configure(unsigned, std::uint32_t bits, std::int32_t vs) override {
+    return plc_.configure(static_cast<std::uint16_t>(bits >> 16),
+                          static_cast<std::uint16_t>(bits & 0xFFFFu), vs);
   }
   unsigned units() const override { return 1; }
 
@@ -90,9 +92,9 @@ class Controls3602 final : public Controls {
   plc::Outcome stop(unsigned u) override { return plc_.immediate_stop(u); }
   plc::Outcome reset(unsigned u) override { return plc_.reset_errors(u); }
   plc::Outcome preset(unsigned u, std::int32_t p) override { return plc_.preset_position(u, p); }
-  plc::Outcome configure(unsigned u, std::uint16_t msw, std::uint16_t lsw,
-                         std::int32_t vs) override {
-    return plc_.configure(u, msw, lsw, vs);
+  plc::Outcome configure(unsigned u, std::uint32_t bits, std::int32_t vs) override {
+    return plc_.configure(u, static_cast<std::uint16_t>(bits >> 16),
+                          static_cast<std::uint16_t>(bits & 0xFFFFu), vs);
   }
   unsigned units() const override { return 2; }
 
@@ -100,7 +102,49 @@ class Controls3602 final : public Controls {
   plc::Plc3602 plc_;
 };
 
+// The 3202's two channels: steps/s^2 rates, one configuration DINT (bit 31, the mode, is added
+// by plc/), jog = the manual-move bits held.
+class Controls3202 final : public Controls {
+ public:
+  explicit Controls3202(plc::Port& port) : plc_(port) {}
+  void release_jogs() override {
+    for (unsigned u = 0; u < 2; ++u) plc_.jog_release(u);
+  }
+
+ protected:
+  plc::Outcome move(unsigned u, bool a, std::int32_t t, const plc::Profile& p) override {
+    return plc_.move(u, a, t, p);
+  }
+  plc::Outcome jog_press(unsigned u, bool cw, const plc::Profile& p) override {
+    return plc_.jog_press(u, cw, p);
+  }
+  plc::Outcome jog_release(unsigned u) override { return plc_.jog_release(u); }
+  plc::Outcome home(unsigned u, bool cw, const plc::Profile& p) override {
+    return plc_.home(u, cw, p);
+  }
+  plc::Outcome hold(unsigned u) override { return plc_.hold(u); }
+  plc::Outcome resume(unsigned u) override { return plc_.resume(u, std::nullopt); }
+  plc::Outcome stop(unsigned u) override { return plc_.immediate_stop(u); }
+  plc::Outcome reset(unsigned u) override { return plc_.reset_errors(u); }
+  plc::Outcome preset(unsigned u, std::int32_t p) override { return plc_.preset_position(u, p); }
+  std::uint32_t config_bits(const nlohmann::json& req) const override {
+    return static_cast<std::uint32_t>(field(req, "bits", 0, 0x7FFFFFFF));
+  }
+  plc::Outcome configure(unsigned u, std::uint32_t bits, std::int32_t vs) override {
+    return plc_.configure(u, bits, vs);
+  }
+  unsigned units() const override { return 2; }
+
+ private:
+  plc::Plc3202 plc_;
+};
+
 }  // namespace
+
+std::uint32_t Controls::config_bits(const nlohmann::json& req) const {
+  return static_cast<std::uint32_t>(field(req, "msw", 0, 0xFFFF)) << 16 |
+         static_cast<std::uint32_t>(field(req, "lsw", 0, 0xFFFF));
+}
 
 plc::Outcome Controls::run(const nlohmann::json& req) {
   const std::string cmd = req.value("cmd", "");
@@ -122,8 +166,7 @@ plc::Outcome Controls::run(const nlohmann::json& req) {
                   static_cast<std::int32_t>(field(req, "position", -2'000'000'000, 2'000'000'000)));
   }
   if (cmd == "configure") {
-    return configure(u, static_cast<std::uint16_t>(field(req, "msw", 0, 0xFFFF)),
-                     static_cast<std::uint16_t>(field(req, "lsw", 0, 0xFFFF)),
+    return configure(u, config_bits(req),
                      static_cast<std::int32_t>(field(req, "start_speed", 0, 2'000'000'000)));
   }
   throw std::invalid_argument("unknown command '" + cmd + "'");
@@ -138,7 +181,7 @@ std::unique_ptr<Controls> make_controls(plc::Port& port) {
     case ModuleType::k3202:
       break;
   }
-  throw std::invalid_argument("the console has no controls for the 3202 yet (status only)");
+  return std::make_unique<Controls3202>(port);
 }
 
 }  // namespace stepmod::web

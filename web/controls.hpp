@@ -1,8 +1,8 @@
 #pragma once
 // The page's commissioning commands, each written exactly as a PLC writes it: one JSON request
 // ({"cmd": "move", "unit": 0, ...}) becomes one call of the module's plc/ dialect (Plc3601,
-// Plc3602) over a port without heartbeat. Bad input (unknown command, missing or out-of-range
-// field) is refused with a message before anything is written.
+// Plc3602, Plc3202) over a port without heartbeat. Bad input (unknown command, missing or
+// out-of-range field) is refused with a message before anything is written.
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -30,13 +30,14 @@ class Controls {
   virtual plc::Outcome stop(unsigned u) = 0;
   virtual plc::Outcome reset(unsigned u) = 0;
   virtual plc::Outcome preset(unsigned u, std::int32_t position) = 0;
-  virtual plc::Outcome configure(unsigned u, std::uint16_t msw, std::uint16_t lsw,
-                                 std::int32_t start_speed) = 0;
+  // The configuration bits as one 32-bit value: MSW << 16 | LSW on the 3601/3602 (the request's
+  // "msw" and "lsw"), the configuration DINT on the 3202 ("bits").
+  virtual std::uint32_t config_bits(const nlohmann::json& req) const;
+  virtual plc::Outcome configure(unsigned u, std::uint32_t bits, std::int32_t start_speed) = 0;
   virtual unsigned units() const = 0;
 };
 
-// The controls of the module behind `port`; throws std::invalid_argument for a module type
-// without console controls (the 3202).
+// The controls of the module behind `port`.
 std::unique_ptr<Controls> make_controls(plc::Port& port);
 
 }  // namespace stepmod::web

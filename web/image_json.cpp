@@ -89,9 +89,11 @@ nlohmann::json module_json(ModuleType type) {
   } else if (type == ModuleType::k3602) {
     cfg = {{"msw", table_json(module::m3602::kConfigMswBits)},
            {"lsw", table_json(module::m3602::kConfigLswBits)}};
-  } else {
-    cfg = {{"msw", table_json(module::m3202::kConfigBits)}, {"lsw", nlohmann::json::array()}};
+  } else {  // one configuration DINT per channel: the page sends it whole ("bits")
+    cfg = {{"dint", table_json(module::m3202::kConfigBits)}};
   }
+  // The same ramp by default on every module: 100 steps/ms/s = 100,000 steps/s^2.
+  const bool per_s2 = r.accel_word_unit == 1;
   return {{"type", static_cast<unsigned>(type)},
           {"units", shape.axes},
           {"config_bits", cfg},
@@ -100,7 +102,11 @@ nlohmann::json module_json(ModuleType type) {
             {"starting_speed_min", r.starting_speed_min},
             {"starting_speed_max", r.starting_speed_max},
             {"accel_min", r.accel_min / r.accel_word_unit},
-            {"accel_max", r.accel_max / r.accel_word_unit}}}};
+            {"accel_max", r.accel_max / r.accel_word_unit},
+            {"accel_unit", per_s2 ? "steps/s²" : "steps/ms/s"},
+            {"accel_default", per_s2 ? 100'000 : 100},
+            {"target_min", r.target_min},
+            {"target_max", r.target_max}}}};
 }
 
 }  // namespace stepmod::web

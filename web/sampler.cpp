@@ -3,7 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ipc/health.hpp"
-#include "plc/lease.hpp"
+#include "ipc/lease.hpp"
 #include "web/image_json.hpp"
 #include "web/reason.hpp"
 
@@ -82,7 +82,7 @@ std::string Sampler::batch_json() {
                          {{"heartbeat", link.heartbeat},
                           {"quiet_ms", quiet_ms.count()},
                           {"stale", (h.flags & STEPMOD_HEALTH_PLC_STALE) != 0}}},
-                        {"lease", {{"holder", plc::Lease::holder_of(client_.raw())}}}}
+                        {"lease", {{"holder", ipc::Lease::holder_of(client_.raw())}}}}
       .dump();
 }
 

@@ -1,6 +1,6 @@
 // The image's error-reason blocks (INTERFACE 3.4, docs/error-reasons.md) and the commissioning
-// lease (3.5, docs/commissioning.md): the daemon's LeaseWatch and the tools' LeaseClient over a
-// real shared-memory image.
+// lease (3.5, docs/commissioning.md): the daemon's LeaseWatch, the tools' Lease (explicit renew)
+// and LeaseClient (renewed by its thread) over a real shared-memory image.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "ipc/client.hpp"
+#include "ipc/lease.hpp"
 #include "ipc/lease_client.hpp"
 #include "ipc/lease_watch.hpp"
 #include "ipc/shm_image.hpp"
@@ -155,6 +156,41 @@ TEST_F(Lease, RefusedWhileAPlcHeartbeatIsLive) {
   // A second tool finds it held.
   LeaseClient other(client_, 4545);
   EXPECT_EQ(other.take(std::chrono::milliseconds(1)), LeaseClient::Take::kHeldByOther);
+}
+
+// The explicit core (stepmod-web's deadman): held while renewed, expired by the daemon once the
+// renewals stop, and then no longer renewable; a second holder is refused; a release frees only
+// its own lease.
+TEST_F(Lease, ExplicitLeaseExpiresWhenRenewalsStop) {
+  ipc::Lease lease(client_, 5151);
+  ipc::Lease other(client_, 5252);
+  ASSERT_TRUE(lease.take());
+  EXPECT_EQ(ipc::Lease::holder_of(client_.raw()), 5151u);
+  EXPECT_EQ(img().lease_seq, 1u);
+  EXPECT_FALSE(other.take());
+  other.release();  // not its lease: nothing happens
+  EXPECT_EQ(lease.holder(), 5151u);
+  EXPECT_TRUE(scan().taken);
+  for (int i = 0; i < 6; ++i) {  // renewed: still held after 600 ms
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    ASSERT_TRUE(lease.renew());
+    EXPECT_FALSE(scan().expired);
+  }
+  const auto ahead =
+      static_cast<std::int64_t>(ipc::Lease::expiry_of(client_.raw())) - stepmod_monotonic_ns();
+  EXPECT_GT(ahead, 0);
+  EXPECT_LE(ahead, 500'000'000);
+  // No more renewals: the daemon's watch finds it expired within the contract's 500 ms.
+  bool expired = false;
+  for (int i = 0; i < 60 && !expired; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    expired = scan().expired;
+  }
+  EXPECT_TRUE(expired);
+  EXPECT_FALSE(lease.held());
+  EXPECT_FALSE(lease.renew());  // freed by the daemon: nothing written
+  EXPECT_EQ(watch_.flags(), STEPMOD_HEALTH_LEASE_EXPIRED);
+  EXPECT_TRUE(other.take());  // free again for the next tool
 }
 
 }  // namespace

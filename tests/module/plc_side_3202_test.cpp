@@ -54,6 +54,32 @@ TEST_F(PlcSide3202, ConfigureMoveAndResetPerChannel) {
   EXPECT_EQ(motor(0), 3'900);
 }
 
+// The jog's two halves, as a console's held button uses them: the Manual CW bit stays set (the
+// channel keeps moving) until jog_release clears it; then the channel decelerates to a stop.
+// The other channel's DINTs are never touched.
+TEST_F(PlcSide3202, JogPressMovesUntilJogRelease) {
+  ASSERT_TRUE(plc_.configure(0, kFull3202, 1'000).ok);
+  ASSERT_TRUE(plc_.configure(1, kFull3202, 1'000).ok);
+  const ImageWords before = port_.outputs();
+  ASSERT_TRUE(plc_.jog_press(0, true, {.speed = 5'000, .accel = 100'000, .decel = 100'000}).ok);
+  EXPECT_NE(port_.outputs().w[0] & static_cast<std::int32_t>(m2::cmd_bit::kManualCw), 0);
+  port_.pass(std::chrono::milliseconds(300));
+  const std::int64_t moved = motor(0);
+  EXPECT_GT(moved, 500);
+  EXPECT_TRUE(status(0, sb::kMovingCw));
+  port_.pass(std::chrono::milliseconds(100));
+  EXPECT_GT(motor(0), moved);  // still held: still moving
+  ASSERT_TRUE(plc_.jog_release(0).ok);
+  EXPECT_EQ(port_.outputs().w[0] & static_cast<std::int32_t>(m2::cmd_bit::kManualCw), 0);
+  ASSERT_TRUE(plc_.wait_idle(0, std::chrono::seconds(5)).ok);
+  const std::int64_t stopped = motor(0);
+  port_.pass(std::chrono::milliseconds(200));
+  EXPECT_EQ(motor(0), stopped);
+  EXPECT_TRUE(status(0, sb::kStopped));
+  EXPECT_EQ(motor(1), 0);
+  for (unsigned i = 8; i < 16; ++i) EXPECT_EQ(port_.outputs().w[i], before.w[i]) << "word " << i;
+}
+
 TEST_F(PlcSide3202, BlendMessageWordsRunEndToEnd) {
   ASSERT_TRUE(plc_.configure(1, kFull3202, 1'000).ok);
   plc::BlendProfile b;

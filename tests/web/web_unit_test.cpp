@@ -70,6 +70,24 @@ TEST(WebModule, DescribesThe3602WithItsConfigurationBitsAndRanges) {
   EXPECT_LE(j["ranges"]["accel_min"].get<int>(), j["ranges"]["accel_max"].get<int>());
 }
 
+// The 3202: two channels, one configuration DINT with the manual's bits (the form sends it whole),
+// rates in steps/s^2 with the manual's range.
+TEST(WebModule, DescribesThe3202WithItsConfigurationDintAndRanges) {
+  const auto j = module_json(ModuleType::k3202);
+  EXPECT_EQ(j["type"], 3202);
+  EXPECT_EQ(j["units"], 2);
+  ASSERT_TRUE(j["config_bits"].contains("dint"));
+  EXPECT_FALSE(j["config_bits"].contains("msw"));
+  bool disable = false;
+  for (const auto& b : j["config_bits"]["dint"]) disable |= b["bit"] == 28;
+  EXPECT_TRUE(disable);
+  EXPECT_EQ(j["ranges"]["accel_min"], 1'000);
+  EXPECT_EQ(j["ranges"]["accel_max"], 2'000'000);
+  EXPECT_EQ(j["ranges"]["accel_unit"], "steps/s²");
+  EXPECT_EQ(j["ranges"]["target_max"], 8'388'607);
+  EXPECT_EQ(module_json(ModuleType::k3601)["ranges"]["accel_unit"], "steps/ms/s");
+}
+
 TEST(WebModule, UnitShowsEveryNamedStatusBit) {
   ImageWords in;
   in.w[0] = 0x4001;  // 3601 status MSW: Moving CW, Module OK
