@@ -910,6 +910,51 @@ void expect_flags(const char* key, std::uint64_t want, std::uint64_t must_not = 
             static_cast<unsigned long long>(must_not)));
 }
 
+// gpioinfo's row of a line ("" when gpioinfo is not in the VM): libgpiod's own tool (1.6:
+// `line  13: "GPIO13" "stepmod" input active-high [used pull-up]`; 2: `line 13: "GPIO13" input
+// bias=pull-up debounce-period=2ms consumer="stepmod"`), the view a user has of the lines.
+std::string gpioinfo_row(unsigned offset) {
+  if (::access("/vm/bin/gpioinfo", X_OK) != 0) return "";
+  std::FILE* p = ::popen(("gpioinfo " + env("BOARD_CHIP") + " 2>&1").c_str(), "r");
+  if (p == nullptr) fail("cannot run gpioinfo");
+  std::string row;
+  char buf[512];
+  const std::string key = "line " + std::to_string(offset) + ":";
+  while (std::fgets(buf, sizeof buf, p) != nullptr) {
+    std::string l(buf);
+    // 1.6 pads the offset ("line  13:"): compare with the spaces squeezed.
+    std::string squeezed;
+    for (char c : l) {
+      if (c == '\t') c = ' ';
+      if (c != ' ' || squeezed.empty() || squeezed.back() != ' ') squeezed.push_back(c);
+    }
+    if (squeezed.find(key) != std::string::npos) row = squeezed;
+  }
+  ::pclose(p);
+  while (!row.empty() && row.back() == '\n') row.pop_back();
+  return row;
+}
+
+// With gpioinfo in the VM: its rows name the options too. Returns what was checked.
+std::string check_gpioinfo() {
+  const std::string home = gpioinfo_row(line("home"));
+  if (home.empty()) return "; gpioinfo not in the VM";
+  const std::string cw = gpioinfo_row(line("cw_limit"));
+  const std::string dir = gpioinfo_row(line("dir"));
+  info("gpioinfo: home:" + home);
+  info("gpioinfo: cw_limit:" + cw);
+  info("gpioinfo: dir:" + dir);
+  check(home.find("pull-up") != std::string::npos, "gpioinfo: home row lacks pull-up: " + home);
+  check(cw.find("pull-down") != std::string::npos && cw.find("active-low") != std::string::npos,
+        "gpioinfo: cw_limit row lacks pull-down/active-low: " + cw);
+  check(dir.find("open-drain") != std::string::npos, "gpioinfo: dir row lacks open-drain: " + dir);
+  if (kGpiodV2) {
+    check(home.find("debounce-period=2ms") != std::string::npos,
+          "gpioinfo: home row lacks debounce-period=2ms: " + home);
+  }
+  return "; gpioinfo shows them";
+}
+
 std::string case_options() {
   std::string refused;
   if (!kGpiodV2) {
@@ -944,6 +989,7 @@ std::string case_options() {
   // An idle active-low step output is a high wire; the open-drain dir output idles low.
   check(SimLine(line("step")).value() == 1, "step (active low): idle wire not high");
   check(SimLine(line("dir")).value() == 0, "dir (open drain): idle wire not low");
+  const std::string tool = check_gpioinfo();
   const int rc = d.terminate();
   d.print_log();
   check(rc == 0, fmt("stepmodd exit status %d", rc));
@@ -951,7 +997,7 @@ std::string case_options() {
   return std::string("kernel line info: home pull-up") + (kGpiodV2 ? " debounce 2000 us" : "") +
          ", cw_limit pull-down active-low, capture bias disabled, step active-low (idle wire "
          "high), dir open-drain; sim_gpio pull-up/pull-down as configured" +
-         refused;
+         tool + refused;
 }
 
 // =================================================================================================
