@@ -915,7 +915,8 @@ void expect_flags(const char* key, std::uint64_t want, std::uint64_t must_not = 
 // bias=pull-up debounce-period=2ms consumer="stepmod"`), the view a user has of the lines.
 std::string gpioinfo_row(unsigned offset) {
   if (::access("/vm/bin/gpioinfo", X_OK) != 0) return "";
-  std::FILE* p = ::popen(("gpioinfo " + env("BOARD_CHIP") + " 2>&1").c_str(), "r");
+  // No argument (every chip; the VM has one): 1.6 takes a chip there, 2 a line name (-c chip).
+  std::FILE* p = ::popen("gpioinfo 2>&1", "r");
   if (p == nullptr) fail("cannot run gpioinfo");
   std::string row;
   char buf[512];
