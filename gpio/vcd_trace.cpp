@@ -32,9 +32,15 @@ std::string vcd_id(std::size_t n) {
 
 }  // namespace
 
+TraceWire enable_trace_wire(unsigned axis, bool active_low) {
+  return {static_cast<std::uint8_t>(axis), false, kEnableTraceLine, false, active_low};
+}
+
 std::string wire_name(const TraceWire& w) {
   const std::string_view key = w.is_input ? input_key(static_cast<InputLine>(w.line))
-                                          : output_key(static_cast<OutputLine>(w.line));
+                               : w.line == kEnableTraceLine
+                                   ? std::string_view("enable")
+                                   : output_key(static_cast<OutputLine>(w.line));
   return "axis" + std::to_string(unsigned{w.axis} + 1) + "." + std::string(key);
 }
 

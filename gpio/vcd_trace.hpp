@@ -27,7 +27,15 @@ namespace stepmod::gpio {
 // inputs at their present level. The VCD shows wire levels: an active-low line's inverted.
 std::vector<TraceWire> trace_wires(Backend& backend);
 
-// The VCD name of a line: "axis1.step", "axis2.cw_limit", ...
+// The drive-enable output (an extension, written by the control thread, not the pulse thread)
+// is traced as one more output line of its axis: TraceRecord::line kEnableTraceLine, is_input 0,
+// wire "axis<N>.enable". Its records go through the control thread's (input) ring, whose stream
+// the writer orders by time like the input edges.
+inline constexpr std::uint8_t kEnableTraceLine = kOutputLinesPerAxis;
+// The enable wire of `axis`, released (logically low) at #0: the daemon releases it at start.
+TraceWire enable_trace_wire(unsigned axis, bool active_low);
+
+// The VCD name of a line: "axis1.step", "axis2.cw_limit", "axis1.enable", ...
 std::string wire_name(const TraceWire& w);
 
 class VcdTrace {

@@ -25,9 +25,9 @@
 #include "systemd/notify.hpp"
 #include "systemd/watchdog.hpp"
 #include "tools/backend_factory.hpp"
+#include "tools/drive_enable.hpp"
 #include "tools/lease_keeper.hpp"
 #include "tools/reason_publisher.hpp"
-#include "tools/drive_enable.hpp"
 #include "tools/stack.hpp"
 
 namespace stepmod::tools {
@@ -96,6 +96,7 @@ struct Daemon::Impl {
   void sync_panel();
   void shutdown_motion();
   void idle_outputs();
+  void trace_input_record(const TraceRecord& r);
 };
 
 Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_path)
@@ -133,7 +134,7 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
   for (const AxisConfig& a : config.axes) {
     enables.push_back({a.enable.has_value(), a.enable_delay_ns, a.enable_release});
   }
-  d.drive_enable = std::make_unique<DriveEnable>(*d.backend, std::move(enables));
+  d.drive_enable = std::make_unique<DriveEnable>(*d.backend, std::move(enables), &monotonic_now);
   d.late_faults_seen.assign(d.stack->shape().axes, 0);
   d.cpu_notice_epoch.assign(d.stack->shape().axes, 0);
   if (d.sim != nullptr) {
@@ -151,7 +152,11 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
 #endif
   }
   if (trace_path) {
-    const auto wires = gpio::trace_wires(*d.backend);
+    auto wires = gpio::trace_wires(*d.backend);
+    for (unsigned a = 0; a < config.axes.size(); ++a) {
+      if (config.axes[a].enable)
+        wires.push_back(gpio::enable_trace_wire(a, config.axes[a].enable_opt.active_low));
+    }
     d.trace = std::make_unique<gpio::TraceWriter>(*trace_path, wires, d.start, *d.output_trace,
                                                   *d.input_trace);
     d.trace->watch_losses(&d.stack->engine().trace_dropped_counter(), &d.input_trace_dropped);
@@ -287,14 +292,8 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     const std::size_t n = backend->wait_events(events, next_scan);
     for (std::size_t i = 0; i < n; ++i) {
       const gpio::InputEvent& e = events[i];
-      if (input_trace) {
-        const TraceRecord r{e.t, e.axis, static_cast<std::uint8_t>(e.line),
-                            static_cast<std::uint8_t>(e.level), 1};
-        if (!input_trace->try_push(r)) {
-          input_trace_dropped.store(input_trace_dropped.load(std::memory_order_relaxed) + 1,
-                                    std::memory_order_relaxed);
-        }
-      }
+      trace_input_record(
+          {e.t, e.axis, static_cast<std::uint8_t>(e.line), static_cast<std::uint8_t>(e.level), 1});
       personality.on_input(e);
     }
     const Nanos now = monotonic_now();
@@ -456,7 +455,19 @@ void Daemon::Impl::update_drive_enable(const ipc::PlcSupervisor& sup, Nanos now)
     c.estop = s.estop;
     c.fault = input_loss || (f.count != 0 && f.epoch == m.epoch());
     c.plc_lost = sup.plc_lost();
-    drive_enable->update(a, c, now);
+    if (drive_enable->update(a, c, now)) {
+      trace_input_record({drive_enable->changed_at(a), static_cast<std::uint8_t>(a),
+                          gpio::kEnableTraceLine, drive_enable->asserted(a), 0});
+    }
+  }
+}
+
+// Control thread (or, once it has ended, the thread that ran it): one record into the input
+// trace ring, whose only producer that thread is.
+void Daemon::Impl::trace_input_record(const TraceRecord& r) {
+  if (input_trace && !input_trace->try_push(r)) {
+    input_trace_dropped.store(input_trace_dropped.load(std::memory_order_relaxed) + 1,
+                              std::memory_order_relaxed);
   }
 }
 
@@ -522,6 +533,9 @@ void Daemon::Impl::idle_outputs() {
   backend->idle_outputs();
   const Nanos now = monotonic_now();
   for (unsigned a = 0; a < stack->shape().axes; ++a) {
+    // The drive enables are released too (after the control loop: this thread fed its ring).
+    if (drive_enable->asserted(a))
+      trace_input_record({now, static_cast<std::uint8_t>(a), gpio::kEnableTraceLine, 0, 0});
     const std::uint8_t levels = stack->feedback(a).output_levels.load(std::memory_order_acquire);
     for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
       if (output_trace && (levels >> l) & 1u) {

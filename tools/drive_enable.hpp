@@ -29,19 +29,26 @@ class DriveEnable {
     bool plc_lost = false;
   };
 
-  DriveEnable(gpio::Backend& backend, std::vector<AxisSetup> axes);
+  // `clock`: read right after the enable line is written, so that the delay counts from the wire
+  // change itself (a control thread preempted between its scan time and the write would
+  // otherwise shorten the drive's wait). Null: the `now` given to update() (unit tests).
+  DriveEnable(gpio::Backend& backend, std::vector<AxisSetup> axes, Nanos (*clock)() = nullptr);
 
-  // Control thread, after each module scan: asserts or releases the axis' enable.
-  void update(unsigned axis, const Conditions& c, Nanos now);
+  // Control thread, after each module scan: asserts or releases the axis' enable. True when the
+  // line changed (changed_at() is then the time of the write).
+  bool update(unsigned axis, const Conditions& c, Nanos now);
   // Whether a drive asserted less than its delay ago is not ready yet (commands wait).
   bool holding(Nanos now) const noexcept;
   bool asserted(unsigned axis) const noexcept { return state_[axis].asserted; }
+  // When the axis' enable line last changed (the VCD's axis<N>.enable edge); 0 before that.
+  Nanos changed_at(unsigned axis) const noexcept { return state_[axis].changed_at; }
   bool any_wired() const noexcept;
 
  private:
   struct State {
     bool asserted = false;
     Nanos ready_at = 0;
+    Nanos changed_at = 0;
   };
   // Why the drive must be released now, or nullptr to assert it.
   const char* release_reason(const AxisSetup& s, const Conditions& c) const noexcept;
@@ -49,6 +56,7 @@ class DriveEnable {
   gpio::Backend& backend_;
   std::vector<AxisSetup> axes_;
   std::vector<State> state_;
+  Nanos (*clock_)() = nullptr;
 };
 
 }  // namespace stepmod::tools

@@ -10,6 +10,11 @@
 #                    Without any --bin, tests/vm/gpiod_check.c is built and used.
 #   --board FILE     a stepmod config whose [[axis]] lines make up the gpio-sim chip (repeatable;
 #                    default tests/vm/board*.toml; the first one's [gpio] chip is checked)
+#   --sysroot DIR    the --bin programs are files inside DIR, a Debian root (e.g. the Debian 13
+#                    one of scripts/test-in-root --vm), and run with DIR's shared libraries, which
+#                    are resolved in DIR (chroot DIR ldd) and copied from there: the VM boots this
+#                    machine's kernel with that root's userland
+#   --select REGEX   only the cases whose name matches REGEX (grep -E), e.g. '^(daemon|module)_'
 #   --out DIR        where results.txt, console.log and the initramfs go (default build-vm/vm)
 #   --timeout SECS   the whole VM run (default 300)
 #   --case-timeout SECS   one case (default 60)
@@ -30,6 +35,8 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 cases_dirs=()
 bins=()
 boards=()
+sysroot=
+select=
 out=$VM_REPO_DIR/build-vm/vm
 timeout_s=300
 case_timeout=60
@@ -39,6 +46,8 @@ while (($#)); do
     --cases) cases_dirs+=("$(realpath "${2:?}")") && shift ;;
     --bin) bins+=("$(realpath "${2:?}")") && shift ;;
     --board) boards+=("$(realpath "${2:?}")") && shift ;;
+    --sysroot) sysroot=$(realpath "${2:?}") && shift ;;
+    --select) select=${2:?} && shift ;;
     --out) out=${2:?} && shift ;;
     --timeout) timeout_s=${2:?} && shift ;;
     --case-timeout) case_timeout=${2:?} && shift ;;
@@ -75,11 +84,16 @@ for d in "${cases_dirs[@]}"; do
     n=${b%.*}
     [[ "$n" =~ ^[A-Za-z0-9_-]+$ ]] || vm_die "case name '$n' ($f): use letters, digits, _ and -"
     [[ -z "${case_file[$n]:-}" ]] || vm_die "two cases named $n: ${case_file[$n]} and $f"
+    [[ -z "$select" ]] || grep -Eq -- "$select" <<<"$n" || continue
     case_file[$n]=$f
   done
 done
 mapfile -t case_names < <(printf '%s\n' "${!case_file[@]}" | LC_ALL=C sort)
-((${#case_names[@]})) || vm_die "no test cases (executable files) in ${cases_dirs[*]}"
+((${#case_names[@]})) || vm_die "no test cases (executable files${select:+ matching $select}) in ${cases_dirs[*]}"
+if [[ -n "$sysroot" ]]; then
+  [[ -x "$sysroot/usr/bin/ldd" ]] || vm_die "--sysroot $sysroot: not a Debian root (no usr/bin/ldd)"
+  [[ $(id -u) -eq 0 ]] || vm_die "--sysroot needs root (chroot to resolve the programs' libraries)"
+fi
 
 skip_all() {
   vm_log "SKIPPED: $*"
@@ -132,16 +146,34 @@ for n in "${case_names[@]}"; do
   install -m 755 "$f" "$ov/vm/cases/$(basename "$f")"
   basename "$f" >>"$ov/vm/cases.list"
 done
+# The shared libraries (and the loader) a dynamic program needs, as paths: this machine's, or with
+# --sysroot the root's (resolved inside it: its symbolic links may be absolute).
+program_libs() {
+  if [[ -z "$sysroot" ]]; then
+    ldd "$1" | sed -n 's/.*=> \(\/[^ ]*\) .*/\1/p; s/^\s*\(\/[^ ]*\) (.*/\1/p'
+    return
+  fi
+  local rel=${1#"$sysroot"}
+  [[ "$rel" != "$1" ]] || vm_die "--bin $1 is not inside --sysroot $sysroot"
+  chroot "$sysroot" ldd "$rel" | sed -n 's/.*=> \(\/[^ ]*\) .*/\1/p; s/^\s*\(\/[^ ]*\) (.*/\1/p'
+}
+copy_lib() {  # LIB: its path in the VM; copied from this machine or the sysroot
+  local lib=$1 src=$1
+  if [[ -n "$sysroot" ]]; then
+    src=$sysroot$(chroot "$sysroot" readlink -f "$lib") || vm_die "cannot resolve $lib in $sysroot"
+  fi
+  [[ -f "$src" ]] || return 0
+  mkdir -p "$ov$(dirname "$lib")"
+  cp -L "$src" "$ov$lib"
+}
 copy_with_libs() {
   local f=$1 lib
   install -m 755 "$f" "$ov/vm/bin/$(basename "$f")"
   LC_ALL=C readelf -d "$f" 2>/dev/null | grep -q NEEDED || return 0
-  # Dynamically linked: bring its shared libraries and the loader, at their host paths.
+  # Dynamically linked: bring its shared libraries and the loader, at their paths.
   while read -r lib; do
-    [[ -n "$lib" && -f "$lib" ]] || continue
-    mkdir -p "$ov$(dirname "$lib")"
-    cp -L "$lib" "$ov$lib"
-  done < <(ldd "$f" | sed -n 's/.*=> \(\/[^ ]*\) .*/\1/p; s/^\s*\(\/[^ ]*\) (.*/\1/p')
+    [[ -n "$lib" ]] && copy_lib "$lib"
+  done < <(program_libs "$f")
 }
 if ((${#bins[@]} == 0)); then
   # Run by hand without programs: build the harness's own check program (ctest passes --bin).
@@ -155,6 +187,11 @@ for b in "${bins[@]}"; do
   copy_with_libs "$b"
 done
 printf 'CASE_TIMEOUT=%s\n' "$case_timeout" >"$ov/vm/settings"
+if [[ -n "$sysroot" ]]; then
+  userland="Debian $(cat "$sysroot/etc/debian_version" 2>/dev/null || echo '?')"
+  printf 'USERLAND="%s"\n' "$userland" >>"$ov/vm/settings"
+  vm_log "programs with the libraries of $sysroot ($userland), kernel $kabi"
+fi
 (cd "$ov" && find . -mindepth 1 | LC_ALL=C sort | cpio --quiet -o -H newc --owner=0:0) >"$out/overlay.cpio"
 cat "$cache/base.cpio" "$out/overlay.cpio" >"$out/initramfs.cpio"
 rm -f "$out/overlay.cpio"

@@ -13,11 +13,14 @@
 //   daemon_vm_test burst      hundreds of input edges during a move: none lost, pulses exact
 //   daemon_vm_test sigterm    SIGTERM mid-move: outputs idle, then released, lines free again
 //   daemon_vm_test homing     home switch / limits through sysfs: Find Home completes
+//   daemon_vm_test options    [[axis]] line options on the kernel's lines: bias, active_low,
+//                             drive, debounce_us (libgpiod 2; refused by a libgpiod 1.6 build)
+//   daemon_vm_test lost       input edges the kernel dropped (reader stopped): health bit 5 and
+//                             the log say so (libgpiod 2: the exact count from sequence numbers)
 //
 // Prints what it does; the last line is "ok: ..." (exit 0), "FAIL: ..." (exit 1) or
 // "skip: ..." (exit 77).
 #include <fcntl.h>
-#include <gpiod.h>
 #include <pthread.h>
 #include <sched.h>
 #include <signal.h>
@@ -51,6 +54,7 @@
 #include "plc/plc_3601.hpp"
 #include "plc/shm_port.hpp"
 #include "tests/support/vcd_reader.hpp"
+#include "tests/vm/gpio_uapi.hpp"
 #include "tests/vm/vm_harness.hpp"
 
 namespace {
@@ -65,8 +69,9 @@ using namespace stepmod::vmtest;  // NOLINT: the harness is this program's vocab
 
 struct ConfigOptions {
   std::string name = "vm";
-  std::string chip;                   // default: the board's
-  std::map<std::string, long> lines;  // key -> offset; default: every line of the board
+  std::string chip;                              // default: the board's
+  std::map<std::string, long> lines;             // key -> offset; default: every line of the board
+  std::map<std::string, std::string> line_text;  // key -> its value as written (an inline table)
   long step_pulse_ns = 1'000'000;
   long dir_setup_ns = 20'000;
   int priority = 80;
@@ -80,10 +85,13 @@ std::string write_config(const ConfigOptions& o, const std::string& path) {
   c << "[module]\ntype = \"3601\"\nname = \"" << o.name << "\"\nscan_us = 1000\n\n"
     << "[gpio]\nbackend = \"gpiod\"\nchip = \"" << (o.chip.empty() ? env("BOARD_CHIP") : o.chip)
     << "\"\n\n"
-    << rt_section(o.priority) << "\n[[axis]]\n" << axis_guard();
+    << rt_section(o.priority) << "\n[[axis]]\n"
+    << axis_guard();
   for (const char* k : kLineKeys) {
     const auto it = o.lines.find(k);
-    if (it == o.lines.end()) {
+    if (const auto t = o.line_text.find(k); t != o.line_text.end()) {
+      c << k << " = " << t->second << "\n";
+    } else if (it == o.lines.end()) {
       c << k << " = " << line(k) << "\n";
     } else if (it->second >= 0) {
       c << k << " = " << it->second << "\n";
@@ -216,14 +224,10 @@ std::string case_errors() {
     expect_start_error("line out of range", o,
                        {chip, "line " + std::to_string(lines), "axis1.enc_z", "out of range"});
   }
-  // A line held by another program (libgpiod, consumer "other-app").
+  // A line held by another program (consumer "other-app").
   const unsigned home = line("home");
   {
-    gpiod_chip* c = gpiod_chip_open_lookup(chip.c_str());
-    check(c != nullptr, "cannot open " + chip);
-    gpiod_line* l = gpiod_chip_get_line(c, home);
-    check(l != nullptr && gpiod_line_request_input(l, "other-app") == 0,
-          fmt("cannot hold line %u: %s", home, std::strerror(errno)));
+    const HeldInput held(home, "other-app");
     ConfigOptions o;
     expect_start_error("line in use by another program", o,
                        {chip, "line " + std::to_string(home), "axis1.home", "busy", "other-app"});
@@ -233,8 +237,6 @@ std::string case_errors() {
         check(line_user(line(k)).empty(),
               fmt("line %u left requested after the failed start", line(k)));
     }
-    gpiod_line_release(l);
-    gpiod_chip_close(c);
   }
   // A second stepmodd on the lines of a running one (another module name, same board).
   {
@@ -866,6 +868,196 @@ std::string case_homing() {
 
 }  // namespace
 
+// =================================================================================================
+// options: the line options of [[axis]] as the kernel applied them (its line info, what gpioinfo
+// prints) and as gpio-sim shows them (sim_gpioN/pull and value).
+
+#ifdef STEPMOD_VM_GPIOD_V2
+constexpr bool kGpiodV2 = true;
+#else
+constexpr bool kGpiodV2 = false;
+#endif
+
+std::string sim_attr(unsigned offset, const char* attr) {
+  std::string s =
+      read_text(env("GPIO_SIM_DIR") + "/sim_gpio" + std::to_string(offset) + "/" + attr);
+  while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+  return s;
+}
+
+ConfigOptions options_config(bool debounce) {
+  ConfigOptions o;
+  o.line_text["home"] = fmt("{ offset = %u, bias = \"pull-up\"%s }", line("home"),
+                            debounce ? ", debounce_us = 2000" : "");
+  o.line_text["cw_limit"] =
+      fmt("{ offset = %u, bias = \"pull-down\", active_low = true }", line("cw_limit"));
+  o.line_text["capture"] = fmt("{ offset = %u, bias = \"disabled\" }", line("capture"));
+  o.line_text["step"] = fmt("{ offset = %u, active_low = true }", line("step"));
+  o.line_text["dir"] = fmt("{ offset = %u, drive = \"open-drain\" }", line("dir"));
+  return o;
+}
+
+void expect_flags(const char* key, std::uint64_t want, std::uint64_t must_not = 0) {
+  const KernelLine k = kernel_line(line(key));
+  info(fmt("%s (line %u): consumer '%s', flags 0x%llx, debounce %u us", key, line(key),
+           k.consumer.c_str(), static_cast<unsigned long long>(k.flags), k.debounce_us));
+  check(k.used && k.consumer == "stepmod", fmt("%s: not held by stepmod", key));
+  check((k.flags & want) == want,
+        fmt("%s: flags 0x%llx lack 0x%llx", key, static_cast<unsigned long long>(k.flags),
+            static_cast<unsigned long long>(want)));
+  check((k.flags & must_not) == 0,
+        fmt("%s: flags 0x%llx have 0x%llx", key, static_cast<unsigned long long>(k.flags),
+            static_cast<unsigned long long>(must_not)));
+}
+
+// gpioinfo's row of a line ("" when gpioinfo is not in the VM): libgpiod's own tool (1.6:
+// `line  13: "GPIO13" "stepmod" input active-high [used pull-up]`; 2: `line 13: "GPIO13" input
+// bias=pull-up debounce-period=2ms consumer="stepmod"`), the view a user has of the lines.
+std::string gpioinfo_row(unsigned offset) {
+  if (::access("/vm/bin/gpioinfo", X_OK) != 0) return "";
+  // No argument (every chip; the VM has one): 1.6 takes a chip there, 2 a line name (-c chip).
+  std::FILE* p = ::popen("gpioinfo 2>&1", "r");
+  if (p == nullptr) fail("cannot run gpioinfo");
+  std::string row;
+  char buf[512];
+  const std::string key = "line " + std::to_string(offset) + ":";
+  while (std::fgets(buf, sizeof buf, p) != nullptr) {
+    std::string l(buf);
+    // 1.6 pads the offset ("line  13:"): compare with the spaces squeezed.
+    std::string squeezed;
+    for (char c : l) {
+      if (c == '\t') c = ' ';
+      if (c != ' ' || squeezed.empty() || squeezed.back() != ' ') squeezed.push_back(c);
+    }
+    if (squeezed.find(key) != std::string::npos) row = squeezed;
+  }
+  ::pclose(p);
+  while (!row.empty() && row.back() == '\n') row.pop_back();
+  return row;
+}
+
+// With gpioinfo in the VM: its rows name the options too. Returns what was checked.
+std::string check_gpioinfo() {
+  const std::string home = gpioinfo_row(line("home"));
+  if (home.empty()) return "; gpioinfo not in the VM";
+  const std::string cw = gpioinfo_row(line("cw_limit"));
+  const std::string dir = gpioinfo_row(line("dir"));
+  info("gpioinfo: home:" + home);
+  info("gpioinfo: cw_limit:" + cw);
+  info("gpioinfo: dir:" + dir);
+  check(home.find("pull-up") != std::string::npos, "gpioinfo: home row lacks pull-up: " + home);
+  check(cw.find("pull-down") != std::string::npos && cw.find("active-low") != std::string::npos,
+        "gpioinfo: cw_limit row lacks pull-down/active-low: " + cw);
+  check(dir.find("open-drain") != std::string::npos, "gpioinfo: dir row lacks open-drain: " + dir);
+  if (kGpiodV2) {
+    check(home.find("debounce-period=2ms") != std::string::npos,
+          "gpioinfo: home row lacks debounce-period=2ms: " + home);
+  }
+  return "; gpioinfo shows them";
+}
+
+std::string case_options() {
+  std::string refused;
+  if (!kGpiodV2) {
+    // libgpiod 1.6 (v1 uAPI): no debounce. Refused as a configuration error (exit 2), naming
+    // the key.
+    std::string log;
+    const int rc = run_to_exit(options_config(true), "opts-debounce", log);
+    check(rc == 2 && log.find("debounce_us") != std::string::npos,
+          fmt("debounce_us on a libgpiod 1.6 build: exit %d, log: %s", rc, log.c_str()));
+    refused = "; debounce_us refused by this libgpiod 1.6 build (exit 2 naming it)";
+  }
+  Daemon3601 d(options_config(kGpiodV2), "opts", false);
+  d.wait_ready();
+  expect_flags("home", GPIO_V2_LINE_FLAG_INPUT | GPIO_V2_LINE_FLAG_BIAS_PULL_UP,
+               GPIO_V2_LINE_FLAG_ACTIVE_LOW);
+  expect_flags("cw_limit", GPIO_V2_LINE_FLAG_INPUT | GPIO_V2_LINE_FLAG_BIAS_PULL_DOWN |
+                               GPIO_V2_LINE_FLAG_ACTIVE_LOW);
+  expect_flags("capture", GPIO_V2_LINE_FLAG_INPUT | GPIO_V2_LINE_FLAG_BIAS_DISABLED);
+  expect_flags("step", GPIO_V2_LINE_FLAG_OUTPUT | GPIO_V2_LINE_FLAG_ACTIVE_LOW);
+  expect_flags("dir", GPIO_V2_LINE_FLAG_OUTPUT | GPIO_V2_LINE_FLAG_OPEN_DRAIN,
+               GPIO_V2_LINE_FLAG_ACTIVE_LOW);
+  expect_flags("ccw_limit", GPIO_V2_LINE_FLAG_INPUT,
+               GPIO_V2_LINE_FLAG_BIAS_PULL_UP | GPIO_V2_LINE_FLAG_BIAS_PULL_DOWN |
+                   GPIO_V2_LINE_FLAG_BIAS_DISABLED);
+  const std::uint32_t debounce = kernel_line(line("home")).debounce_us;
+  check(debounce == (kGpiodV2 ? 2000u : 0u), fmt("home: kernel debounce %u us", debounce));
+  // gpio-sim applies the bias as the pad's pull: the board reset pulled every line down.
+  check(sim_attr(line("home"), "pull") == "pull-up",
+        "home: sim_gpio pull is '" + sim_attr(line("home"), "pull") + "', not pull-up");
+  check(SimLine(line("home")).value() == 1, "home: an undriven input with a pull-up is not high");
+  check(sim_attr(line("cw_limit"), "pull") == "pull-down", "cw_limit: pull not pull-down");
+  // An idle active-low step output is a high wire; the open-drain dir output idles low.
+  check(SimLine(line("step")).value() == 1, "step (active low): idle wire not high");
+  check(SimLine(line("dir")).value() == 0, "dir (open drain): idle wire not low");
+  const std::string tool = check_gpioinfo();
+  const int rc = d.terminate();
+  d.print_log();
+  check(rc == 0, fmt("stepmodd exit status %d", rc));
+  check(line_user(line("home")).empty(), "home still held after exit");
+  return std::string("kernel line info: home pull-up") + (kGpiodV2 ? " debounce 2000 us" : "") +
+         ", cw_limit pull-down active-low, capture bias disabled, step active-low (idle wire "
+         "high), dir open-drain; sim_gpio pull-up/pull-down as configured" +
+         tool + refused;
+}
+
+// =================================================================================================
+// lost: edges the kernel dropped. The daemon is stopped (SIGSTOP) while 41 edges are driven on
+// its capture line: the kernel keeps 16 per line request (v2: the newest, the sequence numbers
+// count the rest; v1: the oldest, silently). After SIGCONT one more edge: with libgpiod 2 the
+// gap in line_seqno is the exact loss; with 1.6 the repeated direction betrays one.
+
+long long lost_in_all(const std::string& log) {
+  const auto p = log.find(" input events were lost in all");
+  if (p == std::string::npos) return 0;
+  auto b = log.rfind(' ', p - 1);
+  return std::atoll(log.c_str() + (b == std::string::npos ? 0 : b + 1));
+}
+
+std::string case_lost() {
+  ConfigOptions o;
+  Daemon3601 d(o, "lost", false);
+  d.wait_ready();
+  stepmod::ipc::Client client(o.name);
+  SimLine cap(line("capture"));
+  for (int i = 0; i < 4; ++i) {  // read as they come: nothing lost
+    cap.pull(i % 2 == 0);
+    sleep_ms(30);
+  }
+  check((client.read_health().flags & STEPMOD_HEALTH_INPUT_LOST) == 0,
+        "health bit 5 set before any loss");
+  d.signal(SIGSTOP);
+  sleep_ms(50);
+  constexpr int kEdges = 41;
+  for (int i = 0; i < kEdges; ++i) cap.pull(i % 2 == 0);  // ends high
+  d.signal(SIGCONT);
+  sleep_ms(200);
+  cap.pull(false);
+  bool seen = false;
+  for (const std::int64_t end = now_ns() + 5'000'000'000; !seen && now_ns() < end; sleep_ms(10)) {
+    seen = (client.read_health().flags & STEPMOD_HEALTH_INPUT_LOST) != 0;
+  }
+  const int rc = d.terminate();
+  d.print_log();
+  check(seen, "health bit 5 (input events lost) not set after the kernel dropped edges");
+  check(rc == 0, fmt("stepmodd exit status %d", rc));
+  const std::string log = d.log();
+  check(log.find("input event(s) lost") != std::string::npos, "no 'input event(s) lost' log line");
+  const long long lost = lost_in_all(log);
+  // v2: 41 - 16 kept = 25 (fewer if the reader took some before it stopped: one read of up to
+  // 16 events may have been in flight); v1: one repeated direction.
+  if (kGpiodV2) {
+    check(lost >= kEdges - 32 && lost <= kEdges - 16,
+          fmt("libgpiod 2: %lld lost edges counted, expected %d (at least %d)", lost, kEdges - 16,
+              kEdges - 32));
+  } else {
+    check(lost >= 1, fmt("libgpiod 1.6: %lld lost edges counted, expected >= 1", lost));
+  }
+  return fmt("%d edges with the reader stopped: %lld counted lost (%s), health bit 5 set, logged",
+             kEdges, lost,
+             kGpiodV2 ? "libgpiod 2 sequence numbers" : "libgpiod 1.6 direction repeat");
+}
+
 int main(int argc, char** argv) {
   return run_case(argc, argv, "daemon_vm_test",
                   {{"errors", case_errors},
@@ -874,5 +1066,7 @@ int main(int argc, char** argv) {
                    {"capture", case_capture},
                    {"burst", case_burst},
                    {"sigterm", case_sigterm},
-                   {"homing", case_homing}});
+                   {"homing", case_homing},
+                   {"options", case_options},
+                   {"lost", case_lost}});
 }

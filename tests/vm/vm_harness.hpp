@@ -4,7 +4,6 @@
 // gpio-sim sysfs, stepmodd as a child process, sampling outputs, and reading the VCD against
 // the samples. Header-only: each VM test program is one translation unit.
 #include <fcntl.h>
-#include <gpiod.h>
 #include <pthread.h>
 #include <sched.h>
 #include <signal.h>
@@ -120,7 +119,9 @@ inline std::string rt_section(int priority = 80) {
 }
 // The lag guard relaxed likewise, as the first key of an [[axis]] table: the VM cases judge the
 // kernel path (levels, counts, order, timestamps), not an emulated CPU's timing.
-inline std::string axis_guard() { return "lag_limit_steps = 1000000\n"; }
+inline std::string axis_guard() {
+  return "lag_limit_steps = 1000000\n";
+}
 // Line offset of `key` of axis `axis` on the board: AX1_STEP, AX2_GPO, ...
 inline unsigned line(const std::string& key, unsigned axis = 1) {
   std::string var = "AX" + std::to_string(axis) + "_";
@@ -508,22 +509,6 @@ long long lateness_max_ns(const std::string& log) {
   const auto q = log.find("max ", p);
   if (q == std::string::npos) return -1;
   return std::atoll(log.c_str() + q + 4);
-}
-
-// ---- libgpiod: is a line free?
-// -------------------------------------------------------------------
-
-inline std::string line_user(unsigned offset) {
-  gpiod_chip* chip = gpiod_chip_open_lookup(env("BOARD_CHIP").c_str());
-  if (chip == nullptr) fail("cannot open " + env("BOARD_CHIP"));
-  gpiod_line* l = gpiod_chip_get_line(chip, offset);
-  std::string who;
-  if (l != nullptr && gpiod_line_is_used(l)) {
-    const char* c = gpiod_line_consumer(l);
-    who = c != nullptr ? c : "?";
-  }
-  gpiod_chip_close(chip);
-  return who;
 }
 
 // A VM case program's main: runs the case named by the one argument and prints its last line
