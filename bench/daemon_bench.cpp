@@ -41,18 +41,17 @@
 
 #include "core/clock.hpp"
 #include "ipc/client.hpp"
-#include "ipc/codec.hpp"
-#include "module/axis/rules.hpp"
-#include "module/m3601/words_3601.hpp"
+#include "module/m3601/rules_3601.hpp"
 #include "planner/motion_request.hpp"
 #include "planner/planner.hpp"
 #include "rt/axis_feedback.hpp"
 #include "rt/edge.hpp"
+#include "words/words_3601.hpp"
 
 namespace {
 
 using namespace stepmod;
-namespace m = module::m3601;
+namespace m = words::m3601;
 using std::chrono::milliseconds;
 
 const char* arg(int argc, char** argv, const char* name, const char* def) {
@@ -152,7 +151,7 @@ struct Plc {
   }
   ImageWords words(std::uint16_t msw, std::uint16_t lsw, std::int32_t a, std::int32_t b,
                    std::int16_t w6, std::int16_t w7) {
-    const auto x = ipc::codec::encode_3601(a), y = ipc::codec::encode_3601(b);
+    const auto x = words::encode_3601(a), y = words::encode_3601(b);
     ImageWords o{};
     o.w = {static_cast<std::int16_t>(msw),
            static_cast<std::int16_t>(lsw),
@@ -454,9 +453,10 @@ std::size_t densest(const std::vector<Nanos>& t, Nanos window) {
 }
 
 // Issue 12: the late-edge guard under load (scripts/bench loads the machine). --runs moves at
-// --rate with the product's guard (issue 18; before, a 1 ms limit): each completes (Move Complete) or faults (Stopped +
-// Position Invalid, a late-edge fault counted); and never a burst: the most steps in any 1 ms of
-// the VCD against the commanded rate (catching up within 1 ms of lateness may double it).
+// --rate with the product's guard (issue 18; before, a 1 ms limit): each completes (Move Complete)
+// or faults (Stopped + Position Invalid, a late-edge fault counted); and never a burst: the most
+// steps in any 1 ms of the VCD against the commanded rate (catching up within 1 ms of lateness may
+// double it).
 int guard(int argc, char** argv) {
   const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
   const int rate = std::atoi(arg(argc, argv, "--rate", "50000"));
@@ -650,7 +650,7 @@ int slip(int argc, char** argv) {
       s.vs = vs;
       s.vp = c.rate;
       const double rate = static_cast<double>(accel) *
-                          static_cast<double>(module::axis::kRules3601.accel_word_unit);
+                          static_cast<double>(module::m3601::kRules3601.accel_word_unit);
       const auto shape =
           scurve ? planner::AccelShape::kTrapezoidalS : planner::AccelShape::kConstant;
       s.accel = planner::Ramp{rate, shape};
@@ -687,7 +687,7 @@ int trace(int argc, char** argv) {
     seconds = static_cast<double>(monotonic_now() - t0) / 1e9;
     ImageWords w;
     plc.c.read_inputs(w);
-    position = ipc::codec::decode_3601_report(w.w[2], w.w[3]);
+    position = words::decode_3601_report(w.w[2], w.w[3]);
     status = d.stop();
     n = vcd_rising(d.trace(), "axis1.step").size();
   }

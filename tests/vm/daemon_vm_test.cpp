@@ -46,16 +46,16 @@
 #include <vector>
 
 #include "ipc/client.hpp"
-#include "module/m3601/words_3601.hpp"
 #include "plc/bit_names.hpp"
 #include "plc/plc_3601.hpp"
 #include "plc/shm_port.hpp"
 #include "tests/support/vcd_reader.hpp"
 #include "tests/vm/vm_harness.hpp"
+#include "words/words_3601.hpp"
 
 namespace {
 
-namespace m = stepmod::module::m3601;
+namespace m = stepmod::words::m3601;
 namespace st = m::status_msw;
 namespace cmd = m::cmd_msw;
 namespace cfg = m::cfg_msw;
@@ -80,7 +80,8 @@ std::string write_config(const ConfigOptions& o, const std::string& path) {
   c << "[module]\ntype = \"3601\"\nname = \"" << o.name << "\"\nscan_us = 1000\n\n"
     << "[gpio]\nbackend = \"gpiod\"\nchip = \"" << (o.chip.empty() ? env("BOARD_CHIP") : o.chip)
     << "\"\n\n"
-    << rt_section(o.priority) << "\n[[axis]]\n" << axis_guard();
+    << rt_section(o.priority) << "\n[[axis]]\n"
+    << axis_guard();
   for (const char* k : kLineKeys) {
     const auto it = o.lines.find(k);
     if (it == o.lines.end()) {
