@@ -38,8 +38,7 @@
 
 #include "core/clock.hpp"
 #include "ipc/client.hpp"
-#include "module/axis/rules.hpp"
-#include "module/m3601/words_3601.hpp"
+#include "module/m3601/rules_3601.hpp"
 #include "planner/motion_request.hpp"
 #include "planner/planner.hpp"
 #include "plc/plc_3601.hpp"
@@ -50,11 +49,12 @@
 #include "rt/edge.hpp"
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/vcd_reader.hpp"
+#include "words/words_3601.hpp"
 
 namespace {
 
 using namespace stepmod;
-namespace m = module::m3601;
+namespace m = words::m3601;
 using std::chrono::milliseconds;
 
 const char* arg(int argc, char** argv, const char* name, const char* def) {
@@ -590,7 +590,7 @@ int slip(int argc, char** argv) {
       s.vs = vs;
       s.vp = c.rate;
       const double rate = static_cast<double>(accel) *
-                          static_cast<double>(module::axis::kRules3601.accel_word_unit);
+                          static_cast<double>(module::m3601::kRules3601.accel_word_unit);
       const auto shape =
           scurve ? planner::AccelShape::kTrapezoidalS : planner::AccelShape::kConstant;
       s.accel = planner::Ramp{rate, shape};

@@ -3,15 +3,15 @@
 // header fields): stated here once, read by the daemon, the PLC-side client, the config checker
 // and the module layer.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string_view>
 
 namespace stepmod {
 
+// A module type is its number (3601, 3602, 3202), as the image header and the config file carry it.
 enum class ModuleType : std::uint32_t { k3601 = 3601, k3602 = 3602, k3202 = 3202 };
-inline constexpr std::array<ModuleType, 3> kModuleTypes = {ModuleType::k3601, ModuleType::k3602,
-                                                           ModuleType::k3202};
 
 // The backplane words of one image, sign-extended to 32 bits (16-bit modules use the low 16 bits
 // of each value; ipc/ truncates and sign-extends at the shared-memory boundary).
@@ -29,14 +29,24 @@ struct ModuleShape {
   unsigned input_words;   // module -> PLC
 };
 
+// The image shape of every module type: the ground columns of its registry row
+// (registry/module_registry.cpp), here because ipc/, plc/ and the config checker need them and
+// sit below the registry. The one place a module's shape is written down.
+inline constexpr std::array<ModuleShape, 3> kModuleShapes = {{
+    {ModuleType::k3601, 1, 2, 8, 8},
+    {ModuleType::k3602, 2, 2, 16, 16},
+    {ModuleType::k3202, 2, 4, 16, 16},
+}};
+
+inline constexpr std::array<ModuleType, kModuleShapes.size()> kModuleTypes = [] {
+  std::array<ModuleType, kModuleShapes.size()> types{};
+  for (std::size_t i = 0; i < types.size(); ++i) types[i] = kModuleShapes[i].type;
+  return types;
+}();
+
 constexpr ModuleShape shape_of(ModuleType t) noexcept {
-  switch (t) {
-    case ModuleType::k3601:
-      return {t, 1, 2, 8, 8};
-    case ModuleType::k3602:
-      return {t, 2, 2, 16, 16};
-    case ModuleType::k3202:
-      return {t, 2, 4, 16, 16};
+  for (const ModuleShape& s : kModuleShapes) {
+    if (s.type == t) return s;
   }
   return {t, 0, 0, 0, 0};
 }
@@ -48,11 +58,16 @@ constexpr std::optional<ModuleType> module_type_from_number(std::uint32_t n) noe
   }
   return std::nullopt;
 }
+// The name of a type is its number in decimal ("3601").
 constexpr std::optional<ModuleType> module_type_from_name(std::string_view s) noexcept {
-  if (s == "3601") return ModuleType::k3601;
-  if (s == "3602") return ModuleType::k3602;
-  if (s == "3202") return ModuleType::k3202;
-  return std::nullopt;
+  if (s.empty() || s.size() > 9) return std::nullopt;
+  std::uint32_t n = 0;
+  for (char c : s) {
+    if (c < '0' || c > '9') return std::nullopt;
+    n = n * 10 + static_cast<std::uint32_t>(c - '0');
+  }
+  if (s.front() == '0') return std::nullopt;
+  return module_type_from_number(n);
 }
 
 }  // namespace stepmod

@@ -65,9 +65,6 @@ class Personality {
   virtual DriveState drive_state(unsigned axis) const noexcept = 0;
 };
 
-// Creates the personality for `type`. `backend` gives input levels and the pulse format;
-// `axes` has one MotionPort per axis of the module.
-std::unique_ptr<Personality> make_personality(ModuleType type, gpio::Backend& backend,
-                                              std::span<planner::MotionPort* const> axes);
+// The personality of each module type is made by its registry row (registry/module_registry.hpp).
 
 }  // namespace stepmod::module

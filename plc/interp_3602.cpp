@@ -2,15 +2,15 @@
 
 #include <string>
 
-#include "module/m3602/words_3602.hpp"
 #include "plc/bit_names.hpp"
 #include "plc/status_3602.hpp"
 #include "plc/words_3602.hpp"
+#include "words/words_3602.hpp"
 
 namespace stepmod::plc {
 
-namespace m = module::m3602;
-namespace iw = module::m3602::interp_word;
+namespace m = words::m3602;
+namespace iw = words::m3602::interp_word;
 
 namespace {
 constexpr std::uint16_t kCommandErrors =

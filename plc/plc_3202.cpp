@@ -2,12 +2,12 @@
 
 #include <stdexcept>
 
-#include "module/m3202/words_3202.hpp"
 #include "plc/bit_names.hpp"
+#include "words/words_3202.hpp"
 
 namespace stepmod::plc {
 
-namespace m = module::m3202;
+namespace m = words::m3202;
 using m3202::ChannelWords;
 
 namespace {

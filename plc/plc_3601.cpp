@@ -2,12 +2,12 @@
 
 #include <stdexcept>
 
-#include "module/m3601/words_3601.hpp"
 #include "plc/bit_names.hpp"
+#include "words/words_3601.hpp"
 
 namespace stepmod::plc {
 
-namespace m = module::m3601;
+namespace m = words::m3601;
 using m3601::accel_bits;
 using m3601::put_profile;
 using m3601::put_split;

@@ -4,12 +4,12 @@
 #include <string>
 #include <vector>
 
-#include "module/m3602/words_3602.hpp"
 #include "plc/bit_names.hpp"
+#include "words/words_3602.hpp"
 
 namespace stepmod::plc {
 
-namespace m = module::m3602;
+namespace m = words::m3602;
 
 namespace {
 constexpr ErrorBitSet kErrorBits{

@@ -1,10 +1,10 @@
 #pragma once
 // A 3202 channel's input DINTs decoded for a PLC program (digest 5.6, 5.7): the status word and
-// the native 32-bit registers. Bit constants: module/m3202/words_3202.hpp.
+// the native 32-bit registers. Bit constants: words/words_3202.hpp.
 #include <cstdint>
 
 #include "core/module_shape.hpp"
-#include "module/m3202/words_3202.hpp"
+#include "words/words_3202.hpp"
 
 namespace stepmod::plc::m3202 {
 
@@ -17,14 +17,14 @@ struct Status {
   bool has(std::uint32_t bit) const { return (word & bit) != 0; }
   // "Pulses being output" (Moving CW or CCW).
   bool moving() const {
-    return has(module::m3202::status_bit::kMovingCw | module::m3202::status_bit::kMovingCcw);
+    return has(words::m3202::status_bit::kMovingCw | words::m3202::status_bit::kMovingCcw);
   }
 };
 
 // `channel`: 0 (the manual's channel 1, DINTs 0..7) or 1 (channel 2, DINTs 8..15).
 inline Status decode_status(const ImageWords& in, unsigned channel) {
-  namespace iw = module::m3202::in_word;
-  const unsigned b = module::m3202::channel_base(channel);
+  namespace iw = words::m3202::in_word;
+  const unsigned b = words::m3202::channel_base(channel);
   Status s;
   s.word = static_cast<std::uint32_t>(in.w[b + iw::kStatus]);
   s.position = in.w[b + iw::kPosition];

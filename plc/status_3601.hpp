@@ -1,11 +1,10 @@
 #pragma once
 // A 3601's input words decoded for a PLC program (digest 3.9-3.12): status bits and the
-// decimal-split registers. Bit constants: module/m3601/words_3601.hpp.
+// decimal-split registers. Bit constants: words/words_3601.hpp.
 #include <cstdint>
 
 #include "core/module_shape.hpp"
-#include "ipc/codec.hpp"
-#include "module/m3601/words_3601.hpp"
+#include "words/words_3601.hpp"
 
 namespace stepmod::plc::m3601 {
 
@@ -20,13 +19,13 @@ struct Status {
   bool has_lsw(std::uint16_t lsw_bit) const { return (lsw & lsw_bit) != 0; }
   // "Pulses being output" (Moving CW or CCW).
   bool moving() const {
-    return has(module::m3601::status_msw::kMovingCw | module::m3601::status_msw::kMovingCcw);
+    return has(words::m3601::status_msw::kMovingCw | words::m3601::status_msw::kMovingCcw);
   }
 };
 
 inline Status decode_status(const ImageWords& in) {
-  namespace iw = module::m3601::in_word;
-  using ipc::codec::decode_3601_report;
+  namespace iw = words::m3601::in_word;
+  using words::decode_3601_report;
   Status s;
   s.msw = static_cast<std::uint16_t>(in.w[iw::kStatusMsw]);
   s.lsw = static_cast<std::uint16_t>(in.w[iw::kStatusLsw]);

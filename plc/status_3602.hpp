@@ -1,11 +1,10 @@
 #pragma once
 // A 3602's input words decoded for a PLC program, per axis (digest 4.4, 4.9-4.11): status bits
-// and the binary-split registers. Bit constants: module/m3602/words_3602.hpp.
+// and the binary-split registers. Bit constants: words/words_3602.hpp.
 #include <cstdint>
 
 #include "core/module_shape.hpp"
-#include "ipc/codec.hpp"
-#include "module/m3602/words_3602.hpp"
+#include "words/words_3602.hpp"
 
 namespace stepmod::plc::m3602 {
 
@@ -17,15 +16,15 @@ struct Status {
   bool has(std::uint16_t msw_bit) const { return (msw & msw_bit) != 0; }
   bool has_lsw(std::uint16_t lsw_bit) const { return (lsw & lsw_bit) != 0; }
   bool moving() const {
-    return has(module::m3602::status_msw::kMovingCw | module::m3602::status_msw::kMovingCcw);
+    return has(words::m3602::status_msw::kMovingCw | words::m3602::status_msw::kMovingCcw);
   }
 };
 
 // The status of `axis` (0 or 1) in the input image.
 inline Status decode_status(const ImageWords& in, unsigned axis) {
-  namespace iw = module::m3602::in_word;
-  const unsigned b = module::m3602::kWordsPerAxis * axis;
-  using ipc::codec::decode_3602;
+  namespace iw = words::m3602::in_word;
+  const unsigned b = words::m3602::kWordsPerAxis * axis;
+  using words::decode_3602;
   Status s;
   s.msw = static_cast<std::uint16_t>(in.w[b + iw::kStatusMsw]);
   s.lsw = static_cast<std::uint16_t>(in.w[b + iw::kStatusLsw]);

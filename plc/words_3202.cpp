@@ -1,10 +1,10 @@
 #include "plc/words_3202.hpp"
 
-#include "module/m3202/words_3202.hpp"
+#include "words/words_3202.hpp"
 
 namespace stepmod::plc::m3202 {
 
-namespace mw = module::m3202;
+namespace mw = words::m3202;
 
 ChannelWords command_words(std::uint32_t command, std::int32_t target, std::int32_t speed,
                            std::int32_t accel, std::int32_t decel) {

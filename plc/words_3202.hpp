@@ -1,7 +1,7 @@
 #pragma once
 // The DINTs a PLC program writes to one 3202 channel (digest 5.1, 5.4), as pure functions: no
 // I/O, so the tests can compare them word for word. Bit positions come from the module's table
-// (module/m3202/words_3202.hpp); numbers are native DINTs (digest 2.3).
+// (words/words_3202.hpp); numbers are native DINTs (digest 2.3).
 #include <array>
 #include <cstdint>
 

@@ -1,14 +1,13 @@
 #include "plc/words_3601.hpp"
 
-#include "ipc/codec.hpp"
-#include "module/m3601/words_3601.hpp"
+#include "words/words_3601.hpp"
 
 namespace stepmod::plc::m3601 {
 
-namespace m = module::m3601;
+namespace m = words::m3601;
 
 void put_split(ImageWords& w, unsigned msw_index, std::int64_t value) {
-  const ipc::codec::WordPair p = ipc::codec::encode_3601(value);
+  const words::WordPair p = words::encode_3601(value);
   w.w[msw_index] = p.msw;
   w.w[msw_index + 1] = p.lsw;
 }

@@ -1,7 +1,7 @@
 #pragma once
 // The words a PLC program writes to a 3601 (digest 3.1, 3.5, 3.8), as pure functions: no I/O,
 // so the tests can compare them word for word. Bit positions come from the module's table
-// (module/m3601/words_3601.hpp); numbers use the decimal split (digest 2.1).
+// (words/words_3601.hpp); numbers use the decimal split (digest 2.1).
 #include <cstdint>
 #include <vector>
 

@@ -1,18 +1,17 @@
 #include "plc/words_3602.hpp"
 
-#include "ipc/codec.hpp"
-#include "module/m3602/words_3602.hpp"
+#include "words/words_3602.hpp"
 
 namespace stepmod::plc::m3602 {
 
-namespace m = module::m3602;
+namespace m = words::m3602;
 
 unsigned base(unsigned axis) {
   return m::kWordsPerAxis * axis;
 }
 
 void put_split(ImageWords& w, unsigned b, unsigned index, std::int32_t value) {
-  const auto p = ipc::codec::encode_3602(value);
+  const auto p = words::encode_3602(value);
   w.w[b + index] = p.msw;
   w.w[b + index + 1] = p.lsw;
 }
@@ -77,8 +76,8 @@ std::vector<AxisWords> blend_blocks(const BlendProfile& b) {
   blocks.push_back(first);
   for (const BlendSegment& s : b.segments) {
     AxisWords blk{};
-    const auto length = ipc::codec::encode_3602(s.length);
-    const auto speed = ipc::codec::encode_3602(s.speed);
+    const auto length = words::encode_3602(s.length);
+    const auto speed = words::encode_3602(s.speed);
     blk[m::out_word::kTargetMsw] = length.msw;
     blk[m::out_word::kTargetLsw] = length.lsw;
     blk[m::out_word::kSpeedMsw] = speed.msw;

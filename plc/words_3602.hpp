@@ -1,7 +1,7 @@
 #pragma once
 // The words a PLC program writes to one axis of a 3602 (digest 4.1, 4.5), as pure functions: no
 // I/O, so the tests can compare them word for word. Bit positions come from the module's table
-// (module/m3602/words_3602.hpp); 32-bit numbers use the binary split (digest 2.2). Each axis owns
+// (words/words_3602.hpp); 32-bit numbers use the binary split (digest 2.2). Each axis owns
 // eight of the sixteen output words, from b = 8 * axis (axis 0 = the manual's axis 1).
 #include <array>
 #include <cstdint>

@@ -1,12 +1,11 @@
 // stepmodctl's 3202 dialect: two channels (--channel 1|2), native DINTs (digest 2.3) and rates
 // in steps/s^2 (A31): the options are passed as given and the module judges them. The blend
 // profile is a 52-DINT message through the image's mailbox (INTERFACE.md 3).
-#include "module/m3202/blend_message_3202.hpp"
-#include "module/m3202/words_3202.hpp"
 #include "plc/plc_3202.hpp"
 #include "tools/ctl_args.hpp"
 #include "tools/ctl_blend.hpp"
 #include "tools/ctl_dialects.hpp"
+#include "words/words_3202.hpp"
 
 namespace stepmod::tools::ctl {
 
@@ -16,7 +15,7 @@ constexpr Limits kDint{INT32_MIN, INT32_MAX, "the 3202's DINT"};
 constexpr ProfileLimits kProfile{kDint, kDint};
 
 std::uint32_t configuration_bits(const ConfigureArgs& a) {
-  namespace cb = module::m3202::cfg_bit;
+  namespace cb = words::m3202::cfg_bit;
   if (a.cw_estop || a.ccw_estop || !a.homing_timeout.empty()) {
     throw UsageError("--cw-estop, --ccw-estop and --homing-timeout are the 3602's");
   }
@@ -50,7 +49,7 @@ plc::Outcome program_blend(const Command& c, plc::Plc3202& plc, ipc::Client& cli
     o.ok = false;
     o.timed_out = true;
     o.message = "blend: the module did not take the message (is stepmodd running?)";
-  } else if (*result != module::m3202::kMessageAccepted) {
+  } else if (*result != words::m3202::kMessageAccepted) {
     o.ok = false;
     o.message = "blend: message refused (result " + std::to_string(*result) +
                 "; see Invalid Profile / Command Error)";

@@ -1,10 +1,10 @@
 // stepmodctl's 3601 dialect: one axis, numbers as the decimal split of two 16-bit words (digest
 // 2.1), accelerations in steps/ms/s in one 16-bit word each.
-#include "module/m3601/words_3601.hpp"
 #include "plc/plc_3601.hpp"
 #include "tools/ctl_args.hpp"
 #include "tools/ctl_blend.hpp"
 #include "tools/ctl_dialects.hpp"
+#include "words/words_3601.hpp"
 
 namespace stepmod::tools::ctl {
 
@@ -19,7 +19,7 @@ constexpr Limits kWord{INT16_MIN, INT16_MAX, "the 3601's 16-bit word"};
 constexpr ProfileLimits kProfile{kSplit, kWord};
 
 std::uint16_t configuration_msw(const ConfigureArgs& a) {
-  namespace cm = module::m3601::cfg_msw;
+  namespace cm = words::m3601::cfg_msw;
   if (a.cw_estop || a.ccw_estop || a.disable || !a.homing_timeout.empty()) {
     throw UsageError("--cw-estop, --ccw-estop, --disable and --homing-timeout are the 3602's");
   }

@@ -2,12 +2,12 @@
 // words (digest 2.2: every int32 fits, the module refuses what is out of its ranges),
 // accelerations in steps/ms/s in one 16-bit word each. Interpolated moves (`path`) are
 // tools/ctl_path_3602.cpp's.
-#include "module/m3602/words_3602.hpp"
 #include "plc/plc_3602.hpp"
 #include "tools/ctl_args.hpp"
 #include "tools/ctl_blend.hpp"
 #include "tools/ctl_dialects.hpp"
 #include "tools/ctl_path_3602.hpp"
+#include "words/words_3602.hpp"
 
 namespace stepmod::tools::ctl {
 
@@ -18,7 +18,7 @@ constexpr Limits kWord{INT16_MIN, INT16_MAX, "the 3602's 16-bit word"};
 constexpr ProfileLimits kProfile{kSplit, kWord};
 
 std::uint16_t configuration_msw(const ConfigureArgs& a) {
-  namespace cm = module::m3602::cfg_msw;
+  namespace cm = words::m3602::cfg_msw;
   if (a.estop || a.encoder || a.diagnostic || a.marker) {
     throw UsageError(
         "the 3602 has no E-stop terminal, encoder or marker homing (use --cw-estop / "

@@ -38,7 +38,17 @@ struct AxisSummary {
   std::string error_names() const;
 };
 
+// Every axis/channel of a module of `type` (its registry row's summarize).
 std::vector<AxisSummary> summarize(ModuleType type, const ImageWords& in);
+
+// A status word's bits, whichever module: each module's summary (tools/ctl_status_XXXX.cpp) fills
+// one from its words' constants.
+struct StatusBits {
+  std::uint32_t cfg_mode, cw, ccw, hold, stopped, at_home, complete;
+  std::uint32_t cfg, ce, ip, ie, hi, pi;
+};
+// The flags of one status word (blend_running and position are the module's to add).
+AxisSummary summary_from_word(std::uint32_t w, const StatusBits& b);
 
 // How a motion ended, for wait-idle and --wait: ok when it ended in Move Complete (At Home after
 // a homing; a jog: stopped without an error), else a sentence with the reason.

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "registry/module_registry.hpp"
+
 namespace stepmod::tools {
 
 Stack::Stack(const StackOptions& options, gpio::Backend& backend, SpscRing<TraceRecord>* trace)
@@ -28,7 +30,7 @@ Stack::Stack(const StackOptions& options, gpio::Backend& backend, SpscRing<Trace
     a.port = std::make_unique<planner::MotionPort>(i, *planner_, a.feedback, a.control, a.history);
     ports.push_back(a.port.get());
   }
-  personality_ = module::make_personality(options.type, backend_, ports);
+  personality_ = registry::make_personality(options.type, backend_, ports);
 }
 
 Stack::~Stack() = default;

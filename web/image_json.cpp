@@ -1,13 +1,13 @@
 #include "web/image_json.hpp"
 
-#include "module/axis/rules.hpp"
-#include "module/m3202/words_3202.hpp"
-#include "module/m3601/words_3601.hpp"
-#include "module/m3602/words_3602.hpp"
 #include "plc/bit_names.hpp"
 #include "plc/status_3202.hpp"
 #include "plc/status_3601.hpp"
 #include "plc/status_3602.hpp"
+#include "registry/module_registry.hpp"
+#include "words/words_3202.hpp"
+#include "words/words_3601.hpp"
+#include "words/words_3602.hpp"
 
 namespace stepmod::web {
 namespace {
@@ -24,18 +24,6 @@ nlohmann::json table_json(BitTable table) {
   nlohmann::json bits = nlohmann::json::array();
   for (const NamedBit& b : table) bits.push_back({{"bit", b.bit}, {"name", b.name}});
   return bits;
-}
-
-const module::axis::ModuleRules& rules_of(ModuleType type) {
-  switch (type) {
-    case ModuleType::k3601:
-      return module::axis::kRules3601;
-    case ModuleType::k3602:
-      return module::axis::kRules3602;
-    case ModuleType::k3202:
-      break;
-  }
-  return module::axis::kRules3202;
 }
 
 }  // namespace
@@ -61,15 +49,15 @@ nlohmann::json unit_json(ModuleType type, const ImageWords& in, unsigned unit) {
   nlohmann::json words = nlohmann::json::array();
   if (type == ModuleType::k3601) {
     const auto s = plc::m3601::decode_status(in);
-    words.push_back(word_json("Status Word MSW", s.msw, module::m3601::kStatusMswBits));
-    words.push_back(word_json("Status Word LSW", s.lsw, module::m3601::kStatusLswBits));
+    words.push_back(word_json("Status Word MSW", s.msw, words::m3601::kStatusMswBits));
+    words.push_back(word_json("Status Word LSW", s.lsw, words::m3601::kStatusLswBits));
   } else if (type == ModuleType::k3602) {
     const auto s = plc::m3602::decode_status(in, unit);
-    words.push_back(word_json("Status Bits MSW", s.msw, module::m3602::kStatusMswBits));
-    words.push_back(word_json("Status Bits LSW", s.lsw, module::m3602::kStatusLswBits));
+    words.push_back(word_json("Status Bits MSW", s.msw, words::m3602::kStatusMswBits));
+    words.push_back(word_json("Status Bits LSW", s.lsw, words::m3602::kStatusLswBits));
   } else {
     const auto s = plc::m3202::decode_status(in, unit);
-    words.push_back(word_json("Status", s.word, module::m3202::kStatusBits));
+    words.push_back(word_json("Status", s.word, words::m3202::kStatusBits));
   }
   const UnitRegisters r = registers_of(type, in, unit);
   return {{"unit", unit},
@@ -81,16 +69,16 @@ nlohmann::json unit_json(ModuleType type, const ImageWords& in, unsigned unit) {
 
 nlohmann::json module_json(ModuleType type) {
   const ModuleShape shape = shape_of(type);
-  const auto& r = rules_of(type);
+  const module::axis::ModuleRules& r = *registry::row_of(type).rules;
   nlohmann::json cfg;
   if (type == ModuleType::k3601) {
-    cfg = {{"msw", table_json(module::m3601::kConfigMswBits)},
-           {"lsw", table_json(module::m3601::kConfigLswBits)}};
+    cfg = {{"msw", table_json(words::m3601::kConfigMswBits)},
+           {"lsw", table_json(words::m3601::kConfigLswBits)}};
   } else if (type == ModuleType::k3602) {
-    cfg = {{"msw", table_json(module::m3602::kConfigMswBits)},
-           {"lsw", table_json(module::m3602::kConfigLswBits)}};
+    cfg = {{"msw", table_json(words::m3602::kConfigMswBits)},
+           {"lsw", table_json(words::m3602::kConfigLswBits)}};
   } else {  // one configuration DINT per channel: the page sends it whole ("bits")
-    cfg = {{"dint", table_json(module::m3202::kConfigBits)}};
+    cfg = {{"dint", table_json(words::m3202::kConfigBits)}};
   }
   // The same ramp by default on every module: 100 steps/ms/s = 100,000 steps/s^2.
   const bool per_s2 = r.accel_word_unit == 1;

@@ -4,6 +4,7 @@
 // (MODULES.md section 1 feature table, 8.0 "Genuine differences between the modules — do not
 // harmonise them", and the 6.x checklists they come from). Only numbers and yes/no facts live
 // here; how a module writes them into its words is its dialect's business (module/m3601/...).
+// The values themselves live with their modules: module/m3601/rules_3601.hpp, ...
 //
 // Shared by all three (so no field here): commands fire on a 0->1 edge (7.16); while Command
 // Error is set every command but Reset Errors is ignored, Immediate Stop included (3601-CE-L1,
@@ -73,113 +74,6 @@ struct ModuleRules {
   // at that moment (3602-IE-C1, manual Ch.9 bit 11); 3601-IE-C1 clears it whenever a move starts.
   bool input_error_kept_while_inputs_active = false;
 };
-
-inline constexpr ModuleRules kRules3601{
-    .type = ModuleType::k3601,
-    .target_min = -8'388'608,
-    .target_max = 8'388'607,
-    .speed_max = 1'000'000,
-    .starting_speed_min = 1,
-    .starting_speed_max = 1'000'000,
-    .accel_min = 1'000,  // 1 ... 2000 steps/ms/s
-    .accel_max = 2'000'000,
-    .accel_word_unit = 1'000,
-    .blend_length_max = 8'388'607,  // digest 7.10 rule 2 (3601-IP-20)
-    .blend_segment_max = 8'388'607,
-    .registration_max = 8'388'607,
-    .has_encoder = true,
-    .has_follower = true,
-    .has_registration = true,
-    .has_marker_homing = true,
-    .has_homing_timeout = false,
-    .homing_timeout_max_s = 0,
-    .has_estop_input = true,
-    .cw_ccw_inputs_configurable = false,
-    .has_disable = false,
-    .preset_clears_move_complete = false,
-    .stopped_means_idle = false,
-    .homing_needs_limit_ahead = true,
-    .homing_s_curve_sets_home_invalid = false,
-    .homing_home_with_limit_is_error = false,
-    .registration_external_always_error = true,
-    .powers_up_with_configuration_error = true,
-};
-
-inline constexpr ModuleRules kRules3602{
-    .type = ModuleType::k3602,
-    .target_min = -1'073'741'823,  // 16#C000:0001 ... 16#3FFF:FFFF
-    .target_max = 1'073'741'823,
-    .speed_max = 1'000'000,
-    .starting_speed_min = 1,
-    .starting_speed_max = 1'000'000,
-    .accel_min = 1'000,  // 1 ... 2000 steps/ms/s
-    .accel_max = 2'000'000,
-    .accel_word_unit = 1'000,
-    .blend_length_max = 1'073'741'823,
-    .blend_segment_max = 1'073'741'822,
-    .registration_max = 1'073'741'823,
-    .has_encoder = false,  // A20: no encoder register exists
-    .has_follower = false,
-    .has_registration = true,
-    .has_marker_homing = false,
-    .has_homing_timeout = true,
-    .homing_timeout_max_s = 300,
-    .has_estop_input = false,  // CW/CCW inputs may be E-stops instead
-    .cw_ccw_inputs_configurable = true,
-    .has_disable = true,
-    .preset_clears_move_complete = true,
-    .stopped_means_idle = true,
-    .homing_needs_limit_ahead = false,
-    .homing_s_curve_sets_home_invalid = true,
-    .homing_home_with_limit_is_error = true,
-    .registration_external_always_error = false,
-    .powers_up_with_configuration_error = true,
-    .input_error_kept_while_inputs_active = true,
-};
-
-inline constexpr ModuleRules kRules3202{
-    .type = ModuleType::k3202,
-    .target_min = -8'388'608,
-    .target_max = 8'388'607,
-    .speed_max = 1'000'000,
-    .starting_speed_min = 1,
-    .starting_speed_max = 1'000'000,
-    .accel_min = 1'000,  // steps/s^2 (A31 on the upper bound)
-    .accel_max = 2'000'000,
-    .accel_word_unit = 1,
-    .blend_length_max = 8'388'607,
-    .blend_segment_max = 8'388'607,
-    .registration_max = 0,  // no registration move (target must be 0 in manual moves)
-    .has_encoder = true,
-    .has_follower = false,
-    .has_registration = false,
-    .has_marker_homing = true,
-    .has_homing_timeout = false,
-    .homing_timeout_max_s = 0,
-    .has_estop_input = true,
-    .cw_ccw_inputs_configurable = false,
-    .has_disable = true,
-    .preset_clears_move_complete = false,
-    .stopped_means_idle = false,
-    .homing_needs_limit_ahead = true,
-    .homing_s_curve_sets_home_invalid = false,
-    .homing_home_with_limit_is_error = false,
-    .registration_external_always_error = true,  // no registration at all
-    .powers_up_with_configuration_error = false,
-    .hold_ignored_while_decelerating = true,
-};
-
-constexpr const ModuleRules& rules_of(ModuleType t) noexcept {
-  switch (t) {
-    case ModuleType::k3602:
-      return kRules3602;
-    case ModuleType::k3202:
-      return kRules3202;
-    case ModuleType::k3601:
-      break;
-  }
-  return kRules3601;
-}
 
 // Homing pauses (digest 7.11: every pause of the homing sequences is 2 s, on every module).
 inline constexpr Nanos kHomingPause = 2 * kNsPerSec;

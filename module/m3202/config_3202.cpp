@@ -1,8 +1,9 @@
 #include "module/m3202/config_3202.hpp"
 
-#include "module/m3202/words_3202.hpp"
+#include "words/words_3202.hpp"
 
 namespace stepmod::module::m3202 {
+using namespace words::m3202;  // this module's words: words/words_3202.hpp
 
 // kNone = 0, then the checklist in order from CFG-02 (CFG-08 is old firmware's only: skipped).
 unsigned checklist_item(ConfigFault f) noexcept {

@@ -1,18 +1,20 @@
 // The 3202's command and status DINTs <-> the shared axis' decoded command and status (3202
 // manual Ch.5 "Command Word Layout", Ch.6 "Status Word Layout"; digest 5.4-5.7).
 #include "module/m3202/dialect_3202.hpp"
+#include "module/m3202/rules_3202.hpp"
 
 #include "module/axis/rules.hpp"
-#include "module/m3202/words_3202.hpp"
+#include "words/words_3202.hpp"
 
 namespace stepmod::module::m3202 {
+using namespace words::m3202;  // this module's words: words/words_3202.hpp
 
 namespace {
 
 using axis::CommandKind;
 
 // A31: the 3202's accel/decel DINTs are steps/s^2 already (unit 1).
-constexpr std::int64_t kAccelUnit = axis::kRules3202.accel_word_unit;
+constexpr std::int64_t kAccelUnit = kRules3202.accel_word_unit;
 
 struct CommandBit {
   std::uint32_t bit;

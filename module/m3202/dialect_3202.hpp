@@ -8,8 +8,10 @@
 #include "core/module_shape.hpp"
 #include "module/axis/axis_command.hpp"
 #include "module/axis/axis_status.hpp"
+#include "words/words_3202.hpp"
 
 namespace stepmod::module::m3202 {
+using namespace words::m3202;  // this module's words: words/words_3202.hpp
 
 // Command mode output DINTs of `channel` (digest 5.4/5.5), word-level rules included.
 axis::AxisCommand command_from_words(const ImageWords& out, unsigned channel) noexcept;

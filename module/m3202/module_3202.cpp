@@ -1,17 +1,19 @@
 #include "module/m3202/module_3202.hpp"
+#include "module/m3202/rules_3202.hpp"
 
 #include "module/m3202/blend_message_3202.hpp"
 #include "module/m3202/config_3202.hpp"
-#include "module/m3202/words_3202.hpp"
+#include "words/words_3202.hpp"
 
 namespace stepmod::module::m3202 {
+using namespace words::m3202;  // this module's words: words/words_3202.hpp
 
 namespace {
 constexpr ModuleShape kShape = shape_of(ModuleType::k3202);
 }  // namespace
 
 Module3202::Channel::Channel(gpio::Backend& backend, planner::MotionPort& motion)
-    : axis(axis::kRules3202, backend, motion) {}
+    : axis(kRules3202, backend, motion) {}
 
 Module3202::Module3202(gpio::Backend& backend, planner::MotionPort& ch1, planner::MotionPort& ch2)
     : channels_{Channel(backend, ch1), Channel(backend, ch2)} {}

@@ -1,9 +1,9 @@
 #include "module/m3601/config_3601.hpp"
 
-#include "ipc/codec.hpp"
-#include "module/m3601/words_3601.hpp"
+#include "words/words_3601.hpp"
 
 namespace stepmod::module::m3601 {
+using namespace words::m3601;  // this module's words: words/words_3601.hpp
 
 // kNone = 0, then the checklist in order from CFG-02.
 unsigned checklist_item(ConfigFault f) noexcept {
@@ -72,7 +72,7 @@ ConfigCheck check_config(const ImageWords& out) noexcept {
   // #7 before #6: an LSW outside 0..999 makes the value meaningless, whatever it sums to.
   if (vs_lsw < 0 || vs_lsw > 999) return fail(ConfigFault::kStartingSpeedLswRange);
   // A negative MSW makes the speed negative: below 1.
-  const std::optional<std::int32_t> vs = ipc::codec::decode_3601_unsigned(vs_msw, vs_lsw);
+  const std::optional<std::int32_t> vs = words::decode_3601_unsigned(vs_msw, vs_lsw);
   if (!vs || *vs < 1 || *vs > 1'000'000) return fail(ConfigFault::kStartingSpeedRange);
   if ((msw & cfg_msw::kReserved) || (lsw & cfg_lsw::kReserved)) {
     return fail(ConfigFault::kReservedBits);

@@ -1,20 +1,21 @@
 // The 3601's command and status words <-> the shared axis' decoded command and status (3601
 // manual Ch.5 "Command Mode Output Data", Ch.6 "Input Data"; digest 3.5-3.11).
 #include "module/m3601/dialect_3601.hpp"
+#include "module/m3601/rules_3601.hpp"
 
-#include "ipc/codec.hpp"
 #include "module/axis/rules.hpp"
 #include "module/blend_types_16bit.hpp"
-#include "module/m3601/words_3601.hpp"
+#include "words/words_3601.hpp"
 
 namespace stepmod::module::m3601 {
+using namespace words::m3601;  // this module's words: words/words_3601.hpp
 
 namespace {
 
 using axis::CommandKind;
 
 // Accel/decel words are steps/ms/s; the shared code works in steps/s^2 (digest 7.1).
-constexpr std::int64_t kAccelUnit = axis::kRules3601.accel_word_unit;
+constexpr std::int64_t kAccelUnit = kRules3601.accel_word_unit;
 
 // Command MSW bits 0..14 and the command each one asks for (digest 3.6). Bit 14 is reserved:
 // A33, set with or without a command it is a Command Error.
@@ -127,9 +128,8 @@ axis::AxisCommand command_from_words(const ImageWords& out) noexcept {
   }
   // Words 2-3: target / preset value / registration count / distance / blend segment length
   // (decimal split, LSW -999..999, both words of one sign); words 4-5: speed (never negative).
-  c.target = ipc::codec::decode_3601(out.w[out_word::kTargetMsw], out.w[out_word::kTargetLsw]);
-  c.speed =
-      ipc::codec::decode_3601_unsigned(out.w[out_word::kSpeedMsw], out.w[out_word::kSpeedLsw]);
+  c.target = words::decode_3601(out.w[out_word::kTargetMsw], out.w[out_word::kTargetLsw]);
+  c.speed = words::decode_3601_unsigned(out.w[out_word::kSpeedMsw], out.w[out_word::kSpeedLsw]);
   c.accel = word(out, out_word::kAccel) * kAccelUnit;
   c.decel = word(out, out_word::kDecel) * kAccelUnit;
   c.shape = shape_from_lsw(lsw);
@@ -181,7 +181,7 @@ void status_to_words(const axis::AxisStatus& s, ImageWords& in) noexcept {
   in.w[in_word::kStatusMsw] = static_cast<std::int16_t>(msw);
   in.w[in_word::kStatusLsw] = static_cast<std::int16_t>(lsw);
   const auto put = [&in](unsigned msw_index, std::int64_t value) {
-    const auto split = ipc::codec::encode_3601(value);
+    const auto split = words::encode_3601(value);
     in.w[msw_index] = split.msw;
     in.w[msw_index + 1] = split.lsw;
   };

@@ -10,8 +10,10 @@
 #include "core/module_shape.hpp"
 #include "module/axis/axis_command.hpp"
 #include "module/axis/axis_status.hpp"
+#include "words/words_3601.hpp"
 
 namespace stepmod::module::m3601 {
+using namespace words::m3601;  // this module's words: words/words_3601.hpp
 
 // Command mode output words 0..7 (digest 3.5-3.8), word-level rules included: a word or the
 // command LSW that must be 0 for the one command set (3601-CE-09, CE-15, CE-21) or for the

@@ -1,16 +1,18 @@
 #include "module/m3601/module_3601.hpp"
+#include "module/m3601/rules_3601.hpp"
 
 #include "module/m3601/config_3601.hpp"
-#include "module/m3601/words_3601.hpp"
+#include "words/words_3601.hpp"
 
 namespace stepmod::module::m3601 {
+using namespace words::m3601;  // this module's words: words/words_3601.hpp
 
 namespace {
 constexpr ModuleShape kShape = shape_of(ModuleType::k3601);
 }  // namespace
 
 Module3601::Module3601(gpio::Backend& backend, planner::MotionPort& motion)
-    : axis_(axis::kRules3601, backend, motion) {}
+    : axis_(kRules3601, backend, motion) {}
 
 const ModuleShape& Module3601::shape() const noexcept {
   return kShape;

@@ -1,10 +1,11 @@
 #include "module/m3602/config_3602.hpp"
+#include "module/m3602/rules_3602.hpp"
 
-#include "ipc/codec.hpp"
 #include "module/axis/rules.hpp"
-#include "module/m3602/words_3602.hpp"
+#include "words/words_3602.hpp"
 
 namespace stepmod::module::m3602 {
+using namespace words::m3602;  // this module's words: words/words_3602.hpp
 
 namespace {
 
@@ -60,10 +61,10 @@ ConfigFault check_config(const ImageWords& out, Config3602& decoded) noexcept {
   const auto msw = static_cast<std::uint16_t>(out.w[out_word::kMsw]);
   const auto lsw = static_cast<std::uint16_t>(out.w[out_word::kLsw]);
   // Binary split (digest 2.2): a set MSW sign bit makes the value negative, hence below 1.
-  const std::int32_t vs = ipc::codec::decode_3602(out.w[out_word::kStartingSpeedMsw],
-                                                  out.w[out_word::kStartingSpeedLsw]);
+  const std::int32_t vs =
+      words::decode_3602(out.w[out_word::kStartingSpeedMsw], out.w[out_word::kStartingSpeedLsw]);
   const auto timeout = static_cast<std::int16_t>(out.w[out_word::kHomingTimeout]);
-  const axis::ModuleRules& r = axis::kRules3602;
+  const axis::ModuleRules& r = kRules3602;
 
   // A19: a configuration that disables the axis is accepted without further checks (the axis
   // ignores commands and stays idle; CfgE = 0, 3602-CFG-N2).

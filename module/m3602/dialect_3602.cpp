@@ -1,21 +1,22 @@
 // The 3602's command and status words of one axis <-> the shared axis' decoded command and status
 // (3602 manual Ch.9 "Command Mode Data Format", Tables 9.2-9.22, 9.27; digest 4.5-4.11).
 #include "module/m3602/dialect_3602.hpp"
+#include "module/m3602/rules_3602.hpp"
 
 #include "core/lines.hpp"
-#include "ipc/codec.hpp"
 #include "module/axis/rules.hpp"
 #include "module/blend_types_16bit.hpp"
-#include "module/m3602/words_3602.hpp"
+#include "words/words_3602.hpp"
 
 namespace stepmod::module::m3602 {
+using namespace words::m3602;  // this module's words: words/words_3602.hpp
 
 namespace {
 
 using axis::CommandKind;
 
 // Accel/decel words are steps/ms/s; the shared code works in steps/s^2 (digest 7.1).
-constexpr std::int64_t kAccelUnit = axis::kRules3602.accel_word_unit;
+constexpr std::int64_t kAccelUnit = kRules3602.accel_word_unit;
 
 struct CommandBit {
   std::uint16_t bit;
@@ -44,7 +45,7 @@ std::int32_t word(const ImageWords& out, unsigned i) noexcept {
   return static_cast<std::int16_t>(out.w[i]);
 }
 std::int32_t split(const ImageWords& out, unsigned msw_index) noexcept {
-  return ipc::codec::decode_3602(out.w[msw_index], out.w[msw_index + 1]);
+  return words::decode_3602(out.w[msw_index], out.w[msw_index + 1]);
 }
 bool words_zero(const ImageWords& out, unsigned first, unsigned last) noexcept {
   for (unsigned w = first; w <= last; ++w) {
@@ -151,7 +152,7 @@ constexpr MethodPattern kMethodPatterns[] = {
 
 // Every coordinate of the block: +-1,073,741,823 (digest 4.8, the 3602's target range).
 bool coordinate_in_range(std::int32_t v) noexcept {
-  return v >= axis::kRules3602.target_min && v <= axis::kRules3602.target_max;
+  return v >= kRules3602.target_min && v <= kRules3602.target_max;
 }
 
 InterpolationFault interpolation_fault(const ImageWords& out, const InterpolatedCommand& c,
@@ -283,7 +284,7 @@ void status_to_words(const axis::AxisStatus& s, const StatusExtras& x, ImageWord
   in.w[in_word::kStatusMsw] = static_cast<std::int16_t>(msw);
   in.w[in_word::kStatusLsw] = static_cast<std::int16_t>(lsw);
   const auto put = [&in](unsigned msw_index, std::int64_t value) {
-    const auto pair = ipc::codec::encode_3602(wrap_to_int32(value));
+    const auto pair = words::encode_3602(wrap_to_int32(value));
     in.w[msw_index] = pair.msw;
     in.w[msw_index + 1] = pair.lsw;
   };

@@ -10,8 +10,10 @@
 #include "module/axis/axis_command.hpp"
 #include "module/axis/axis_status.hpp"
 #include "module/m3602/interpolated_command.hpp"
+#include "words/words_3602.hpp"
 
 namespace stepmod::module::m3602 {
+using namespace words::m3602;  // this module's words: words/words_3602.hpp
 
 // Command mode output words of one axis (digest 4.5-4.7), word-level rules included: reserved
 // words or LSW bits that must be 0 for the one command set (3602-CE-10), any command with

@@ -1,6 +1,7 @@
 // The 3602's interpolated move: acceptance, start, the two axes kept together, the end (3602
 // manual Ch.3 "Interpolated Move Profiles", Ch.9 Tables 9.9, 9.23-9.26; digest 7.14, 6.2).
 #include "module/m3602/interpolated_move.hpp"
+#include "module/m3602/rules_3602.hpp"
 
 #include <cmath>
 
@@ -108,10 +109,10 @@ void InterpolatedMove::command(const InterpolatedCommand& c) {
     return;
   }
   // The vector profile: 3602-CE-05 / IP-02 ranges, 3602-CE-06 / IP-01 Vp >= Vs of axis 1 (A37).
-  const axis::ModuleRules& rules = axis::kRules3602;
+  const axis::ModuleRules& rules = kRules3602;
   const std::int32_t vs = x_.config().starting_speed;
   const auto rate_ok = [](std::int64_t r) {
-    return r >= axis::kRules3602.accel_min && r <= axis::kRules3602.accel_max;
+    return r >= kRules3602.accel_min && r <= kRules3602.accel_max;
   };
   if (c.speed < 1 || c.speed > rules.speed_max || c.speed < vs || !rate_ok(c.accel) ||
       !rate_ok(c.decel)) {

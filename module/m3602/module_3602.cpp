@@ -1,10 +1,12 @@
 #include "module/m3602/module_3602.hpp"
+#include "module/m3602/rules_3602.hpp"
 
 #include "module/m3602/config_3602.hpp"
 #include "module/m3602/dialect_3602.hpp"
-#include "module/m3602/words_3602.hpp"
+#include "words/words_3602.hpp"
 
 namespace stepmod::module::m3602 {
+using namespace words::m3602;  // this module's words: words/words_3602.hpp
 
 namespace {
 constexpr ModuleShape kShape = shape_of(ModuleType::k3602);
@@ -21,7 +23,7 @@ void put_axis_words(const ImageWords& w, unsigned axis, ImageWords& image) noexc
 }  // namespace
 
 Module3602::Channel::Channel(gpio::Backend& backend, planner::MotionPort& m)
-    : motion(m), axis(axis::kRules3602, backend, m) {}
+    : motion(m), axis(kRules3602, backend, m) {}
 
 void Module3602::Channel::set_gpo(bool level) {
   if (level == gpo) return;

@@ -9,18 +9,17 @@
 
 #include "ipc/client.hpp"
 #include "ipc/sim_panel.hpp"
-#include "module/m3202/blend_message_3202.hpp"
-#include "module/m3202/words_3202.hpp"
 #include "plc/plc_3202.hpp"
 #include "plc/shm_port.hpp"
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/sim_config.hpp"
 #include "tests/support/vcd_reader.hpp"
+#include "words/words_3202.hpp"
 
 namespace stepmod::testing {
 namespace {
 
-namespace m = module::m3202;
+namespace m = words::m3202;
 namespace sb = m::status_bit;
 using plc::m3202::decode_status;
 using std::chrono::milliseconds;

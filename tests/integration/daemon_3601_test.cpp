@@ -10,17 +10,17 @@
 
 #include "ipc/client.hpp"
 #include "ipc/sim_panel.hpp"
-#include "module/m3601/words_3601.hpp"
 #include "plc/plc_3601.hpp"
 #include "plc/shm_port.hpp"
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/sim_config.hpp"
 #include "tests/support/vcd_reader.hpp"
+#include "words/words_3601.hpp"
 
 namespace stepmod::testing {
 namespace {
 
-namespace m = module::m3601;
+namespace m = words::m3601;
 using namespace m::status_msw;
 namespace cmd = m::cmd_msw;
 using std::chrono::milliseconds;

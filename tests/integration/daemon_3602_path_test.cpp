@@ -25,7 +25,6 @@
 #include <vector>
 
 #include "ipc/client.hpp"
-#include "module/m3602/words_3602.hpp"
 #include "plc/interp_3602.hpp"
 #include "plc/plc_3602.hpp"
 #include "plc/shm_port.hpp"
@@ -34,11 +33,12 @@
 #include "tests/support/sim_config.hpp"
 #include "tests/support/vcd_path.hpp"
 #include "tests/support/vcd_reader.hpp"
+#include "words/words_3602.hpp"
 
 namespace stepmod::testing {
 namespace {
 
-namespace m = module::m3602;
+namespace m = words::m3602;
 namespace pt = planner::test;
 using planner::PathShape;
 using planner::PathSpec;

@@ -15,17 +15,17 @@
 #include "core/lines.hpp"
 #include "ipc/client.hpp"
 #include "ipc/sim_panel.hpp"
-#include "module/m3602/words_3602.hpp"
 #include "plc/plc_3602.hpp"
 #include "plc/shm_port.hpp"
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/sim_config.hpp"
 #include "tests/support/vcd_reader.hpp"
+#include "words/words_3602.hpp"
 
 namespace stepmod::testing {
 namespace {
 
-namespace m = module::m3602;
+namespace m = words::m3602;
 using namespace m::status_msw;
 using std::chrono::milliseconds;
 

@@ -17,7 +17,7 @@
 namespace stepmod::testing {
 namespace {
 
-namespace m = module::m3601;
+namespace m = words::m3601;
 namespace cmd = m::cmd_msw;
 using std::chrono::milliseconds;
 

@@ -26,16 +26,15 @@
 #include <vector>
 
 #include "ipc/client.hpp"
-#include "ipc/codec.hpp"
 #include "ipc/sim_panel.hpp"
-#include "module/m3601/words_3601.hpp"
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/sim_config.hpp"
+#include "words/words_3601.hpp"
 
 namespace stepmod::testing {
 namespace {
 
-namespace m = module::m3601;
+namespace m = words::m3601;
 using std::chrono::milliseconds;
 using Clock = std::chrono::steady_clock;
 
@@ -201,7 +200,7 @@ class Mbpoll {
 };
 
 std::vector<int> split3601(std::int32_t v) {
-  const auto p = ipc::codec::encode_3601(v);
+  const auto p = words::encode_3601(v);
   return {p.msw, p.lsw};
 }
 
@@ -252,9 +251,9 @@ TEST_F(DaemonModbus, MbpollConfiguresMovesAndTheAxisStopsWhenItGoesSilent) {
       held))
       << "status " << std::hex << in[0] << "\n"
       << daemon_->log();
-  EXPECT_EQ(ipc::codec::decode_3601_report(static_cast<std::int16_t>(in[2]),
-                                           static_cast<std::int16_t>(in[3])),
-            start_pos + 2500);
+  EXPECT_EQ(
+      words::decode_3601_report(static_cast<std::int16_t>(in[2]), static_cast<std::int16_t>(in[3])),
+      start_pos + 2500);
   EXPECT_EQ(motor(), start_pos + 2500);
 
   // A long move kept alive by the writes beyond the timeout, then silence.

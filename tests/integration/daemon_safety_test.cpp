@@ -20,7 +20,7 @@
 namespace stepmod::testing {
 namespace {
 
-namespace m = module::m3601;
+namespace m = words::m3601;
 using namespace m::status_msw;
 namespace cmd = m::cmd_msw;
 using std::chrono::milliseconds;

@@ -26,7 +26,7 @@ namespace stepmod::testing {
 namespace {
 
 namespace fs = std::filesystem;
-namespace m = module::m3601;
+namespace m = words::m3601;
 using std::chrono::milliseconds;
 
 constexpr const char* kSim = "cw_limit_at = 10000000\nccw_limit_at = -10000000\n";

@@ -13,13 +13,13 @@
 #include <thread>
 
 #include "ipc/client.hpp"
-#include "module/m3202/words_3202.hpp"
-#include "module/m3602/words_3602.hpp"
 #include "plc/status_3202.hpp"
 #include "plc/status_3602.hpp"
 #include "tests/support/ctl_run.hpp"
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/vcd_reader.hpp"
+#include "words/words_3202.hpp"
+#include "words/words_3602.hpp"
 
 namespace stepmod::testing {
 namespace {
@@ -74,7 +74,7 @@ class CtlDaemon : public ::testing::Test {
 
 // ---- 3602 --------------------------------------------------------------------------------------
 
-namespace m2 = module::m3602;
+namespace m2 = words::m3602;
 
 class Ctl3602 : public CtlDaemon {
  protected:

@@ -1,12 +1,14 @@
 // Number encodings of MODULES.md section 2, every range edge in both directions.
-#include "ipc/codec.hpp"
+#include "words/words_3202.hpp"
+#include "words/words_3601.hpp"
+#include "words/words_3602.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <optional>
 
-namespace stepmod::ipc::codec {
+namespace stepmod::words {
 namespace {
 
 using WP = WordPair;
@@ -178,4 +180,4 @@ TEST(Codec3202, NativeDint) {
 }
 
 }  // namespace
-}  // namespace stepmod::ipc::codec
+}  // namespace stepmod::words

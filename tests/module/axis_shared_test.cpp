@@ -4,6 +4,7 @@
 // rule under their own ids (their "Latch rules as on the 3601", 7.15, 7.16).
 #include <ostream>
 
+#include "registry/module_registry.hpp"
 #include "tests/module/axis_rig.hpp"
 
 namespace stepmod {
@@ -20,8 +21,8 @@ using ax::CommandKind;
 
 class AxisShared : public ::testing::TestWithParam<ModuleType> {
  protected:
-  AxisShared() : rig_(ax::rules_of(GetParam())) {}
-  const ax::ModuleRules& rules() const { return ax::rules_of(GetParam()); }
+  AxisShared() : rig_(*registry::row_of(GetParam()).rules) {}
+  const ax::ModuleRules& rules() const { return *registry::row_of(GetParam()).rules; }
   AxisRig rig_;
 };
 

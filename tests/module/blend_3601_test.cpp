@@ -66,8 +66,8 @@ class Blend3601 : public Plc3601 {
     return send_block({count, pairs_9_16, pairs_1_8, final_decel, 0, 0});
   }
   bool segment_block(const Seg& s) {
-    const auto l = ipc::codec::encode_3601(s.length);
-    const auto v = ipc::codec::encode_3601(s.speed);
+    const auto l = words::encode_3601(s.length);
+    const auto v = words::encode_3601(s.speed);
     return send_block({l.msw, l.lsw, v.msw, v.lsw, s.rate, 0});
   }
   void end_programming() {
@@ -160,8 +160,8 @@ TEST_F(Blend3601, Handshake_AcknowledgeSetOnTransmitAndClearedWithIt) {
 TEST_F(Blend3601, Handshake_TransmitHeldForManyScansReadsOneBlock) {
   ASSERT_TRUE(send_block({2, 0, 0, final_word(kConstant, 10), 0, 0}, 20));
   for (const Seg& s : kWorked) {
-    const auto l = ipc::codec::encode_3601(s.length);
-    const auto v = ipc::codec::encode_3601(s.speed);
+    const auto l = words::encode_3601(s.length);
+    const auto v = words::encode_3601(s.speed);
     ASSERT_TRUE(send_block({l.msw, l.lsw, v.msw, v.lsw, s.rate, 0}, 20));
   }
   end_programming();
@@ -443,7 +443,7 @@ TEST_F(Blend3601, IP_20_SegmentLengthRestrictions) {
                         Case{"LSW 1000", 10, 1'000}}) {
     SCOPED_TRACE(c.what);
     ASSERT_TRUE(first_block(2, final_word(kConstant, 10)));
-    const auto v = ipc::codec::encode_3601(5'000);
+    const auto v = words::encode_3601(5'000);
     ASSERT_TRUE(send_block({c.msw, c.lsw, v.msw, v.lsw, 10, 0}));  // acknowledged (A21d)
     EXPECT_TRUE(status(kInvalidProfile));
     ASSERT_TRUE(segment_block(kWorked[1]));

@@ -5,10 +5,9 @@
 
 #include <set>
 
-#include "ipc/codec.hpp"
 #include "module/m3601/config_3601.hpp"
 #include "module/m3601/dialect_3601.hpp"
-#include "module/m3601/words_3601.hpp"
+#include "words/words_3601.hpp"
 
 namespace stepmod::testing {
 namespace {
@@ -19,8 +18,8 @@ namespace ax = module::axis;
 ImageWords words(std::uint16_t msw, std::uint16_t lsw, std::int32_t w23 = 0, std::int32_t w45 = 0,
                  std::int16_t w6 = 0, std::int16_t w7 = 0) {
   ImageWords o;
-  const auto a = ipc::codec::encode_3601(w23);
-  const auto b = ipc::codec::encode_3601(w45);
+  const auto a = words::encode_3601(w23);
+  const auto b = words::encode_3601(w45);
   o.w = {static_cast<std::int16_t>(msw),
          static_cast<std::int16_t>(lsw),
          a.msw,
@@ -115,9 +114,9 @@ TEST(Dialect3601, StatusFlagsOnTheirBits) {
             m::status_msw::kModuleOk | m::status_msw::kMoveComplete | m::status_msw::kCommandError);
   EXPECT_EQ(lsw, m::status_lsw::kBlendAcknowledge | m::status_lsw::kCaptureActive |
                      m::status_lsw::kEStopActive);
-  EXPECT_EQ(ipc::codec::decode_3601_report(in.w[m::in_word::kPositionMsw],
-                                           in.w[m::in_word::kPositionLsw]),
-            -1'234'567);
+  EXPECT_EQ(
+      words::decode_3601_report(in.w[m::in_word::kPositionMsw], in.w[m::in_word::kPositionLsw]),
+      -1'234'567);
 }
 
 }  // namespace

@@ -3,9 +3,8 @@
 // (digest 4.5-4.11).
 #include <gtest/gtest.h>
 
-#include "ipc/codec.hpp"
 #include "module/m3602/dialect_3602.hpp"
-#include "module/m3602/words_3602.hpp"
+#include "words/words_3602.hpp"
 
 namespace stepmod::testing {
 namespace {
@@ -60,7 +59,7 @@ TEST(Dialect3602, BinarySplitPositionEncodesAsTheManualTabulates) {
     EXPECT_EQ(in.w[m2::in_word::kPositionMsw], s.msw) << s.value;
     EXPECT_EQ(in.w[m2::in_word::kPositionMsw + 1], s.lsw) << s.value;
     EXPECT_EQ(
-        ipc::codec::decode_3602(in.w[m2::in_word::kCaptureMsw], in.w[m2::in_word::kCaptureMsw + 1]),
+        words::decode_3602(in.w[m2::in_word::kCaptureMsw], in.w[m2::in_word::kCaptureMsw + 1]),
         -s.value);
   }
 }

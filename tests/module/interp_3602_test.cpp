@@ -19,7 +19,7 @@ ImageWords block(std::uint16_t lsw, std::int32_t ex, std::int32_t ey, std::int32
   ImageWords w;
   w.w[iw::kLsw] = static_cast<std::int16_t>(lsw);
   const auto put = [&w](unsigned i, std::int32_t v) {
-    const auto p = ipc::codec::encode_3602(v);
+    const auto p = words::encode_3602(v);
     w.w[i] = p.msw;
     w.w[i + 1] = p.lsw;
   };

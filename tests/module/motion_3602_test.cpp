@@ -64,8 +64,8 @@ class Motion3602 : public Rig3602 {
   }
   static std::array<std::int16_t, 6> segment(std::int32_t length, std::int32_t speed,
                                              std::int16_t rate) {
-    const auto l = ipc::codec::encode_3602(length);
-    const auto s = ipc::codec::encode_3602(speed);
+    const auto l = words::encode_3602(length);
+    const auto s = words::encode_3602(speed);
     return {l.msw, l.lsw, s.msw, s.lsw, rate, 0};
   }
   std::uint32_t mask_[2] = {0, 0};

@@ -7,13 +7,13 @@
 
 #include <cstdint>
 
-#include "module/m3202/words_3202.hpp"
 #include "plc/words_3202.hpp"
 #include "tests/support/virtual_machine.hpp"
+#include "words/words_3202.hpp"
 
 namespace stepmod::testing {
 
-namespace m2 = module::m3202;
+namespace m2 = words::m3202;
 
 // Home input + both limits + E-stop + external + capture + encoder, step/direction outputs, all
 // inputs active high, per channel.

@@ -6,15 +6,14 @@
 
 #include <cstdint>
 
-#include "ipc/codec.hpp"
-#include "module/m3601/words_3601.hpp"
 #include "plc/plc_3601.hpp"
 #include "tests/support/virtual_machine.hpp"
 #include "tests/support/virtual_port.hpp"
+#include "words/words_3601.hpp"
 
 namespace stepmod::testing {
 
-namespace m = module::m3601;
+namespace m = words::m3601;
 
 // A configuration every test can start from: home input + both limits + E-stop + external +
 // capture + encoder, step/direction outputs, all inputs active high, Vs = 1,000 steps/s.
@@ -50,7 +49,7 @@ class Plc3601 : public ::testing::Test {
   bool status(std::uint16_t msw_bit) const { return decoded().has(msw_bit); }
   bool lsw_status(std::uint16_t lsw_bit) const { return decoded().has_lsw(lsw_bit); }
   std::int64_t reported(unsigned msw_index) const {
-    return ipc::codec::decode_3601_report(vm_.plc_in().w[msw_index], vm_.plc_in().w[msw_index + 1]);
+    return words::decode_3601_report(vm_.plc_in().w[msw_index], vm_.plc_in().w[msw_index + 1]);
   }
   std::int64_t position() const { return decoded().position; }
   std::int64_t encoder() const { return decoded().encoder; }

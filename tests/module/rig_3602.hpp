@@ -5,13 +5,12 @@
 
 #include <cstdint>
 
-#include "ipc/codec.hpp"
-#include "module/m3602/words_3602.hpp"
 #include "tests/support/virtual_machine.hpp"
+#include "words/words_3602.hpp"
 
 namespace stepmod::testing {
 
-namespace m2 = module::m3602;
+namespace m2 = words::m3602;
 
 // A machine with two 3602 axes: every input wired, limits at +-100,000, home 5,000..5,100 on
 // axis 1 and -3,000..-2,900 on axis 2; a GPO line per axis.
@@ -70,7 +69,7 @@ class Rig3602 : public ::testing::Test {
     return (status_lsw(axis) & lsw_bit) != 0;
   }
   std::int32_t split_in(unsigned axis, unsigned msw_index) const {
-    return ipc::codec::decode_3602(in_word(axis, msw_index), in_word(axis, msw_index + 1));
+    return words::decode_3602(in_word(axis, msw_index), in_word(axis, msw_index + 1));
   }
   std::int32_t position(unsigned axis) const { return split_in(axis, m2::in_word::kPositionMsw); }
   std::int32_t capture(unsigned axis) const { return split_in(axis, m2::in_word::kCaptureMsw); }
@@ -80,7 +79,7 @@ class Rig3602 : public ::testing::Test {
   }
 
   void put_split(unsigned axis, unsigned msw_index, std::int32_t v) {
-    const auto p = ipc::codec::encode_3602(v);
+    const auto p = words::encode_3602(v);
     word(axis, msw_index) = p.msw;
     word(axis, msw_index + 1) = p.lsw;
   }

@@ -28,7 +28,7 @@ class RigInterp3602 : public Rig3602 {
   }
   std::int32_t& module_word(unsigned i) { return vm_.plc_out().w[i]; }
   void put_module_split(unsigned i, std::int32_t v) {
-    const auto p = ipc::codec::encode_3602(v);
+    const auto p = words::encode_3602(v);
     module_word(i) = p.msw;
     module_word(i + 1) = p.lsw;
   }

@@ -18,14 +18,13 @@
 #include <vector>
 
 #include "ipc/client.hpp"
-#include "ipc/codec.hpp"
 #include "ipc/shm_image.hpp"
 #include "ipc/sim_panel.hpp"
-#include "module/m3601/words_3601.hpp"
 #include "tests/openplc/ladder.h"
 #include "tests/openplc/openplc_runtime.hpp"
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/sim_config.hpp"
+#include "words/words_3601.hpp"
 
 namespace {
 std::string g_log;
@@ -37,7 +36,7 @@ extern "C" void openplc_log(char* logmsg) {
 namespace stepmod::testing {
 namespace {
 
-namespace m = module::m3601;
+namespace m = words::m3601;
 using namespace m::status_msw;
 using std::chrono::milliseconds;
 
@@ -66,7 +65,7 @@ void scan(Logic&& logic) {
 }
 
 void put_split(IEC_UINT* qw, std::int32_t v) {
-  const auto p = ipc::codec::encode_3601(v);
+  const auto p = words::encode_3601(v);
   qw[0] = static_cast<IEC_UINT>(p.msw);
   qw[1] = static_cast<IEC_UINT>(p.lsw);
 }
@@ -151,8 +150,8 @@ void configure_move_and_stop(const std::string& config) {
   const std::int64_t start = ipc::SimPanelClient(daemon.name()).read(0).position;
   for (int i = 0; i < 2000 && step != kDone; ++i) scan(logic);
   ASSERT_EQ(step, kDone) << "status " << std::hex << prog.iw[0];
-  EXPECT_EQ(ipc::codec::decode_3601_report(static_cast<std::int16_t>(prog.iw[2]),
-                                           static_cast<std::int16_t>(prog.iw[3])),
+  EXPECT_EQ(words::decode_3601_report(static_cast<std::int16_t>(prog.iw[2]),
+                                      static_cast<std::int16_t>(prog.iw[3])),
             start + 2500);
   EXPECT_EQ(ipc::SimPanelClient(daemon.name()).read(0).position, start + 2500);
   // Header registers through %IW32..: type, word size, word counts; a running scan counter.

@@ -12,13 +12,13 @@
 #include <vector>
 
 #include "ipc/shm_image.hpp"
-#include "module/m3601/words_3601.hpp"
 #include "plc/shm_port.hpp"
+#include "words/words_3601.hpp"
 
 namespace stepmod::plc {
 namespace {
 
-namespace m = module::m3601;
+namespace m = words::m3601;
 using namespace std::chrono_literals;
 
 constexpr ModuleShape k3601{ModuleType::k3601, 1, 2, 8, 8};

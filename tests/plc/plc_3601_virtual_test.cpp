@@ -2,15 +2,15 @@
 // module stack and simulated machine: each command does on the machine what the manual says.
 #include <gtest/gtest.h>
 
-#include "module/m3601/words_3601.hpp"
 #include "plc/plc_3601.hpp"
 #include "tests/support/virtual_machine.hpp"
 #include "tests/support/virtual_port.hpp"
+#include "words/words_3601.hpp"
 
 namespace stepmod::testing {
 namespace {
 
-namespace m = module::m3601;
+namespace m = words::m3601;
 using namespace m::status_msw;
 using plc::Profile;
 using std::chrono::milliseconds;

@@ -1,4 +1,4 @@
-// The modules' word tables (module/m3601/words_3601.hpp, m3602, m3202): the 3601 constants
+// The modules' word tables (words/words_3601.hpp, m3602, m3202): the 3601 constants
 // derived from the table keep the values the module code was written against, every table names
 // each bit once, and status decoding by name reads them.
 #include <gtest/gtest.h>
@@ -6,15 +6,15 @@
 #include <set>
 #include <string>
 
-#include "module/m3202/words_3202.hpp"
-#include "module/m3601/words_3601.hpp"
-#include "module/m3602/words_3602.hpp"
 #include "plc/bit_names.hpp"
+#include "words/words_3202.hpp"
+#include "words/words_3601.hpp"
+#include "words/words_3602.hpp"
 
 namespace stepmod::plc {
 namespace {
 
-namespace m = module::m3601;
+namespace m = words::m3601;
 
 // The values of words_3601.hpp before it became a table, written out as the manual gives them.
 static_assert(m::kWords == (8));
@@ -124,14 +124,14 @@ TEST(WordTables, EveryTableNamesEachBitOnce) {
   expect_well_formed(m::kCommandLswBits, 16, "3601 command LSW");
   expect_well_formed(m::kStatusMswBits, 16, "3601 status MSW");
   expect_well_formed(m::kStatusLswBits, 16, "3601 status LSW");
-  namespace m2 = module::m3602;
+  namespace m2 = words::m3602;
   expect_well_formed(m2::kConfigMswBits, 16, "3602 config MSW");
   expect_well_formed(m2::kConfigLswBits, 16, "3602 config LSW");
   expect_well_formed(m2::kCommandMswBits, 16, "3602 command MSW");
   expect_well_formed(m2::kCommandLswBits, 16, "3602 command LSW");
   expect_well_formed(m2::kStatusMswBits, 16, "3602 status MSW");
   expect_well_formed(m2::kStatusLswBits, 16, "3602 status LSW");
-  namespace m3 = module::m3202;
+  namespace m3 = words::m3202;
   expect_well_formed(m3::kConfigBits, 32, "3202 configuration");
   expect_well_formed(m3::kConfigEchoBits, 32, "3202 configuration echo");
   expect_well_formed(m3::kCommandBits, 32, "3202 command");
@@ -140,8 +140,8 @@ TEST(WordTables, EveryTableNamesEachBitOnce) {
 
 // The positions where the three manuals differ (digest 5.7, 4.2, 4.6).
 TEST(WordTables, ThePositionsWhereTheModulesDiffer) {
-  namespace m2 = module::m3602;
-  namespace m3 = module::m3202;
+  namespace m2 = words::m3602;
+  namespace m3 = words::m3202;
   EXPECT_EQ((mask_of<std::uint32_t>(m3::kStatusBits, "Home Invalid")), 1u << 14);
   EXPECT_EQ((mask_of<std::uint32_t>(m3::kStatusBits, "Invalid Profile")), 1u << 15);
   EXPECT_EQ((mask_of<std::uint32_t>(m3::kStatusBits, "Module OK")), 1u << 30);
@@ -158,7 +158,7 @@ TEST(BitNames, SetFieldsByNameInBitOrder) {
             "Moving CW, Module OK");
   EXPECT_EQ(set_bit_names(0, m::kStatusMswBits), "-");
   // A two-bit field shows its value: CW input as E-stop (10b at bits 4:3).
-  EXPECT_EQ(set_bit_names(0b10u << 3, module::m3602::kConfigMswBits),
+  EXPECT_EQ(set_bit_names(0b10u << 3, words::m3602::kConfigMswBits),
             "CW Input Function (1 = limit, 2 = E-stop)=2");
 }
 

@@ -10,8 +10,7 @@
 #include <thread>
 
 #include "ipc/client.hpp"
-#include "ipc/codec.hpp"
-#include "module/m3601/words_3601.hpp"
+#include "words/words_3601.hpp"
 
 namespace stepmod::testing {
 
@@ -40,15 +39,15 @@ class RawShmPlc {
   bool status(std::uint16_t bit) const { return (status_msw() & bit) != 0; }
   std::int64_t position() const {
     const auto w = in();
-    return ipc::codec::decode_3601_report(w.w[module::m3601::in_word::kPositionMsw],
-                                          w.w[module::m3601::in_word::kPositionLsw]);
+    return words::decode_3601_report(w.w[words::m3601::in_word::kPositionMsw],
+                                     w.w[words::m3601::in_word::kPositionLsw]);
   }
   void scans(unsigned n) { ASSERT_TRUE(client_.wait_scans(n, milliseconds(2000))); }
 
   void write(std::uint16_t msw, std::uint16_t lsw, std::int32_t w23, std::int32_t w45,
              std::int16_t w6, std::int16_t w7) {
-    const auto a = ipc::codec::encode_3601(w23);
-    const auto b = ipc::codec::encode_3601(w45);
+    const auto a = words::encode_3601(w23);
+    const auto b = words::encode_3601(w45);
     ImageWords o{};
     o.w = {static_cast<std::int16_t>(msw),
            static_cast<std::int16_t>(lsw),
@@ -70,21 +69,21 @@ class RawShmPlc {
   }
   void configure(std::int32_t starting_speed = 1'000) {
     const std::uint16_t cfg =
-        module::m3601::cfg_msw::kCaptureUsed | module::m3601::cfg_msw::kExternalUsed |
-        module::m3601::cfg_msw::kHomeUsed | module::m3601::cfg_msw::kEStopUsed |
-        module::m3601::cfg_msw::kCwLimitUsed | module::m3601::cfg_msw::kCcwLimitUsed |
-        module::m3601::cfg_msw::kQuadratureEncoder | module::m3601::cfg_msw::kStepDirOutput;
-    write(cfg | module::m3601::cfg_msw::kConfigMode, 0x3F, starting_speed, 0, 0, 0);
+        words::m3601::cfg_msw::kCaptureUsed | words::m3601::cfg_msw::kExternalUsed |
+        words::m3601::cfg_msw::kHomeUsed | words::m3601::cfg_msw::kEStopUsed |
+        words::m3601::cfg_msw::kCwLimitUsed | words::m3601::cfg_msw::kCcwLimitUsed |
+        words::m3601::cfg_msw::kQuadratureEncoder | words::m3601::cfg_msw::kStepDirOutput;
+    write(cfg | words::m3601::cfg_msw::kConfigMode, 0x3F, starting_speed, 0, 0, 0);
     scans(3);
-    ASSERT_TRUE(status(module::m3601::status_msw::kConfigMode));
-    ASSERT_FALSE(status(module::m3601::status_msw::kConfigurationError));
+    ASSERT_TRUE(status(words::m3601::status_msw::kConfigMode));
+    ASSERT_FALSE(status(words::m3601::status_msw::kConfigurationError));
     write(0, 0, 0, 0, 0, 0);
     scans(3);
-    ASSERT_FALSE(status(module::m3601::status_msw::kConfigMode));
+    ASSERT_FALSE(status(words::m3601::status_msw::kConfigMode));
   }
   bool moving() const {
-    return status(module::m3601::status_msw::kMovingCw) ||
-           status(module::m3601::status_msw::kMovingCcw);
+    return status(words::m3601::status_msw::kMovingCw) ||
+           status(words::m3601::status_msw::kMovingCcw);
   }
   bool wait(const std::function<bool()>& cond, milliseconds timeout) {
     const auto end = std::chrono::steady_clock::now() + timeout;

@@ -4,12 +4,12 @@
 
 #include <gtest/gtest.h>
 
-#include "module/m3601/words_3601.hpp"
+#include "words/words_3601.hpp"
 
 namespace stepmod::tools::ctl {
 namespace {
 
-namespace m = module::m3601;
+namespace m = words::m3601;
 
 ImageWords words(std::initializer_list<std::int32_t> v) {
   ImageWords w;

@@ -49,17 +49,17 @@
 #include <vector>
 
 #include "ipc/client.hpp"
-#include "module/m3601/words_3601.hpp"
 #include "plc/bit_names.hpp"
 #include "plc/plc_3601.hpp"
 #include "plc/shm_port.hpp"
 #include "tests/support/vcd_reader.hpp"
 #include "tests/vm/gpio_uapi.hpp"
 #include "tests/vm/vm_harness.hpp"
+#include "words/words_3601.hpp"
 
 namespace {
 
-namespace m = stepmod::module::m3601;
+namespace m = stepmod::words::m3601;
 namespace st = m::status_msw;
 namespace cmd = m::cmd_msw;
 namespace cfg = m::cfg_msw;

@@ -26,8 +26,6 @@
 #include <vector>
 
 #include "ipc/client.hpp"
-#include "module/m3202/words_3202.hpp"
-#include "module/m3602/words_3602.hpp"
 #include "plc/bit_names.hpp"
 #include "plc/interp_3602.hpp"
 #include "plc/plc_3202.hpp"
@@ -36,12 +34,14 @@
 #include "tests/planner/path_ideal.hpp"
 #include "tests/support/vcd_path.hpp"
 #include "tests/vm/vm_harness.hpp"
+#include "words/words_3202.hpp"
+#include "words/words_3602.hpp"
 
 namespace {
 
 using namespace stepmod::vmtest;  // NOLINT: the harness is this program's vocabulary
-namespace m32 = stepmod::module::m3202;
-namespace m36 = stepmod::module::m3602;
+namespace m32 = stepmod::words::m3202;
+namespace m36 = stepmod::words::m3602;
 
 constexpr std::int64_t kSlack = 20'000;  // write of a line vs its VCD time, ns
 constexpr int kMarks = 16;

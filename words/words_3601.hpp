@@ -2,14 +2,17 @@
 // 3601 backplane words and bits, named as in the 3601 manual (shared/spec/manuals/001_...;
 // digest MODULES.md section 3). The only place these positions are written down: each word's
 // bits are a constexpr table (bit, name), the constants below are looked up in the tables by
-// name, and stepmodctl shows the same names. Header-only, includes nothing but the ground layer:
-// the PLC side (plc/) includes it.
+// name, and stepmodctl shows the same names; the decimal split at the end. Includes nothing but
+// the ground layer: the emulator (module/), the PLC side (plc/) and stepmodctl include it.
 #include <array>
 #include <cstdint>
 
-#include "core/bit_table.hpp"
+#include <optional>
 
-namespace stepmod::module::m3601 {
+#include "core/bit_table.hpp"
+#include "words/word_pair.hpp"
+
+namespace stepmod::words::m3601 {
 
 inline constexpr unsigned kWords = 8;
 inline constexpr std::uint16_t bit(unsigned n) {
@@ -279,4 +282,23 @@ inline constexpr std::uint16_t kProximityEcho =
 inline constexpr std::uint16_t kFirmwareMajor = 4;
 inline constexpr std::uint16_t kFirmwareMinor = 1;
 
-}  // namespace stepmod::module::m3601
+}  // namespace stepmod::words::m3601
+
+// ---- the number encoding: decimal (thousands) split, digest 2.1 ------------------------------
+// Words are passed as the sign-extended int32 values of ImageWords; only their low 16 bits count.
+namespace stepmod::words {
+
+// value = MSW * 1000 + LSW. Valid when |LSW| <= 999 and the words do not have opposite signs
+// (either may be 0). nullopt = the module answers with a Command Error.
+std::optional<std::int32_t> decode_3601(std::int32_t msw, std::int32_t lsw) noexcept;
+// Parameters that cannot be negative (speeds, Vs, segment length, registration distance):
+// MSW >= 0 and LSW 0..999.
+std::optional<std::int32_t> decode_3601_unsigned(std::int32_t msw, std::int32_t lsw) noexcept;
+// Reported registers (position, encoder, capture): MSW*1000 + LSW without validity rules. A value
+// whose thousands wrapped in the MSW (A9) reads back modulo 65,536,000.
+std::int64_t decode_3601_report(std::int32_t msw, std::int32_t lsw) noexcept;
+// q = trunc(value / 1000) toward zero, r = value - 1000 q; MSW = q wrapped to 16 bits (A9: the
+// module reports thousands beyond +-32,767 by letting the MSW wrap, 7FFFh -> 8000h).
+WordPair encode_3601(std::int64_t value) noexcept;
+
+}  // namespace stepmod::words

@@ -1,16 +1,18 @@
 #pragma once
 // 3602 backplane words and bits, named as in the 3602 manual (shared/spec/manuals/002_...;
-// digest MODULES.md section 4). Tables only for now: stepmodctl decodes a 3602's image by these
-// names; the 3602 dialect (module and PLC side) takes its constants from them (below). Each axis
-// has 8 words at b = 8 * axis; indices below are relative to b. 32-bit values are binary splits
-// (digest 2.2). Header-only, ground layer only.
+// digest MODULES.md section 4). The only place these positions are written down: stepmodctl
+// decodes a 3602's image by these names; the 3602 dialect (module and PLC side) takes its
+// constants from them (below). Each axis has 8 words at b = 8 * axis; indices below are relative
+// to b. 32-bit values are binary splits (digest 2.2, the encoding at the end). Includes nothing
+// but the ground layer.
 #include <array>
 #include <cstdint>
 #include <string_view>
 
 #include "core/bit_table.hpp"
+#include "words/word_pair.hpp"
 
-namespace stepmod::module::m3602 {
+namespace stepmod::words::m3602 {
 
 inline constexpr unsigned kWordsPerAxis = 8;
 
@@ -302,4 +304,13 @@ inline constexpr std::uint16_t kProximityEcho =
 inline constexpr std::uint16_t kGpo = field(kStatusLswBits, "General-Purpose Output");
 }  // namespace status_lsw
 
-}  // namespace stepmod::module::m3602
+}  // namespace stepmod::words::m3602
+
+// ---- the number encoding: binary split, digest 2.2 -------------------------------------------
+namespace stepmod::words {
+
+// value = MSW << 16 | LSW (two's complement over both words); only the low 16 bits of each count.
+std::int32_t decode_3602(std::int32_t msw, std::int32_t lsw) noexcept;
+WordPair encode_3602(std::int32_t value) noexcept;
+
+}  // namespace stepmod::words

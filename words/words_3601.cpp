@@ -1,13 +1,7 @@
-#include "ipc/codec.hpp"
+// The 3601's number encoding (decimal split), declared in words/words_3601.hpp.
+#include "words/words_3601.hpp"
 
-namespace stepmod::ipc::codec {
-namespace {
-// The PLC's words are 16-bit INTs; callers pass them sign-extended, but a raw 0..65535 value must
-// mean the same word, so only the low 16 bits are looked at.
-std::int32_t as_int16(std::int32_t w) noexcept {
-  return static_cast<std::int16_t>(static_cast<std::uint16_t>(w & 0xFFFF));
-}
-}  // namespace
+namespace stepmod::words {
 
 std::optional<std::int32_t> decode_3601(std::int32_t msw, std::int32_t lsw) noexcept {
   const std::int32_t m = as_int16(msw);
@@ -35,16 +29,4 @@ WordPair encode_3601(std::int64_t value) noexcept {
           static_cast<std::int16_t>(r)};
 }
 
-std::int32_t decode_3602(std::int32_t msw, std::int32_t lsw) noexcept {
-  const std::uint32_t u = (static_cast<std::uint32_t>(msw) & 0xFFFFu) << 16 |
-                          (static_cast<std::uint32_t>(lsw) & 0xFFFFu);
-  return static_cast<std::int32_t>(u);
-}
-
-WordPair encode_3602(std::int32_t value) noexcept {
-  const auto u = static_cast<std::uint32_t>(value);
-  return {static_cast<std::int16_t>(static_cast<std::uint16_t>(u >> 16)),
-          static_cast<std::int16_t>(static_cast<std::uint16_t>(u & 0xFFFFu))};
-}
-
-}  // namespace stepmod::ipc::codec
+}  // namespace stepmod::words
