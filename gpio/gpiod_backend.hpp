@@ -14,6 +14,8 @@
 
 namespace stepmod::gpio {
 
+struct GpiodShared;
+
 class GpiodBackend final : public Backend {
  public:
   // `chip`: name ("gpiochip0"), path ("/dev/gpiochip0"), label or number (libgpiod 1.6's
@@ -46,6 +48,10 @@ class GpiodBackend final : public Backend {
  private:
   struct Impl;  // keeps libgpiod, liburing and <linux/gpio.h> out of the users' includes
   std::unique_ptr<Impl> d_;
+  // The Impl's part both libgpiod generations share (gpio/gpiod_shared.hpp): the accessors
+  // that only read the configured lines are defined once, over it.
+  GpiodShared& shared() noexcept;
+  const GpiodShared& shared() const noexcept;
 };
 
 }  // namespace stepmod::gpio

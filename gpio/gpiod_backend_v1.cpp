@@ -9,13 +9,11 @@
 #include <stdexcept>
 #include <vector>
 
-#include "gpio/line_event_reader.hpp"
+#include "gpio/gpiod_shared.hpp"
 
 namespace stepmod::gpio {
 
 namespace {
-constexpr const char* kConsumer = "stepmod";
-constexpr unsigned kEnableKeyIndex = kOutputLinesPerAxis;  // where(): the enable line
 
 // libgpiod 1.6 request flags of a line's options (bias flags: since libgpiod 1.5 / Linux 5.5).
 int request_flags(const LineOptions& o) {
@@ -33,7 +31,7 @@ GpiodCapabilities gpiod_capabilities() noexcept {
   return {1, false};
 }
 
-struct GpiodBackend::Impl {
+struct GpiodBackend::Impl : GpiodShared {
   struct Input {
     gpiod_line* line = nullptr;
     int fd = -1;
@@ -42,61 +40,24 @@ struct GpiodBackend::Impl {
     unsigned offset = 0;
   };
 
-  std::string chip_name;
   gpiod_chip* chip = nullptr;
-  std::vector<AxisLines> axes;
 
   // Outputs: one request per line (each with its own flags: drive, active-low), so one write is
   // one ioctl (GPIOHANDLE_SET_LINE_VALUES_IOCTL) on that line's handle.
   std::vector<std::array<gpiod_line*, kOutputLinesPerAxis>> out_lines;  // null: unwired
   std::vector<gpiod_line*> outputs_requested;
   std::vector<gpiod_line*> enable_lines;  // per axis, null: none
-  std::atomic<std::uint64_t> write_errors{0};
 
   // Inputs: one event request per line; their fds are read by `events`.
-  std::vector<std::array<int, kInputLinesPerAxis>> in_index;  // index into `inputs`, -1 unwired
   std::vector<Input> inputs;
-  std::unique_ptr<LineEventReader> events;
 
-  // "axis1.step", "axis1.enable": the config key of a line.
-  static std::string key(unsigned axis, bool input, unsigned line) {
-    const std::string_view k = input ? input_key(static_cast<InputLine>(line))
-                               : line == kEnableKeyIndex
-                                   ? std::string_view("enable")
-                                   : output_key(static_cast<OutputLine>(line));
-    return "axis" + std::to_string(axis + 1) + "." + std::string(k);
-  }
-
-  std::string where(unsigned axis, bool input, unsigned line, unsigned offset) const {
-    return "GPIO chip '" + chip_name + "', line " + std::to_string(offset) + " (" +
-           key(axis, input, line) + ")";
-  }
-
-  gpiod_line* get_line(unsigned axis, bool input, unsigned line, unsigned offset) {
-    const unsigned n = gpiod_chip_num_lines(chip);
-    if (offset >= n) {
-      throw std::runtime_error(where(axis, input, line, offset) +
-                               ": offset out of range (the chip has " + std::to_string(n) +
-                               " lines, 0.." + std::to_string(n - 1) + ")");
-    }
-    gpiod_line* l = gpiod_chip_get_line(chip, offset);
-    if (l == nullptr) {
-      throw std::runtime_error(where(axis, input, line, offset) +
-                               ": cannot get line info: " + std::strerror(errno));
-    }
-    // Checked before requesting so that the message names the line and its present user (a
-    // failed bulk request only says EBUSY for the whole set).
-    if (gpiod_line_is_used(l)) {
-      const char* who = gpiod_line_consumer(l);
-      throw std::runtime_error(where(axis, input, line, offset) + ": line busy (used by '" +
-                               (who != nullptr ? who : "?") + "')");
-    }
-    return l;
-  }
-
-  std::string request_error(const std::string& what) const {
-    const int e = errno;
-    return what + (e == EBUSY ? ": line busy" : "") + ": " + std::strerror(e);
+  void open(const std::string& name);
+  gpiod_line* claim_line(unsigned axis, bool input, unsigned line, unsigned offset);
+  gpiod_line* request_output(unsigned axis, unsigned line, unsigned offset, const LineOptions& o);
+  void claim_axis(unsigned a);
+  void request_inputs();
+  std::string input_name(const Input& in) const {
+    return where(in.axis, true, static_cast<unsigned>(in.which), in.offset);
   }
 
   void release() noexcept {
@@ -116,99 +77,102 @@ struct GpiodBackend::Impl {
   }
 };
 
+void GpiodBackend::Impl::open(const std::string& name) {
+  chip_name = name;
+  chip = gpiod_chip_open_lookup(name.c_str());
+  if (chip == nullptr) throw_chip_not_found(name);
+}
+
+// One configured line, claimed (once) and checked before requesting so that the message names
+// the line and its present user (a failed bulk request only says EBUSY for the whole set).
+gpiod_line* GpiodBackend::Impl::claim_line(unsigned axis, bool input, unsigned line,
+                                           unsigned offset) {
+  claim(axis, input, line, offset);
+  const unsigned n = gpiod_chip_num_lines(chip);
+  if (offset >= n) {
+    throw std::runtime_error(where(axis, input, line, offset) +
+                             ": offset out of range (the chip has " + std::to_string(n) +
+                             " lines, 0.." + std::to_string(n - 1) + ")");
+  }
+  gpiod_line* l = gpiod_chip_get_line(chip, offset);
+  if (l == nullptr) {
+    throw std::runtime_error(where(axis, input, line, offset) +
+                             ": cannot get line info: " + std::strerror(errno));
+  }
+  if (gpiod_line_is_used(l)) {
+    const char* who = gpiod_line_consumer(l);
+    throw std::runtime_error(where(axis, input, line, offset) + ": line busy (used by '" +
+                             (who != nullptr ? who : "?") + "')");
+  }
+  return l;
+}
+
+gpiod_line* GpiodBackend::Impl::request_output(unsigned axis, unsigned line, unsigned offset,
+                                               const LineOptions& o) {
+  gpiod_line* l = claim_line(axis, false, line, offset);
+  const gpiod_line_request_config rc{kGpiodConsumer, GPIOD_LINE_REQUEST_DIRECTION_OUTPUT,
+                                     request_flags(o)};
+  if (gpiod_line_request(l, &rc, 0) != 0) {
+    throw std::runtime_error(
+        request_error(where(axis, false, line, offset) + ": requesting the output"));
+  }
+  outputs_requested.push_back(l);
+  return l;
+}
+
+// One axis' lines in configuration order: outputs requested at once, inputs claimed (requested
+// by request_inputs()).
+void GpiodBackend::Impl::claim_axis(unsigned a) {
+  const AxisLines& lines = axes[a];
+  for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
+    if (lines.out[l]) out_lines[a][l] = request_output(a, l, *lines.out[l], lines.out_opt[l]);
+  }
+  enable_lines.push_back(nullptr);
+  if (lines.enable) {
+    enable_lines.back() = request_output(a, kEnableKeyIndex, *lines.enable, lines.enable_opt);
+  }
+  for (unsigned l = 0; l < kInputLinesPerAxis; ++l) {
+    if (!lines.in[l]) continue;
+    Input in;
+    in.line = claim_line(a, true, l, *lines.in[l]);
+    in.axis = static_cast<std::uint8_t>(a);
+    in.which = static_cast<InputLine>(l);
+    in.offset = *lines.in[l];
+    in_index[a][l] = static_cast<int>(inputs.size());
+    inputs.push_back(in);
+  }
+}
+
+// Edge events on every claimed input, and the reader of their fds.
+void GpiodBackend::Impl::request_inputs() {
+  for (Input& in : inputs) {
+    const LineOptions& o = axes[in.axis].in_opt[static_cast<unsigned>(in.which)];
+    if (o.debounce_us != 0) {
+      throw std::runtime_error(input_name(in) +
+                               ": debounce_us needs libgpiod 2 (this stepmod is built with "
+                               "libgpiod 1.6, whose v1 uAPI has no debounce)");
+    }
+    if (gpiod_line_request_both_edges_events_flags(in.line, kGpiodConsumer, request_flags(o)) !=
+        0) {
+      throw std::runtime_error(request_error(input_name(in) + ": requesting edge events"));
+    }
+    in.fd = gpiod_line_event_get_fd(in.line);
+  }
+  std::vector<LineEventReader::Source> sources;
+  for (const Input& in : inputs) sources.push_back({in.fd, in.axis, in.which, input_name(in)});
+  start_events(std::move(sources), EdgeRecordFormat::kV1);
+}
+
 GpiodBackend::GpiodBackend(const std::string& chip, std::span<const AxisLines> axes)
     : d_(std::make_unique<Impl>()) {
   Impl& d = *d_;
-  d.chip_name = chip;
   d.axes.assign(axes.begin(), axes.end());
-  d.chip = gpiod_chip_open_lookup(chip.c_str());
-  if (d.chip == nullptr) {
-    const int e = errno;
-    throw std::runtime_error("GPIO chip '" + chip + "' not found or not accessible: " +
-                             std::strerror(e != 0 ? e : ENOENT));
-  }
+  d.open(chip);
   try {
-    std::vector<std::string> used(gpiod_chip_num_lines(d.chip));  // offset -> "axis1.step"
-    const auto claim = [&](unsigned a, bool input, unsigned line, unsigned offset) {
-      // Our own use first: the lines are requested as they are claimed, so the kernel would
-      // report a line this configuration names twice as busy "used by 'stepmod'".
-      if (offset < used.size() && !used[offset].empty()) {
-        throw std::runtime_error(d.where(a, input, line, offset) + ": offset already used by " +
-                                 used[offset]);
-      }
-      gpiod_line* l = d.get_line(a, input, line, offset);
-      used[offset] = Impl::key(a, input, line);
-      return l;
-    };
-
+    d.start_claims(gpiod_chip_num_lines(d.chip));
     d.out_lines.assign(axes.size(), {nullptr, nullptr, nullptr});
-    d.in_index.resize(axes.size());
-    for (unsigned a = 0; a < axes.size(); ++a) {
-      d.in_index[a].fill(-1);
-      for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
-        if (!axes[a].out[l]) continue;
-        gpiod_line* line = claim(a, false, l, *axes[a].out[l]);
-        const gpiod_line_request_config rc{kConsumer, GPIOD_LINE_REQUEST_DIRECTION_OUTPUT,
-                                           request_flags(axes[a].out_opt[l])};
-        if (gpiod_line_request(line, &rc, 0) != 0) {
-          throw std::runtime_error(
-              d.request_error(d.where(a, false, l, *axes[a].out[l]) + ": requesting the output"));
-        }
-        d.outputs_requested.push_back(line);
-        d.out_lines[a][l] = line;
-      }
-      d.enable_lines.push_back(nullptr);
-      if (axes[a].enable) {
-        gpiod_line* line = claim(a, false, kEnableKeyIndex, *axes[a].enable);
-        const gpiod_line_request_config rc{kConsumer, GPIOD_LINE_REQUEST_DIRECTION_OUTPUT,
-                                           request_flags(axes[a].enable_opt)};
-        if (gpiod_line_request(line, &rc, 0) != 0) {
-          throw std::runtime_error(d.request_error(
-              d.where(a, false, kEnableKeyIndex, *axes[a].enable) + ": requesting the output"));
-        }
-        d.outputs_requested.push_back(line);
-        d.enable_lines.back() = line;
-      }
-      for (unsigned l = 0; l < kInputLinesPerAxis; ++l) {
-        if (!axes[a].in[l]) continue;
-        Impl::Input in;
-        in.line = claim(a, true, l, *axes[a].in[l]);
-        in.axis = static_cast<std::uint8_t>(a);
-        in.which = static_cast<InputLine>(l);
-        in.offset = *axes[a].in[l];
-        d.in_index[a][l] = static_cast<int>(d.inputs.size());
-        d.inputs.push_back(in);
-      }
-    }
-
-    for (Impl::Input& in : d.inputs) {
-      const LineOptions& o = axes[in.axis].in_opt[static_cast<unsigned>(in.which)];
-      if (o.debounce_us != 0) {
-        throw std::runtime_error(
-            d.where(in.axis, true, static_cast<unsigned>(in.which), in.offset) +
-            ": debounce_us needs libgpiod 2 (this stepmod is built with "
-            "libgpiod 1.6, whose v1 uAPI has no debounce)");
-      }
-      if (gpiod_line_request_both_edges_events_flags(in.line, kConsumer, request_flags(o)) != 0) {
-        throw std::runtime_error(
-            d.request_error(d.where(in.axis, true, static_cast<unsigned>(in.which), in.offset) +
-                            ": requesting edge events"));
-      }
-      in.fd = gpiod_line_event_get_fd(in.line);
-    }
-
-    if (!d.inputs.empty()) {
-      std::vector<LineEventReader::Source> sources;
-      for (const Impl::Input& in : d.inputs) {
-        sources.push_back({in.fd, in.axis, in.which,
-                           d.where(in.axis, true, static_cast<unsigned>(in.which), in.offset)});
-      }
-      try {
-        d.events = std::make_unique<LineEventReader>(std::move(sources));
-      } catch (const std::runtime_error& e) {
-        throw std::runtime_error("GPIO chip '" + chip + "': input events: " + e.what());
-      }
-    }
+    for (unsigned a = 0; a < axes.size(); ++a) d.claim_axis(a);
+    d.request_inputs();
   } catch (...) {
     d.release();
     throw;
@@ -219,8 +183,12 @@ GpiodBackend::~GpiodBackend() {
   d_->release();
 }
 
-unsigned GpiodBackend::axes() const noexcept {
-  return static_cast<unsigned>(d_->axes.size());
+GpiodShared& GpiodBackend::shared() noexcept {
+  return *d_;
+}
+
+const GpiodShared& GpiodBackend::shared() const noexcept {
+  return *d_;
 }
 
 void GpiodBackend::write(unsigned axis, OutputLine line, bool level, Nanos /*t*/) noexcept {
@@ -228,56 +196,18 @@ void GpiodBackend::write(unsigned axis, OutputLine line, bool level, Nanos /*t*/
   gpiod_line* l = d.out_lines[axis][static_cast<unsigned>(line)];
   if (l == nullptr) return;
   // One ioctl on the line's handle (libgpiod builds its one-line bulk on the stack).
-  if (gpiod_line_set_value(l, level ? 1 : 0) != 0) {
-    d.write_errors.store(d.write_errors.load(std::memory_order_relaxed) + 1,
-                         std::memory_order_relaxed);
-  }
-}
-
-LineOptions GpiodBackend::line_options(unsigned axis, bool input, unsigned line) const noexcept {
-  if (axis >= d_->axes.size()) return {};
-  const AxisLines& a = d_->axes[axis];
-  if (input) return line < kInputLinesPerAxis ? a.in_opt[line] : LineOptions{};
-  return line < kOutputLinesPerAxis ? a.out_opt[line] : LineOptions{};
-}
-
-bool GpiodBackend::has_input(unsigned axis, InputLine line) const noexcept {
-  return axis < d_->axes.size() && d_->axes[axis].has_input(line);
-}
-
-bool GpiodBackend::has_output(unsigned axis, OutputLine line) const noexcept {
-  return axis < d_->axes.size() && d_->axes[axis].has_output(line);
+  if (gpiod_line_set_value(l, level ? 1 : 0) != 0) d.count_write_error();
 }
 
 bool GpiodBackend::read(unsigned axis, InputLine line) {
   Impl& d = *d_;
-  if (axis >= d.in_index.size()) return false;
-  const int i = d.in_index[axis][static_cast<unsigned>(line)];
+  const int i = d.input_index(axis, line);
   if (i < 0) return false;
   const Impl::Input& in = d.inputs[static_cast<std::size_t>(i)];
   const int v = gpiod_line_get_value(in.line);
-  if (v < 0) {
-    throw std::runtime_error(d.where(axis, true, static_cast<unsigned>(line), in.offset) +
-                             ": reading the level: " + std::strerror(errno));
-  }
+  if (v < 0)
+    throw std::runtime_error(d.input_name(in) + ": reading the level: " + std::strerror(errno));
   return v != 0;
-}
-
-std::size_t GpiodBackend::wait_events(std::span<InputEvent> out, Nanos deadline) {
-  Impl& d = *d_;
-  if (!d.events) {  // no input wired: nothing can arrive
-    sleep_until(deadline);
-    return 0;
-  }
-  return d.events->wait(out, deadline);
-}
-
-std::uint64_t GpiodBackend::lost_events() const noexcept {
-  return d_->events ? d_->events->lost() : 0;
-}
-
-std::uint64_t GpiodBackend::write_errors() const noexcept {
-  return d_->write_errors.load(std::memory_order_relaxed);
 }
 
 void GpiodBackend::set_enable(unsigned axis, bool asserted) noexcept {

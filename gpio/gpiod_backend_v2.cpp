@@ -21,13 +21,11 @@
 #include <vector>
 
 #include "gpio/gpiod_backend.hpp"
-#include "gpio/line_event_reader.hpp"
+#include "gpio/gpiod_shared.hpp"
 
 namespace stepmod::gpio {
 
 namespace {
-constexpr const char* kConsumer = "stepmod";
-constexpr unsigned kEnableKeyIndex = kOutputLinesPerAxis;  // where(): the enable line
 
 gpiod_line_bias to_gpiod(Bias b) {
   switch (b) {
@@ -108,7 +106,7 @@ GpiodCapabilities gpiod_capabilities() noexcept {
   return {2, true};
 }
 
-struct GpiodBackend::Impl {
+struct GpiodBackend::Impl : GpiodShared {
   struct Input {
     gpiod_line_request* req = nullptr;
     std::uint8_t axis = 0;
@@ -116,41 +114,21 @@ struct GpiodBackend::Impl {
     unsigned offset = 0;
   };
 
-  std::string chip_name;
   gpiod_chip* chip = nullptr;
-  std::vector<AxisLines> axes;
 
   gpiod_line_request* out_req = nullptr;                         // all output lines
   std::vector<std::array<int, kOutputLinesPerAxis>> out_offset;  // -1: unwired
   std::vector<unsigned> out_offsets;                             // as requested
   std::vector<int> enable_offset;                                // per axis, -1: none
-  std::atomic<std::uint64_t> write_errors{0};
 
-  std::vector<std::array<int, kInputLinesPerAxis>> in_index;  // into `inputs`, -1 unwired
   std::vector<Input> inputs;
-  std::unique_ptr<LineEventReader> events;
+  std::size_t chip_lines = 0;
 
-  // "axis1.step", "axis1.enable": the config key of a line.
-  static std::string key(unsigned axis, bool input, unsigned line) {
-    const std::string_view k = input ? input_key(static_cast<InputLine>(line))
-                               : line == kEnableKeyIndex
-                                   ? std::string_view("enable")
-                                   : output_key(static_cast<OutputLine>(line));
-    return "axis" + std::to_string(axis + 1) + "." + std::string(k);
-  }
-
-  std::string where(unsigned axis, bool input, unsigned line, unsigned offset) const {
-    return "GPIO chip '" + chip_name + "', line " + std::to_string(offset) + " (" +
-           key(axis, input, line) + ")";
-  }
-
-  std::string request_error(const std::string& what) const {
-    const int e = errno;
-    return what + (e == EBUSY ? ": line busy" : "") + ": " + std::strerror(e);
-  }
-
-  // Checked before requesting so that the message names the line and its present user.
-  void check_line(unsigned axis, bool input, unsigned line, unsigned offset, std::size_t n) {
+  // One configured line, claimed (once) and checked before requesting so that the message
+  // names the line and its present user.
+  void claim_line(unsigned axis, bool input, unsigned line, unsigned offset) {
+    claim(axis, input, line, offset);
+    const std::size_t n = chip_lines;
     if (offset >= n) {
       throw std::runtime_error(where(axis, input, line, offset) +
                                ": offset out of range (the chip has " + std::to_string(n) +
@@ -170,7 +148,7 @@ struct GpiodBackend::Impl {
 
   gpiod_line_request* request(gpiod_line_config* lc, const std::string& what) {
     RequestConfig rc;
-    gpiod_request_config_set_consumer(rc.p, kConsumer);
+    gpiod_request_config_set_consumer(rc.p, kGpiodConsumer);
     gpiod_line_request* r = gpiod_chip_request_lines(chip, rc.p, lc);
     if (r == nullptr) throw std::runtime_error(request_error(what));
     return r;
@@ -188,8 +166,14 @@ struct GpiodBackend::Impl {
                                ": line settings: " + std::strerror(errno));
     }
   }
+  void open(const std::string& name);
+  void claim_axis(unsigned a);
   void request_outputs();
   void request_input(Input& in);
+  void request_inputs();
+  std::string input_name(const Input& in) const {
+    return where(in.axis, true, static_cast<unsigned>(in.which), in.offset);
+  }
 
   void release() noexcept {
     events.reset();  // first: it cancels the reads that use the request fds
@@ -243,69 +227,61 @@ void GpiodBackend::Impl::request_input(Input& in) {
   in.req = request(lc.p, name + ": requesting edge events");
 }
 
+void GpiodBackend::Impl::open(const std::string& name) {
+  chip_name = name;
+  chip = open_chip(name);
+  if (chip == nullptr) throw_chip_not_found(name);
+}
+
+// One axis' lines in configuration order, claimed; requested by request_outputs() (all outputs
+// in one request) and request_inputs().
+void GpiodBackend::Impl::claim_axis(unsigned a) {
+  const AxisLines& lines = axes[a];
+  for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
+    if (!lines.out[l]) continue;
+    claim_line(a, false, l, *lines.out[l]);
+    out_offset[a][l] = static_cast<int>(*lines.out[l]);
+    out_offsets.push_back(*lines.out[l]);
+  }
+  if (lines.enable) {
+    claim_line(a, false, kEnableKeyIndex, *lines.enable);
+    enable_offset[a] = static_cast<int>(*lines.enable);
+    out_offsets.push_back(*lines.enable);
+  }
+  for (unsigned l = 0; l < kInputLinesPerAxis; ++l) {
+    if (!lines.in[l]) continue;
+    claim_line(a, true, l, *lines.in[l]);
+    in_index[a][l] = static_cast<int>(inputs.size());
+    inputs.push_back(
+        {nullptr, static_cast<std::uint8_t>(a), static_cast<InputLine>(l), *lines.in[l]});
+  }
+}
+
+// Edge events on every claimed input (a request each), and the reader of their fds.
+void GpiodBackend::Impl::request_inputs() {
+  std::vector<LineEventReader::Source> sources;
+  for (Input& in : inputs) {
+    request_input(in);
+    sources.push_back({gpiod_line_request_get_fd(in.req), in.axis, in.which, input_name(in)});
+  }
+  start_events(std::move(sources), EdgeRecordFormat::kV2);
+}
+
 GpiodBackend::GpiodBackend(const std::string& chip, std::span<const AxisLines> axes)
     : d_(std::make_unique<Impl>()) {
   Impl& d = *d_;
-  d.chip_name = chip;
   d.axes.assign(axes.begin(), axes.end());
-  d.chip = open_chip(chip);
-  if (d.chip == nullptr) {
-    const int e = errno;
-    throw std::runtime_error("GPIO chip '" + chip + "' not found or not accessible: " +
-                             std::strerror(e != 0 ? e : ENOENT));
-  }
+  d.open(chip);
   try {
     gpiod_chip_info* info = gpiod_chip_get_info(d.chip);
-    const std::size_t n = info != nullptr ? gpiod_chip_info_get_num_lines(info) : 0;
+    d.chip_lines = info != nullptr ? gpiod_chip_info_get_num_lines(info) : 0;
     gpiod_chip_info_free(info);
-    std::vector<std::string> used(n);  // offset -> "axis1.step"
-    const auto claim = [&](unsigned a, bool input, unsigned line, unsigned offset) {
-      // Our own use first: a line this configuration names twice is not "busy" (see v1).
-      if (offset < used.size() && !used[offset].empty()) {
-        throw std::runtime_error(d.where(a, input, line, offset) + ": offset already used by " +
-                                 used[offset]);
-      }
-      d.check_line(a, input, line, offset, n);
-      used[offset] = Impl::key(a, input, line);
-    };
+    d.start_claims(d.chip_lines);
     d.out_offset.assign(axes.size(), {-1, -1, -1});
     d.enable_offset.assign(axes.size(), -1);
-    d.in_index.resize(axes.size());
-    for (unsigned a = 0; a < axes.size(); ++a) {
-      d.in_index[a].fill(-1);
-      for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
-        if (!axes[a].out[l]) continue;
-        claim(a, false, l, *axes[a].out[l]);
-        d.out_offset[a][l] = static_cast<int>(*axes[a].out[l]);
-        d.out_offsets.push_back(*axes[a].out[l]);
-      }
-      if (axes[a].enable) {
-        claim(a, false, kEnableKeyIndex, *axes[a].enable);
-        d.enable_offset[a] = static_cast<int>(*axes[a].enable);
-        d.out_offsets.push_back(*axes[a].enable);
-      }
-      for (unsigned l = 0; l < kInputLinesPerAxis; ++l) {
-        if (!axes[a].in[l]) continue;
-        claim(a, true, l, *axes[a].in[l]);
-        d.in_index[a][l] = static_cast<int>(d.inputs.size());
-        d.inputs.push_back(
-            {nullptr, static_cast<std::uint8_t>(a), static_cast<InputLine>(l), *axes[a].in[l]});
-      }
-    }
+    for (unsigned a = 0; a < axes.size(); ++a) d.claim_axis(a);
     d.request_outputs();
-    std::vector<LineEventReader::Source> sources;
-    for (Impl::Input& in : d.inputs) {
-      d.request_input(in);
-      sources.push_back({gpiod_line_request_get_fd(in.req), in.axis, in.which,
-                         d.where(in.axis, true, static_cast<unsigned>(in.which), in.offset)});
-    }
-    if (!sources.empty()) {
-      try {
-        d.events = std::make_unique<LineEventReader>(std::move(sources), EdgeRecordFormat::kV2);
-      } catch (const std::runtime_error& e) {
-        throw std::runtime_error("GPIO chip '" + chip + "': input events: " + e.what());
-      }
-    }
+    d.request_inputs();
   } catch (...) {
     d.release();
     throw;
@@ -316,8 +292,12 @@ GpiodBackend::~GpiodBackend() {
   d_->release();
 }
 
-unsigned GpiodBackend::axes() const noexcept {
-  return static_cast<unsigned>(d_->axes.size());
+GpiodShared& GpiodBackend::shared() noexcept {
+  return *d_;
+}
+
+const GpiodShared& GpiodBackend::shared() const noexcept {
+  return *d_;
 }
 
 void GpiodBackend::write(unsigned axis, OutputLine line, bool level, Nanos /*t*/) noexcept {
@@ -327,30 +307,13 @@ void GpiodBackend::write(unsigned axis, OutputLine line, bool level, Nanos /*t*/
   if (gpiod_line_request_set_value(d.out_req, static_cast<unsigned>(off),
                                    level ? GPIOD_LINE_VALUE_ACTIVE : GPIOD_LINE_VALUE_INACTIVE) !=
       0) {
-    d.write_errors.store(d.write_errors.load(std::memory_order_relaxed) + 1,
-                         std::memory_order_relaxed);
+    d.count_write_error();
   }
-}
-
-LineOptions GpiodBackend::line_options(unsigned axis, bool input, unsigned line) const noexcept {
-  if (axis >= d_->axes.size()) return {};
-  const AxisLines& a = d_->axes[axis];
-  if (input) return line < kInputLinesPerAxis ? a.in_opt[line] : LineOptions{};
-  return line < kOutputLinesPerAxis ? a.out_opt[line] : LineOptions{};
-}
-
-bool GpiodBackend::has_input(unsigned axis, InputLine line) const noexcept {
-  return axis < d_->axes.size() && d_->axes[axis].has_input(line);
-}
-
-bool GpiodBackend::has_output(unsigned axis, OutputLine line) const noexcept {
-  return axis < d_->axes.size() && d_->axes[axis].has_output(line);
 }
 
 bool GpiodBackend::read(unsigned axis, InputLine line) {
   Impl& d = *d_;
-  if (axis >= d.in_index.size()) return false;
-  const int i = d.in_index[axis][static_cast<unsigned>(line)];
+  const int i = d.input_index(axis, line);
   if (i < 0) return false;
   const Impl::Input& in = d.inputs[static_cast<std::size_t>(i)];
   const gpiod_line_value v = gpiod_line_request_get_value(in.req, in.offset);
@@ -359,23 +322,6 @@ bool GpiodBackend::read(unsigned axis, InputLine line) {
                              ": reading the level: " + std::strerror(errno));
   }
   return v == GPIOD_LINE_VALUE_ACTIVE;
-}
-
-std::size_t GpiodBackend::wait_events(std::span<InputEvent> out, Nanos deadline) {
-  Impl& d = *d_;
-  if (!d.events) {  // no input wired: nothing can arrive
-    sleep_until(deadline);
-    return 0;
-  }
-  return d.events->wait(out, deadline);
-}
-
-std::uint64_t GpiodBackend::lost_events() const noexcept {
-  return d_->events ? d_->events->lost() : 0;
-}
-
-std::uint64_t GpiodBackend::write_errors() const noexcept {
-  return d_->write_errors.load(std::memory_order_relaxed);
 }
 
 void GpiodBackend::set_enable(unsigned axis, bool asserted) noexcept {

@@ -1,6 +1,7 @@
 #include "rt/pulse_thread.hpp"
 
-#include "rt/wake_latency.hpp"
+#include "rt/adaptive_spin.hpp"
+#include "rt/off_cpu_budget.hpp"
 
 #include <linux/futex.h>
 #include <pthread.h>
@@ -171,38 +172,22 @@ void PulseThread::setup() noexcept {
 
 // No allocation, lock, logging or system call in here but the engine's line writes, the clock
 // (vDSO) and the sleep (a futex wait with a deadline: clock_nanosleep that ring() can end).
+// The policies are named apart: AdaptiveSpin (how early to wake before an edge), OffCpuBudget
+// (the cap on that while the thread owes CPU time), DoorbellWindow and plan_sleep (when to wake
+// with no edge near).
 void PulseThread::loop() noexcept {
   const Nanos max_spin =
       single_shared_cpu_ ? std::min(options_.spin_ns, kSharedSingleCpuSpin) : options_.spin_ns;
   const Nanos min_spin = std::min(options_.min_spin_ns, max_spin);
-  const Nanos max_sleep_ns = options_.max_sleep_ns;
-  const Nanos quiet_sleep_ns = std::max(options_.quiet_sleep_ns, max_sleep_ns);
-  // Adaptive spin (rt/wake_latency.hpp): the thread wakes the 99th percentile of its last 1,024
-  // wake-ups' lateness + 2 us before an edge, within [min_spin, max_spin]; until it has
-  // measured a few, max_spin.
-  constexpr Nanos kMargin = 2 * kNsPerUs;
-  constexpr unsigned kPercentile = 990;  // per mille
-  constexpr unsigned kRecompute = 16;    // sleeps between two percentile computations
-  WakeLatencyWindow wake_late;
-  unsigned since_recompute = 0;
-  Nanos spin_ns = max_spin;
+  const SleepLimits limits{options_.max_sleep_ns,
+                           std::max(options_.quiet_sleep_ns, options_.max_sleep_ns)};
+  AdaptiveSpin adaptive(min_spin, max_spin);
+  DoorbellWindow doorbell(doorbell_.load(std::memory_order_acquire), options_.awake_ns);
+  OffCpuBudget budget(options_.min_off_cpu_permille, min_spin, max_spin, monotonic_now(),
+                      thread_cpu_now());
   std::uint64_t loops = 0;
   std::uint64_t edges = 0;
-  std::uint64_t sleeps = 0;
-  std::uint64_t starved_polls = 0;
-  std::uint32_t bell = doorbell_.load(std::memory_order_acquire);
-  Nanos awake_until = 0;
-  // Off-CPU budget (see pulse_thread.hpp): once per window, the thread's CPU time (a clock
-  // read, like the others) updates `debt`, the CPU time used beyond the allowed share; while
-  // there is debt the spin is capped at min_spin (an economy window), else it is not.
-  constexpr Nanos kWindow = 20 * kNsPerMs;
-  constexpr Nanos kMaxDebt = 200 * kNsPerMs;
-  Nanos debt = 0;
-  const Nanos min_off = static_cast<Nanos>(options_.min_off_cpu_permille);
-  Nanos window_start = monotonic_now();
-  Nanos window_cpu = thread_cpu_now();
-  Nanos spin_cap = max_spin;
-  spin_now_.store(spin_ns, std::memory_order_relaxed);
+  spin_now_.store(adaptive.spin(), std::memory_order_relaxed);
   while (!stop_.load(std::memory_order_acquire)) {
     loops_.store(++loops, std::memory_order_relaxed);
     const Nanos t = engine_.next_due();
@@ -214,52 +199,36 @@ void PulseThread::loop() noexcept {
       edges_.store(++edges, std::memory_order_relaxed);
       continue;
     }
-    const std::uint32_t b = doorbell_.load(std::memory_order_acquire);
-    if (b != bell) {
-      bell = b;
-      awake_until = now + options_.awake_ns;
-    }
-    if (min_off > 0 && now - window_start >= kWindow) {
-      const Nanos cpu = thread_cpu_now();
-      debt += (cpu - window_cpu) - (now - window_start) * (1000 - min_off) / 1000;
-      debt = std::clamp(debt, -kMaxDebt, kMaxDebt);
-      spin_cap = debt > 0 ? min_spin : max_spin;
-      window_start = now;
-      window_cpu = cpu;
-    }
-    const Nanos spin_eff = std::min(spin_ns, spin_cap);
-    if (t == kNever || t - now > spin_eff) {
-      // Poll for new work while a producer said some may come, or while a motion is starved
-      // (its ring ran dry before its last edge) and the planner's next edge for it may be due
-      // (AxisControl::refill_at, less the spin: it is an edge time); otherwise wait for the
-      // edge, the time the planner named, or a ring().
-      const Nanos dry_wake = engine_.starved() ? engine_.dry_until() - spin_eff : kNever;
-      const bool starved = engine_.starved() && dry_wake <= now;
-      const bool poll = now < awake_until || starved;
-      if (starved) starved_polls_.store(++starved_polls, std::memory_order_relaxed);
-      Nanos wake = now + (poll ? max_sleep_ns : quiet_sleep_ns);
-      const bool for_edge = t != kNever && t - spin_eff <= wake;
-      if (for_edge) wake = t - spin_eff;
-      if (!poll && dry_wake < wake) wake = dry_wake;  // not polling: dry_wake > now
-      futex_sleep_until(doorbell_, bell, wake);
-      sleeps_.store(++sleeps, std::memory_order_relaxed);
-      const Nanos woke = monotonic_now();
-      if (for_edge && min_spin < max_spin) {
-        wake_late.add(woke - wake);
-        if (++since_recompute >= kRecompute) {
-          since_recompute = 0;
-          const Nanos p = wake_late.percentile(kPercentile);
-          spin_ns = std::clamp(p + kMargin, min_spin, max_spin);
-          wake_p99_.store(p, std::memory_order_relaxed);
+    doorbell.see(doorbell_.load(std::memory_order_acquire), now);
+    if (budget.window_over(now)) budget.close_window(now, thread_cpu_now());
+    const Nanos spin = std::min(adaptive.spin(), budget.spin_cap());
+    if (t == kNever || t - now > spin) {
+      const SleepPlan plan = plan_sleep(now, t, spin, doorbell.awake(now),
+                                        {engine_.starved(), engine_.dry_until()}, limits);
+      sleep_as_planned(plan, doorbell.bell());
+      if (plan.for_edge && adaptive.adapts()) {
+        if (adaptive.add(monotonic_now() - plan.wake)) {
+          wake_p99_.store(adaptive.p99(), std::memory_order_relaxed);
         }
-        spin_now_.store(std::min(spin_ns, spin_cap), std::memory_order_relaxed);
+        spin_now_.store(std::min(adaptive.spin(), budget.spin_cap()), std::memory_order_relaxed);
       }
       continue;
     }
-    // Within spin_ns of the edge: spin. Each turn goes back through next_due(), so an immediate
+    // Within the spin of the edge: spin. Each turn goes back through next_due(), so an immediate
     // stop or an earlier edge of another axis is still seen while spinning.
     cpu_relax();
   }
+}
+
+// One sleep of the loop, counted (the counters are the pulse thread's alone: a store, no
+// read-modify-write).
+void PulseThread::sleep_as_planned(const SleepPlan& plan, std::uint32_t bell) noexcept {
+  if (plan.starved) {
+    starved_polls_.store(starved_polls_.load(std::memory_order_relaxed) + 1,
+                         std::memory_order_relaxed);
+  }
+  futex_sleep_until(doorbell_, bell, plan.wake);
+  sleeps_.store(sleeps_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
 }
 
 }  // namespace stepmod::rt

@@ -43,6 +43,7 @@
 
 #include "core/clock.hpp"
 #include "rt/pulse_engine.hpp"
+#include "rt/sleep_plan.hpp"
 
 namespace stepmod::rt {
 
@@ -125,6 +126,7 @@ class PulseThread {
   void body() noexcept;
   void setup() noexcept;
   void loop() noexcept;
+  void sleep_as_planned(const SleepPlan& plan, std::uint32_t bell) noexcept;
 
   // The early wake-up's cap when the thread shares the machine's only CPU (see setup()).
   static constexpr Nanos kSharedSingleCpuSpin = 30 * kNsPerUs;

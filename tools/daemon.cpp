@@ -83,6 +83,7 @@ struct Daemon::Impl {
   }
 
   void control_loop(const std::atomic<bool>& stop);
+  bool finish_trace();  // after the threads: the VCD written; false if incomplete
   // The daemon health words (INTERFACE.md 3.3) for this scan, logging new late-edge faults.
   ipc::Health health(std::uint32_t supervisor_flags);
   void log_supervision(const ipc::PlcSupervisor& sup, Nanos now);
@@ -165,31 +166,24 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
 
 Daemon::~Daemon() = default;
 
-bool Daemon::run(const std::atomic<bool>& stop) {
-  Impl& d = *impl_;
+namespace {
+
+// The pulse thread's options from the configuration.
+rt::PulseThread::Options pulse_options(const Config& config) {
   rt::PulseThread::Options po;
-  po.priority = d.config.rt_priority;
-  po.cpu = d.config.rt_cpu;
+  po.priority = config.rt_priority;
+  po.cpu = config.rt_cpu;
 #ifdef STEPMOD_SANITIZED
   po.lock_memory = false;  // the sanitizers' shadow memory cannot be locked
 #endif
   // Every command reaches the pulse thread through kick(): between commands it need not poll
   // (issue 5: an idle daemon polling every 50 us used a fifth of a core).
   po.quiet_sleep_ns = 100 * kNsPerMs;
-  rt::PulseThread pulse(d.stack->engine(), po);
-  d.pulse = &pulse;
-  d.planner_wakes = d.stack->planner().wake_counter().load();
-  // SCHED_FIFO 1: above every normal thread, below the pulse and control threads (gpio/vcd_trace),
-  // where there is a second CPU for it. On a single CPU it stays a normal thread: its wake-ups
-  // would otherwise come before everything else there (the PLC, a test's machine model).
-  if (d.trace) {
-    cpu_set_t cpus;
-    CPU_ZERO(&cpus);
-    const bool several = sched_getaffinity(0, sizeof cpus, &cpus) == 0 && CPU_COUNT(&cpus) >= 2;
-    d.trace->start(several ? 1 : 0);
-  }
-  if (!pulse.start()) throw std::runtime_error("cannot start the pulse thread");
-  const auto& st = pulse.status();
+  return po;
+}
+
+// What the pulse thread's setup was refused, said once (the thread itself never logs).
+void warn_pulse_setup(const rt::PulseThread::Options& po, const rt::PulseThread::Status& st) {
   if (!st.fifo) {
     spdlog::warn(
         "pulse thread: SCHED_FIFO priority {} refused ({}); running without real-time "
@@ -203,18 +197,63 @@ bool Daemon::run(const std::atomic<bool>& stop) {
     spdlog::warn("cannot pin the pulse thread to CPU {} ({})", po.cpu,
                  std::strerror(st.affinity_errno));
   }
+}
+
+// SCHED_FIFO 1: above every normal thread, below the pulse and control threads (gpio/vcd_trace),
+// where there is a second CPU for it. On a single CPU it stays a normal thread: its wake-ups
+// would otherwise come before everything else there (the PLC, a test's machine model).
+void start_trace_thread(gpio::TraceWriter& trace) {
+  cpu_set_t cpus;
+  CPU_ZERO(&cpus);
+  const bool several = sched_getaffinity(0, sizeof cpus, &cpus) == 0 && CPU_COUNT(&cpus) >= 2;
+  trace.start(several ? 1 : 0);
+}
+
+// Real-time below the control thread (issue 18): under CPU hogs a normal-priority planner was
+// held off for milliseconds, the pulse thread's 4 ms of edges ran dry and the steps paused.
+void raise_planner_thread(planner::PlannerThread& planner, int rt_priority) {
+  if (rt_priority <= 0) return;
+  const int prio = std::max(1, rt_priority - 20);
+  if (const int rc = planner.set_realtime(prio); rc != 0) {
+    spdlog::warn("planner thread: SCHED_FIFO priority {} refused ({}): steps may pause under load",
+                 prio, std::strerror(rc));
+  }
+}
+
+// The control thread reads the input edges. The v1 GPIO uAPI keeps only 16 unread edges per
+// line and drops further ones silently, so this thread must run as soon as an edge arrives,
+// not when the scheduler next gives it a time slice (on a single-core board a busy process,
+// the soft PLC for one, otherwise makes it lose edges; an E-stop edge would wait as well).
+// Real-time, below the pulse thread; set after the other threads have been started so that
+// they do not inherit it. The simulated machine has no such buffer: left as it is.
+void raise_control_thread(int rt_priority) {
+  sched_param sp{};
+  sp.sched_priority = std::max(1, rt_priority - 10);
+  const int rc = pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp);
+  if (rc != 0) {
+    spdlog::warn(
+        "control thread: SCHED_FIFO priority {} refused ({}); input edges may be lost "
+        "under load",
+        sp.sched_priority, std::strerror(rc));
+  }
+}
+
+}  // namespace
+
+// The wiring of the threads: pulse, trace, planner, then this thread as the control thread
+// (control_loop) until `stop`; then the orderly shutdown in the reverse order.
+bool Daemon::run(const std::atomic<bool>& stop) {
+  Impl& d = *impl_;
+  const rt::PulseThread::Options po = pulse_options(d.config);
+  rt::PulseThread pulse(d.stack->engine(), po);
+  d.pulse = &pulse;
+  d.planner_wakes = d.stack->planner().wake_counter().load();
+  if (d.trace) start_trace_thread(*d.trace);
+  if (!pulse.start()) throw std::runtime_error("cannot start the pulse thread");
+  warn_pulse_setup(po, pulse.status());
   planner::PlannerThread planner(d.stack->planner());
   planner.start();
-  // Real-time below the control thread (issue 18): under CPU hogs a normal-priority planner was
-  // held off for milliseconds, the pulse thread's 4 ms of edges ran dry and the steps paused.
-  if (po.priority > 0) {
-    const int prio = std::max(1, d.config.rt_priority - 20);
-    if (const int rc = planner.set_realtime(prio); rc != 0) {
-      spdlog::warn(
-          "planner thread: SCHED_FIFO priority {} refused ({}): steps may pause under load", prio,
-          std::strerror(rc));
-    }
-  }
+  raise_planner_thread(planner, po.priority);
 
   spdlog::info("module {} '{}' running: /dev/shm/stepmod.{}, {} backend, scan {} us",
                static_cast<unsigned>(d.config.type), d.config.name, d.config.name,
@@ -223,24 +262,7 @@ bool Daemon::run(const std::atomic<bool>& stop) {
   // to compare trace times with its own CLOCK_MONOTONIC readings.
   if (d.trace) spdlog::info("trace: #0 is CLOCK_MONOTONIC {} ns", d.start);
   systemd::notify_ready("running");
-
-  // The control thread reads the input edges. The v1 GPIO uAPI keeps only 16 unread edges per
-  // line and drops further ones silently, so this thread must run as soon as an edge arrives,
-  // not when the scheduler next gives it a time slice (on a single-core board a busy process,
-  // the soft PLC for one, otherwise makes it lose edges; an E-stop edge would wait as well).
-  // Real-time, below the pulse thread; set after the other threads have been started so that
-  // they do not inherit it. The simulated machine has no such buffer: left as it is.
-  if (d.sim == nullptr) {
-    sched_param sp{};
-    sp.sched_priority = std::max(1, d.config.rt_priority - 10);
-    const int rc = pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp);
-    if (rc != 0) {
-      spdlog::warn(
-          "control thread: SCHED_FIFO priority {} refused ({}); input edges may be lost "
-          "under load",
-          sp.sched_priority, std::strerror(rc));
-    }
-  }
+  if (d.sim == nullptr) raise_control_thread(d.config.rt_priority);
   d.control_loop(stop);
 
   systemd::notify_stopping();
@@ -256,23 +278,26 @@ bool Daemon::run(const std::atomic<bool>& stop) {
   spdlog::info(
       "wake-ups: pulse thread {} loops, {} sleeps ({} starved polls); planner thread {} passes",
       pulse.loops(), pulse.sleeps(), pulse.starved_polls(), planner.loops());
-  bool trace_complete = true;
-  if (d.trace) {
-    const gpio::TraceOutcome t =
-        d.trace->stop(d.stack->engine().trace_dropped(), d.input_trace_dropped.load());
-    if (d.trace_dropped() > 0) {
-      spdlog::error(
-          "trace: {} output and {} input records lost (ring full): the VCD is "
-          "incomplete (it says so, and marks where)",
-          d.stack->engine().trace_dropped(), d.input_trace_dropped.load());
-    }
-    if (!t.complete) spdlog::error("trace: {}", t.problem);
-    trace_complete = t.complete && d.trace_dropped() == 0;
-  }
+  const bool trace_complete = d.finish_trace();
   if (d.backend->lost_events() > 0) {
     spdlog::warn("{} input events were lost in all", d.backend->lost_events());
   }
   return trace_complete;
+}
+
+// After the threads have stopped: the VCD written; false if it lost records.
+bool Daemon::Impl::finish_trace() {
+  if (!trace) return true;
+  const gpio::TraceOutcome t =
+      trace->stop(stack->engine().trace_dropped(), input_trace_dropped.load());
+  if (trace_dropped() > 0) {
+    spdlog::error(
+        "trace: {} output and {} input records lost (ring full): the VCD is "
+        "incomplete (it says so, and marks where)",
+        stack->engine().trace_dropped(), input_trace_dropped.load());
+  }
+  if (!t.complete) spdlog::error("trace: {}", t.problem);
+  return t.complete && trace_dropped() == 0;
 }
 
 // The control thread: input events as they come, the PLC image once per scan.

@@ -24,6 +24,60 @@
 
 namespace {
 
+// SIGINT/SIGTERM/SIGHUP are blocked in every thread (the threads created after this inherit the
+// mask) and taken by run_until_signal with sigtimedwait, so no handler ever runs on the pulse
+// thread.
+sigset_t block_stop_signals() {
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  sigaddset(&signals, SIGHUP);  // the terminal closed: the same clean stop
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  return signals;
+}
+
+// The daemon on a thread of its own until one of `signals` (or its failure); the exit status.
+int run_until_signal(const stepmod::tools::Config& config,
+                     const std::optional<std::string>& trace_path, const sigset_t& signals) {
+  try {
+    stepmod::tools::Daemon daemon(config, trace_path);
+    std::atomic<bool> stop{false};
+    std::atomic<bool> finished{false};
+    std::exception_ptr failure;
+    bool trace_complete = true;
+    std::thread runner([&] {
+      try {
+        trace_complete = daemon.run(stop);
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      finished.store(true, std::memory_order_release);
+    });
+    // The runner only ends on its own after a failure; look at it every 100 ms.
+    const timespec poll{0, 100'000'000};
+    while (!finished.load(std::memory_order_acquire)) {
+      const int sig = sigtimedwait(&signals, nullptr, &poll);
+      if (sig > 0) {
+        spdlog::info("signal {}: stopping", sig);
+        stop.store(true, std::memory_order_release);
+        break;
+      }
+    }
+    runner.join();
+    if (failure) std::rethrow_exception(failure);
+    if (!trace_complete) {
+      spdlog::error("stopped; the trace is incomplete (exit status 3)");
+      return 3;
+    }
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+  spdlog::info("stopped");
+  return 0;
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"stepmodd: software replacement for an AMCI 3601/3602/3202 stepper module"};
   std::string config_path;
@@ -63,51 +117,8 @@ int run(int argc, char** argv) {
     return 0;
   }
 
-  // SIGINT/SIGTERM/SIGHUP are blocked in every thread (the threads created below inherit the mask)
-  // and taken here with sigtimedwait, so no handler ever runs on the pulse thread.
-  sigset_t signals;
-  sigemptyset(&signals);
-  sigaddset(&signals, SIGINT);
-  sigaddset(&signals, SIGTERM);
-  sigaddset(&signals, SIGHUP);  // the terminal closed: the same clean stop
-  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
-
-  try {
-    stepmod::tools::Daemon daemon(config, trace_path);
-    std::atomic<bool> stop{false};
-    std::atomic<bool> finished{false};
-    std::exception_ptr failure;
-    bool trace_complete = true;
-    std::thread runner([&] {
-      try {
-        trace_complete = daemon.run(stop);
-      } catch (...) {
-        failure = std::current_exception();
-      }
-      finished.store(true, std::memory_order_release);
-    });
-    // The runner only ends on its own after a failure; look at it every 100 ms.
-    const timespec poll{0, 100'000'000};
-    while (!finished.load(std::memory_order_acquire)) {
-      const int sig = sigtimedwait(&signals, nullptr, &poll);
-      if (sig > 0) {
-        spdlog::info("signal {}: stopping", sig);
-        stop.store(true, std::memory_order_release);
-        break;
-      }
-    }
-    runner.join();
-    if (failure) std::rethrow_exception(failure);
-    if (!trace_complete) {
-      spdlog::error("stopped; the trace is incomplete (exit status 3)");
-      return 3;
-    }
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 1;
-  }
-  spdlog::info("stopped");
-  return 0;
+  const sigset_t signals = block_stop_signals();
+  return run_until_signal(config, trace_path, signals);
 }
 
 }  // namespace

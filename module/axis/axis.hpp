@@ -132,6 +132,10 @@ class Axis {
   // Command mode (axis_commands.cpp).
   void command_mode_scan(const AxisCommand& c, Nanos now);
   void command_edge(const AxisCommand& c, const CommandSet& rising, Nanos now);
+  // The rules every command edge passes first (CE-L1, several commands, undefined bits, not
+  // configured, the word rules): the one command to act on, or none (refused or ignored).
+  std::optional<CommandKind> admitted_command(const AxisCommand& c, const CommandSet& rising);
+  void dispatch_command(const AxisCommand& c, CommandKind kind, Nanos now);
   void command_move(const AxisCommand& c, bool absolute);
   // `now`: the scan that saw the Hold; its deceleration starts there (issue 12 item 9).
   void command_hold(Nanos now);

@@ -3,6 +3,7 @@
 // Errors). Every rejection names the checklist item of digest 6.1 it implements.
 #include <cstdint>
 #include <limits>
+#include <optional>
 
 #include "module/axis/axis.hpp"
 
@@ -48,41 +49,51 @@ void Axis::command_mode_scan(const AxisCommand& c, Nanos now) {
 }
 
 void Axis::command_edge(const AxisCommand& c, const CommandSet& rising, Nanos now) {
+  if (const std::optional<CommandKind> kind = admitted_command(c, rising)) {
+    dispatch_command(c, *kind, now);
+  }
+}
+
+std::optional<CommandKind> Axis::admitted_command(const AxisCommand& c, const CommandSet& rising) {
   // 3601-CE-L1: while CE is set, only Reset Errors is looked at (Immediate Stop included).
-  if (st_.status.command_error && !rising.has(CommandKind::kResetErrors)) return;
+  if (st_.status.command_error && !rising.has(CommandKind::kResetErrors)) return {};
   // 3601-CE-02 / CE-12: more than one command at a time. A33: an undefined command bit counts as
   // a command.
   if (c.commands.count() > 1) {
     st_.reject(items::kSeveralCommands, "%u command bits set at once",
                static_cast<unsigned>(c.commands.count()));
-    return;
+    return {};
   }
   if (rising.has(CommandKind::kUndefined)) {
     st_.reject(items::kUndefinedCommand, "an undefined command bit is set");  // A33
-    return;
+    return {};
   }
   // The manual: "The 3601 module has to be configured before starting any operations."
   if (!st_.configured) {
     st_.reject(items::kNotConfigured, "not configured: configure the axis first");
-    return;
+    return {};
   }
   // The dialect's word-level rules for this command (3601-CE-09, CE-15, CE-21: words or the
   // command LSW that must be 0).
   if (c.words_invalid) {
     st_.reject(items::kWordsNotZero, "words that must be 0 with this command are not");
-    return;
+    return {};
   }
   const auto kind = rising.single();
-  if (!kind) return;
+  if (!kind) return {};
   // 3202-CE-05 / IP-03 / HI-04: reserved command words not 0.
   if (c.reserved_words_nonzero) {
     st_.reject_profile(items::kReservedWords, "reserved command words are not 0");
     if (*kind == CommandKind::kFindHomeCw || *kind == CommandKind::kFindHomeCcw) {
       st_.status.home_invalid = true;
     }
-    return;
+    return {};
   }
-  switch (*kind) {
+  return kind;
+}
+
+void Axis::dispatch_command(const AxisCommand& c, CommandKind kind, Nanos now) {
+  switch (kind) {
     case CommandKind::kAbsoluteMove:
       command_move(c, true);
       break;
@@ -107,7 +118,7 @@ void Axis::command_edge(const AxisCommand& c, const CommandSet& rising, Nanos no
     case CommandKind::kManualCw:
     case CommandKind::kManualCcw: {
       const auto dir =
-          *kind == CommandKind::kManualCw ? planner::Direction::kCw : planner::Direction::kCcw;
+          kind == CommandKind::kManualCw ? planner::Direction::kCw : planner::Direction::kCcw;
       if (c.follower) {
         follower_.command(c, dir);
       } else {

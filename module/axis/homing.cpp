@@ -103,16 +103,22 @@ struct HomingTable {
 
 // Find Home + / Find Home -: 3601 manual Ch.4 "Find Home".
 void Homing::command(const AxisCommand& c, planner::Direction dir) {
+  if (admitted(c, dir)) start(c, dir);
+}
+
+// The command's rules, in the manuals' order: false (with CE, HI or IE as each rule says) when
+// the homing does not start.
+bool Homing::admitted(const AxisCommand& c, planner::Direction dir) {
   // 3601-CE-03: a homing is a move; none may start while another runs.
   if (ax_.moving()) {
     ax_.reject(items::kMoveWhileMoving, "Find Home while a motion is running");
-    return;
+    return false;
   }
   // 3601-CE-10: "S-Curve acceleration profiles are not allowed during a homing operation."
   if (c.s_curve()) {
     ax_.reject(items::kHomeSCurve, "Find Home with an S-curve selected");
     if (ax_.rules.homing_s_curve_sets_home_invalid) ax_.status.home_invalid = true;  // 3602-HI-02
-    return;
+    return false;
   }
   // 3601-CE-13 / HI-03: Find Home + needs a configured CW limit, Find Home - a CCW limit (not on
   // the 3602, digest 8.0).
@@ -120,7 +126,7 @@ void Homing::command(const AxisCommand& c, planner::Direction dir) {
     ax_.reject(items::kHomeNoLimit, "Find Home %s: no %s limit configured",
                dir == Direction::kCw ? "+" : "-", dir == Direction::kCw ? "CW" : "CCW");
     ax_.status.home_invalid = true;
-    return;
+    return false;
   }
   // 3602-CE-12: a home-switch homing needs the home input configured (the 3601's configuration
   // check guarantees it there, 3601-CFG-02; the 3602 checks it at the command, 3602-CFG-N1).
@@ -128,35 +134,39 @@ void Homing::command(const AxisCommand& c, planner::Direction dir) {
                              ax_.cfg.homing == HomingVariant::kSwitchWithBackplane;
   if (switch_homing && !ax_.cfg.used(InputLine::kHome)) {
     ax_.reject(items::kHomeNoInput, "Find Home: the home input is not configured");
-    return;
+    return false;
   }
   // 3601-HI-02: the target words must be 0. A8: CE as well, no motion.
   if (!c.target || *c.target != 0) {
     ax_.reject(items::kHomeTarget, "Find Home with a target %lld (must be 0)",
                static_cast<long long>(c.target.value_or(0)));
     ax_.status.home_invalid = true;
-    return;
+    return false;
   }
   // Digest 6.4 row 2: a homing's out-of-range speed, accel or decel raises CE + HI.
   if (!ax_.speed_in_range(c.speed) || !ax_.rate_in_range(c.accel) || !ax_.rate_in_range(c.decel)) {
     ax_.reject(items::kOutOfRange, "Find Home: speed, accel or decel out of range");
     ax_.status.home_invalid = true;
-    return;
+    return false;
   }
   // 3601-HI-01 / CE-05 / IP-01: Vp < Vs (IP too: the manual's IP #1 is unconditional, 6.4).
   if (*c.speed < ax_.cfg.starting_speed) {
     ax_.reject_profile(items::kVpBelowVs, "Find Home: Vp %d is below Vs %d",
                        static_cast<int>(*c.speed), static_cast<int>(ax_.cfg.starting_speed));
     ax_.status.home_invalid = true;
-    return;
+    return false;
   }
   // A15: no move starts while the E-stop is active.
   if (ax_.estop_active()) {
     ax_.status.input_error = true;
     ax_.note(items::kStartTowardLimit, "E-stop active: homing does not start");
-    return;
+    return false;
   }
+  return true;
+}
 
+// The sequence's first motion: away from an active home input or limit ahead, else the search.
+void Homing::start(const AxisCommand& c, planner::Direction dir) {
   h_ = Sequence{};
   h_.dir = dir;
   h_.variant = static_cast<std::uint8_t>(ax_.cfg.homing);

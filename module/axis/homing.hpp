@@ -49,6 +49,8 @@ class Homing {
   };
 
  private:
+  bool admitted(const AxisCommand& c, planner::Direction dir);
+  void start(const AxisCommand& c, planner::Direction dir);
   void event(Event ev);
   void limit(bool ahead);
   bool run(planner::Direction d, bool creep);

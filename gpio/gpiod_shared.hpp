@@ -1,0 +1,68 @@
+#pragma once
+// What the two GpiodBackend implementations share (gpiod_backend_v1.cpp for libgpiod 1.6,
+// gpiod_backend_v2.cpp for libgpiod 2; CMake builds one): the configured lines and what is said
+// about them, the check that a configuration names each offset once, the input event reader and
+// the accessors over AxisLines (gpiod_shared.cpp). Each backend's Impl derives from GpiodShared
+// and adds its libgpiod handles. Internal to gpio/: no libgpiod in here.
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gpio/axis_lines.hpp"
+#include "gpio/line_event_reader.hpp"
+
+namespace stepmod::gpio {
+
+inline constexpr const char* kGpiodConsumer = "stepmod";
+// The line index that stands for the drive-enable output in line_key() and where().
+inline constexpr unsigned kEnableKeyIndex = kOutputLinesPerAxis;
+
+// The config key of a line: "axis1.step", "axis1.enable".
+std::string line_key(unsigned axis, bool input, unsigned line);
+
+struct GpiodShared {
+  std::string chip_name;
+  std::vector<AxisLines> axes;
+  std::atomic<std::uint64_t> write_errors{0};  // by the pulse and control threads' writes
+  std::unique_ptr<LineEventReader> events;     // null: no input wired
+  // Per axis and InputLine: the index of the input in the backend's own list, -1 unwired.
+  std::vector<std::array<int, kInputLinesPerAxis>> in_index;
+
+  // "GPIO chip 'gpiochip0', line 5 (axis1.step)": how every message names a line.
+  std::string where(unsigned axis, bool input, unsigned line, unsigned offset) const;
+  // After a failed line request: `what`, "line busy" where errno says so, errno's text.
+  static std::string request_error(const std::string& what);
+  // The chip could not be opened (errno says why; ENOENT when it does not).
+  [[noreturn]] static void throw_chip_not_found(const std::string& chip);
+
+  // Before requesting anything: the chip's line count. Then each configured line once, in
+  // request order: our own use first (the lines are requested as they are claimed, so the
+  // kernel would report a line this configuration names twice as busy "used by 'stepmod'").
+  void start_claims(std::size_t chip_lines) {
+    claimed_.assign(chip_lines, {});
+    in_index.assign(axes.size(), {});
+    for (auto& index : in_index) index.fill(-1);
+  }
+  void claim(unsigned axis, bool input, unsigned line, unsigned offset);
+
+  // The index of a claimed input (read()), -1 when it is not wired.
+  int input_index(unsigned axis, InputLine line) const noexcept {
+    return axis < in_index.size() ? in_index[axis][static_cast<unsigned>(line)] : -1;
+  }
+
+  // The reader of the requested input lines' event fds (none: no reader).
+  void start_events(std::vector<LineEventReader::Source> sources, EdgeRecordFormat format);
+
+  // Pulse thread (write) and control thread (set_enable): one failed line write, counted.
+  void count_write_error() noexcept {
+    write_errors.store(write_errors.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+  }
+
+ private:
+  std::vector<std::string> claimed_;  // offset -> "axis1.step"
+};
+
+}  // namespace stepmod::gpio
