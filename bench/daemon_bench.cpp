@@ -17,6 +17,10 @@
 //       Issue 12: the late-edge guard (1 ms) over --runs moves: complete / faulted, no burst.
 //   daemon_bench trace --stepmodd PATH --rate STEPS_PER_S [--steps N]
 //       Issue 12: every step edge of a traced move in the VCD, nothing lost.
+//   daemon_bench slip --stepmodd PATH [--runs 2]
+//       Issue 18 (benchmark 12): single-axis moves at 2/10/50 ksteps/s judged from the VCD.
+//   daemon_bench slip3602 --stepmodd PATH [--runs 2]
+//       Issue 18 (benchmark 12): a 3602 line, circle and held-and-resumed line (path_slip.cpp).
 //
 // Output: human-readable lines plus "RESULT key=value ..." lines for scripts/bench.
 #include <dirent.h>
@@ -48,96 +52,16 @@
 #include "planner/planner.hpp"
 #include "rt/axis_feedback.hpp"
 #include "rt/edge.hpp"
+#include "bench/bench_rig.hpp"
+#include "bench/path_slip.hpp"
+#include "bench/slip_judge.hpp"
 
 namespace {
 
 using namespace stepmod;
+using namespace stepmod::bench;
 namespace m = module::m3601;
 using std::chrono::milliseconds;
-
-const char* arg(int argc, char** argv, const char* name, const char* def) {
-  for (int i = 2; i + 1 < argc; ++i) {
-    if (std::strcmp(argv[i], name) == 0) return argv[i + 1];
-  }
-  return def;
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-// A stepmodd child process on a private config; SIGTERM on destruction.
-class Daemon {
- public:
-  // `late_limit_us`: the late-edge guard; the default is its maximum so that a fault does not
-  // end a measured move early (the guard has its own benchmarks: `guard`, `slip`); <= 0: the
-  // product's default (no key written).
-  Daemon(const std::string& exe, unsigned scan_us, bool trace, long late_limit_us = 1'000'000) {
-    char tmpl[] = "/tmp/stepmod-bench-XXXXXX";
-    dir_ = mkdtemp(tmpl);
-    name_ = "bench" + std::to_string(getpid());
-    config_ = dir_ + "/3601.toml";
-    log_ = dir_ + "/stepmodd.log";
-    if (trace) trace_ = dir_ + "/trace.vcd";
-    std::ofstream(config_) << "[module]\ntype = \"3601\"\nname = \"" << name_
-                           << "\"\nscan_us = " << scan_us
-                           << "\n[gpio]\nbackend = \"sim\"\n[rt]\npriority = 80\n"
-                           << (late_limit_us > 0
-                                   ? "late_limit_us = " + std::to_string(late_limit_us) + "\n"
-                                   : std::string())
-                           << "[[axis]]\nstep = 1\ndir = 2\nhome = 3\ncw_limit = 4\nccw_limit = 5\n"
-                              "[axis.sim]\ncw_limit_at = 100000000\nccw_limit_at = -100000000\n"
-                              "home_from = -200\nhome_to = -100\n";
-    pid_ = fork();
-    if (pid_ == 0) {
-      if (std::freopen(log_.c_str(), "w", stderr) == nullptr) _exit(126);  // no log, no run
-      std::vector<std::string> a{exe, "--config", config_};
-      if (trace) {
-        a.push_back("--trace");
-        a.push_back(trace_);
-      }
-      std::vector<char*> av;
-      for (auto& s : a) av.push_back(s.data());
-      av.push_back(nullptr);
-      execv(av[0], av.data());
-      _exit(127);
-    }
-    const std::string shm = "/dev/shm/stepmod." + name_;
-    for (int i = 0; i < 1000; ++i) {
-      struct stat st {};
-      if (stat(shm.c_str(), &st) == 0) {
-        std::this_thread::sleep_for(milliseconds(50));  // let it start scanning
-        return;
-      }
-      std::this_thread::sleep_for(milliseconds(10));
-    }
-    throw std::runtime_error("stepmodd did not start: " + slurp(log_));
-  }
-  ~Daemon() {
-    stop();
-    std::error_code ignored;  // a bench leaves at worst a temp dir behind
-    std::filesystem::remove_all(dir_, ignored);
-  }
-  int stop() {
-    if (pid_ <= 0) return 0;
-    kill(pid_, SIGTERM);
-    int status = 0;
-    waitpid(pid_, &status, 0);
-    pid_ = -1;
-    return status;
-  }
-  pid_t pid() const { return pid_; }
-  const std::string& name() const { return name_; }
-  const std::string& trace() const { return trace_; }
-  std::string log() const { return slurp(log_); }
-
- private:
-  std::string dir_, name_, config_, log_, trace_;
-  pid_t pid_ = -1;
-};
 
 struct Plc {
   explicit Plc(const std::string& name) : c(name) {}
@@ -190,38 +114,6 @@ struct Plc {
     c.write_outputs(words(m::cmd_msw::kRelativeMove, lsw, steps, speed, accel, accel));
   }
 };
-
-// Rising-edge times (ns from #0) of one VCD wire.
-std::vector<Nanos> vcd_rising(const std::string& path, const std::string& wire) {
-  std::ifstream f(path);
-  std::string line, id;
-  Nanos t = 0;
-  int level = 0;
-  std::vector<Nanos> out;
-  while (std::getline(f, line)) {
-    if (line.rfind("$var", 0) == 0) {
-      std::istringstream s(line);
-      std::string var, type, width, ident, name;
-      s >> var >> type >> width >> ident >> name;
-      if (name == wire) id = ident;
-    } else if (!line.empty() && line[0] == '#') {
-      t = std::stoll(line.substr(1));
-    } else if (!id.empty() && line.size() >= 2 && (line[0] == '0' || line[0] == '1') &&
-               line.substr(1) == id) {
-      const int l = line[0] - '0';
-      if (l == 1 && level == 0) out.push_back(t);
-      level = l;
-    }
-  }
-  return out;
-}
-
-double pct(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const auto i = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size()))) - 1;
-  return v[std::min(i, v.size() - 1)];
-}
 
 int latency(int argc, char** argv) {
   const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
@@ -405,6 +297,14 @@ void constant_move(Plc& plc, int rate, std::int32_t steps) {
   wait_rest(plc, milliseconds(static_cast<long>(steps) * 1000 / rate + 10'000));
 }
 
+// The programmed speed the daemon's "needs a CPU of its own" notice names ("axis 1: programmed N
+// steps/s, ..."), or 0 without a notice.
+long notice_speed(const std::string& log) {
+  const std::string key = "axis 1: programmed ";
+  const auto at = log.find(key);
+  return at == std::string::npos ? 0 : std::atol(log.c_str() + at + key.size());
+}
+
 // Issue 12: edge timing from the outside. Each rising step edge of a constant-speed move in the
 // VCD against the ideal grid t0 + k/rate, t0 the earliest (t_k - k/rate): how late each edge is
 // relative to where a perfect controller puts it. Beside it, run cyclictest at the same priority.
@@ -413,13 +313,16 @@ int grid(int argc, char** argv) {
   const int rate = std::atoi(arg(argc, argv, "--rate", "20000"));
   const auto steps = static_cast<std::int32_t>(std::atoi(arg(argc, argv, "--steps", "200000")));
   std::vector<Nanos> rising;
+  long notice = 0;  // the speed the "needs a CPU of its own" notice named (0: none)
   {
     Daemon d(exe, 1000, true);
     Plc plc(d.name());
     constant_move(plc, rate, steps);
     d.stop();
     rising = vcd_rising(d.trace(), "axis1.step");
+    notice = notice_speed(d.log());
   }
+  std::printf("RESULT bench=notice rate=%d notice_steps_per_s=%ld\n", rate, notice);
   if (rising.size() < 2) {
     std::printf("grid: no steps traced\n");
     return 1;
@@ -534,36 +437,6 @@ std::vector<Nanos> planned_steps(const planner::MoveSpec& spec) {
   return t;
 }
 
-// One move's judgement against its plan (docs/slip.md, issue 18's criteria).
-struct SlipVerdict {
-  std::size_t compressed = 0;  // actual < 0.9 x planned - 2 us
-  std::size_t unfaulted = 0;   // pauses beyond the guard's rule that did not fault
-  Nanos worst_pause = 0;
-  bool in_time = true;  // ended within 2.5 x nominal + 3 s
-};
-
-SlipVerdict judge_move(const std::vector<Nanos>& wire, const std::vector<Nanos>& plan, double vs,
-                       bool faulted) {
-  SlipVerdict v;
-  const double vs_interval = 1e9 / vs;
-  for (std::size_t k = 1; k < wire.size() && k < plan.size(); ++k) {
-    const Nanos actual = wire[k] - wire[k - 1];
-    const Nanos planned = plan[k] - plan[k - 1];
-    if (static_cast<double>(actual) < 0.9 * static_cast<double>(planned) - 2'000) ++v.compressed;
-    const Nanos pause = actual - planned;
-    v.worst_pause = std::max(v.worst_pause, pause);
-    const bool above = static_cast<double>(planned) < 0.99 * vs_interval;
-    const bool beyond =
-        pause > 200 * kNsPerMs || (above && pause / std::max<Nanos>(planned, 1) > 8);
-    if (beyond && !faulted) ++v.unfaulted;
-  }
-  if (wire.size() >= 2 && plan.size() >= 2) {
-    const double nominal = static_cast<double>(plan.back() - plan.front());
-    v.in_time = static_cast<double>(wire.back() - wire.front()) <= 2.5 * nominal + 3e9;
-  }
-  return v;
-}
-
 // Step trains of consecutive moves, split where the line rested longer than `gap`.
 std::vector<std::vector<Nanos>> split_moves(const std::vector<Nanos>& rising, Nanos gap) {
   std::vector<std::vector<Nanos>> moves;
@@ -583,6 +456,7 @@ void report_slip(const std::vector<SlipCase>& cases, const std::vector<planner::
                  const std::vector<bool>& faulted, const std::vector<std::vector<Nanos>>& moves) {
   std::map<int, std::pair<int, int>> per_rate;  // rate -> (moves, faults)
   std::size_t compressed = 0, unfaulted = 0, late_ends = 0, inexact = 0;
+  int at_vs = 0, at_vs_faulted = 0;  // constant moves: the whole move at Vs
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const std::vector<Nanos> plan = planned_steps(specs[i]);
     const std::vector<Nanos> wire = i < moves.size() ? moves[i] : std::vector<Nanos>{};
@@ -596,6 +470,10 @@ void report_slip(const std::vector<SlipCase>& cases, const std::vector<planner::
     auto& [n, f] = per_rate[cases[i].rate];
     ++n;
     f += faulted[i] ? 1 : 0;
+    if (std::strcmp(cases[i].profile, "constant") == 0) {
+      ++at_vs;
+      at_vs_faulted += faulted[i] ? 1 : 0;
+    }
     std::printf(
         "slip %6d steps/s %-9s: %zu of %zu planned steps, %s, compressed %zu, "
         "unfaulted pauses %zu, worst pause %.1f us\n",
@@ -605,8 +483,8 @@ void report_slip(const std::vector<SlipCase>& cases, const std::vector<planner::
   }
   std::printf(
       "RESULT bench=slip moves=%zu compressed=%zu unfaulted_pauses=%zu late_ends=%zu "
-      "inexact=%zu",
-      cases.size(), compressed, unfaulted, late_ends, inexact);
+      "inexact=%zu faults_at_vs=%d/%d",
+      cases.size(), compressed, unfaulted, late_ends, inexact, at_vs_faulted, at_vs);
   for (const auto& [rate, nf] : per_rate)
     std::printf(" faults_%d=%d/%d", rate, nf.second, nf.first);
   std::printf("\n");
@@ -659,6 +537,7 @@ int slip(int argc, char** argv) {
       std::this_thread::sleep_for(milliseconds(400));  // a rest the VCD is split at
     }
     d.stop();
+    print_fault_lines(d.log());
     rising = vcd_rising(d.trace(), "axis1.step");
   }
   report_slip(cases, specs, faulted, split_moves(rising, 300 * kNsPerMs));
@@ -718,12 +597,13 @@ int main(int argc, char** argv) {
     if (cmd == "guard") return guard(argc, argv);
     if (cmd == "trace") return trace(argc, argv);
     if (cmd == "slip") return slip(argc, argv);
+    if (cmd == "slip3602") return path_slip(argc, argv);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "daemon_bench: %s\n", e.what());
     return 1;
   }
   std::fprintf(stderr,
-               "usage: daemon_bench latency|footprint|cpu|grid|guard|trace|slip --stepmodd PATH "
+               "usage: daemon_bench latency|footprint|cpu|grid|guard|trace|slip|slip3602 --stepmodd PATH "
                "[--scan-us US] [--steps N] [--runs N] "
                "[--commands N] [--seconds S] [--rate STEPS_PER_S]\n");
   return 2;
