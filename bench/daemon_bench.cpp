@@ -43,6 +43,9 @@
 #include <thread>
 #include <vector>
 
+#include "bench/bench_rig.hpp"
+#include "bench/path_slip.hpp"
+#include "bench/slip_judge.hpp"
 #include "core/clock.hpp"
 #include "ipc/client.hpp"
 #include "ipc/codec.hpp"
@@ -52,9 +55,6 @@
 #include "planner/planner.hpp"
 #include "rt/axis_feedback.hpp"
 #include "rt/edge.hpp"
-#include "bench/bench_rig.hpp"
-#include "bench/path_slip.hpp"
-#include "bench/slip_judge.hpp"
 
 namespace {
 
@@ -357,9 +357,10 @@ std::size_t densest(const std::vector<Nanos>& t, Nanos window) {
 }
 
 // Issue 12: the late-edge guard under load (scripts/bench loads the machine). --runs moves at
-// --rate with the product's guard (issue 18; before, a 1 ms limit): each completes (Move Complete) or faults (Stopped +
-// Position Invalid, a late-edge fault counted); and never a burst: the most steps in any 1 ms of
-// the VCD against the commanded rate (catching up within 1 ms of lateness may double it).
+// --rate with the product's guard (issue 18; before, a 1 ms limit): each completes (Move Complete)
+// or faults (Stopped + Position Invalid, a late-edge fault counted); and never a burst: the most
+// steps in any 1 ms of the VCD against the commanded rate (catching up within 1 ms of lateness may
+// double it).
 int guard(int argc, char** argv) {
   const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
   const int rate = std::atoi(arg(argc, argv, "--rate", "50000"));
@@ -602,9 +603,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "daemon_bench: %s\n", e.what());
     return 1;
   }
-  std::fprintf(stderr,
-               "usage: daemon_bench latency|footprint|cpu|grid|guard|trace|slip|slip3602 --stepmodd PATH "
-               "[--scan-us US] [--steps N] [--runs N] "
-               "[--commands N] [--seconds S] [--rate STEPS_PER_S]\n");
+  std::fprintf(
+      stderr,
+      "usage: daemon_bench latency|footprint|cpu|grid|guard|trace|slip|slip3602 --stepmodd PATH "
+      "[--scan-us US] [--steps N] [--runs N] "
+      "[--commands N] [--seconds S] [--rate STEPS_PER_S]\n");
   return 2;
 }

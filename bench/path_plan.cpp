@@ -91,7 +91,9 @@ class VirtualPath {
   std::uint32_t epoch_ = 0;
 };
 
-std::size_t count(const AxisSteps& s) { return s[0].size() + s[1].size(); }
+std::size_t count(const AxisSteps& s) {
+  return s[0].size() + s[1].size();
+}
 
 }  // namespace
 
@@ -117,12 +119,11 @@ HeldPlan plan_held_path(const planner::PathSpec& spec, const planner::Ramp& hold
     const Nanos mid = lo + (hi - lo) / 2;
     (count(held_at(mid)) < steps_to_stop ? lo : hi) = mid;
   }
-  const Nanos t = std::labs(static_cast<long>(count(held_at(lo))) -
-                            static_cast<long>(steps_to_stop)) <=
-                          std::labs(static_cast<long>(count(held_at(hi))) -
-                                    static_cast<long>(steps_to_stop))
-                      ? lo
-                      : hi;
+  const Nanos t =
+      std::labs(static_cast<long>(count(held_at(lo))) - static_cast<long>(steps_to_stop)) <=
+              std::labs(static_cast<long>(count(held_at(hi))) - static_cast<long>(steps_to_stop))
+          ? lo
+          : hi;
   VirtualPath v;
   v.start(spec);
   HeldPlan plan;

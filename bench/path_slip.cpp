@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <thread>
 #include <vector>
@@ -36,12 +37,12 @@ namespace {
 using Method = plc::PathMove3602::Method;
 using std::chrono::milliseconds;
 
-constexpr std::int32_t kVs = 1'000;                // axis 1's starting speed: the path's Vs
-constexpr std::int32_t kRate = 20;                 // steps/ms/s: 0.5 s to 10,000 steps/s
-constexpr milliseconds kRest{400};                 // between moves (and in the hold)
-constexpr milliseconds kHoldAfter{700};            // the held line's Hold after its start
-constexpr std::int32_t kResumeSpeed = 8'000;       // the held line's Resume profile
-constexpr double kOff = 1.0 + 1e-9;                // farther than one step from the ideal path
+constexpr std::int32_t kVs = 1'000;           // axis 1's starting speed: the path's Vs
+constexpr std::int32_t kRate = 20;            // steps/ms/s: 0.5 s to 10,000 steps/s
+constexpr milliseconds kRest{400};            // between moves (and in the hold)
+constexpr milliseconds kHoldAfter{700};       // the held line's Hold after its start
+constexpr std::int32_t kResumeSpeed = 8'000;  // the held line's Resume profile
+constexpr double kOff = 1.0 + 1e-9;           // farther than one step from the ideal path
 
 std::string config_3602(const std::string& name) {
   std::string axes;
@@ -66,6 +67,8 @@ struct PathCase {
 struct Run {
   Nanos begin = 0, resume = 0, end = 0;  // resume: the held case's Resume write (else end)
   bool started = false, faulted = false;
+  // The held case was resumed (else it faulted before: judged as the plain line it was then).
+  bool resumed = false;
 };
 
 planner::Ramp ramp(std::int32_t rate) {
@@ -103,7 +106,8 @@ Run drive(plc::Interp3602& interp, ipc::Client& client, const PathCase& c) {
     r.resume = monotonic_now();
     plc::Profile p = c.move.profile;
     p.speed = kResumeSpeed;
-    if (client.read_health().late_faults == before) interp.resume(p);
+    r.resumed = client.read_health().late_faults == before;
+    if (r.resumed) interp.resume(p);
   }
   if (r.started) interp.wait_done(std::chrono::seconds(60));
   r.end = monotonic_now();
@@ -177,9 +181,9 @@ void judge_part(const AxisSteps& wire, const AxisSteps& plan, bool faulted, Tota
     v.unfaulted += w.unfaulted;
     v.worst_pause = std::max(v.worst_pause, w.worst_pause);
     v.in_time = v.in_time && w.in_time;
+    t.compressed += w.compressed;
+    t.unfaulted += w.unfaulted;
   }
-  t.compressed += v.compressed;
-  t.unfaulted += v.unfaulted;
 }
 
 void report(const PathCase& c, const Run& r, const std::vector<Point>& all, Nanos origin,
@@ -201,10 +205,9 @@ void report(const PathCase& c, const Run& r, const std::vector<Point>& all, Nano
   }
   SlipVerdict v;
   std::size_t planned = 0;
-  if (c.held) {
+  if (c.held && r.resumed) {
     const AxisSteps before = axis_times(pts, from, mid), after = axis_times(pts, mid, to);
-    const HeldPlan plan = plan_held_path(spec, spec.decel,
-                                         {kResumeSpeed, spec.accel, spec.decel},
+    const HeldPlan plan = plan_held_path(spec, spec.decel, {kResumeSpeed, spec.accel, spec.decel},
                                          before[0].size() + before[1].size());
     judge_part(before, plan.held, r.faulted, t, v);
     judge_part(after, plan.resumed, r.faulted, t, v);
@@ -224,7 +227,10 @@ void report(const PathCase& c, const Run& r, const std::vector<Point>& all, Nano
   std::printf(
       "slip 3602 %-11s: %zu of %zu planned steps, %s, compressed %zu, unfaulted pauses %zu, "
       "worst pause %.1f us, points off the path %zu (farthest %.3f steps)%s\n",
-      c.name, pts.size(), planned, !r.started ? "NOT STARTED" : r.faulted ? "FAULTED" : "complete",
+      c.name, pts.size(), planned,
+      !r.started  ? "NOT STARTED"
+      : r.faulted ? "FAULTED"
+                  : "complete",
       v.compressed, v.unfaulted, static_cast<double>(v.worst_pause) / 1e3, off, worst,
       exact ? "" : ", INEXACT");
 }
@@ -273,6 +279,10 @@ int path_slip(int argc, char** argv) {
   }
   d.stop();
   print_fault_lines(d.log());
+  if (const char* keep = arg(argc, argv, "--keep-trace", nullptr)) {
+    std::filesystem::copy_file(d.trace(), keep, std::filesystem::copy_options::overwrite_existing);
+    std::printf("trace kept: %s\n", keep);
+  }
   origin = d.trace_origin();
   if (origin < 0) throw std::runtime_error("no trace origin in the daemon's log");
   const std::vector<Point> all = rebuild(testing::read_vcd(d.trace()));
@@ -281,8 +291,8 @@ int path_slip(int argc, char** argv) {
   std::printf(
       "RESULT bench=slip3602 moves=%zu compressed=%zu unfaulted_pauses=%zu off_path=%zu "
       "worst_off=%.3f late_ends=%zu inexact=%zu faults_path10000=%zu/%zu\n",
-      list.size(), t.compressed, t.unfaulted, t.off, t.worst_off, t.late_ends, t.inexact,
-      t.faults, list.size());
+      list.size(), t.compressed, t.unfaulted, t.off, t.worst_off, t.late_ends, t.inexact, t.faults,
+      list.size());
   return 0;
 }
 

@@ -79,6 +79,19 @@ void Planner::apply(const Command& c, Nanos now) {
     return;
   }
   const bool member = c.group.id != 0 && c.starts_motion();
+  if (member && c.group.id == launched_.id && launched_.missing > 0) {
+    // Issue 18: a member the control thread submitted after the start delay had run out (a
+    // loaded machine: the thread was preempted between the members' starts) starts on its
+    // group's time 0, not on one of its own: its edges are late from the first, the pulse
+    // engine adds that lateness to the group's shared slip (rt/slip.hpp), and the group keeps
+    // its relative timing (a path its shape) instead of one axis trailing by the delay.
+    // (Never before its own last edge or its direction set-up: then the same as the group's.)
+    --launched_.missing;
+    if (axis.prepare_start(c, now)) {
+      axis.launch(axis.earliest_origin(launched_.origin - options_.start_delay_ns));
+    }
+    return;
+  }
   // A group is collected from consecutive commands; anything else ends the collection (a member
   // that was never submitted, e.g. a full queue, must not hold the others back).
   if (group_.id != 0 && (!member || c.group.id != group_.id)) launch_group(now);
@@ -100,6 +113,8 @@ void Planner::launch_group(Nanos now) {
   Nanos origin = std::numeric_limits<Nanos>::min();
   for (unsigned a : group_axes_) origin = std::max(origin, axes_[a]->earliest_origin(now));
   for (unsigned a : group_axes_) axes_[a]->launch(origin);
+  const bool incomplete = !group_axes_.empty() && group_.size > group_received_;
+  launched_ = Launched{group_.id, incomplete ? group_.size - group_received_ : 0, origin};
   group_ = GroupTag{};
   group_received_ = 0;
   group_axes_.clear();
