@@ -93,27 +93,37 @@ planner::PathSpec ideal(const plc::PathMove3602& m) {
   return p;
 }
 
-Run drive(plc::Interp3602& interp, ipc::Client& client, const PathCase& c) {
+// A PLC's answer to a late-edge fault before the next move: Reset Errors on both axes (the
+// positions stay invalid; the moves here are relative).
+void reset_after_fault(plc::Plc3602& axes) {
+  for (unsigned a = 0; a < 2; ++a) axes.reset_errors(a);
+}
+
+Run drive(plc::Interp3602& interp, plc::Plc3602& axes, ipc::Client& client, const PathCase& c) {
   Run r;
   const std::uint32_t before = client.read_health().late_faults;
+  const auto faulted = [&] { return client.read_health().late_faults > before; };
   r.begin = monotonic_now();
-  r.started = interp.move(c.move).ok;
+  const plc::Outcome started = interp.move(c.move);
+  r.started = started.ok;
+  if (!r.started) std::printf("  %s refused: %s\n", c.name, started.message.c_str());
   if (r.started && c.held) {
     std::this_thread::sleep_for(kHoldAfter);
-    interp.hold();
+    if (!faulted()) interp.hold();  // (a Hold of a stopped axis is a Command Error)
     interp.wait_done(std::chrono::seconds(20));
     std::this_thread::sleep_for(kRest);
     r.resume = monotonic_now();
     plc::Profile p = c.move.profile;
     p.speed = kResumeSpeed;
-    r.resumed = client.read_health().late_faults == before;
+    r.resumed = !faulted();
     if (r.resumed) interp.resume(p);
   }
   if (r.started) interp.wait_done(std::chrono::seconds(60));
   r.end = monotonic_now();
   if (!c.held) r.resume = r.end;
-  r.faulted = client.read_health().late_faults > before;
+  r.faulted = faulted();
   std::this_thread::sleep_for(kRest);
+  if (r.faulted) reset_after_fault(axes);
   return r;
 }
 
@@ -226,13 +236,13 @@ void report(const PathCase& c, const Run& r, const std::vector<Point>& all, Nano
   t.faults += r.faulted ? 1 : 0;
   std::printf(
       "slip 3602 %-11s: %zu of %zu planned steps, %s, compressed %zu, unfaulted pauses %zu, "
-      "worst pause %.1f us, points off the path %zu (farthest %.3f steps)%s\n",
+      "worst pause %.1f us, points off the path %zu (farthest %.3f steps)%s; VCD #%lld..#%lld\n",
       c.name, pts.size(), planned,
       !r.started  ? "NOT STARTED"
       : r.faulted ? "FAULTED"
                   : "complete",
       v.compressed, v.unfaulted, static_cast<double>(v.worst_pause) / 1e3, off, worst,
-      exact ? "" : ", INEXACT");
+      exact ? "" : ", INEXACT", static_cast<long long>(from), static_cast<long long>(to));
 }
 
 plc::PathMove3602 path(Method method, std::int32_t ex, std::int32_t ey) {
@@ -275,7 +285,7 @@ int path_slip(int argc, char** argv) {
         throw std::runtime_error("3602 configuration refused");
     }
     plc::Interp3602 interp(port);
-    for (const PathCase& c : list) runs.push_back(drive(interp, client, c));
+    for (const PathCase& c : list) runs.push_back(drive(interp, axes, client, c));
   }
   d.stop();
   print_fault_lines(d.log());
