@@ -45,9 +45,10 @@ class Daemon {
   // The configuration's text for the module name the daemon is given.
   using ConfigText = std::function<std::string(const std::string& name)>;
 
-  // A 3601 on the simulated machine. `late_limit_us`: the late-edge guard; the default is its
-  // maximum so that a fault does not end a measured move early (the guard has its own
-  // benchmarks: `guard`, `slip`); <= 0: the product's default (no key written).
+  // A 3601 on the simulated machine. `late_limit_us`: the late-edge guard's pause limit, with
+  // the lag limit at its maximum; the default is the pause limit's maximum, so that a fault does
+  // not end a measured move early (the guard has its own benchmarks: `guard`, `slip`); <= 0: the
+  // product's defaults (no key written).
   Daemon(const std::string& exe, unsigned scan_us, bool trace, long late_limit_us = 1'000'000)
       : Daemon(exe, config_3601(scan_us, late_limit_us), trace) {}
 
@@ -96,7 +97,9 @@ class Daemon {
              "\n[gpio]\nbackend = \"sim\"\n[rt]\npriority = 80\n" +
              (late_limit_us > 0 ? "late_limit_us = " + std::to_string(late_limit_us) + "\n"
                                 : std::string()) +
-             "[[axis]]\nstep = 1\ndir = 2\nhome = 3\ncw_limit = 4\nccw_limit = 5\n"
+             "[[axis]]\nstep = 1\ndir = 2\nhome = 3\ncw_limit = 4\nccw_limit = 5\n" +
+             // With the pause limit raised, the lag limit too (its maximum).
+             (late_limit_us > 0 ? "lag_limit_steps = 1000000\n" : "") +
              "[axis.sim]\ncw_limit_at = 100000000\nccw_limit_at = -100000000\n"
              "home_from = -200\nhome_to = -100\n";
     };
