@@ -19,6 +19,7 @@ Planner::Planner(std::span<const PlannerAxis> axes, PlannerOptions options)
     axes_.back()->set_path_book(&paths_);
   }
   group_axes_.reserve(axes.size());
+  fill_slip_.resize(axes.size());
 }
 
 Planner::~Planner() = default;
@@ -154,7 +155,23 @@ Nanos Planner::service(Nanos now) {
       next = group_deadline_;
     }
   }
-  for (auto& a : axes_) next = std::min(next, a->fill(now));
+  // The axes of a running path fill their rings to one horizon on their shared time base, from
+  // one read of the group's slip: the pulse thread publishes it to the members one after the
+  // other, two reads may straddle an increase, and the axis that read the smaller slip would
+  // plan further ahead; held off after that, the planner would let it run ahead of the other
+  // by as much (docs/slip.md). Slip only grows within a motion: the largest read is the newest.
+  for (unsigned i = 0; i < axes_.size(); ++i) fill_slip_[i] = axes_[i]->slip();
+  for (unsigned i = 0; i < axes_.size(); ++i) {
+    const std::uint32_t id = axes_[i]->path_active() ? axes_[i]->path_id() : 0;
+    for (unsigned j = 0; id != 0 && j < axes_.size(); ++j) {
+      if (axes_[j]->path_active() && axes_[j]->path_id() == id) {
+        fill_slip_[i] = std::max(fill_slip_[i], fill_slip_[j]);
+      }
+    }
+  }
+  for (unsigned i = 0; i < axes_.size(); ++i) {
+    next = std::min(next, axes_[i]->fill(now, fill_slip_[i]));
+  }
   return next;
 }
 

@@ -100,6 +100,7 @@ class Planner final : public CommandSink {
     Nanos origin = 0;
   };
   Launched launched_;
+  std::vector<Nanos> fill_slip_;  // service(): each axis' slip for this fill (see there)
   PathBook paths_;
 };
 
