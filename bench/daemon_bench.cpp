@@ -17,6 +17,10 @@
 //       Issue 12: the late-edge guard (1 ms) over --runs moves: complete / faulted, no burst.
 //   daemon_bench trace --stepmodd PATH --rate STEPS_PER_S [--steps N]
 //       Issue 12: every step edge of a traced move in the VCD, nothing lost.
+//   daemon_bench slip --stepmodd PATH [--runs 2]
+//       Issue 18 (benchmark 12): single-axis moves at 2/10/50 ksteps/s judged from the VCD.
+//   daemon_bench slip3602 --stepmodd PATH [--runs 2]
+//       Issue 18 (benchmark 12): a 3602 line, circle and held-and-resumed line (path_slip.cpp).
 //
 // Output: human-readable lines plus "RESULT key=value ..." lines for scripts/bench.
 #include <dirent.h>
@@ -36,6 +40,9 @@
 #include <thread>
 #include <vector>
 
+#include "bench/daemon_log.hpp"
+#include "bench/path_slip.hpp"
+#include "bench/slip_judge.hpp"
 #include "core/clock.hpp"
 #include "ipc/client.hpp"
 #include "module/m3601/rules_3601.hpp"
@@ -48,21 +55,16 @@
 #include "rt/axis_feedback.hpp"
 #include "rt/edge.hpp"
 #include "tests/support/daemon_process.hpp"
+#include "tests/support/sim_config.hpp"
 #include "tests/support/vcd_reader.hpp"
 #include "words/words_3601.hpp"
 
 namespace {
 
 using namespace stepmod;
+using namespace stepmod::bench;
 namespace m = words::m3601;
 using std::chrono::milliseconds;
-
-const char* arg(int argc, char** argv, const char* name, const char* def) {
-  for (int i = 2; i + 1 < argc; ++i) {
-    if (std::strcmp(argv[i], name) == 0) return argv[i + 1];
-  }
-  return def;
-}
 
 std::string slurp(const std::string& path) {
   std::ifstream f(path);
@@ -73,14 +75,15 @@ std::string slurp(const std::string& path) {
 
 // The benches' module: a 3601 on the simulated machine with step/direction outputs, home and
 // end limits only. `late_limit_us`: the late-edge guard; the default is its maximum so that a
-// fault does not end a measured move early (the guard has its own benchmarks: `guard`, `slip`);
-// <= 0: the product's default (no key written).
+// fault does not end a measured move early (the guard has its own benchmarks: `guard`, `slip`),
+// with the lag limit at its maximum too; <= 0: the product's defaults (no key written).
 std::string bench_config(unsigned scan_us, long late_limit_us) {
   return "[module]\ntype = \"3601\"\nname = \"{NAME}\"\nscan_us = " + std::to_string(scan_us) +
          "\n[gpio]\nbackend = \"sim\"\n[rt]\npriority = 80\n" +
          (late_limit_us > 0 ? "late_limit_us = " + std::to_string(late_limit_us) + "\n"
                             : std::string()) +
-         "[[axis]]\nstep = 1\ndir = 2\nhome = 3\ncw_limit = 4\nccw_limit = 5\n"
+         "[[axis]]\nstep = 1\ndir = 2\nhome = 3\ncw_limit = 4\nccw_limit = 5\n" +
+         (late_limit_us > 0 ? testing::kRelaxedLagLimit : "") +
          "[axis.sim]\ncw_limit_at = 100000000\nccw_limit_at = -100000000\n"
          "home_from = -200\nhome_to = -100\n";
 }
@@ -187,12 +190,11 @@ int latency(int argc, char** argv) {
   const std::string log = d.log();
   d.stop();
   const std::string log_all = d.log();
-  const auto at = log_all.find("#0 is CLOCK_MONOTONIC ");
-  if (at == std::string::npos) {
+  const Nanos origin = trace_origin(log_all);
+  if (origin < 0) {
     std::printf("latency: no trace origin in the log:\n%s\n", log_all.c_str());
     return 1;
   }
-  const Nanos origin = std::stoll(log_all.substr(at + 22));
   const std::vector<Nanos> rising = d.steps();
   std::vector<double> lat;
   std::size_t j = 0;
@@ -345,6 +347,14 @@ void constant_move(Plc& plc, int rate, std::int32_t steps) {
   wait_rest(plc, milliseconds(static_cast<long>(steps) * 1000 / rate + 10'000));
 }
 
+// The programmed speed the daemon's "needs a CPU of its own" notice names ("axis 1: programmed N
+// steps/s, ..."), or 0 without a notice.
+long notice_speed(const std::string& log) {
+  const std::string key = "axis 1: programmed ";
+  const auto at = log.find(key);
+  return at == std::string::npos ? 0 : std::atol(log.c_str() + at + key.size());
+}
+
 // Issue 12: edge timing from the outside. Each rising step edge of a constant-speed move in the
 // VCD against the ideal grid t0 + k/rate, t0 the earliest (t_k - k/rate): how late each edge is
 // relative to where a perfect controller puts it. Beside it, run cyclictest at the same priority.
@@ -353,33 +363,40 @@ int grid(int argc, char** argv) {
   const int rate = std::atoi(arg(argc, argv, "--rate", "20000"));
   const auto steps = static_cast<std::int32_t>(std::atoi(arg(argc, argv, "--steps", "200000")));
   std::vector<Nanos> rising;
+  long notice = 0;  // the speed the "needs a CPU of its own" notice named (0: none)
   {
     Daemon d(exe, 1000, true);
     Plc plc(d.name());
     constant_move(plc, rate, steps);
     d.stop();
     rising = d.steps();
+    notice = notice_speed(d.log());
   }
+  std::printf("RESULT bench=notice rate=%d notice_steps_per_s=%ld\n", rate, notice);
   if (rising.size() < 2) {
     std::printf("grid: no steps traced\n");
     return 1;
   }
   const double period = 1e9 / rate;
-  double t0 = 1e300;
-  for (std::size_t k = 0; k < rising.size(); ++k) {
-    t0 = std::min(t0, static_cast<double>(rising[k]) - static_cast<double>(k) * period);
+  // Issue 18: late edges slip the move, so the wire never returns to the ideal grid: the grid
+  // error is the accumulated slip (reported as such). Each edge's own lateness is how much later
+  // than one period after its predecessor it came: the pause a drive sees, comparable with
+  // cyclictest's per-wake-up latency.
+  std::vector<double> late;
+  for (std::size_t k = 1; k < rising.size(); ++k) {
+    late.push_back((static_cast<double>(rising[k] - rising[k - 1]) - period) / 1000.0);
   }
-  std::vector<double> err;
-  for (std::size_t k = 0; k < rising.size(); ++k) {
-    err.push_back((static_cast<double>(rising[k]) - static_cast<double>(k) * period - t0) / 1000.0);
-  }
-  const double mx = *std::max_element(err.begin(), err.end());
+  const double ideal_end = static_cast<double>(rising.size() - 1) * period;
+  const double slip_ms = (static_cast<double>(rising.back() - rising.front()) - ideal_end) / 1e6;
+  const double mx = *std::max_element(late.begin(), late.end());
   std::printf(
-      "edge timing from the VCD, %d steps/s: %zu of %d steps, error vs ideal grid p50 %.3f "
-      "/ p99 %.3f / p99.9 %.3f / max %.3f us\n",
-      rate, rising.size(), steps, pct(err, 0.5), pct(err, 0.99), pct(err, 0.999), mx);
-  std::printf("RESULT bench=grid rate=%d n=%zu p50_us=%.3f p99_us=%.3f p999_us=%.3f max_us=%.3f\n",
-              rate, rising.size(), pct(err, 0.5), pct(err, 0.99), pct(err, 0.999), mx);
+      "edge timing from the VCD, %d steps/s: %zu of %d steps, each edge's lateness after its "
+      "predecessor p50 %.3f / p99 %.3f / p99.9 %.3f / max %.3f us; the move slipped %.3f ms\n",
+      rate, rising.size(), steps, pct(late, 0.5), pct(late, 0.99), pct(late, 0.999), mx, slip_ms);
+  std::printf(
+      "RESULT bench=grid rate=%d n=%zu p50_us=%.3f p99_us=%.3f p999_us=%.3f max_us=%.3f "
+      "slip_ms=%.3f\n",
+      rate, rising.size(), pct(late, 0.5), pct(late, 0.99), pct(late, 0.999), mx, slip_ms);
   return 0;
 }
 
@@ -473,36 +490,6 @@ std::vector<Nanos> planned_steps(const planner::MoveSpec& spec) {
   return t;
 }
 
-// One move's judgement against its plan (docs/slip.md, issue 18's criteria).
-struct SlipVerdict {
-  std::size_t compressed = 0;  // actual < 0.9 x planned - 2 us
-  std::size_t unfaulted = 0;   // pauses beyond the guard's rule that did not fault
-  Nanos worst_pause = 0;
-  bool in_time = true;  // ended within 2.5 x nominal + 3 s
-};
-
-SlipVerdict judge_move(const std::vector<Nanos>& wire, const std::vector<Nanos>& plan, double vs,
-                       bool faulted) {
-  SlipVerdict v;
-  const double vs_interval = 1e9 / vs;
-  for (std::size_t k = 1; k < wire.size() && k < plan.size(); ++k) {
-    const Nanos actual = wire[k] - wire[k - 1];
-    const Nanos planned = plan[k] - plan[k - 1];
-    if (static_cast<double>(actual) < 0.9 * static_cast<double>(planned) - 2'000) ++v.compressed;
-    const Nanos pause = actual - planned;
-    v.worst_pause = std::max(v.worst_pause, pause);
-    const bool above = static_cast<double>(planned) < 0.99 * vs_interval;
-    const bool beyond =
-        pause > 200 * kNsPerMs || (above && pause / std::max<Nanos>(planned, 1) > 8);
-    if (beyond && !faulted) ++v.unfaulted;
-  }
-  if (wire.size() >= 2 && plan.size() >= 2) {
-    const double nominal = static_cast<double>(plan.back() - plan.front());
-    v.in_time = static_cast<double>(wire.back() - wire.front()) <= 2.5 * nominal + 3e9;
-  }
-  return v;
-}
-
 // Step trains of consecutive moves, split where the line rested longer than `gap`.
 std::vector<std::vector<Nanos>> split_moves(const std::vector<Nanos>& rising, Nanos gap) {
   std::vector<std::vector<Nanos>> moves;
@@ -522,6 +509,7 @@ void report_slip(const std::vector<SlipCase>& cases, const std::vector<planner::
                  const std::vector<bool>& faulted, const std::vector<std::vector<Nanos>>& moves) {
   std::map<int, std::pair<int, int>> per_rate;  // rate -> (moves, faults)
   std::size_t compressed = 0, unfaulted = 0, late_ends = 0, inexact = 0;
+  int at_vs = 0, at_vs_faulted = 0;  // constant moves: the whole move at Vs
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const std::vector<Nanos> plan = planned_steps(specs[i]);
     const std::vector<Nanos> wire = i < moves.size() ? moves[i] : std::vector<Nanos>{};
@@ -535,6 +523,10 @@ void report_slip(const std::vector<SlipCase>& cases, const std::vector<planner::
     auto& [n, f] = per_rate[cases[i].rate];
     ++n;
     f += faulted[i] ? 1 : 0;
+    if (std::strcmp(cases[i].profile, "constant") == 0) {
+      ++at_vs;
+      at_vs_faulted += faulted[i] ? 1 : 0;
+    }
     std::printf(
         "slip %6d steps/s %-9s: %zu of %zu planned steps, %s, compressed %zu, "
         "unfaulted pauses %zu, worst pause %.1f us\n",
@@ -544,8 +536,8 @@ void report_slip(const std::vector<SlipCase>& cases, const std::vector<planner::
   }
   std::printf(
       "RESULT bench=slip moves=%zu compressed=%zu unfaulted_pauses=%zu late_ends=%zu "
-      "inexact=%zu",
-      cases.size(), compressed, unfaulted, late_ends, inexact);
+      "inexact=%zu faults_at_vs=%d/%d",
+      cases.size(), compressed, unfaulted, late_ends, inexact, at_vs_faulted, at_vs);
   for (const auto& [rate, nf] : per_rate)
     std::printf(" faults_%d=%d/%d", rate, nf.second, nf.first);
   std::printf("\n");
@@ -599,6 +591,7 @@ int slip(int argc, char** argv) {
       std::this_thread::sleep_for(milliseconds(400));  // a rest the VCD is split at
     }
     d.stop();
+    print_fault_lines(d.log());
     rising = d.steps();
   }
   report_slip(cases, specs, faulted, split_moves(rising, 300 * kNsPerMs));
@@ -653,13 +646,15 @@ int main(int argc, char** argv) {
     if (cmd == "guard") return guard(argc, argv);
     if (cmd == "trace") return trace(argc, argv);
     if (cmd == "slip") return slip(argc, argv);
+    if (cmd == "slip3602") return path_slip(argc, argv);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "daemon_bench: %s\n", e.what());
     return 1;
   }
-  std::fprintf(stderr,
-               "usage: daemon_bench latency|footprint|cpu|grid|guard|trace|slip --stepmodd PATH "
-               "[--scan-us US] [--steps N] [--runs N] "
-               "[--commands N] [--seconds S] [--rate STEPS_PER_S]\n");
+  std::fprintf(
+      stderr,
+      "usage: daemon_bench latency|footprint|cpu|grid|guard|trace|slip|slip3602 --stepmodd PATH "
+      "[--scan-us US] [--steps N] [--runs N] "
+      "[--commands N] [--seconds S] [--rate STEPS_PER_S]\n");
   return 2;
 }

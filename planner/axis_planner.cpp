@@ -399,10 +399,9 @@ void AxisPlanner::step_once() noexcept {
   }
 }
 
-Nanos AxisPlanner::fill(Nanos now) noexcept {
+Nanos AxisPlanner::fill(Nanos now, Nanos s) noexcept {
   // The ring is kept filled a lookahead ahead on the motion's time base, and the time to come
   // back is a wall-clock time again.
-  const Nanos s = slip();
   const Nanos next = fill_planned(now - s);
   return next >= std::numeric_limits<Nanos>::max() - s ? next : next + s;
 }

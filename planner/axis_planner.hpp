@@ -37,7 +37,9 @@ class AxisPlanner {
   void launch(Nanos origin) noexcept;
   // Pushes edges while the ring has room, up to now + lookahead. Returns the time by which it
   // must be called again.
-  Nanos fill(Nanos now) noexcept;
+  Nanos fill(Nanos now) noexcept { return fill(now, slip()); }
+  // The same with the motion's slip as read by the caller (a path's members: one read for all).
+  Nanos fill(Nanos now, Nanos slip) noexcept;
   // How far the pulse thread has slipped the newest motion (rt/slip.hpp): its planned time t is
   // written at t + slip(). Wall-clock times (now, a trigger's timestamp) are converted to the
   // motion's time base with it; a start from rest is planned on the wall clock (no slip yet).

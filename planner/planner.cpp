@@ -19,6 +19,7 @@ Planner::Planner(std::span<const PlannerAxis> axes, PlannerOptions options)
     axes_.back()->set_path_book(&paths_);
   }
   group_axes_.reserve(axes.size());
+  fill_slip_.resize(axes.size());
 }
 
 Planner::~Planner() = default;
@@ -79,6 +80,19 @@ void Planner::apply(const Command& c, Nanos now) {
     return;
   }
   const bool member = c.group.id != 0 && c.starts_motion();
+  if (member && c.group.id == launched_.id && launched_.missing > 0) {
+    // Issue 18: a member the control thread submitted after the start delay had run out (a
+    // loaded machine: the thread was preempted between the members' starts) starts on its
+    // group's time 0, not on one of its own: its edges are late from the first, the pulse
+    // engine adds that lateness to the group's shared slip (rt/slip.hpp), and the group keeps
+    // its relative timing (a path its shape) instead of one axis trailing by the delay.
+    // (Never before its own last edge or its direction set-up: then the same as the group's.)
+    --launched_.missing;
+    if (axis.prepare_start(c, now)) {
+      axis.launch(axis.earliest_origin(launched_.origin - options_.start_delay_ns));
+    }
+    return;
+  }
   // A group is collected from consecutive commands; anything else ends the collection (a member
   // that was never submitted, e.g. a full queue, must not hold the others back).
   if (group_.id != 0 && (!member || c.group.id != group_.id)) launch_group(now);
@@ -100,6 +114,8 @@ void Planner::launch_group(Nanos now) {
   Nanos origin = std::numeric_limits<Nanos>::min();
   for (unsigned a : group_axes_) origin = std::max(origin, axes_[a]->earliest_origin(now));
   for (unsigned a : group_axes_) axes_[a]->launch(origin);
+  const bool incomplete = !group_axes_.empty() && group_.size > group_received_;
+  launched_ = Launched{group_.id, incomplete ? group_.size - group_received_ : 0, origin};
   group_ = GroupTag{};
   group_received_ = 0;
   group_axes_.clear();
@@ -139,7 +155,23 @@ Nanos Planner::service(Nanos now) {
       next = group_deadline_;
     }
   }
-  for (auto& a : axes_) next = std::min(next, a->fill(now));
+  // The axes of a running path fill their rings to one horizon on their shared time base, from
+  // one read of the group's slip: the pulse thread publishes it to the members one after the
+  // other, two reads may straddle an increase, and the axis that read the smaller slip would
+  // plan further ahead; held off after that, the planner would let it run ahead of the other
+  // by as much (docs/slip.md). Slip only grows within a motion: the largest read is the newest.
+  for (unsigned i = 0; i < axes_.size(); ++i) fill_slip_[i] = axes_[i]->slip();
+  for (unsigned i = 0; i < axes_.size(); ++i) {
+    const std::uint32_t id = axes_[i]->path_active() ? axes_[i]->path_id() : 0;
+    for (unsigned j = 0; id != 0 && j < axes_.size(); ++j) {
+      if (axes_[j]->path_active() && axes_[j]->path_id() == id) {
+        fill_slip_[i] = std::max(fill_slip_[i], fill_slip_[j]);
+      }
+    }
+  }
+  for (unsigned i = 0; i < axes_.size(); ++i) {
+    next = std::min(next, axes_[i]->fill(now, fill_slip_[i]));
+  }
   return next;
 }
 

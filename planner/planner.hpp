@@ -92,6 +92,15 @@ class Planner final : public CommandSink {
   std::size_t group_received_ = 0;
   Nanos group_deadline_ = 0;
   std::vector<unsigned> group_axes_;
+  // The last group launched without all its members (the start delay ran out first): a member
+  // that arrives after all joins its time 0 (see apply()).
+  struct Launched {
+    std::uint32_t id = 0;
+    std::size_t missing = 0;
+    Nanos origin = 0;
+  };
+  Launched launched_;
+  std::vector<Nanos> fill_slip_;  // service(): each axis' slip for this fill (see there)
   PathBook paths_;
 };
 

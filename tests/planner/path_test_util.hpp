@@ -27,7 +27,7 @@ struct PathRig {
   explicit PathRig(PlannerOptions opt = {}, AxisTiming timing = {}) {
     for (unsigned i = 0; i < 2; ++i) {
       rings[i] = std::make_unique<SpscRing<rt::Edge>>(1u << 16);
-      axes[i] = PlannerAxis{rings[i].get(), &control[i], timing};
+      axes[i] = PlannerAxis{rings[i].get(), &control[i], timing, &feedback[i]};
     }
     planner = std::make_unique<Planner>(std::span<const PlannerAxis>(axes), opt);
     for (unsigned i = 0; i < 2; ++i) {
