@@ -7,12 +7,34 @@ namespace stepmod::planner {
 
 namespace {
 Nanos to_ns(double seconds) noexcept {
-  return std::llround(seconds * 1e9);
+  return seconds_to_ns(seconds);
 }
 }  // namespace
 
-FollowServo::Next FollowServo::next(Nanos prev_t, bool first, Nanos now, Nanos start_delay,
-                                    Nanos pulse_ns, FollowStep& out) noexcept {
+Answer FollowServo::next(const StepProgress& p, const StepWindow& w, SourceStep& out) noexcept {
+  FollowStep st;
+  switch (decide(p.tk_ns, p.k == 0, w.now, st)) {
+    case Next::kWait:
+      return Answer::kWait;
+    case Next::kFinish:
+      return Answer::kEnd;
+    case Next::kStep:
+      break;
+  }
+  out.t = std::max(st.t, w.last_edge + 1);
+  out.ts = p.tk;  // the follow law has no time base of its own
+  out.dir = st.dir < 0 ? Direction::kCcw : Direction::kCw;
+  out.phase = st.phase;
+  out.width = st.width;
+  out.not_before = w.now;
+  taken(st);
+  return Answer::kStep;
+}
+
+FollowServo::Next FollowServo::decide(Nanos prev_t, bool first, Nanos now,
+                                      FollowStep& out) noexcept {
+  const Nanos start_delay = start_delay_;
+  const Nanos pulse_ns = pulse_ns_;
   const FollowSpec& s = spec_;
   const double vs = std::max(s.vs, 1.0);
   const double vmax = std::max(s.vmax, 1.0);
