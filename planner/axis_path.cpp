@@ -16,7 +16,7 @@ AxisPlanner::SourceStart AxisPlanner::start_path(const Command& c) noexcept {
   } else {
     const auto& r = std::get<PathResume>(c.what);
     const bool resumable = path_state_ == PathState::kHeld &&
-                           (path_id_ == 0 || (book_ != nullptr && book_->held == path_id_));
+                           (path_id_ == 0 || (book_ != nullptr && book_->resumable(path_id_)));
     if (resumable) {
       st = path_.resume(r.vp, r.accel, r.decel);
       path_state_ = PathState::kRunning;
@@ -30,10 +30,7 @@ AxisPlanner::SourceStart AxisPlanner::start_path(const Command& c) noexcept {
 
 void AxisPlanner::discard_path() noexcept {
   if (path_state_ == PathState::kNone) return;
-  if (book_ != nullptr && path_id_ != 0) {
-    if (book_->held == path_id_) book_->held = 0;
-    book_->broken = path_id_;
-  }
+  if (book_ != nullptr && path_id_ != 0) book_->discard(path_id_);
   path_state_ = PathState::kNone;
 }
 

@@ -33,8 +33,6 @@ Answer FollowServo::next(const StepProgress& p, const StepWindow& w, SourceStep&
 
 FollowServo::Next FollowServo::decide(Nanos prev_t, bool first, Nanos now,
                                       FollowStep& out) noexcept {
-  const Nanos start_delay = start_delay_;
-  const Nanos pulse_ns = pulse_ns_;
   const FollowSpec& s = spec_;
   const double vs = std::max(s.vs, 1.0);
   const double vmax = std::max(s.vmax, 1.0);
@@ -72,13 +70,19 @@ FollowServo::Next FollowServo::decide(Nanos prev_t, bool first, Nanos now,
     }
     v = std::max(v, 1.0);
   }
+  time_step(prev_t, first, now, v, dir, cap, out);
+  return Next::kStep;
+}
 
+void FollowServo::time_step(Nanos prev_t, bool first, Nanos now, double v, int dir, double cap,
+                            FollowStep& out) const noexcept {
+  const FollowSpec& s = spec_;
   // Time of the step.
   out.from_rest = v_ <= 0.0;
   if (!out.from_rest) {
     out.t = prev_t + to_ns(2.0 / (v_ + v));
   } else {
-    out.t = now + start_delay;
+    out.t = now + start_delay_;
     if (!first) out.t = std::max(out.t, prev_t + to_ns(1.0 / v));
   }
   out.phase = rt::Phase::kCruise;
@@ -89,10 +93,9 @@ FollowServo::Next FollowServo::decide(Nanos prev_t, bool first, Nanos now,
   // The trailing edge goes with the step (the next step is not known yet): the configured width,
   // or half the shortest period the next step can come at.
   const double v_up = s.accel > 0.0 ? std::sqrt(v * v + 2.0 * s.accel) : std::max(v, cap);
-  out.width = std::max<Nanos>(1, std::min(pulse_ns, to_ns(0.5 / v_up)));
+  out.width = std::max<Nanos>(1, std::min(pulse_ns_, to_ns(0.5 / v_up)));
   out.dir = dir;
   out.v = v;
-  return Next::kStep;
 }
 
 }  // namespace stepmod::planner

@@ -60,12 +60,15 @@ class FollowServo final : public StepSource {
   }
   void update(const FollowSpec& s) noexcept { spec_ = s; }
 
+ private:
   // The follow law alone: the next step after the one at prev_t (`first`: none yet), planned at
   // `now`.
   enum class Next : std::uint8_t { kWait, kFinish, kStep };
   Next decide(Nanos prev_t, bool first, Nanos now, FollowStep& out) noexcept;
-
- private:
+  // decide(): the time, phase and pulse width of a step at speed v in direction dir (`cap`: the
+  // speed the law may reach).
+  void time_step(Nanos prev_t, bool first, Nanos now, double v, int dir, double cap,
+                 FollowStep& out) const noexcept;
   // The step `s` was planned: the servo's position and speed move on.
   void taken(const FollowStep& s) noexcept {
     pos_ += s.dir;
