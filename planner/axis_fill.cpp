@@ -1,10 +1,11 @@
-// AxisPlanner: the one fill loop. Whatever the motion kind, its step source answers the next step
-// (planner/step_source.hpp) and the edge emitter writes it (planner/edge_emitter.hpp); the ring
-// is kept filled a lookahead ahead.
+// AxisPlanner: filling the ring. Whatever the motion kind, the one fill loop
+// (planner/step_loop.hpp) asks its step source for the next step (planner/step_source.hpp) and the
+// edge emitter writes it (planner/edge_emitter.hpp); the ring is kept filled a lookahead ahead.
 #include <algorithm>
 #include <limits>
 
 #include "planner/axis_planner.hpp"
+#include "planner/step_loop.hpp"
 
 namespace stepmod::planner {
 
@@ -21,33 +22,6 @@ Nanos AxisPlanner::fill(Nanos now) noexcept {
   return next >= std::numeric_limits<Nanos>::max() - s ? next : next + s;
 }
 
-Answer AxisPlanner::plan_steps(Nanos horizon, SourceStep& st) noexcept {
-  Answer a = Answer::kStep;
-  while (m_.active && !m_.held && out_.staged_empty()) {
-    StepProgress& p = m_.at;
-    a = source_->next(p, StepWindow{now_, horizon, out_.last_t()}, st);
-    if (a == Answer::kLater) {
-      out_.rest(st.t);  // left unplanned, so that a hold can still replan it
-      return a;
-    }
-    if (a == Answer::kWait) return a;
-    if (a == Answer::kEnd) {
-      finish_at_frontier();
-    } else {
-      const Nanos t = out_.step(st, p.k + 1);
-      ++p.k;
-      p.tk = st.ts;
-      p.tk_ns = t;
-      if (p.k >= p.end) {
-        out_.end(t);
-        m_.active = false;
-      }
-    }
-    out_.flush(horizon);
-  }
-  return a;
-}
-
 Nanos AxisPlanner::fill_planned(Nanos now) noexcept {
   check_abort();
   now_ = std::max(now_, now);
@@ -58,7 +32,11 @@ Nanos AxisPlanner::fill_planned(Nanos now) noexcept {
   const Nanos horizon = now + opt_.lookahead_ns;
   out_.flush(horizon);
   SourceStep st;
-  const Answer a = plan_steps(horizon, st);
+  Answer a = Answer::kStep;
+  if (m_.active && !m_.held) {
+    StepLoop loop(m_.at, m_.active, out_, now_, horizon, st);
+    a = source_->plan(loop);
+  }
   if (out_.staged_empty()) {
     if (m_.active && !m_.held && a == Answer::kLater) {
       // The next step, left unplanned: plan it when half the lookahead is left before it.

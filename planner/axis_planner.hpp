@@ -3,7 +3,7 @@
 // edges in the axis' ring. Owned and run by the planner thread only. One job per file:
 //   axis_commands.cpp  command dispatch (apply) and the commands that change a running motion
 //   axis_start.cpp     a motion's start: which step source, group start (prepare/launch), aborts
-//   axis_fill.cpp      the one fill loop: the source's next step -> the edge emitter
+//   axis_fill.cpp      filling the ring with the one fill loop (step_loop.hpp), the refill time
 //   axis_stops.cpp     controlled stops: the profile's replans and the cut handshake
 //   axis_path.cpp      this axis' part of an interpolated path (hold, resume, the path book)
 #include <array>
@@ -126,8 +126,6 @@ class AxisPlanner {
   SourceStart start_source(const Command& c) noexcept;
   // fill() on the motion's time base (`now` already converted).
   Nanos fill_planned(Nanos now) noexcept;
-  // Asks the source for steps while nothing is staged; the source's answer that ended it.
-  Answer plan_steps(Nanos horizon, SourceStep& st) noexcept;
   // Tells the pulse thread the new motion's group and starting speed (rt::AxisControl).
   void publish_motion(const Motion& m, double vs) noexcept;
   // Tells the pulse thread (rt::AxisControl::refill_at) that this axis' next refilled edge lies

@@ -15,6 +15,7 @@
 
 #include "core/clock.hpp"
 #include "planner/motion_request.hpp"
+#include "planner/step_loop.hpp"
 #include "planner/step_source.hpp"
 #include "rt/edge.hpp"
 
@@ -40,6 +41,7 @@ class FollowServo final : public StepSource {
   // told to stop. Its steps are whole pulses, and it sets its direction up with a step from rest
   // (not before the planning time).
   Answer next(const StepProgress& p, const StepWindow& w, SourceStep& out) noexcept override;
+  Answer plan(StepLoop& loop) noexcept override { return loop.run(*this); }
   FirstStep first_step(std::int64_t /*end*/) noexcept override { return FirstStep{}; }
   double start_speed() const noexcept override { return spec_.vs; }
   double speed_at(double /*tk*/) const noexcept override { return v_; }

@@ -41,6 +41,7 @@
 #include "planner/path_spec.hpp"
 #include "planner/profile.hpp"
 #include "planner/ramp.hpp"
+#include "planner/step_loop.hpp"
 #include "planner/step_source.hpp"
 #include "rt/edge.hpp"
 
@@ -50,6 +51,7 @@ class PathSource final : public StepSource {
  public:
   // StepSource (planner/step_source.hpp).
   Answer next(const StepProgress& p, const StepWindow& w, SourceStep& out) noexcept override;
+  Answer plan(StepLoop& loop) noexcept override { return loop.run(*this); }
   FirstStep first_step(std::int64_t end) noexcept override;
   double start_speed() const noexcept override { return vs_; }
   double speed_at(double tk) const noexcept override { return vector_speed_at(tk); }

@@ -43,21 +43,6 @@ ProfileSource::Start ProfileSource::start(const BlendSpec& b) noexcept {
   return Start{b.dir, blend_length(b)};
 }
 
-Answer ProfileSource::next(const StepProgress& p, const StepWindow& /*w*/,
-                           SourceStep& out) noexcept {
-  auto [t, ph] = step(p.k + 1, p.end);
-  if (t < p.tk) t = p.tk;
-  Nanos ns = p.origin + seconds_to_ns(t);
-  if (ns < p.tk_ns) ns = p.tk_ns;
-  out.t = ns;
-  out.ts = t;
-  out.dir = dir_;
-  out.phase = ph;
-  out.width = 0;
-  out.not_before = std::numeric_limits<Nanos>::min();
-  return Answer::kStep;
-}
-
 FirstStep ProfileSource::first_step(std::int64_t end) noexcept {
   const rt::Phase phase = phases_.empty() ? rt::Phase::kCruise : phases_[0].phase;
   if (end == 1) return FirstStep{true, phases_.end_time(), phase};

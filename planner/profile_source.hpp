@@ -5,9 +5,11 @@
 // Progress (the newest step k and its time) belongs to the caller (the axis planner), which
 // hands each step to the edge emitter (the interface: planner/step_source.hpp).
 #include <cstdint>
+#include <limits>
 
 #include "planner/motion_request.hpp"
 #include "planner/profile.hpp"
+#include "planner/step_loop.hpp"
 #include "planner/step_source.hpp"
 #include "rt/edge.hpp"
 
@@ -17,6 +19,7 @@ class ProfileSource final : public StepSource {
  public:
   // StepSource (planner/step_source.hpp).
   Answer next(const StepProgress& p, const StepWindow& w, SourceStep& out) noexcept override;
+  Answer plan(StepLoop& loop) noexcept override { return loop.run(*this); }
   FirstStep first_step(std::int64_t end) noexcept override;
   double start_speed() const noexcept override { return vs_; }
   double speed_at(double tk) const noexcept override { return velocity_at(tk); }
@@ -71,5 +74,21 @@ class ProfileSource final : public StepSource {
   bool constant_speed_ = false;    // started with vp <= vs: stops end after the next step
   bool can_change_speed_ = false;  // a Run that no stop has ended yet
 };
+
+// The per-step path, inline (StepLoop::run calls it directly).
+inline Answer ProfileSource::next(const StepProgress& p, const StepWindow& /*w*/,
+                                  SourceStep& out) noexcept {
+  auto [t, ph] = step(p.k + 1, p.end);
+  if (t < p.tk) t = p.tk;
+  Nanos ns = p.origin + seconds_to_ns(t);
+  if (ns < p.tk_ns) ns = p.tk_ns;
+  out.t = ns;
+  out.ts = t;
+  out.dir = dir_;
+  out.phase = ph;
+  out.width = 0;
+  out.not_before = std::numeric_limits<Nanos>::min();
+  return Answer::kStep;
+}
 
 }  // namespace stepmod::planner

@@ -3,7 +3,7 @@
 // one callback and the solver is shared). A source knows its motion law; asked for the next step
 // it answers the same way whatever the kind: the step's time, its direction and its share of the
 // motion (accelerating, cruising, decelerating) — or that the motion ends, or that its next step
-// comes later. The axis planner (planner/axis_fill.cpp) asks in one loop and hands every step to
+// comes later. The axis planner asks in one loop (planner/step_loop.hpp) and hands every step to
 // the edge emitter, which alone knows lines: direction set-up, pulse width, pulse format
 // (planner/edge_emitter.hpp).
 //
@@ -64,6 +64,8 @@ enum class Answer : std::uint8_t {
   kEnd,    // the motion ends where it is
 };
 
+class StepLoop;  // planner/step_loop.hpp
+
 // Where the first step of a motion lies, asked when the motion is set up (for the direction
 // line's set-up before it).
 struct FirstStep {
@@ -81,6 +83,9 @@ class StepSource {
 
   // The next step after `p`'s newest one.
   virtual Answer next(const StepProgress& p, const StepWindow& w, SourceStep& out) noexcept = 0;
+  // Runs the one fill loop with this source's own type: `return loop.run(*this);` (the loop then
+  // calls next() directly, step after step).
+  virtual Answer plan(StepLoop& loop) noexcept = 0;
   // The motion's first step (its `end` steps planned), before time 0 is fixed.
   virtual FirstStep first_step(std::int64_t end) noexcept = 0;
   // Starting speed (steps/s), published for the pulse thread's guard (rt/slip.hpp).
