@@ -98,7 +98,8 @@ class StepSource {
     return p.tk_ns;
   }
   // A controlled stop: true if the source stops by its own law (it will answer kEnd); false:
-  // the axis planner replans the motion's profile (cut or frontier stop).
+  // the axis planner replans the motion's profile (cut or frontier stop, planner/axis_stops.cpp),
+  // which only a ProfileSource has (a path's stop is its hold, planner/path_book.hpp).
   virtual bool stop_by_own_law() noexcept { return false; }
 };
 
