@@ -102,23 +102,6 @@ void PathSource::plan_next() noexcept {
   next_valid_ = true;
 }
 
-Answer PathSource::next(const StepProgress& p, const StepWindow& w, SourceStep& out) noexcept {
-  const Step& nx = peek();
-  Nanos ns = p.origin + seconds_to_ns(nx.t);
-  if (ns < p.tk_ns) ns = p.tk_ns;
-  out.t = ns;
-  out.ts = nx.t;
-  out.dir = nx.dir;
-  out.phase = nx.phase;
-  out.width = 0;
-  out.not_before = std::numeric_limits<Nanos>::min();
-  // An axis that crawls near its coordinate's reversal may wait long for its next crossing:
-  // planned now, that step could not be replanned by a hold any more.
-  if (ns > w.horizon) return Answer::kLater;
-  take();
-  return Answer::kStep;
-}
-
 FirstStep PathSource::first_step(std::int64_t /*end*/) noexcept {
   const rt::Phase phase = phases_.empty() ? rt::Phase::kCruise : phases_[0].phase;
   return FirstStep{true, peek().t, phase};

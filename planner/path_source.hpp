@@ -36,6 +36,7 @@
 // planner/step_source.hpp).
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 
 #include "planner/path_law.hpp"
 #include "planner/path_spec.hpp"
@@ -128,5 +129,24 @@ class PathSource final : public StepSource {
   Next next_;
   bool next_valid_ = false;
 };
+
+// The per-step path, inline (StepLoop::run calls it directly).
+inline Answer PathSource::next(const StepProgress& p, const StepWindow& w,
+                               SourceStep& out) noexcept {
+  const Step& nx = peek();
+  Nanos ns = p.origin + seconds_to_ns(nx.t);
+  if (ns < p.tk_ns) ns = p.tk_ns;
+  out.t = ns;
+  out.ts = nx.t;
+  out.dir = nx.dir;
+  out.phase = nx.phase;
+  out.width = 0;
+  out.not_before = std::numeric_limits<Nanos>::min();
+  // An axis that crawls near its coordinate's reversal may wait long for its next crossing:
+  // planned now, that step could not be replanned by a hold any more.
+  if (ns > w.horizon) return Answer::kLater;
+  take();
+  return Answer::kStep;
+}
 
 }  // namespace stepmod::planner
