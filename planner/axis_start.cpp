@@ -14,7 +14,7 @@ AxisPlanner::SourceStart AxisPlanner::start_source(const Command& c) noexcept {
     return {&follow_, follow->spec.target < 0 ? Direction::kCcw : Direction::kCw, kEndless};
   }
   if (c.kind() == CommandKind::kPath || c.kind() == CommandKind::kPathResume) return start_path(c);
-  ProfileSource::Start st;
+  ProfileSource::Start st{};
   if (const auto* move = std::get_if<MoveSpec>(&c.what)) {
     st = profile_.start(*move);
   } else if (const auto* run = std::get_if<RunSpec>(&c.what)) {
