@@ -24,7 +24,7 @@
 #include "bench/path_plan.hpp"
 #include "bench/slip_judge.hpp"
 #include "ipc/client.hpp"
-#include "module/axis/rules.hpp"
+#include "module/m3602/rules_3602.hpp"
 #include "words/words_3602.hpp"
 #include "plc/interp_3602.hpp"
 #include "plc/plc_3602.hpp"
@@ -75,7 +75,7 @@ struct Run {
 };
 
 planner::Ramp ramp(std::int32_t rate) {
-  return {static_cast<double>(rate) * static_cast<double>(module::axis::kRules3602.accel_word_unit),
+  return {static_cast<double>(rate) * static_cast<double>(module::m3602::kRules3602.accel_word_unit),
           planner::AccelShape::kConstant};
 }
 
@@ -251,7 +251,7 @@ int path_slip(int argc, char** argv) {
     plc::ShmPort port(client, milliseconds(2000));
     plc::Plc3602 axes(port, milliseconds(2000));
     for (unsigned a = 0; a < 2; ++a) {
-      if (!axes.configure(a, module::m3602::cfg_msw::kStepDirOutput, 0x1F, kVs).ok)
+      if (!axes.configure(a, words::m3602::cfg_msw::kStepDirOutput, 0x1F, kVs).ok)
         throw std::runtime_error("3602 configuration refused");
     }
     plc::Interp3602 interp(port);

@@ -1,6 +1,11 @@
 #pragma once
 // One axis of the planner: applies Commands to the axis' motion and turns the motion into timed
-// edges in the axis' ring. Owned and run by the planner thread only.
+// edges in the axis' ring. Owned and run by the planner thread only. One job per file:
+//   axis_commands.cpp  command dispatch (apply) and the commands that change a running motion
+//   axis_start.cpp     a motion's start: which step source, group start (prepare/launch), aborts
+//   axis_fill.cpp      filling the ring with the one fill loop (step_loop.hpp), the refill time
+//   axis_stops.cpp     controlled stops: the profile's replans and the cut handshake
+//   axis_path.cpp      this axis' part of an interpolated path (hold, resume, the path book)
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -12,6 +17,7 @@
 #include "planner/planner.hpp"
 #include "planner/profile.hpp"
 #include "planner/profile_source.hpp"
+#include "planner/step_source.hpp"
 #include "rt/edge.hpp"
 
 namespace stepmod::planner {
@@ -46,9 +52,9 @@ class AxisPlanner {
   Nanos slip() const noexcept;
 
   // Introspection (tests, diagnostics).
-  bool active() const noexcept { return m_.active; }            // a motion is still being planned
-  std::uint32_t epoch() const noexcept { return m_.epoch; }     // newest motion's epoch
-  std::int64_t planned_steps() const noexcept { return m_.k; }  // steps generated so far
+  bool active() const noexcept { return m_.active; }         // a motion is still being planned
+  std::uint32_t epoch() const noexcept { return m_.epoch; }  // newest motion's epoch
+  std::int64_t planned_steps() const noexcept { return m_.at.k; }  // steps generated so far
   // Speed at the newest planned step (steps/s; a path motion: the path's vector speed), 0 when
   // idle.
   double frontier_speed() const noexcept;
@@ -73,33 +79,24 @@ class AxisPlanner {
   // was its last: a path step is planned (committed to the emitter) only once it lies within the
   // lookahead, so this is never more than a lookahead ahead of the time it was planned at.
   Nanos path_frontier() const noexcept {
-    return m_.path && path_state_ != PathState::kNone && m_.k > 0
-               ? m_.tk_ns
-               : std::numeric_limits<Nanos>::min();
+    return path_state_ != PathState::kNone && m_.at.k > 0 ? m_.at.tk_ns
+                                                          : std::numeric_limits<Nanos>::min();
   }
   // The axis is still planning the steps of a path motion.
-  bool path_active() const noexcept { return m_.active && m_.path; }
+  bool path_active() const noexcept { return m_.active && path_state_ != PathState::kNone; }
   // Stops the path along it from time t (>= every step either axis has planned): the path's
   // profile ramps down to vs with `ramp` from t, this axis makes the steps up to the point where
   // it stops and the path stays resumable from there.
   void hold_path(Nanos t, const Ramp& ramp) noexcept;
 
  private:
+  // The motion being planned; its steps come from `source_`.
   struct Motion {
     bool active = false;
+    bool held = false;  // prepared, waiting for launch() (group start)
     std::uint32_t epoch = 0;
-    Direction dir = Direction::kCw;
-    std::int64_t end = kEndless;  // step count at which the motion ends
-    Nanos origin = 0;             // time 0 of the motion
-    std::int64_t k = 0;           // steps generated
-    double tk = 0.0;              // time of step k, s from origin
-    Nanos tk_ns = 0;              // the same, absolute
-    bool follow = false;          // a follow motion (FollowSpec): steps come from follow_step
-    bool path = false;            // a path motion (PathStart/PathResume): steps from path_
-    bool held = false;            // prepared, waiting for launch() (group start)
-    std::uint32_t group = 0;      // its group id (GroupTag), 0: alone
-    Nanos dir_shift = 0;          // launch: time 0 this long after the direction edge
-    bool dir_edge = false;        // launch: write the direction line first
+    std::uint32_t group = 0;  // its group id (GroupTag), 0: alone
+    StepProgress at;          // the newest step and the motion's time base
   };
 
   void change_speed(std::uint32_t epoch, const SpeedChange& s) noexcept;
@@ -117,28 +114,28 @@ class AxisPlanner {
   void abort_last_motion() noexcept;
   void check_abort() noexcept;
   void follow_update(std::uint32_t epoch, const FollowSpec& f) noexcept;
-  // Plans the next step of the follow motion (or ends it); false when there is nothing to do.
-  bool follow_step() noexcept;
-  // Ends the follow motion where it is (its steps' trailing edges are already staged).
-  void follow_finish() noexcept;
 
   // Ends the motion on its newest planned step (kLast on that step's trailing edge).
   void finish_at_frontier() noexcept;
   // Replans the profile from the newest step to end on step `end` (ProfileSource::replan_to_end).
   void replan_to_end(std::int64_t end, const Ramp& ramp, bool exact_ramp) noexcept;
-  void step_once() noexcept;
+  // Starts the step source `c` asks for; returns its first direction and end count.
+  struct SourceStart {
+    StepSource* source;
+    Direction dir;
+    std::int64_t end;
+  };
+  SourceStart start_source(const Command& c) noexcept;
   // fill() on the motion's time base (`now` already converted).
   Nanos fill_planned(Nanos now) noexcept;
   // Tells the pulse thread the new motion's group and starting speed (rt::AxisControl).
   void publish_motion(const Motion& m, double vs) noexcept;
-  // Plans the path's next step if it lies within `horizon`; false (and the open pulse ended) if
-  // it lies beyond: it stays unplanned, so a hold can still replan it (path_next_ns_).
-  bool path_step_once(Nanos horizon) noexcept;
   // Tells the pulse thread (rt::AxisControl::refill_at) that this axis' next refilled edge lies
   // at or after t (0: unknown), so that it need not poll an empty ring before then.
   void publish_refill(Nanos t) noexcept;
-  // Sets up a path start or resume in `m`; false: it makes no step (a resume without a path).
-  void prepare_path(const Command& c, Motion& m) noexcept;
+  // The path source set up for a path start or resume; end 0: it makes no step (a resume
+  // without a resumable path).
+  SourceStart start_path(const Command& c) noexcept;
   // Another motion or an abort: the path this axis followed cannot be resumed any more (on
   // either axis: the book).
   void discard_path() noexcept;
@@ -165,17 +162,17 @@ class AxisPlanner {
   std::uint32_t cut_epoch_ = 0;  // the newest motion that was cut (one cut per motion)
 
   Motion m_;
-  FollowServo follow_;  // the step source of a follow motion
-  BlendSpec blend_;     // the newest blend start's table (take_blend)
-  Nanos now_ = 0;       // time of the latest apply/fill (a follow step from rest starts after it)
-  ProfileSource profile_;  // the step source of moves, runs and blends
+  StepSource* source_ = nullptr;  // the step source of the newest motion
+  ProfileSource profile_;         // moves, runs and blends
+  FollowServo follow_;            // the encoder follower
+  BlendSpec blend_;               // the newest blend start's table (take_blend)
+  Nanos now_ = 0;  // time of the latest apply/fill (a follow step from rest starts after it)
 
   enum class PathState : std::uint8_t { kNone, kRunning, kHeld };
   PathSource path_;  // the step source of path motions
   PathState path_state_ = PathState::kNone;
   std::uint32_t path_id_ = 0;  // the group id of the newest path motion
   PathBook* book_ = nullptr;
-  Nanos path_next_ns_ = 0;  // the path's next step, left unplanned beyond the horizon
 };
 
 }  // namespace stepmod::planner

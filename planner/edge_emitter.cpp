@@ -52,7 +52,7 @@ std::int64_t EdgeEmitter::steps_at(Nanos t, std::int64_t planned) const noexcept
   return lo;
 }
 
-void EdgeEmitter::begin(std::uint32_t epoch, Direction dir) noexcept {
+void EdgeEmitter::begin(std::uint32_t epoch, Direction dir, const FirstStep& first) noexcept {
   if (want_step_dir_ != step_dir_) step_dir_ = want_step_dir_;
   epoch_ = epoch;
   first_pending_ = true;
@@ -60,6 +60,28 @@ void EdgeEmitter::begin(std::uint32_t epoch, Direction dir) noexcept {
   motion_floor_t_ = last_t_;
   base_flags_ = 0;
   turn(dir);
+  // Step/direction: the direction line must settle dir_setup_ns before the first step. CW/CCW:
+  // the CCW pulse line rests low. Only a change (or an unknown level) costs an edge.
+  lead_edge_ = first.known && direction_pending();
+  lead_ = lead_edge_ ? std::max<Nanos>(0, timing_.dir_setup_ns - seconds_to_ns(first.t)) : 0;
+  lead_phase_ = first.phase;
+}
+
+void EdgeEmitter::launch(Nanos origin) noexcept {
+  if (lead_edge_) direction(origin - lead_, lead_phase_);
+}
+
+Nanos EdgeEmitter::set_up_direction(const SourceStep& s) noexcept {
+  if (s.dir != dir_) {
+    // The motion turns between two steps (a path coordinate's reversal, the follower reversing):
+    // the open pulse ends first.
+    rest(s.t);
+    turn(s.dir);
+  }
+  if (!direction_pending()) return s.t;  // CW/CCW format: the other line, no set-up
+  const Nanos td = std::max({last_t_, s.not_before, s.t - timing_.dir_setup_ns});
+  direction(td, s.phase);
+  return std::max(s.t, td + timing_.dir_setup_ns);
 }
 
 void EdgeEmitter::turn(Direction dir) noexcept {
@@ -70,20 +92,11 @@ void EdgeEmitter::turn(Direction dir) noexcept {
                                           (base_flags_ & rt::edge_flag::kReplacement));
 }
 
-void EdgeEmitter::end_pulse(Nanos t_next) noexcept {
+void EdgeEmitter::rest(Nanos t_next) noexcept {
   if (!pulse_open_) return;
   const Nanos w = std::max<Nanos>(1, std::min(timing_.step_pulse_ns, (t_next - step_t_) / 2));
   stage(make_edge(step_t_ + w, line_, 0, 0, step_flags_));
   pulse_open_ = false;
-}
-
-Nanos EdgeEmitter::reverse(Direction dir, Nanos t_next, rt::Phase phase) noexcept {
-  end_pulse(t_next);
-  turn(dir);
-  if (!direction_pending()) return t_next;  // CW/CCW format: the other line, no set-up
-  const Nanos td = std::max(last_t_, t_next - timing_.dir_setup_ns);
-  direction(td, phase);
-  return std::max(t_next, td + timing_.dir_setup_ns);
 }
 
 void EdgeEmitter::direction(Nanos t, rt::Phase phase) noexcept {
@@ -93,9 +106,9 @@ void EdgeEmitter::direction(Nanos t, rt::Phase phase) noexcept {
   dir_level_ = level;
 }
 
-void EdgeEmitter::pulse(Nanos t, rt::Phase phase, int dpos, Nanos width, std::int64_t k) noexcept {
+void EdgeEmitter::whole_pulse(Nanos t, rt::Phase phase, Nanos width, std::int64_t k) noexcept {
   const auto flags = static_cast<std::uint8_t>(base_flags_ | static_cast<std::uint8_t>(phase));
-  stage(make_edge(t, line_, 1, static_cast<std::int8_t>(dpos), take_first(flags)));
+  stage(make_edge(t, line_, 1, static_cast<std::int8_t>(sign(dir_)), take_first(flags)));
   stage(make_edge(t + width, line_, 0, 0, flags));
   history_[static_cast<std::size_t>(k) & (kHistory - 1)] = t;
   pulse_open_ = false;

@@ -3,8 +3,9 @@
 // writes, and owns everything that is about lines rather than motion: the step pulse width, the
 // direction set-up time, the pulse format (step + direction or CW + CCW pulses), the direction
 // line's level, the staging of edges in time order ahead of the ring, and the step history.
-// The step sources (planner/axis_planner.cpp: profiles, the follow servo) only say when each
-// step is and in which direction.
+// The step sources (planner/step_source.hpp) only say when each step is, in which direction and
+// in which phase; whether that needs a direction edge first, and how wide its pulse is, is
+// decided here.
 //
 // Step + direction format, one step after a direction change, then two steps:
 //
@@ -18,8 +19,9 @@
 //
 // CW + CCW format: CW steps pulse the step line, CCW steps the direction line; no set-up.
 //
-// Verbs (in the order a motion uses them): begin -> [direction] -> step / pulse ... -> end.
-// Abort, cut, gpo and pulse_format may come at any time. Owned by the planner thread.
+// Verbs (in the order a motion uses them): begin -> launch -> step ... [rest] ... -> end.
+// Abort, cut, gpo and pulse_format may come at any time; flush pushes what is staged. Owned by the
+// planner thread.
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -29,6 +31,7 @@
 #include "core/spsc_ring.hpp"
 #include "planner/motion_request.hpp"
 #include "planner/planner.hpp"
+#include "planner/step_source.hpp"
 #include "rt/edge.hpp"
 
 namespace stepmod::planner {
@@ -42,29 +45,27 @@ class EdgeEmitter {
  public:
   EdgeEmitter(SpscRing<rt::Edge>* ring, AxisTiming timing) noexcept;
 
-  // A new motion `epoch` running `dir` (the pulse format asked for last applies from here).
-  void begin(std::uint32_t epoch, Direction dir) noexcept;
-  // The motion turns (follow): later steps pulse the line of `dir`.
-  void turn(Direction dir) noexcept;
-  // Whether the direction line must be written before the next step (a change, or unknown).
-  bool direction_pending() const noexcept { return dir_level_ != dir_target(); }
-  // Writes the direction line for the motion's direction at t; the next step must come no
-  // sooner than t + dir_setup_ns (the caller plans it so).
-  void direction(Nanos t, rt::Phase phase) noexcept;
-  // Step k of the motion at t: ends the previous step's pulse (its full width, or half the
-  // period if shorter) and starts this one; the pulse stays open until the next step or end().
-  void step(Nanos t, rt::Phase phase, std::int64_t k) noexcept;
-  // Ends the open pulse now (its full width, or half the time to the next step at t_next if
-  // shorter): the next step is not planned yet (a path axis waiting for its next crossing).
-  void end_pulse(Nanos t_next) noexcept;
-  // The motion turns between two steps (a path coordinate's reversal): the open pulse ends (its
-  // full width, or half the time to the next step if shorter), later steps pulse the line of
-  // `dir`, and in step/direction format the direction line changes. Returns the earliest time of
-  // the next step: t_next, or later if the direction line needs its set-up time.
-  Nanos reverse(Direction dir, Nanos t_next, rt::Phase phase) noexcept;
-  // A whole pulse at t, `width` wide, `dpos` (+1 CW, -1 CCW): when the next step is not known
-  // yet (follow).
-  void pulse(Nanos t, rt::Phase phase, int dpos, Nanos width, std::int64_t k) noexcept;
+  // A new motion `epoch` starting in `dir` (the pulse format asked for last applies from here).
+  // If its first step is known (`first`) and the direction line must change before it, the
+  // motion's time 0 must lie lead() after the direction edge, which launch() writes.
+  void begin(std::uint32_t epoch, Direction dir, const FirstStep& first) noexcept;
+  Nanos lead() const noexcept { return lead_; }
+  // The motion's time 0 is `origin`: the direction edge of begin(), if it needs one.
+  void launch(Nanos origin) noexcept;
+  // Step k of the motion (a source's answer, planner/step_source.hpp); returns the time of its
+  // leading edge. A step in another direction than the previous one ends the open pulse, turns
+  // (later steps pulse the line of its direction) and, in step/direction format, writes the
+  // direction line at least dir_setup_ns before the step (later than s.t if it must). With
+  // s.width 0 the pulse stays open until the next step or end() (its full width, or half the
+  // period if shorter), else it is a whole pulse that wide.
+  Nanos step(const SourceStep& s, std::int64_t k) noexcept;
+  // The next step lies at t_next and is not planned yet (a path axis waiting for its next
+  // crossing): the open pulse ends now (its full width, or half the time to t_next if shorter).
+  void rest(Nanos t_next) noexcept;
+  // The earliest edge the step `s` will need (its direction set-up if it turns).
+  Nanos first_edge_of(const SourceStep& s) const noexcept {
+    return s.dir != dir_ ? s.t - timing_.dir_setup_ns : s.t;
+  }
   // Ends the motion: the open pulse ends with kLast, or (no pulse open) a marker edge at
   // max(t, newest edge) rewrites the direction line at its level, carrying kLast.
   void end(Nanos t) noexcept;
@@ -98,6 +99,16 @@ class EdgeEmitter {
 
  private:
   static constexpr std::size_t kStaged = 64;
+  // Whether the direction line must be written before the next step (a change, or unknown).
+  bool direction_pending() const noexcept { return dir_level_ != dir_target(); }
+  // Later steps pulse the line of `dir`.
+  void turn(Direction dir) noexcept;
+  // Writes the direction line for the motion's direction at t.
+  void direction(Nanos t, rt::Phase phase) noexcept;
+  // step(): a turn or an unwritten direction line before step s; returns the step's time.
+  Nanos set_up_direction(const SourceStep& s) noexcept;
+  void open_pulse(Nanos t, rt::Phase phase, std::int64_t k) noexcept;
+  void whole_pulse(Nanos t, rt::Phase phase, Nanos width, std::int64_t k) noexcept;
   std::uint8_t dir_target() const noexcept {
     return step_dir_ ? (dir_ == Direction::kCcw ? kDirLevelCcw : kDirLevelCw) : 0;
   }
@@ -127,6 +138,9 @@ class EdgeEmitter {
   bool pulse_open_ = false;      // a step's leading edge staged, its trailing edge not yet
   Nanos step_t_ = 0;             // the newest step's leading edge
   std::uint8_t step_flags_ = 0;  // its flags (without kFirst)
+  bool lead_edge_ = false;       // begin(): a direction edge before the first step
+  Nanos lead_ = 0;               // time 0 this long after it
+  rt::Phase lead_phase_ = rt::Phase::kCruise;
 
   std::array<rt::Edge, kStaged> staged_{};  // generated, not yet in the ring, in time order
   std::size_t staged_head_ = 0;
@@ -167,7 +181,20 @@ inline void EdgeEmitter::stage(const rt::Edge& e) noexcept {
   if (e.t > last_t_) last_t_ = e.t;
 }
 
-inline void EdgeEmitter::step(Nanos t, rt::Phase phase, std::int64_t k) noexcept {
+inline Nanos EdgeEmitter::step(const SourceStep& s, std::int64_t k) noexcept {
+  Nanos t = s.t;
+  if (s.dir != dir_ || direction_pending()) [[unlikely]] {
+    t = set_up_direction(s);
+  }
+  if (s.width > 0) [[unlikely]] {
+    whole_pulse(t, s.phase, s.width, k);
+  } else {
+    open_pulse(t, s.phase, k);
+  }
+  return t;
+}
+
+inline void EdgeEmitter::open_pulse(Nanos t, rt::Phase phase, std::int64_t k) noexcept {
   const auto flags = static_cast<std::uint8_t>(base_flags_ | static_cast<std::uint8_t>(phase));
   if (pulse_open_) {
     // Trailing edge of the previous step: the configured width, or half the period if shorter.

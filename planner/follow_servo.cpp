@@ -7,12 +7,32 @@ namespace stepmod::planner {
 
 namespace {
 Nanos to_ns(double seconds) noexcept {
-  return std::llround(seconds * 1e9);
+  return seconds_to_ns(seconds);
 }
 }  // namespace
 
-FollowServo::Next FollowServo::next(Nanos prev_t, bool first, Nanos now, Nanos start_delay,
-                                    Nanos pulse_ns, FollowStep& out) noexcept {
+Answer FollowServo::next(const StepProgress& p, const StepWindow& w, SourceStep& out) noexcept {
+  FollowStep st;
+  switch (decide(p.tk_ns, p.k == 0, w.now, st)) {
+    case Next::kWait:
+      return Answer::kWait;
+    case Next::kFinish:
+      return Answer::kEnd;
+    case Next::kStep:
+      break;
+  }
+  out.t = std::max(st.t, w.last_edge + 1);
+  out.ts = p.tk;  // the follow law has no time base of its own
+  out.dir = st.dir < 0 ? Direction::kCcw : Direction::kCw;
+  out.phase = st.phase;
+  out.width = st.width;
+  out.not_before = w.now;
+  taken(st);
+  return Answer::kStep;
+}
+
+FollowServo::Next FollowServo::decide(Nanos prev_t, bool first, Nanos now,
+                                      FollowStep& out) noexcept {
   const FollowSpec& s = spec_;
   const double vs = std::max(s.vs, 1.0);
   const double vmax = std::max(s.vmax, 1.0);
@@ -50,13 +70,19 @@ FollowServo::Next FollowServo::next(Nanos prev_t, bool first, Nanos now, Nanos s
     }
     v = std::max(v, 1.0);
   }
+  time_step(prev_t, first, now, v, dir, cap, out);
+  return Next::kStep;
+}
 
+void FollowServo::time_step(Nanos prev_t, bool first, Nanos now, double v, int dir, double cap,
+                            FollowStep& out) const noexcept {
+  const FollowSpec& s = spec_;
   // Time of the step.
   out.from_rest = v_ <= 0.0;
   if (!out.from_rest) {
     out.t = prev_t + to_ns(2.0 / (v_ + v));
   } else {
-    out.t = now + start_delay;
+    out.t = now + start_delay_;
     if (!first) out.t = std::max(out.t, prev_t + to_ns(1.0 / v));
   }
   out.phase = rt::Phase::kCruise;
@@ -67,10 +93,9 @@ FollowServo::Next FollowServo::next(Nanos prev_t, bool first, Nanos now, Nanos s
   // The trailing edge goes with the step (the next step is not known yet): the configured width,
   // or half the shortest period the next step can come at.
   const double v_up = s.accel > 0.0 ? std::sqrt(v * v + 2.0 * s.accel) : std::max(v, cap);
-  out.width = std::max<Nanos>(1, std::min(pulse_ns, to_ns(0.5 / v_up)));
+  out.width = std::max<Nanos>(1, std::min(pulse_ns_, to_ns(0.5 / v_up)));
   out.dir = dir;
   out.v = v;
-  return Next::kStep;
 }
 
 }  // namespace stepmod::planner

@@ -1,7 +1,7 @@
 #pragma once
 // A step source: the encoder follower's servo (FollowSpec, digest 7.12). It decides each next
 // step of a follow motion (direction, speed, earliest time, status phase) from the latest target;
-// the axis planner turns the decision into edges (planner/edge_emitter.hpp).
+// the axis planner hands the decision to the edge emitter (the interface: planner/step_source.hpp).
 //
 // The law: the speed of the next step is the highest that
 //   * the accel allows from the previous step's speed (v^2 + 2a per step; 0 = jump to `speed`),
@@ -15,6 +15,8 @@
 
 #include "core/clock.hpp"
 #include "planner/motion_request.hpp"
+#include "planner/step_loop.hpp"
+#include "planner/step_source.hpp"
 #include "rt/edge.hpp"
 
 namespace stepmod::planner {
@@ -28,24 +30,47 @@ struct FollowStep {
   bool from_rest = false;
 };
 
-class FollowServo {
+class FollowServo final : public StepSource {
  public:
-  enum class Next : std::uint8_t { kWait, kFinish, kStep };
+  // A step from rest comes no sooner than start_delay after it is planned; `pulse_ns` is the
+  // configured step pulse width.
+  FollowServo(Nanos start_delay, Nanos pulse_ns) noexcept
+      : start_delay_(start_delay), pulse_ns_(pulse_ns) {}
+
+  // StepSource (planner/step_source.hpp). kWait: at rest on the target; kEnd: at rest on it and
+  // told to stop. Its steps are whole pulses, and it sets its direction up with a step from rest
+  // (not before the planning time).
+  Answer next(const StepProgress& p, const StepWindow& w, SourceStep& out) noexcept override;
+  Answer plan(StepLoop& loop) noexcept override { return loop.run(*this); }
+  FirstStep first_step(std::int64_t /*end*/) noexcept override { return FirstStep{}; }
+  double start_speed() const noexcept override { return spec_.vs; }
+  double speed_at(double /*tk*/) const noexcept override { return v_; }
+  // Its ending is marked when it is decided (every step's trailing edge is already staged).
+  Nanos end_time(const StepProgress& /*p*/, Nanos now) const noexcept override { return now; }
+  // A stop: the motion ends as soon as it rests on its target.
+  bool stop_by_own_law() noexcept override {
+    finishing_ = true;
+    return true;
+  }
 
   void start(const FollowSpec& s) noexcept {
-    *this = FollowServo{};
     spec_ = s;
+    pos_ = 0;
+    dir_ = 0;
+    v_ = 0.0;
+    finishing_ = false;
   }
   void update(const FollowSpec& s) noexcept { spec_ = s; }
-  // A stop: the motion ends as soon as it rests on its target.
-  void finish() noexcept { finishing_ = true; }
-  double speed() const noexcept { return v_; }
 
-  // The next step after the one at prev_t (`first`: none yet), planned at `now`; a step from rest
-  // comes no sooner than now + start_delay. kWait: at rest on the target; kFinish: at rest on it
-  // and told to stop.
-  Next next(Nanos prev_t, bool first, Nanos now, Nanos start_delay, Nanos pulse_ns,
-            FollowStep& out) noexcept;
+ private:
+  // The follow law alone: the next step after the one at prev_t (`first`: none yet), planned at
+  // `now`.
+  enum class Next : std::uint8_t { kWait, kFinish, kStep };
+  Next decide(Nanos prev_t, bool first, Nanos now, FollowStep& out) noexcept;
+  // decide(): the time, phase and pulse width of a step at speed v in direction dir (`cap`: the
+  // speed the law may reach).
+  void time_step(Nanos prev_t, bool first, Nanos now, double v, int dir, double cap,
+                 FollowStep& out) const noexcept;
   // The step `s` was planned: the servo's position and speed move on.
   void taken(const FollowStep& s) noexcept {
     pos_ += s.dir;
@@ -53,7 +78,8 @@ class FollowServo {
     v_ = s.v;
   }
 
- private:
+  Nanos start_delay_;
+  Nanos pulse_ns_;
   FollowSpec spec_;         // latest target, speed and ramps
   std::int64_t pos_ = 0;    // net steps planned (CW positive) since the motion's start
   int dir_ = 0;             // sense of the newest step: +1 CW, -1 CCW, 0 before the first

@@ -29,15 +29,22 @@ void PathLaw::init(const PathSpec& p, PathCoordinate c) noexcept {
     shape_ = PathShape::kLine;
   }
   if (shape_ == PathShape::kLine) {
-    length_ = std::hypot(static_cast<double>(p.end_x), static_cast<double>(p.end_y));
-    inv_end_ = end_ != 0 ? 1.0 / static_cast<double>(end_) : 0.0;
-    n_ = 1;
-    seg_[0].u1 = 1.0;
-    seg_[0].dir = end_ > 0 ? 1 : (end_ < 0 ? -1 : 0);
-    seg_[0].target = end_;
-    return;
+    init_line(p);
+  } else {
+    init_arc(p);
   }
+}
 
+void PathLaw::init_line(const PathSpec& p) noexcept {
+  length_ = std::hypot(static_cast<double>(p.end_x), static_cast<double>(p.end_y));
+  inv_end_ = end_ != 0 ? 1.0 / static_cast<double>(end_) : 0.0;
+  n_ = 1;
+  seg_[0].u1 = 1.0;
+  seg_[0].dir = end_ > 0 ? 1 : (end_ < 0 ? -1 : 0);
+  seg_[0].target = end_;
+}
+
+void PathLaw::init_arc(const PathSpec& p) noexcept {
   c_ = y_ ? p.centre_y : p.centre_x;
   const double sx = -p.centre_x;  // S - C
   const double sy = -p.centre_y;
@@ -51,9 +58,13 @@ void PathLaw::init(const PathSpec& p, PathCoordinate c) noexcept {
   length_ = (r0_ + 0.5 * dr_) * std::fabs(sweep_);
   off_ = y_ ? kPi / 2 : 0.0;
   phi0_ = theta0_ - off_;
-
-  // The reversals: phi = k pi strictly inside the sweep, in path order.
   std::array<double, kMaxSegments> ends{};
+  const std::size_t n = arc_reversals(ends);
+  arc_segments(ends, n);
+}
+
+std::size_t PathLaw::arc_reversals(std::array<double, kMaxSegments>& ends) const noexcept {
+  // The reversals: phi = k pi strictly inside the sweep, in path order.
   std::size_t n_ends = 0;
   const double phi1 = phi0_ + sweep_;
   const double lo = std::min(phi0_, phi1);
@@ -69,11 +80,14 @@ void PathLaw::init(const PathSpec& p, PathCoordinate c) noexcept {
     for (std::size_t i = 0, j = n_ends; i + 1 < j; ++i, --j) std::swap(ends[i], ends[j - 1]);
   }
   ends[n_ends++] = 1.0;
+  return n_ends;
+}
 
+void PathLaw::arc_segments(const std::array<double, kMaxSegments>& ends, std::size_t n) noexcept {
   double u0 = 0.0;
   double q0 = 0.0;         // the coordinate at the segment's start (exactly 0 at S)
   std::int64_t count = 0;  // the count at the segment's start
-  n_ = n_ends;
+  n_ = n;
   for (std::size_t i = 0; i < n_; ++i) {
     Segment& sg = seg_[i];
     sg.u1 = ends[i];

@@ -71,6 +71,12 @@ class PathLaw {
     bool k_odd = false;
   };
   double arc_u(const Segment& sg, double n, double u) const noexcept;
+  // init(), by shape: the line's one segment; the arc's geometry, its reversals (the segment
+  // ends, in path order, the last one 1) and the segments between them.
+  void init_line(const PathSpec& p) noexcept;
+  void init_arc(const PathSpec& p) noexcept;
+  std::size_t arc_reversals(std::array<double, kMaxSegments>& ends) const noexcept;
+  void arc_segments(const std::array<double, kMaxSegments>& ends, std::size_t n) noexcept;
 
   PathShape shape_ = PathShape::kLine;
   bool y_ = false;  // the Y coordinate (sin) rather than X (cos)

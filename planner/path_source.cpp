@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace stepmod::planner {
 
@@ -101,8 +102,9 @@ void PathSource::plan_next() noexcept {
   next_valid_ = true;
 }
 
-rt::Phase PathSource::first_phase() const noexcept {
-  return phases_.empty() ? rt::Phase::kCruise : phases_[0].phase;
+FirstStep PathSource::first_step(std::int64_t /*end*/) noexcept {
+  const rt::Phase phase = phases_.empty() ? rt::Phase::kCruise : phases_[0].phase;
+  return FirstStep{true, peek().t, phase};
 }
 
 }  // namespace stepmod::planner

@@ -30,22 +30,33 @@
 // ramp down to vs), so both stop at the same point of the path; resume continues from there to
 // the path's end with a new profile. T is at or after every step either axis has planned, and the
 // axis planner plans a path step only once it lies within the lookahead (peek() before take()),
-// so T is never more than a lookahead away even when an axis waits long for its next crossing.
-// Progress (the newest step's time) belongs to the caller.
+// so T is never more than a lookahead away even when an axis waits long for its next crossing:
+// next() answers kLater for a step beyond the horizon and keeps it unplanned.
+// Progress (the newest step's time) belongs to the caller (the interface:
+// planner/step_source.hpp).
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 
 #include "planner/path_law.hpp"
 #include "planner/path_spec.hpp"
 #include "planner/profile.hpp"
 #include "planner/ramp.hpp"
+#include "planner/step_loop.hpp"
+#include "planner/step_source.hpp"
 #include "rt/edge.hpp"
 
 namespace stepmod::planner {
 
-class PathSource {
+class PathSource final : public StepSource {
  public:
-  double vs() const noexcept { return vs_; }  // the path's starting speed
+  // StepSource (planner/step_source.hpp).
+  Answer next(const StepProgress& p, const StepWindow& w, SourceStep& out) noexcept override;
+  Answer plan(StepLoop& loop) noexcept override { return loop.run(*this); }
+  FirstStep first_step(std::int64_t end) noexcept override;
+  double start_speed() const noexcept override { return vs_; }
+  double speed_at(double tk) const noexcept override { return vector_speed_at(tk); }
+
   struct Start {
     Direction dir;     // of the first step (kCw if there is none)
     std::int64_t end;  // the number of steps this motion makes (0: none)
@@ -64,6 +75,16 @@ class PathSource {
   double stop_point() const noexcept { return u_lim_; }
   double length() const noexcept { return law_.length(); }
 
+  // The net count (the coordinate's step count from the path's start) after the steps taken.
+  std::int64_t count() const noexcept { return count_; }
+  // Path length at the newest step taken.
+  double s() const noexcept { return u_ * law_.length(); }
+
+  double vector_speed_at(double t) const noexcept { return phases_.velocity_at(t); }
+  double path_position_at(double t) const noexcept { return phases_.position_at(t); }
+  const PathLaw& law() const noexcept { return law_; }
+
+ private:
   struct Step {
     double t;  // s from the motion's time 0
     rt::Phase phase;
@@ -82,17 +103,6 @@ class PathSource {
     u_ = next_.u;
     return next_.step;
   }
-  // The net count (the coordinate's step count from the path's start) after the steps taken.
-  std::int64_t count() const noexcept { return count_; }
-  // Path length at the newest step taken.
-  double s() const noexcept { return u_ * law_.length(); }
-
-  double vector_speed_at(double t) const noexcept { return phases_.velocity_at(t); }
-  double path_position_at(double t) const noexcept { return phases_.position_at(t); }
-  rt::Phase first_phase() const noexcept;
-  const PathLaw& law() const noexcept { return law_; }
-
- private:
   struct Next {
     std::size_t seg = 0;
     std::int64_t n = 0;
@@ -119,5 +129,24 @@ class PathSource {
   Next next_;
   bool next_valid_ = false;
 };
+
+// The per-step path, inline (StepLoop::run calls it directly).
+inline Answer PathSource::next(const StepProgress& p, const StepWindow& w,
+                               SourceStep& out) noexcept {
+  const Step& nx = peek();
+  Nanos ns = p.origin + seconds_to_ns(nx.t);
+  if (ns < p.tk_ns) ns = p.tk_ns;
+  out.t = ns;
+  out.ts = nx.t;
+  out.dir = nx.dir;
+  out.phase = nx.phase;
+  out.width = 0;
+  out.not_before = std::numeric_limits<Nanos>::min();
+  // An axis that crawls near its coordinate's reversal may wait long for its next crossing:
+  // planned now, that step could not be replanned by a hold any more.
+  if (ns > w.horizon) return Answer::kLater;
+  take();
+  return Answer::kStep;
+}
 
 }  // namespace stepmod::planner

@@ -50,33 +50,10 @@ void Planner::apply(const Command& c, Nanos now) {
     axis.take_blend(slot.spec);
     slot.taken.store(blend->seq, std::memory_order_release);
   }
-  if (c.kind() == CommandKind::kPathResume || c.kind() == CommandKind::kPathHold) {
-    // An immediate stop of either axis (seen by its planner only when it next runs) discards the
-    // path: take every axis' aborts into account before the path is held or resumed.
-    for (auto& a : axes_) a->poll_abort();
-  }
-  if (c.kind() == CommandKind::kPathResume && paths_.held != 0) {
-    // A resume before the hold has stopped every axis of the path (the module resumes only from
-    // its Hold state, when both have stopped): the axes are not at the stop point the resume
-    // would start from, so the path is given up rather than jump there.
-    for (auto& a : axes_) {
-      if (a->path_id() == paths_.held && a->path_active()) {
-        paths_.broken = paths_.held;
-        paths_.held = 0;
-        break;
-      }
-    }
-  }
-  if (const auto* h = std::get_if<PathHold>(&c.what)) {
+  paths_.before(c);
+  if (const std::optional<Ramp> ramp = paths_.path_stop(c)) {
     if (group_.id != 0) launch_group(now);
-    hold_path(c, h->ramp, now);
-    return;
-  }
-  if (const auto* st = std::get_if<StopSpec>(&c.what);
-      st != nullptr && axis.follows_path(c.epoch)) {
-    // A controlled stop of one axis of a path stops the whole path along it.
-    if (group_.id != 0) launch_group(now);
-    hold_path(c, st->ramp, now);
+    paths_.hold(c, *ramp, now);
     return;
   }
   const bool member = c.group.id != 0 && c.starts_motion();
@@ -119,25 +96,6 @@ void Planner::launch_group(Nanos now) {
   group_ = GroupTag{};
   group_received_ = 0;
   group_axes_.clear();
-}
-
-void Planner::hold_path(const Command& c, const Ramp& ramp, Nanos now) {
-  AxisPlanner& sender = *axes_[c.axis];
-  if (!sender.follows_path(c.epoch)) return;  // stale: its path is no longer the newest motion
-  const std::uint32_t id = sender.path_id();
-  const auto member = [&](unsigned i) {
-    return i == c.axis || (id != 0 && axes_[i]->path_id() == id);
-  };
-  // One time for all: no step either axis has planned may be replanned. The axes of a path share
-  // one slip (rt/slip.hpp): `now` on their time base.
-  Nanos t = now - sender.slip() + options_.start_delay_ns;
-  for (unsigned i = 0; i < axes_.size(); ++i) {
-    if (member(i)) t = std::max(t, axes_[i]->path_frontier());
-  }
-  for (unsigned i = 0; i < axes_.size(); ++i) {
-    if (member(i)) axes_[i]->hold_path(t, ramp);
-  }
-  if (id != 0 && paths_.broken != id) paths_.held = id;
 }
 
 Nanos Planner::service(Nanos now) {

@@ -10,6 +10,7 @@
 #include "core/spsc_ring.hpp"
 #include "planner/motion_port.hpp"
 #include "planner/motion_request.hpp"
+#include "planner/path_book.hpp"
 #include "rt/axis_feedback.hpp"
 #include "rt/edge.hpp"
 
@@ -38,13 +39,6 @@ struct PlannerOptions {
 };
 
 class AxisPlanner;  // planner/axis_planner.hpp
-
-// Which interpolated path may be resumed (PathResume), across the axes that follow it. Paths are
-// named by their group id. Planner thread only.
-struct PathBook {
-  std::uint32_t held = 0;    // the path last held and not discarded since (0: none)
-  std::uint32_t broken = 0;  // the path last discarded by one of its axes (never resumable)
-};
 
 class Planner final : public CommandSink {
  public:
@@ -77,9 +71,6 @@ class Planner final : public CommandSink {
   void apply(const Command& c, Nanos now);
   // Starts the group being collected (all of its members that arrived) on one time 0.
   void launch_group(Nanos now);
-  // PathHold (or a StopSpec) for the path that axis `c.axis` follows: every axis of the path
-  // replans from one time, at or after every step any of them has planned.
-  void hold_path(const Command& c, const Ramp& ramp, Nanos now);
 
   PlannerOptions options_;
   std::vector<std::unique_ptr<AxisPlanner>> axes_;
@@ -101,7 +92,7 @@ class Planner final : public CommandSink {
   };
   Launched launched_;
   std::vector<Nanos> fill_slip_;  // service(): each axis' slip for this fill (see there)
-  PathBook paths_;
+  PathBook paths_{axes_, options_.start_delay_ns};  // the interpolated paths across the axes
 };
 
 }  // namespace stepmod::planner

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace stepmod::planner {
 
@@ -16,6 +17,7 @@ ProfileSource::Start ProfileSource::start(const MoveSpec& m) noexcept {
   decel_ = m.decel;
   constant_speed_ = m.vp <= m.vs;
   can_change_speed_ = false;
+  dir_ = m.dir;
   return Start{m.dir, m.steps};
 }
 
@@ -26,6 +28,7 @@ ProfileSource::Start ProfileSource::start(const RunSpec& r) noexcept {
   decel_ = r.decel;
   constant_speed_ = r.vp <= r.vs;
   can_change_speed_ = true;
+  dir_ = r.dir;
   return Start{r.dir, kEndless};
 }
 
@@ -36,18 +39,16 @@ ProfileSource::Start ProfileSource::start(const BlendSpec& b) noexcept {
   decel_ = b.final_decel;
   constant_speed_ = false;
   can_change_speed_ = false;
+  dir_ = b.dir;
   return Start{b.dir, blend_length(b)};
 }
 
-double ProfileSource::first_step_time(std::int64_t end) const noexcept {
-  if (end == 1) return phases_.end_time();
+FirstStep ProfileSource::first_step(std::int64_t end) noexcept {
+  const rt::Phase phase = phases_.empty() ? rt::Phase::kCruise : phases_[0].phase;
+  if (end == 1) return FirstStep{true, phases_.end_time(), phase};
   StepSolver probe;
   probe.reset(&phases_);
-  return probe.time_of(1.0);
-}
-
-rt::Phase ProfileSource::first_phase() const noexcept {
-  return phases_.empty() ? rt::Phase::kCruise : phases_[0].phase;
+  return FirstStep{true, probe.time_of(1.0), phase};
 }
 
 rt::Phase ProfileSource::phase_at(double t) const noexcept {

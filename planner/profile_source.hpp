@@ -3,21 +3,27 @@
 // manuals' profiles (planner/profile.hpp, digest 7.2); the shared StepSolver finds the time of
 // each step on it. Stops, registration counts and speed changes replan the law from a given step.
 // Progress (the newest step k and its time) belongs to the caller (the axis planner), which
-// hands each step to the edge emitter.
+// hands each step to the edge emitter (the interface: planner/step_source.hpp).
 #include <cstdint>
 #include <limits>
 
 #include "planner/motion_request.hpp"
 #include "planner/profile.hpp"
+#include "planner/step_loop.hpp"
+#include "planner/step_source.hpp"
 #include "rt/edge.hpp"
 
 namespace stepmod::planner {
 
-inline constexpr std::int64_t kEndless = std::numeric_limits<std::int64_t>::max();
-
-class ProfileSource {
+class ProfileSource final : public StepSource {
  public:
-  double vs() const noexcept { return vs_; }  // the motion's starting speed
+  // StepSource (planner/step_source.hpp).
+  Answer next(const StepProgress& p, const StepWindow& w, SourceStep& out) noexcept override;
+  Answer plan(StepLoop& loop) noexcept override { return loop.run(*this); }
+  FirstStep first_step(std::int64_t end) noexcept override;
+  double start_speed() const noexcept override { return vs_; }
+  double speed_at(double tk) const noexcept override { return velocity_at(tk); }
+
   struct Start {
     Direction dir;
     std::int64_t end;  // the step count at which the motion ends (kEndless: a run)
@@ -41,10 +47,6 @@ class ProfileSource {
     const double t = solver_.time_of(static_cast<double>(k));
     return Step{t, phases_[solver_.phase_index()].phase};
   }
-  // Time of step 1 (for the direction set-up) and the phase the motion starts in.
-  double first_step_time(std::int64_t end) const noexcept;
-  rt::Phase first_phase() const noexcept;
-
   double velocity_at(double t) const noexcept { return phases_.velocity_at(t); }
   rt::Phase phase_at(double t) const noexcept;
   // The law was replanned at this time (s): nothing earlier can be evaluated any more.
@@ -67,9 +69,26 @@ class ProfileSource {
   PhaseList phases_;
   StepSolver solver_;
   double vs_ = 1.0;
+  Direction dir_ = Direction::kCw;
   Ramp decel_;
   bool constant_speed_ = false;    // started with vp <= vs: stops end after the next step
   bool can_change_speed_ = false;  // a Run that no stop has ended yet
 };
+
+// The per-step path, inline (StepLoop::run calls it directly).
+inline Answer ProfileSource::next(const StepProgress& p, const StepWindow& /*w*/,
+                                  SourceStep& out) noexcept {
+  auto [t, ph] = step(p.k + 1, p.end);
+  if (t < p.tk) t = p.tk;
+  Nanos ns = p.origin + seconds_to_ns(t);
+  if (ns < p.tk_ns) ns = p.tk_ns;
+  out.t = ns;
+  out.ts = t;
+  out.dir = dir_;
+  out.phase = ph;
+  out.width = 0;
+  out.not_before = std::numeric_limits<Nanos>::min();
+  return Answer::kStep;
+}
 
 }  // namespace stepmod::planner

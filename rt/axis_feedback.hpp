@@ -1,8 +1,11 @@
 #pragma once
 // State shared between the pulse thread and the rest of the daemon, one block per axis.
-// AxisFeedback is written only by the pulse thread; AxisControl only by the module (control)
-// thread, but for its `cut` (planner <-> pulse thread). Every field is a lone atomic: no locks on
-// the real-time path.
+// AxisFeedback is written only by the pulse thread. AxisControl has two writers, one per field,
+// never both: the module (control) thread writes the immediate-stop and step-cap fields
+// (abort_epoch, limit_steps, limit_epoch); the planner thread writes what it tells the pulse
+// thread about its own edges (refill_at, motion_group, motion_vs) and its side of `cut` (a
+// request/answer handshake with the pulse thread, rt/edge_cut.hpp). Every field is a lone atomic:
+// no locks on the real-time path.
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -46,6 +49,7 @@ struct AxisFeedback {
 };
 
 struct AxisControl {
+  // --- Written by the module (control) thread ---
   // Immediate stop: motion edges whose epoch <= abort_epoch are dropped by the pulse thread, which
   // then brings a high step line low and reports the epoch in AxisFeedback::finished_epoch.
   std::atomic<std::uint32_t> abort_epoch{0};
@@ -56,6 +60,7 @@ struct AxisControl {
   // (relaxed), then limit_epoch (release).
   std::atomic<std::int64_t> limit_steps{0};
   std::atomic<std::uint32_t> limit_epoch{0};
+  // --- Written by the planner thread (and, for `cut`, answered by the pulse thread) ---
   // Controlled stop at its trigger: between the planner thread and the pulse thread (not the
   // module): replaces a motion's queued edges from a time on (rt/edge_cut.hpp).
   EdgeCut cut;

@@ -191,11 +191,7 @@ void Follower::exit() {
 
 void Follower::scan(const AxisCommand& c, const AxisCommand& prev) {
   const bool lsw7 = c.follower;
-  const bool was7 = prev.follower;
   const CommandSet rising = c.commands.rising_since(prev.commands);
-  const bool cw = c.commands.has(CommandKind::kManualCw);
-  const bool ccw = c.commands.has(CommandKind::kManualCcw);
-
   // 3601-CE-39: any command but Manual + / - (Hold included) while the follower flag is set.
   // Raised before the command is dispatched, which then ignores it (CE-L1).
   if (lsw7 && !rising.without(CommandKind::kManualCw, CommandKind::kManualCcw).empty()) {
@@ -203,19 +199,10 @@ void Follower::scan(const AxisCommand& c, const AxisCommand& prev) {
     if (ax_.activity == Activity::kFollower) cut();
     return;
   }
-
   if (ax_.activity != Activity::kFollower) {
-    if (!lsw7 || was7 || ax_.status.command_error) return;
-    // The follower flag rising: follower mode (a direction bit rising in the same scan then starts
-    // the output in command_follower).
-    if (ax_.moving()) {
-      ax_.reject(items::kFollowerWhileMoving);  // 3601-CE-35: the running motion completes
-      return;
-    }
-    enter(c);
+    if (lsw7 && !prev.follower && !ax_.status.command_error) flag_rose(c);
     return;
   }
-
   // The follow motion has ended.
   if (f_.motion && !ax_.motion.busy()) {
     f_.motion = false;
@@ -232,58 +219,71 @@ void Follower::scan(const AxisCommand& c, const AxisCommand& prev) {
     return;
   }
   if (!lsw7) {
-    if (cw || ccw) {
-      ax_.reject(
-          items::kFollowerReleased);  // 3601-CE-40: the flag cleared while a direction is still set
-      cut();
-      return;
-    }
-    // Leaving follower mode: the steps already owed still go out (the count stays exact), then
-    // the motion ends and Stopped is set (3601-STP-05).
-    f_.leaving = true;
-    f_.sense = 0;
-    if (f_.running) {
-      send(0, true);
-      ax_.motion.stop(ax_.move_decel);
-      f_.running = false;
-    }
-    if (!f_.motion) exit();
+    flag_cleared(c);
+  } else if (c.s_curve()) {
+    // 3601-CE-41 on the fly.
+    ax_.reject(items::kFollowerSCurve);
+    cut();
+  } else if (f_.key) {
+    steer(c);
+  }
+}
+
+void Follower::flag_rose(const AxisCommand& c) {
+  // The follower flag rising: follower mode (a direction bit rising in the same scan then starts
+  // the output in command_follower).
+  if (ax_.moving()) {
+    ax_.reject(items::kFollowerWhileMoving);  // 3601-CE-35: the running motion completes
     return;
   }
-  // 3601-CE-41 on the fly.
-  if (c.s_curve()) {
-    ax_.reject(items::kFollowerSCurve);
+  enter(c);
+}
+
+void Follower::flag_cleared(const AxisCommand& c) {
+  if (c.commands.has(CommandKind::kManualCw) || c.commands.has(CommandKind::kManualCcw)) {
+    // 3601-CE-40: the flag cleared while a direction is still set.
+    ax_.reject(items::kFollowerReleased);
     cut();
     return;
   }
-  if (f_.key) {
-    const bool other = c.commands.has(*f_.key == CommandKind::kManualCw ? CommandKind::kManualCcw
-                                                                        : CommandKind::kManualCw);
-    if (other) {
-      // 3601-CE-38: the direction changed without a scan with the command word at 0 (both bits
-      // at once is CE-02 as well).
-      ax_.reject(items::kFollowerDirection);
-      cut();
-      return;
-    }
-    if (!cw && !ccw) {
-      // No direction bit: no more output; the steps already owed still go out.
-      f_.key.reset();
-      f_.sense = 0;
-      if (f_.running) {
-        send(0, true);
-        ax_.motion.stop(ax_.move_decel);
-        f_.running = false;
-      }
-      return;
-    }
-    // Ratio and ramps may change on the fly (checked every scan).
-    if (!params(c)) {
-      cut();
-      return;
-    }
-    if (!f_.motion) start_motion();
+  // Leaving follower mode: the steps already owed still go out (the count stays exact), then
+  // the motion ends and Stopped is set (3601-STP-05).
+  f_.leaving = true;
+  stop_output();
+  if (!f_.motion) exit();
+}
+
+void Follower::steer(const AxisCommand& c) {
+  const bool cw = c.commands.has(CommandKind::kManualCw);
+  const bool ccw = c.commands.has(CommandKind::kManualCcw);
+  if (*f_.key == CommandKind::kManualCw ? ccw : cw) {
+    // 3601-CE-38: the direction changed without a scan with the command word at 0 (both bits
+    // at once is CE-02 as well).
+    ax_.reject(items::kFollowerDirection);
+    cut();
+    return;
+  }
+  if (!cw && !ccw) {
+    // No direction bit: no more output; the steps already owed still go out.
+    f_.key.reset();
+    stop_output();
+    return;
+  }
+  // Ratio and ramps may change on the fly (checked every scan).
+  if (!params(c)) {
+    cut();
+    return;
+  }
+  if (!f_.motion) start_motion();
+  send(0, true);
+}
+
+void Follower::stop_output() {
+  f_.sense = 0;
+  if (f_.running) {
     send(0, true);
+    ax_.motion.stop(ax_.move_decel);
+    f_.running = false;
   }
 }
 

@@ -29,6 +29,13 @@ class Follower {
   void send(Nanos t, bool force);
   void cut();   // a CE while following: output stops at once, follower mode is left
   void exit();  // follower mode is left: Stopped (3601-STP-05)
+  // scan(), by situation: the flag rose outside follower mode; the flag cleared while following;
+  // the flag held with a direction in force (its changes, ratio and ramps on the fly).
+  void flag_rose(const AxisCommand& c);
+  void flag_cleared(const AxisCommand& c);
+  void steer(const AxisCommand& c);
+  // No more output: the steps already owed still go out, then the follow motion stops.
+  void stop_output();
 
   struct Session {
     std::optional<CommandKind> key;  // direction command in force: + same sense, - reverse

@@ -84,30 +84,36 @@ void InterpolatedMove::after_input() {
 }
 
 void InterpolatedMove::command(const InterpolatedCommand& c) {
+  if (!admissible(c)) return;
+  if (const std::optional<planner::PathSpec> spec = path_of(c)) begin_path(*spec);
+}
+
+bool InterpolatedMove::admissible(const InterpolatedCommand& c) {
   // 3602-CE-L1: while axis 1's Command Error is set, no command is looked at.
-  if (x_.status().command_error) return;
+  if (x_.status().command_error) return false;
   switch (c.fault) {
     case InterpolationFault::kNone:
       break;
     case InterpolationFault::kPattern:      // 3602-CE-I6 (A34)
     case InterpolationFault::kCommandBits:  // 3602-CE-03
       reject(false);
-      return;
+      return false;
     case InterpolationFault::kReserved:  // 3602-CE-I5 / IP-18 (and CE-I4: stale words 8..15)
     case InterpolationFault::kRange:     // 3602-CE-05 / IP-02
       reject(true);
-      return;
+      return false;
   }
   // 3602-CE-I3: both axes configured, enabled and in command mode.
-  if (!x_.commandable() || !y_.commandable()) {
-    reject(false);
-    return;
-  }
   // 3602-CE-04: a move while either axis moves; the running motion is unaffected.
-  if (state_ == State::kRunning || x_.moving() || y_.moving()) {
+  if (!x_.commandable() || !y_.commandable() || state_ == State::kRunning || x_.moving() ||
+      y_.moving()) {
     reject(false);
-    return;
+    return false;
   }
+  return true;
+}
+
+std::optional<planner::PathSpec> InterpolatedMove::path_of(const InterpolatedCommand& c) {
   // The vector profile: 3602-CE-05 / IP-02 ranges, 3602-CE-06 / IP-01 Vp >= Vs of axis 1 (A37).
   const axis::ModuleRules& rules = kRules3602;
   const std::int32_t vs = x_.config().starting_speed;
@@ -117,26 +123,30 @@ void InterpolatedMove::command(const InterpolatedCommand& c) {
   if (c.speed < 1 || c.speed > rules.speed_max || c.speed < vs || !rate_ok(c.accel) ||
       !rate_ok(c.decel)) {
     reject(true);
-    return;
+    return std::nullopt;
   }
   // 3602-CE-07 / IP-17: absolute coordinates need both positions valid.
   const axis::AxisStatus sx = x_.status();
   const axis::AxisStatus sy = y_.status();
   if (c.absolute && (sx.position_invalid || sy.position_invalid)) {
     reject(true);
-    return;
+    return std::nullopt;
   }
   // 3602-CE-I7 (A36) / IP-03 (A32): the geometry, or no motion.
   const PathGeometry g = path_geometry(c, sx.position, sy.position);
   if (g.fault != GeometryFault::kNone) {
     reject(true);
-    return;
+    return std::nullopt;
   }
   planner::PathSpec spec = g.spec;
   spec.vs = vs;
   spec.vp = c.speed;
   spec.accel = {static_cast<double>(c.accel), c.shape};
   spec.decel = {static_cast<double>(c.decel), c.shape};
+  return spec;
+}
+
+void InterpolatedMove::begin_path(const planner::PathSpec& spec) {
   // A15: an E-stop, or a limit ahead of an axis' first steps: Input Error, no motion. Both axes
   // are looked at, so each reports its own input.
   const StartDirections d = start_directions(spec);
@@ -168,16 +178,9 @@ void InterpolatedMove::command(const InterpolatedCommand& c) {
 }
 
 bool InterpolatedMove::start(bool resume) {
-  const planner::GroupTag group = groups_.next(2);
-  using planner::PathCoordinate;
-  const auto start_one = [&](planner::MotionPort& p, PathCoordinate k) {
-    return resume ? p.resume_path(k, spec_.vp, spec_.accel, spec_.decel, group)
-                  : p.start_path(spec_, k, group);
-  };
-  const std::uint32_t ex = start_one(px_, PathCoordinate::kX);
-  const std::uint32_t ey = ex != 0 ? start_one(py_, PathCoordinate::kY) : 0;
-  if (ex == 0 || ey == 0) {
-    if (ex != 0) px_.immediate_stop();  // the planner queue is full: refuse, start nothing
+  const bool started =
+      resume ? group_.resume(spec_.vp, spec_.accel, spec_.decel) : group_.start(spec_);
+  if (!started) {
     reject(false);
     return false;
   }

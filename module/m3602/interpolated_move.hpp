@@ -2,7 +2,7 @@
 // The 3602's interpolated move: one object, its state and its getters (the model: libgpiod's
 // edge-event.c). It takes the decoded command (interpolated_command.hpp) on its 0->1 edge,
 // applies the manual's acceptance rules, builds the path (circle_methods.hpp) and starts both
-// axes' parts on one time base (MotionPort::start_path, one GroupTag of size 2); while the path
+// axes' parts on one time base (planner::PathGroupPort, the planner's path group); while the path
 // runs it keeps the two axes together (a stop on one is a stop of both), refuses axis 2's
 // commands, and at the end gives both axes their outcome. Digest 7.14, 6.2 (CE-I*, IP-17/18,
 // PI-07), A17, A34-A39, A46.
@@ -16,6 +16,7 @@
 #include "module/axis/axis.hpp"
 #include "module/m3602/interpolated_command.hpp"
 #include "planner/motion_port.hpp"
+#include "planner/path_group.hpp"
 #include "planner/path_spec.hpp"
 
 namespace stepmod::module::m3602 {
@@ -31,7 +32,7 @@ class InterpolatedMove {
   // x: axis 1 (the path's X, where commands and errors go), y: axis 2.
   InterpolatedMove(axis::Axis& x, planner::MotionPort& x_port, axis::Axis& y,
                    planner::MotionPort& y_port) noexcept
-      : x_(x), px_(x_port), y_(y), py_(y_port) {}
+      : x_(x), px_(x_port), y_(y), py_(y_port), group_(x_port, y_port) {}
   InterpolatedMove(const InterpolatedMove&) = delete;
   InterpolatedMove& operator=(const InterpolatedMove&) = delete;
 
@@ -52,6 +53,15 @@ class InterpolatedMove {
 
  private:
   void command(const InterpolatedCommand& c);
+  // The command's own rules and the axes' state (CE-L1, CE-I6, CE-03, CE-I5, CE-05, CE-I3,
+  // CE-04); false: ignored or rejected.
+  bool admissible(const InterpolatedCommand& c);
+  // The vector profile's rules (CE-05, CE-06, CE-07) and the geometry (CE-I7, IP-03): the path
+  // relative to the start point, or nullopt (rejected).
+  std::optional<planner::PathSpec> path_of(const InterpolatedCommand& c);
+  // An accepted path: blocked by inputs (A15), complete at once (at its end point), held from
+  // the start (External, A17), or started on both axes.
+  void begin_path(const planner::PathSpec& spec);
   // Rejections: every interpolated error is reported on axis 1 only (3602-CE-I1).
   void reject(bool invalid_profile) noexcept { x_.reject_coordinated(invalid_profile); }
   // Both parts of `spec_` started on one time base; false if the planner refused one.
@@ -64,7 +74,7 @@ class InterpolatedMove {
   planner::MotionPort& px_;
   axis::Axis& y_;
   planner::MotionPort& py_;
-  planner::GroupIds groups_;
+  planner::PathGroupPort group_;  // both axes' parts, started and resumed as one
 
   State state_ = State::kIdle;
   planner::PathSpec spec_;
