@@ -28,52 +28,76 @@ PulseEngine::PulseEngine(gpio::Backend& backend, std::span<const AxisLink> axes,
       pulse_late_(axes.size(), 0),
       dir_late_(axes.size(), 0),
       truncated_epoch_(axes.size(), 0),
+      heads_(axes.size(), nullptr),
       cells_(axes.size()),
       track_(axes.size()) {}
 
 Nanos PulseEngine::next_due() noexcept {
-  Nanos best = kNever;
-  int best_axis = -1;
   bool starved = false;
   Nanos dry_until = kNever;
+  for (Cell& c : cells_) c.wait_after = kNever;
   for (unsigned axis = 0; axis < axes_.size(); ++axis) {
-    const AxisLink& link = axes_[axis];
-    if (link.control != nullptr &&
-        link.control->abort_epoch.load(std::memory_order_acquire) > abort_seen_[axis]) {
-      apply_abort(axis);
-    }
-    // Every call, not only when an abort arrives: the planner may still push edges of a motion
-    // it has not yet learnt was aborted, and aborted edges queued behind a GPO edge reach the
-    // head only after it has been executed.
-    drop_stale(axis);
-    if (link.control != nullptr) link.control->cut.before_next(*link.edges);  // edge_cut.hpp
-    drop_beyond_limit(axis);
-    // Before the peek (AxisControl::refill_at): a promise that came with a refill also makes the
-    // edges pushed before it visible.
-    const Nanos refill_at =
-        link.control != nullptr ? link.control->refill_at.load(std::memory_order_acquire) : 0;
-    const Edge* e = link.edges->peek();
-    if (e != nullptr && (e->flags & edge_flag::kMotion) != 0 && e->epoch != track_[axis].epoch) {
-      bind(axis, *e);
-    }
+    Nanos refill_at = 0;
+    const Edge* e = prepare_head(axis, refill_at);
+    heads_[axis] = e;
     if (e == nullptr && in_motion_[axis] != 0) {
       starved = true;
       // refill_at is a planned time of the motion: on the wire it comes its slip later.
       dry_until = std::min(dry_until, refill_at == 0 ? 0 : refill_at + slip_of(axis));
-    }
-    // Strictly earlier only: on a tie the lower axis goes first, a stable order for tests.
-    if (e != nullptr) {
-      const Nanos t = due(axis, *e);
-      if (t < best) {
-        best = t;
-        best_axis = static_cast<int>(axis);
+      // The group's edges planned after it wait for it (waits_for_group). 0 names no edge: there
+      // is nothing to order by (a cut being resolved; nothing planned ahead).
+      if (refill_at != 0) {
+        Cell& c = cells_[track_[axis].cell];
+        c.wait_after = std::min(c.wait_after, refill_at);
       }
+    }
+  }
+  Nanos best = kNever;
+  int best_axis = -1;
+  for (unsigned axis = 0; axis < axes_.size(); ++axis) {
+    const Edge* e = heads_[axis];
+    if (e == nullptr || waits_for_group(axis, *e)) continue;
+    // Strictly earlier only: on a tie the lower axis goes first, a stable order for tests.
+    const Nanos t = due(axis, *e);
+    if (t < best) {
+      best = t;
+      best_axis = static_cast<int>(axis);
     }
   }
   next_axis_ = best_axis;
   starved_ = starved;
   dry_until_ = dry_until;
   return best;
+}
+
+const Edge* PulseEngine::prepare_head(unsigned axis, Nanos& refill_at) noexcept {
+  const AxisLink& link = axes_[axis];
+  if (link.control != nullptr &&
+      link.control->abort_epoch.load(std::memory_order_acquire) > abort_seen_[axis]) {
+    apply_abort(axis);
+  }
+  // Every call, not only when an abort arrives: the planner may still push edges of a motion
+  // it has not yet learnt was aborted, and aborted edges queued behind a GPO edge reach the
+  // head only after it has been executed.
+  drop_stale(axis);
+  if (link.control != nullptr) link.control->cut.before_next(*link.edges);  // edge_cut.hpp
+  drop_beyond_limit(axis);
+  // Before the peek (AxisControl::refill_at): a promise that came with a refill also makes the
+  // edges pushed before it visible.
+  refill_at = link.control != nullptr ? link.control->refill_at.load(std::memory_order_acquire) : 0;
+  const Edge* e = link.edges->peek();
+  if (e != nullptr && (e->flags & edge_flag::kMotion) != 0 && e->epoch != track_[axis].epoch) {
+    bind(axis, *e);
+  }
+  return e;
+}
+
+bool PulseEngine::waits_for_group(unsigned axis, const Edge& e) const noexcept {
+  const std::uint8_t c = track_[axis].cell;
+  if ((e.flags & edge_flag::kMotion) == 0 || c == kNoCell) return false;
+  // The end of a pulse under way moves no axis: it keeps its width rather than wait.
+  if (e.level == 0 && pulse_high_[axis] == static_cast<std::uint8_t>(e.line)) return false;
+  return e.t > cells_[c].wait_after;
 }
 
 void PulseEngine::drop_stale(unsigned axis) noexcept {

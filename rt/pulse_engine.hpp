@@ -91,6 +91,16 @@ class PulseEngine {
     bool fault = false;
   };
 
+  // Applies what was asked of `axis` since the last look (immediate stop, cut, step cap), binds
+  // the motion of a head edge not yet bound, and returns the head edge (null: empty ring);
+  // `refill_at`: the planner's promise for its next edge (AxisControl::refill_at).
+  const Edge* prepare_head(unsigned axis, Nanos& refill_at) noexcept;
+  // Within a group, edges go out in planned-time order across the members: a member's edge
+  // planned after the promised next edge of a starved member (its ring ran dry mid-motion: the
+  // planner, held off, refills the members one after the other) waits until that edge has come;
+  // then it goes out first, and its lateness slips the whole group (judged by the guard). Else
+  // the member refilled first would run ahead of the other and the path would come apart.
+  bool waits_for_group(unsigned axis, const Edge& e) const noexcept;
   void apply_abort(unsigned axis) noexcept;
   void write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept;
   void drop_stale(unsigned axis) noexcept;
@@ -137,6 +147,7 @@ class PulseEngine {
   std::vector<Nanos> pulse_late_;
   std::vector<Nanos> dir_late_;
   std::vector<std::uint32_t> truncated_epoch_;  // per axis: motion cut at its step-count cap
+  std::vector<const Edge*> heads_;  // per axis, as of next_due(): its ring's head (null: empty)
 
   // Slip cells: one per motion group running (a motion alone is a group of one). No more cells
   // than axes, so an axis that binds a new motion always finds a free one.
@@ -144,6 +155,9 @@ class PulseEngine {
   struct Cell {
     Nanos slip = 0;
     std::uint32_t key = 0;  // the group id (0: a motion alone, never joined)
+    // As of next_due(): the earliest promised next edge (planned time) of a member whose ring
+    // ran dry mid-motion; the members' edges planned after it wait (waits_for_group).
+    Nanos wait_after = kNever;
   };
   std::vector<Cell> cells_;
   struct Track {  // per axis: its motion's binding and the guard's memory of its last step

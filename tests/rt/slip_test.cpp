@@ -133,6 +133,90 @@ TEST(Slip, AGroupSlipsTogetherSoThePathKeepsItsShape) {
   }
 }
 
+// The race benchmark 12 found: the planner, held off past a path axis' next edge, refills the
+// two members one after the other while the pulse thread drains them. Axis 1's ring ran dry;
+// the planner promised its next step at 550 us (AxisControl::refill_at) and refills axis 0
+// first. Axis 0's step planned at 600 us must wait for axis 1's earlier one, however late that
+// comes; then both go out in planned order and the wait slips the whole group.
+TEST(GroupOrder, AMembersLaterEdgeWaitsForAStarvedMembersPromisedEdge) {
+  Rig rig(2);
+  describe(rig, 0, 1, 7, kVsInterval);
+  describe(rig, 1, 1, 7, kVsInterval);
+  push_steps(rig, 0, 100'000, kPeriod, 20, 1);  // 100, 200, ... 2,000 us
+  push_step(rig.ring(1), 150'000, kWidth, 1);   // 150, 350 us, not its last: still in motion
+  push_step(rig.ring(1), 350'000, kWidth, 1);
+  rig.ctl(1).refill_at.store(550'000, std::memory_order_release);
+  // Every edge on time as long as one is offered.
+  std::size_t written = 0;
+  for (Nanos t = rig.engine->next_due(); t != kNever; t = rig.engine->next_due()) {
+    rig.engine->execute_one(t);
+    ++written;
+  }
+  EXPECT_EQ(written, 14u);  // axis 0's steps at 100 ... 500 us and axis 1's two, nothing later
+  EXPECT_TRUE(rig.engine->starved());
+  EXPECT_EQ(rig.engine->dry_until(), 550'000);
+  EXPECT_EQ(leading(rig, 0).size(), 5u);
+  // Axis 1's refill comes at 900 us: 350 us late. It goes out first, then axis 0's.
+  const Nanos arrival = 900'000;
+  for (int i = 0; i < 8; ++i) {
+    push_step(rig.ring(1), 550'000 + i * 2 * kPeriod, kWidth, 1, +1, 0, i == 7);
+  }
+  rig.ctl(1).refill_at.store(0, std::memory_order_release);
+  ASSERT_EQ(rig.engine->next_due(), 550'000);
+  rig.engine->execute_one(arrival);
+  rig.run_all();
+  const Nanos slip = arrival - 550'000 - kSlipFreeNs;
+  EXPECT_EQ(rig.engine->slip(0), slip);
+  EXPECT_EQ(rig.engine->slip(1), slip);
+  EXPECT_EQ(packed_value(rig.fb(0).slip.load()), slip / kNsPerUs);
+  const auto a = leading(rig, 0);
+  const auto b = leading(rig, 1);
+  ASSERT_EQ(a.size(), 20u);
+  ASSERT_EQ(b.size(), 10u);
+  EXPECT_EQ(b[2], arrival);
+  EXPECT_LT(b[2], a[5]);
+  // From the wait on, every step of both axes is its planned time + the group's slip: the two
+  // trains keep their relative timing, and their order on the wire is the planned one.
+  for (std::size_t i = 5; i < a.size(); ++i) {
+    EXPECT_NEAR(a[i] - (100'000 + static_cast<Nanos>(i) * kPeriod), slip, kSlipFreeNs) << i;
+  }
+  for (std::size_t i = 2; i < b.size(); ++i) {
+    EXPECT_NEAR(b[i] - (150'000 + static_cast<Nanos>(i) * 2 * kPeriod), slip, kSlipFreeNs) << i;
+  }
+  EXPECT_EQ(rig.fb(0).steps.load(), 20);
+  EXPECT_EQ(rig.fb(1).steps.load(), 10);
+}
+
+// The wait is a pause of the waiting member too: the guard judges it at its next step (here a
+// lag of 3 steps above Vs against a limit of 2), and the fault stops the group.
+TEST(GroupOrder, TheWaitIsJudgedByTheGuardForTheWaitingMember) {
+  Rig rig(2);
+  rig.engine->set_late_limit(200 * kNsPerMs);
+  rig.engine->set_lag_limit(0, 2);
+  rig.engine->set_lag_limit(1, 2);
+  describe(rig, 0, 1, 7, kVsInterval);
+  describe(rig, 1, 1, 7, kVsInterval);
+  push_steps(rig, 0, 100'000, kPeriod, 20, 1);
+  push_step(rig.ring(1), 150'000, kWidth, 1);
+  push_step(rig.ring(1), 350'000, kWidth, 1);
+  rig.ctl(1).refill_at.store(550'000, std::memory_order_release);
+  rig.run_all();
+  EXPECT_EQ(rig.fb(0).steps.load(), 5);
+  // Axis 1's step, 350 us late at 5,000 steps/s, lags 1 step: written. Axis 0's next step then
+  // comes 448 us after its previous one instead of 100 us: a lag of 3, a fault of the group.
+  push_steps(rig, 1, 550'000, 2 * kPeriod, 8, 1);
+  rig.ctl(1).refill_at.store(0, std::memory_order_release);
+  ASSERT_EQ(rig.engine->next_due(), 550'000);
+  rig.engine->execute_one(900'000);
+  rig.run_all();
+  EXPECT_EQ(rig.fb(0).late_faults.load(), 1u);
+  EXPECT_EQ(rig.fb(0).fault_lag.load(), 3);
+  EXPECT_EQ(rig.fb(1).late_faults.load(), 1u);
+  EXPECT_EQ(rig.fb(0).steps.load(), 5);
+  EXPECT_EQ(rig.fb(1).steps.load(), 3);
+  EXPECT_EQ(rig.engine->next_due(), kNever);
+}
+
 TEST(LagGuard, AboveVsFaultsExactlyWhenTheLagExceedsTheLimit) {
   for (const Nanos pause : {800'000, 899'000, 900'000, 1'000'000}) {
     SCOPED_TRACE(pause);
