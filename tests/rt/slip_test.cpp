@@ -158,9 +158,7 @@ TEST(GroupOrder, AMembersLaterEdgeWaitsForAStarvedMembersPromisedEdge) {
   EXPECT_EQ(leading(rig, 0).size(), 5u);
   // Axis 1's refill comes at 900 us: 350 us late. It goes out first, then axis 0's.
   const Nanos arrival = 900'000;
-  for (int i = 0; i < 8; ++i) {
-    push_step(rig.ring(1), 550'000 + i * 2 * kPeriod, kWidth, 1, +1, 0, i == 7);
-  }
+  push_steps(rig, 1, 550'000, 2 * kPeriod, 8, 1);
   rig.ctl(1).refill_at.store(0, std::memory_order_release);
   ASSERT_EQ(rig.engine->next_due(), 550'000);
   rig.engine->execute_one(arrival);
