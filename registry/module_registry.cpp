@@ -74,6 +74,10 @@ constexpr bool rows_match_shapes() {
     const ModuleTypeRow& r = kRows[i];
     if (r.type != kModuleShapes[i].type || r.shape.axes != kModuleShapes[i].axes) return false;
     if (r.rules->type != r.type || module_type_from_name(r.name) != r.type) return false;
+    // The config checker's terminals (core/) and the axis code's features (rules) agree.
+    const AxisTerminals& io = kModuleShapes[i].terminals;
+    if (io.encoder != r.rules->has_encoder || io.estop != r.rules->has_estop_input) return false;
+    if (kModuleShapes[i].reason_digit == 0) return false;
   }
   return true;
 }

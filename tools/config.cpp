@@ -366,20 +366,7 @@ class Parser {
                  " output");
       }
     }
-    const bool is3602 = type == ModuleType::k3602;
-    if (!is3602 && t.get("gpo") != nullptr) {
-      fail(t.get("gpo")->source(), join(p, "gpo"), "only the 3602 has a general-purpose output");
-    }
-    if (is3602) {
-      for (std::string_view k : {"estop", "enc_a", "enc_b", "enc_z"}) {
-        if (const toml::node* n = t.get(k)) {
-          fail(n->source(), join(p, k),
-               k == "estop" ? "the 3602 has no E-stop input (its cw_limit/ccw_limit inputs are "
-                              "configured as limit or E-stop by the PLC)"
-                            : "the 3602 has no encoder input");
-        }
-      }
-    }
+    refuse_absent_terminals(t, p, shape_of(type));
     // A and B only make sense as a pair: one phase alone cannot be decoded.
     if ((t.get("enc_a") == nullptr) != (t.get("enc_b") == nullptr)) {
       const std::string_view present = t.get("enc_a") != nullptr ? "enc_a" : "enc_b";
@@ -393,8 +380,40 @@ class Parser {
     a.lag_limit_steps =
         static_cast<std::uint32_t>(get_int(&t, p, "lag_limit_steps", 8, 1, 1'000'000));
     a.sim = parse_sim(sub_table(t, p, "sim"), p + ".sim");
-    if (is3602) refuse_sim_encoder(sub_table(t, p, "sim"), p + ".sim");
+    if (!shape_of(type).terminals.encoder) {
+      refuse_sim_encoder(sub_table(t, p, "sim"), p + ".sim", type);
+    }
     return a;
+  }
+
+  // The line keys of terminals the module type has not (core/module_shape.hpp AxisTerminals).
+  void refuse_absent_terminals(const toml::table& t, const std::string& p,
+                               const ModuleShape& shape) const {
+    const std::string name = std::to_string(static_cast<unsigned>(shape.type));
+    if (!shape.terminals.gpo && t.get("gpo") != nullptr) {
+      std::string owners;  // the types that have one: "3602"
+      for (const ModuleShape& s : kModuleShapes) {
+        if (!s.terminals.gpo) continue;
+        owners += (owners.empty() ? "" : " and ") + std::to_string(static_cast<unsigned>(s.type));
+      }
+      fail(t.get("gpo")->source(), join(p, "gpo"),
+           "only the " + owners + " has a general-purpose output");
+    }
+    if (!shape.terminals.estop) {
+      if (const toml::node* n = t.get("estop")) {
+        // Without an E-stop terminal its cw_limit/ccw_limit inputs serve as E-stops (3602).
+        fail(n->source(), join(p, "estop"),
+             "the " + name +
+                 " has no E-stop input (its cw_limit/ccw_limit inputs are configured as limit or "
+                 "E-stop by the PLC)");
+      }
+    }
+    if (shape.terminals.encoder) return;
+    for (std::string_view k : {"enc_a", "enc_b", "enc_z"}) {
+      if (const toml::node* n = t.get(k)) {
+        fail(n->source(), join(p, k), "the " + name + " has no encoder input");
+      }
+    }
   }
 
   // A line key: its offset (`home = 5`), or the offset with electrical options
@@ -473,11 +492,13 @@ class Parser {
 
   // The 3602 has no encoder input: a simulated encoder for it is a config meant for another
   // module (the 3601/3202 examples have one).
-  void refuse_sim_encoder(const toml::table* s, const std::string& p) const {
+  void refuse_sim_encoder(const toml::table* s, const std::string& p, ModuleType type) const {
     if (s == nullptr) return;
     for (std::string_view k : {"encoder_ratio", "marker_every"}) {
       if (const toml::node* n = s->get(k)) {
-        fail(n->source(), join(p, k), "the 3602 has no encoder input: remove this key");
+        fail(n->source(), join(p, k),
+             "the " + std::to_string(static_cast<unsigned>(type)) +
+                 " has no encoder input: remove this key");
       }
     }
   }

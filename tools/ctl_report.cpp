@@ -12,7 +12,7 @@ namespace stepmod::tools::ctl {
 namespace {
 
 std::string unit_name(const ipc::Client& c, unsigned u) {
-  return (c.type() == ModuleType::k3202 ? "channel " : "axis ") + std::to_string(u + 1);
+  return std::string(c.shape().unit_noun) + " " + std::to_string(u + 1);
 }
 
 std::string json_string(const std::string& s) {

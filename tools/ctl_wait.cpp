@@ -67,9 +67,8 @@ int wait_motion_end(ipc::Client& client, const std::vector<unsigned>& units, Mot
   const bool several = client.shape().axes > 1;
   for (unsigned u : units) {
     const MotionEnd end = judge_end(s[u], kind, client.read_reason(u));
-    const std::string who = several ? (client.type() == ModuleType::k3202 ? "channel " : "axis ") +
-                                          std::to_string(u + 1) + ": "
-                                    : "";
+    const std::string who =
+        several ? std::string(client.shape().unit_noun) + " " + std::to_string(u + 1) + ": " : "";
     if (end.ok) {
       out << who << end.text << " at " << s[u].position << "\n";
     } else {

@@ -18,7 +18,7 @@ stepmod_reason_t to_image(const module::axis::ErrorReason& r) noexcept {
 
 void ReasonPublisher::scan(const module::Personality& personality, ipc::ShmImage& image) {
   const ModuleShape& shape = personality.shape();
-  const char* unit = shape.type == ModuleType::k3202 ? "channel" : "axis";
+  const char* unit = shape.unit_noun;
   for (unsigned a = 0; a < seen_.size(); ++a) {
     const module::axis::ErrorReason r = personality.reason(a);
     if (r.seq == seen_[a]) continue;

@@ -37,7 +37,12 @@ class Controls {
   virtual unsigned units() const = 0;
 };
 
-// The controls of the module behind `port`.
+// The integer field `name` of a request, checked against lo..hi (std::invalid_argument naming the
+// field otherwise).
+std::int64_t request_int(const nlohmann::json& req, const char* name, std::int64_t lo,
+                         std::int64_t hi);
+
+// The controls of the module behind `port` (its row in web/module_views.cpp).
 std::unique_ptr<Controls> make_controls(plc::Port& port);
 
 }  // namespace stepmod::web

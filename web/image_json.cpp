@@ -1,67 +1,19 @@
 #include "web/image_json.hpp"
 
-#include "plc/bit_names.hpp"
-#include "plc/status_3202.hpp"
-#include "plc/status_3601.hpp"
-#include "plc/status_3602.hpp"
 #include "registry/module_registry.hpp"
-#include "words/words_3202.hpp"
-#include "words/words_3601.hpp"
-#include "words/words_3602.hpp"
+#include "web/module_views.hpp"
 
 namespace stepmod::web {
-namespace {
-
-nlohmann::json word_json(const char* name, std::uint32_t word, BitTable table) {
-  nlohmann::json bits = nlohmann::json::array();
-  for (const NamedBit& b : table) {
-    bits.push_back({{"bit", b.bit}, {"name", b.name}, {"value", plc::field_value(word, b)}});
-  }
-  return {{"word", name}, {"value", word}, {"bits", bits}};
-}
-
-nlohmann::json table_json(BitTable table) {
-  nlohmann::json bits = nlohmann::json::array();
-  for (const NamedBit& b : table) bits.push_back({{"bit", b.bit}, {"name", b.name}});
-  return bits;
-}
-
-}  // namespace
 
 UnitRegisters registers_of(ModuleType type, const ImageWords& in, unsigned unit) {
-  switch (type) {
-    case ModuleType::k3601: {
-      const auto s = plc::m3601::decode_status(in);
-      return {s.position, s.encoder, s.capture};
-    }
-    case ModuleType::k3602: {
-      const auto s = plc::m3602::decode_status(in, unit);
-      return {s.position, 0, s.capture};  // the 3602 has no encoder input
-    }
-    case ModuleType::k3202:
-      break;
-  }
-  const auto s = plc::m3202::decode_status(in, unit);
-  return {s.position, s.encoder, s.capture};
+  return view_of(type).registers(in, unit);
 }
 
 nlohmann::json unit_json(ModuleType type, const ImageWords& in, unsigned unit) {
-  nlohmann::json words = nlohmann::json::array();
-  if (type == ModuleType::k3601) {
-    const auto s = plc::m3601::decode_status(in);
-    words.push_back(word_json("Status Word MSW", s.msw, words::m3601::kStatusMswBits));
-    words.push_back(word_json("Status Word LSW", s.lsw, words::m3601::kStatusLswBits));
-  } else if (type == ModuleType::k3602) {
-    const auto s = plc::m3602::decode_status(in, unit);
-    words.push_back(word_json("Status Bits MSW", s.msw, words::m3602::kStatusMswBits));
-    words.push_back(word_json("Status Bits LSW", s.lsw, words::m3602::kStatusLswBits));
-  } else {
-    const auto s = plc::m3202::decode_status(in, unit);
-    words.push_back(word_json("Status", s.word, words::m3202::kStatusBits));
-  }
-  const UnitRegisters r = registers_of(type, in, unit);
+  const ModuleView& view = view_of(type);
+  const UnitRegisters r = view.registers(in, unit);
   return {{"unit", unit},
-          {"words", words},
+          {"words", view.status_words(in, unit)},
           {"position", r.position},
           {"encoder", r.encoder},
           {"capture", r.capture}};
@@ -70,20 +22,13 @@ nlohmann::json unit_json(ModuleType type, const ImageWords& in, unsigned unit) {
 nlohmann::json module_json(ModuleType type) {
   const ModuleShape shape = shape_of(type);
   const module::axis::ModuleRules& r = *registry::row_of(type).rules;
-  nlohmann::json cfg;
-  if (type == ModuleType::k3601) {
-    cfg = {{"msw", table_json(words::m3601::kConfigMswBits)},
-           {"lsw", table_json(words::m3601::kConfigLswBits)}};
-  } else if (type == ModuleType::k3602) {
-    cfg = {{"msw", table_json(words::m3602::kConfigMswBits)},
-           {"lsw", table_json(words::m3602::kConfigLswBits)}};
-  } else {  // one configuration DINT per channel: the page sends it whole ("bits")
-    cfg = {{"dint", table_json(words::m3202::kConfigBits)}};
-  }
+  const nlohmann::json cfg = view_of(type).config_bits();
   // The same ramp by default on every module: 100 steps/ms/s = 100,000 steps/s^2.
   const bool per_s2 = r.accel_word_unit == 1;
   return {{"type", static_cast<unsigned>(type)},
           {"units", shape.axes},
+          {"unit_noun", shape.unit_noun},
+          {"has_encoder", shape.terminals.encoder},
           {"config_bits", cfg},
           {"ranges",
            {{"speed_max", r.speed_max},

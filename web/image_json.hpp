@@ -23,8 +23,9 @@ UnitRegisters registers_of(ModuleType type, const ImageWords& in, unsigned unit)
 // [{"bit": 0, "name": "...", "value": 0}, ...]}, ...] plus the registers.
 nlohmann::json unit_json(ModuleType type, const ImageWords& in, unsigned unit);
 
-// What the page needs once: module type, units, the configuration bits by name and the ranges of
-// the manual's fields.
+// What the page needs once: module type, units (and what the manual calls one: "unit_noun"),
+// whether it has an encoder input, the configuration bits by name and the ranges of the manual's
+// fields.
 nlohmann::json module_json(ModuleType type);
 
 }  // namespace stepmod::web

@@ -66,9 +66,9 @@ void Axis::take_configuration(const std::optional<AxisConfig>& configuration) {
   } else if (cfg_fault_noted_ != cfg_fault_number_ || cfg_fault_number_ == 0) {
     // Once per fault: the words are read again every configuration scan.
     cfg_fault_noted_ = cfg_fault_number_;
-    const Item item{ErrorList::kConfiguration, static_cast<std::uint8_t>(cfg_fault_number_),
-                    static_cast<std::uint8_t>(cfg_fault_number_),
-                    static_cast<std::uint8_t>(cfg_fault_number_), ""};
+    const auto n = static_cast<std::uint8_t>(cfg_fault_number_);
+    Item item{ErrorList::kConfiguration, {}, ""};
+    item.numbers.fill(n);                     // the dialect's own number, whatever the module
     std::string_view text = cfg_fault_text_;  // "#2 neither ...": the manual's number goes
     if (text.starts_with('#') && text.find(' ') != std::string_view::npos) {
       text.remove_prefix(text.find(' ') + 1);

@@ -26,16 +26,17 @@ enum class ErrorList : std::uint8_t {
 // as S1..S9.
 struct Item {
   ErrorList list;
-  std::uint8_t n3601;
-  std::uint8_t n3602;
-  std::uint8_t n3202;
+  // The item's number in each module's list, in kModuleShapes' order (3601, 3602, 3202).
+  std::array<std::uint8_t, kModuleShapes.size()> numbers;
   const char* what;  // the condition in general, for docs/error-reasons.md
   std::uint8_t number(ModuleType t) const noexcept {
-    return t == ModuleType::k3601 ? n3601 : t == ModuleType::k3602 ? n3602 : n3202;
+    const std::size_t i = module_index(t);
+    return i < numbers.size() ? numbers[i] : 0;
   }
 };
 
-// Item code = module digit (3601: 1, 3602: 2, 3202: 3) * 10000 + list digit * 100 + number.
+// Item code = module digit (ModuleShape::reason_digit: 3601: 1, 3602: 2, 3202: 3) * 10000 +
+// list digit * 100 + number.
 // 0 means no reason. Stable: a code is never reused for another item.
 std::uint32_t item_code(ModuleType t, ErrorList list, unsigned number) noexcept;
 // "3601-CE-05", "3601-PI-S1", "3602-IP" (number 0).

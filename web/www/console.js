@@ -108,7 +108,8 @@ function buildUnits(hello) {
   $("title").textContent = `stepmod console: ${hello.name} (AMCI ${hello.module.type})`;
   const main = $("units"); main.textContent = "";
   state.units = [];
-  const word = hello.module.type === 3202 ? "Channel" : "Axis";
+  const noun = hello.module.unit_noun;  // "axis" or "channel", as the module's manual says
+  const word = noun.charAt(0).toUpperCase() + noun.slice(1);
   for (let u = 0; u < hello.module.units; u++) {
     const root = $("unit-template").content.firstElementChild.cloneNode(true);
     root.id = "unit-" + u;
@@ -175,7 +176,7 @@ function showBatch(b) {
     unit.plot.push(b.t_us, b.pos[u]);
     const r = unit.root;
     r.querySelector(".pos").textContent = s.position;
-    r.querySelector(".enc").textContent = state.module.type === 3602 ? "— (no encoder input)" : s.encoder;
+    r.querySelector(".enc").textContent = state.module.has_encoder ? s.encoder : "— (no encoder input)";
     r.querySelector(".cap").textContent = s.capture;
     r.querySelector(".speed").textContent = Math.round(unit.plot.lastSpeed());
     r.querySelector(".reason").textContent = s.reason && s.reason.seq ? s.reason.text : "none";

@@ -1,0 +1,69 @@
+// The 3202 on the console: two channels, one status DINT and one configuration DINT each.
+#include "plc/plc_3202.hpp"
+#include "plc/status_3202.hpp"
+#include "web/bit_json.hpp"
+#include "web/module_views.hpp"
+#include "words/words_3202.hpp"
+
+namespace stepmod::web::view3202 {
+namespace {
+
+// The 3202's two channels: steps/s^2 rates, one configuration DINT (bit 31, the mode, is added
+// by plc/), jog = the manual-move bits held.
+class Controls3202 final : public Controls {
+ public:
+  explicit Controls3202(plc::Port& port) : plc_(port) {}
+  void release_jogs() override {
+    for (unsigned u = 0; u < 2; ++u) plc_.jog_release(u);
+  }
+
+ protected:
+  plc::Outcome move(unsigned u, bool a, std::int32_t t, const plc::Profile& p) override {
+    return plc_.move(u, a, t, p);
+  }
+  plc::Outcome jog_press(unsigned u, bool cw, const plc::Profile& p) override {
+    return plc_.jog_press(u, cw, p);
+  }
+  plc::Outcome jog_release(unsigned u) override { return plc_.jog_release(u); }
+  plc::Outcome home(unsigned u, bool cw, const plc::Profile& p) override {
+    return plc_.home(u, cw, p);
+  }
+  plc::Outcome hold(unsigned u) override { return plc_.hold(u); }
+  plc::Outcome resume(unsigned u) override { return plc_.resume(u, std::nullopt); }
+  plc::Outcome stop(unsigned u) override { return plc_.immediate_stop(u); }
+  plc::Outcome reset(unsigned u) override { return plc_.reset_errors(u); }
+  plc::Outcome preset(unsigned u, std::int32_t p) override { return plc_.preset_position(u, p); }
+  std::uint32_t config_bits(const nlohmann::json& req) const override {
+    return static_cast<std::uint32_t>(request_int(req, "bits", 0, 0x7FFFFFFF));
+  }
+  plc::Outcome configure(unsigned u, std::uint32_t bits, std::int32_t vs) override {
+    return plc_.configure(u, bits, vs);
+  }
+  unsigned units() const override { return 2; }
+
+ private:
+  plc::Plc3202 plc_;
+};
+
+}  // namespace
+
+UnitRegisters registers(const ImageWords& in, unsigned unit) {
+  const auto s = plc::m3202::decode_status(in, unit);
+  return {s.position, s.encoder, s.capture};
+}
+
+nlohmann::json status_words(const ImageWords& in, unsigned unit) {
+  const auto s = plc::m3202::decode_status(in, unit);
+  return nlohmann::json::array({word_json("Status", s.word, words::m3202::kStatusBits)});
+}
+
+// One configuration DINT per channel: the page sends it whole ("bits").
+nlohmann::json config_bits() {
+  return {{"dint", table_json(words::m3202::kConfigBits)}};
+}
+
+std::unique_ptr<Controls> make_controls(plc::Port& port) {
+  return std::make_unique<Controls3202>(port);
+}
+
+}  // namespace stepmod::web::view3202

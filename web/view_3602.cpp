@@ -1,0 +1,66 @@
+// The 3602 on the console: two axes, MSW/LSW status and configuration words, no encoder input.
+#include "plc/plc_3602.hpp"
+#include "plc/status_3602.hpp"
+#include "web/bit_json.hpp"
+#include "web/module_views.hpp"
+#include "words/words_3602.hpp"
+
+namespace stepmod::web::view3602 {
+namespace {
+
+class Controls3602 final : public Controls {
+ public:
+  explicit Controls3602(plc::Port& port) : plc_(port) {}
+  void release_jogs() override {
+    for (unsigned u = 0; u < 2; ++u) plc_.jog_release(u);
+  }
+
+ protected:
+  plc::Outcome move(unsigned u, bool a, std::int32_t t, const plc::Profile& p) override {
+    return plc_.move(u, a, t, p);
+  }
+  plc::Outcome jog_press(unsigned u, bool cw, const plc::Profile& p) override {
+    return plc_.jog_press(u, cw, p);
+  }
+  plc::Outcome jog_release(unsigned u) override { return plc_.jog_release(u); }
+  plc::Outcome home(unsigned u, bool cw, const plc::Profile& p) override {
+    return plc_.home(u, cw, p);
+  }
+  plc::Outcome hold(unsigned u) override { return plc_.hold(u); }
+  plc::Outcome resume(unsigned u) override { return plc_.resume(u, std::nullopt); }
+  plc::Outcome stop(unsigned u) override { return plc_.immediate_stop(u); }
+  plc::Outcome reset(unsigned u) override { return plc_.reset_errors(u); }
+  plc::Outcome preset(unsigned u, std::int32_t p) override { return plc_.preset_position(u, p); }
+  plc::Outcome configure(unsigned u, std::uint32_t bits, std::int32_t vs) override {
+    return plc_.configure(u, static_cast<std::uint16_t>(bits >> 16),
+                          static_cast<std::uint16_t>(bits & 0xFFFFu), vs);
+  }
+  unsigned units() const override { return 2; }
+
+ private:
+  plc::Plc3602 plc_;
+};
+
+}  // namespace
+
+UnitRegisters registers(const ImageWords& in, unsigned unit) {
+  const auto s = plc::m3602::decode_status(in, unit);
+  return {s.position, 0, s.capture};  // the 3602 has no encoder input
+}
+
+nlohmann::json status_words(const ImageWords& in, unsigned unit) {
+  const auto s = plc::m3602::decode_status(in, unit);
+  return nlohmann::json::array({word_json("Status Bits MSW", s.msw, words::m3602::kStatusMswBits),
+                                word_json("Status Bits LSW", s.lsw, words::m3602::kStatusLswBits)});
+}
+
+nlohmann::json config_bits() {
+  return {{"msw", table_json(words::m3602::kConfigMswBits)},
+          {"lsw", table_json(words::m3602::kConfigLswBits)}};
+}
+
+std::unique_ptr<Controls> make_controls(plc::Port& port) {
+  return std::make_unique<Controls3602>(port);
+}
+
+}  // namespace stepmod::web::view3602
