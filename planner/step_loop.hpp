@@ -19,31 +19,38 @@ class StepLoop {
 
   template <class Source>
   Answer run(Source& source) noexcept {
+    // The progress and the active flag are worked on in locals and written back once: through
+    // the references, every edge the emitter stores could alias them, and the compiler would
+    // reload and store them at each step (the planner's step rate is its bench figure).
+    StepProgress at = at_;
+    bool active = active_;
     Answer a = Answer::kStep;
     SourceStep st;  // a local: the per-step answer stays in registers
-    while (active_ && out_.staged_empty()) {
-      a = source.next(at_, StepWindow{now_, horizon_, out_.last_t()}, st);
+    while (active && out_.staged_empty()) {
+      a = source.next(at, StepWindow{now_, horizon_, out_.last_t()}, st);
       if (a == Answer::kLater) {
         out_.rest(st.t);  // left unplanned, so that a hold can still replan it
         st_ = st;
-        return a;
+        break;
       }
-      if (a == Answer::kWait) return a;
+      if (a == Answer::kWait) break;
       if (a == Answer::kEnd) {
-        active_ = false;
-        out_.end(source.end_time(at_, now_));
+        active = false;
+        out_.end(source.end_time(at, now_));
       } else {
-        const Nanos t = out_.step(st, at_.k + 1);
-        ++at_.k;
-        at_.tk = st.ts;
-        at_.tk_ns = t;
-        if (at_.k >= at_.end) {
+        const Nanos t = out_.step(st, at.k + 1);
+        ++at.k;
+        at.tk = st.ts;
+        at.tk_ns = t;
+        if (at.k >= at.end) {
           out_.end(t);
-          active_ = false;
+          active = false;
         }
       }
       out_.flush(horizon_);
     }
+    at_ = at;
+    active_ = active;
     return a;
   }
 
