@@ -145,7 +145,7 @@ bool SimMachine::filter(const InputEvent& e, InputEvent& out) noexcept {
   const std::uint16_t bit = input_bit(e.line);
   seen_sim_ = e.level ? static_cast<std::uint16_t>(seen_sim_ | bit)
                       : static_cast<std::uint16_t>(seen_sim_ & ~bit);
-  if (force_mask_.load(std::memory_order_relaxed) & bit) return false;  // forced: not visible
+  if (filter_mask_ & bit) return false;                   // forced: not visible
   if (((reported_ & bit) != 0) == e.level) return false;  // already reported (force release)
   reported_ ^= bit;
   const auto i = static_cast<unsigned>(e.line);
@@ -155,23 +155,50 @@ bool SimMachine::filter(const InputEvent& e, InputEvent& out) noexcept {
   return true;
 }
 
-bool SimMachine::pending_push(const InputEvent& e) noexcept {
-  if (pending_size_ == kPendingCapacity) return false;
-  pending_[(pending_head_ + pending_size_) % kPendingCapacity] = e;
-  ++pending_size_;
-  return true;
+const SimMachine::ForceChange* SimMachine::next_force() const noexcept {
+  return forces_size_ > 0 ? &forces_[forces_head_] : nullptr;
 }
 
+// The force takes effect: the panel inputs whose effective level it changes get an edge each,
+// stamped at the force (or just after the line's last edge, to keep each line in time order).
+void SimMachine::stage_force(const ForceChange& f) noexcept {
+  filter_mask_ = f.mask;
+  for (unsigned i = 0; i < kPanelInputs; ++i) {
+    const std::uint16_t bit = static_cast<std::uint16_t>(1u << i);
+    if ((wired_ & bit) == 0) continue;
+    const bool eff = (f.mask & bit) ? (f.levels & bit) != 0 : (seen_sim_ & bit) != 0;
+    if (((reported_ & bit) != 0) == eff) continue;
+    reported_ ^= bit;
+    last_t_[i] = std::max(f.t, last_t_[i]);
+    staged_[(staged_head_ + staged_size_++) % kPanelInputs] =
+        InputEvent{last_t_[i], axis_, static_cast<InputLine>(i), eff};
+  }
+}
+
+// Merges the simulated events and the panel's changes by time: a change takes effect once every
+// simulated event stamped before it has been polled, so a backlog of encoder edges delays a
+// forced E-stop edge (by no more than the backlog) but never loses or reorders it.
 std::size_t SimMachine::poll(std::span<InputEvent> out) noexcept {
   std::size_t n = 0;
-  while (n < out.size() && pending_size_ > 0) {
-    out[n++] = pending_[pending_head_];
-    pending_head_ = (pending_head_ + 1) % kPendingCapacity;
-    --pending_size_;
-  }
-  InputEvent e;
-  while (n < out.size() && ring_.try_pop(e)) {
-    if (filter(e, out[n])) ++n;
+  while (n < out.size()) {
+    if (staged_size_ > 0) {
+      out[n++] = staged_[staged_head_];
+      staged_head_ = (staged_head_ + 1) % kPanelInputs;
+      --staged_size_;
+      continue;
+    }
+    const InputEvent* e = ring_.peek();
+    const ForceChange* f = next_force();
+    if (f != nullptr && (e == nullptr || f->t < e->t)) {
+      stage_force(*f);
+      forces_head_ = (forces_head_ + 1) % kForceCapacity;
+      --forces_size_;
+      continue;
+    }
+    if (e == nullptr) break;
+    const InputEvent sim = *e;
+    ring_.pop();
+    if (filter(sim, out[n])) ++n;
   }
   return n;
 }
@@ -179,26 +206,18 @@ std::size_t SimMachine::poll(std::span<InputEvent> out) noexcept {
 void SimMachine::force(std::uint32_t mask, std::uint32_t levels, Nanos now) noexcept {
   mask &= kPanelMask & wired_;
   levels &= mask;
-  // First take in what the simulation did up to now, so that a switch change that happened
-  // before the force is reported before it (and not lost behind a forced level).
-  InputEvent e, f;
-  while (pending_size_ < kPendingCapacity && ring_.try_pop(e)) {
-    if (filter(e, f)) pending_push(f);
-  }
+  if (mask == requested_.mask && levels == requested_.levels) return;
+  requested_ = ForceChange{mask, levels, now};
   force_mask_.store(mask, std::memory_order_relaxed);
   force_levels_.store(levels, std::memory_order_relaxed);
-
-  for (unsigned i = 0; i < kPanelInputs; ++i) {
-    const std::uint16_t bit = static_cast<std::uint16_t>(1u << i);
-    if ((wired_ & bit) == 0) continue;
-    const bool eff = (mask & bit) ? (levels & bit) != 0 : (seen_sim_ & bit) != 0;
-    if (((reported_ & bit) != 0) == eff) continue;
-    reported_ ^= bit;
-    last_t_[i] = std::max(now, last_t_[i]);
-    if (!pending_push(InputEvent{last_t_[i], axis_, static_cast<InputLine>(i), eff})) {
-      ++pending_lost_;
-    }
+  if (forces_size_ == kForceCapacity) {
+    // kForceCapacity changes unpolled: the newest replaces the last waiting one, whose edges
+    // (if it had any of its own) are lost, and counted so (the daemon stops the axes).
+    forces_[(forces_head_ + forces_size_ - 1) % kForceCapacity] = requested_;
+    ++forces_lost_;
+    return;
   }
+  forces_[(forces_head_ + forces_size_++) % kForceCapacity] = requested_;
 }
 
 bool SimMachine::read(InputLine line) const noexcept {

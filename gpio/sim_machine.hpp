@@ -36,8 +36,8 @@ struct SimAxisParams {
   std::optional<std::int64_t> ccw_limit_at;
   std::optional<std::int64_t> home_from;  // home actuated in [home_from, home_to]; both needed
   std::optional<std::int64_t> home_to;
-  bool contacts_nc = false;    // "NO" (false): actuated = high; "NC": actuated = low
-  double encoder_ratio = 1.0;  // X4 counts per step; sign = direction; 0 = none
+  bool contacts_nc = false;                  // "NO" (false): actuated = high; "NC": actuated = low
+  double encoder_ratio = 1.0;                // X4 counts per step; sign = direction; 0 = none
   std::optional<std::int64_t> marker_every;  // Z period in encoder counts; absent/<=0 = no Z
   // (Last, so that positional initializers of the fields above keep their meaning.)
   // Input event FIFO of this axis' simulated lines (power of two; 0: the backend's default).
@@ -75,18 +75,24 @@ class SimMachine {
   // lines filtered); returns the count.
   std::size_t poll(std::span<InputEvent> out) noexcept;
   // Consumer: something is waiting for poll() (a simulated or a forced event).
-  bool has_events() const noexcept { return !ring_.empty() || pending_size_ > 0; }
+  bool has_events() const noexcept {
+    return !ring_.empty() || staged_size_ > 0 || forces_size_ > 0;
+  }
   // Panel forcing (INTERFACE.md section 4): bit i of `mask` forces panel input i (0 capture ..
   // 5 CCW limit) to bit i of `levels`; a cleared bit gives the line back to the simulation.
-  // `now` stamps the events this causes. Must be called on the consumer's thread.
+  // `now` stamps the events this causes. Must be called on the consumer's thread (every scan;
+  // an unchanged force costs nothing). read() sees it at once; poll() delivers its events in
+  // time order with the simulated ones, however many of those wait (as a real E-stop line's
+  // edge is not lost behind an encoder's: each line has its own kernel FIFO).
   void force(std::uint32_t mask, std::uint32_t levels, Nanos now) noexcept;
   // Present electrical level: forced level, else the simulated level now; false when unwired.
   bool read(InputLine line) const noexcept;
   // Producer side (the writing thread): events pushed so far, to tell whether a write() made any.
   std::uint64_t events_pushed() const noexcept { return pushed_; }
-  // Events lost: ring full (producer) plus forced events that found the pending queue full.
+  // Events lost: ring full (producer) plus panel changes merged away because kForceCapacity
+  // changes waited unpolled (the consumer reads this; the producer only adds to ring_lost_).
   std::uint64_t lost_events() const noexcept {
-    return ring_lost_.load(std::memory_order_relaxed) + pending_lost_;
+    return ring_lost_.load(std::memory_order_relaxed) + forces_lost_;
   }
 
   // --- any thread ------------------------------------------------------------------------------
@@ -112,7 +118,14 @@ class SimMachine {
   void set_sim_input(InputLine line, bool level, Nanos t) noexcept;
   std::uint16_t encoder_levels(std::int64_t count) const noexcept;
   bool filter(const InputEvent& e, InputEvent& out) noexcept;  // consumer: sim event -> effective
-  bool pending_push(const InputEvent& e) noexcept;
+  // A panel change waiting for the simulated events stamped before it to be polled.
+  struct ForceChange {
+    std::uint32_t mask = 0;
+    std::uint32_t levels = 0;
+    Nanos t = 0;
+  };
+  const ForceChange* next_force() const noexcept;
+  void stage_force(const ForceChange& f) noexcept;  // its edges into staged_, in effect from now
 
   // configuration (immutable)
   const std::uint8_t axis_;
@@ -130,12 +143,18 @@ class SimMachine {
   std::uint64_t pushed_ = 0;
 
   // consumer-owned
-  static constexpr std::size_t kPendingCapacity = 256;
-  std::array<InputEvent, kPendingCapacity> pending_{};
-  std::size_t pending_head_ = 0, pending_size_ = 0;
-  std::uint64_t pending_lost_ = 0;
-  std::uint16_t seen_sim_ = 0;  // simulated levels as of the events drained so far
-  std::uint16_t reported_ = 0;  // effective levels as last reported to the consumer
+  // Panel changes not yet in effect for poll() (a person's or a test's: a few per second).
+  static constexpr std::size_t kForceCapacity = 64;
+  std::array<ForceChange, kForceCapacity> forces_{};
+  std::size_t forces_head_ = 0, forces_size_ = 0;
+  std::uint64_t forces_lost_ = 0;
+  ForceChange requested_{};  // the last force() asked for
+  // The edges of the force in effect (at most one per panel input), not yet polled.
+  std::array<InputEvent, kPanelInputs> staged_{};
+  std::size_t staged_head_ = 0, staged_size_ = 0;
+  std::uint32_t filter_mask_ = 0;  // the force in effect for the simulated events polled now
+  std::uint16_t seen_sim_ = 0;     // simulated levels as of the events drained so far
+  std::uint16_t reported_ = 0;     // effective levels as last reported to the consumer
   std::array<Nanos, kInputLinesPerAxis> last_t_{};  // keeps each line's events in time order
 
   // shared

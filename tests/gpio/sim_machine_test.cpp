@@ -402,6 +402,44 @@ TEST(GpioSimMachine, SimulatedChangeBeforeAForceIsReportedFirst) {
   EXPECT_EQ(ev[1].t, 50'000);
 }
 
+// Issue 16 (CI): a forced E-stop while the encoder's edges of a fast move waited unpolled was
+// lost behind them (a 256-slot queue), and the daemon stopped the axis for a lost input instead
+// of the E-stop. A real E-stop line has a kernel FIFO of its own.
+TEST(GpioSimMachine, ForceBehindAFullRingOfEncoderEdgesIsDeliveredInTimeOrderAndNotLost) {
+  constexpr std::size_t kRing = 1024;
+  SimMachine m(0, SimAxisParams{}, kAllInputs, kRing);
+  const Nanos end = steps(m, static_cast<int>(kRing), 0);  // exactly fills the ring
+  EXPECT_EQ(m.lost_events(), 0u);
+  m.force(kEStopBit, kEStopBit, end + 1);
+  m.force(kEStopBit, kEStopBit, end + 2);  // every scan asks again: no second edge
+  EXPECT_TRUE(m.read(InputLine::kEStop)) << "the level is forced at once";
+  const auto ev = drain(m);
+  EXPECT_EQ(m.lost_events(), 0u);
+  ASSERT_EQ(ev.size(), kRing + 1);
+  EXPECT_EQ(ev.back().line, InputLine::kEStop);
+  EXPECT_TRUE(ev.back().level);
+  EXPECT_EQ(ev.back().t, end + 1);
+  for (std::size_t i = 1; i < ev.size(); ++i) EXPECT_LE(ev[i - 1].t, ev[i].t) << i;
+}
+
+TEST(GpioSimMachine, SimulatedEdgeAfterAForceIsFilteredByIt) {
+  SimMachine m(0, switches(false), kAllInputs);
+  m.force(kHomeBit, 0, 1000);  // home held low before the axis reaches it
+  steps(m, 1, 2000);           // home actuated at 7000: hidden by the force
+  EXPECT_TRUE(drain(m).empty());
+  EXPECT_EQ(m.position(), 1);
+}
+
+TEST(GpioSimMachine, MoreUnpolledPanelChangesThanItsQueueKeepTheLastAndCountTheRest) {
+  SimMachine m(0, SimAxisParams{}, kAllInputs);
+  for (int i = 0; i < 200; ++i) m.force(kEStopBit, (i % 2) ? 0u : kEStopBit, 1000 + i);
+  EXPECT_GT(m.lost_events(), 0u) << "changes that could not be kept are reported lost";
+  const auto ev = drain(m);
+  ASSERT_FALSE(ev.empty());
+  EXPECT_FALSE(ev.back().level) << "the last change (199: released level) is in effect";
+  EXPECT_FALSE(m.read(InputLine::kEStop));
+}
+
 TEST(GpioSimMachine, ForcingIgnoresNonPanelBits) {
   SimMachine m(0, SimAxisParams{}, kAllInputs);
   m.force(0xFFFFFFC0u, 0xFFFFFFFFu, 10);  // bits 6.. are not panel inputs (encoder)
