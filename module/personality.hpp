@@ -36,9 +36,10 @@ class Personality {
   // The PLC left Run mode (heartbeat timeout, INTERFACE.md 3.2): every move stops and the
   // position becomes invalid, as the manuals say of a PLC switched to Program mode.
   virtual void plc_stopped(Nanos now) = 0;
-  // A commissioning lease expired without release (INTERFACE.md 3.5): as plc_stopped, with the
-  // lease named as the reason.
-  virtual void lease_expired(Nanos now) = 0;
+  // The daemon stops every moving axis for a reason of its own, named by `why` (a stepmod item
+  // of axis/error_items.hpp): a commissioning lease expired without release (INTERFACE.md 3.5),
+  // an input edge lost. As plc_stopped: immediate stop, position invalid.
+  virtual void stop_every_axis(const axis::Item& why, Nanos now) = 0;
 
   // The last reason recorded for an error bit of axis/channel `axis` (0-based;
   // docs/error-reasons.md); the control thread publishes it with the input image.

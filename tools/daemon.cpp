@@ -20,6 +20,7 @@
 #endif
 #include "ipc/shm_image.hpp"
 #include "ipc/sim_panel.hpp"
+#include "module/axis/error_items.hpp"
 #include "planner/planner_thread.hpp"
 #include "rt/pulse_thread.hpp"
 #include "systemd/notify.hpp"
@@ -457,7 +458,7 @@ void Daemon::Impl::check_lost_inputs(Nanos now) {
   lost_inputs_seen = lost;
   unsigned moving = 0;
   for (unsigned a = 0; a < stack->shape().axes; ++a) moving += stack->motion(a).busy() ? 1u : 0u;
-  stack->personality().plc_stopped(now);
+  stack->personality().stop_every_axis(module::axis::items::kPiInputLost, now);
   input_loss_epochs.assign(stack->shape().axes, 0);
   for (unsigned a = 0; a < stack->shape().axes; ++a)
     input_loss_epochs[a] = stack->motion(a).epoch();

@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include "module/axis/error_items.hpp"
+
 namespace stepmod::tools {
 
 bool LeaseKeeper::scan(ipc::ShmImage& image, std::uint64_t heartbeat, Nanos now,
@@ -21,7 +23,7 @@ bool LeaseKeeper::scan(ipc::ShmImage& image, std::uint64_t heartbeat, Nanos now,
         e.holder);
   }
   if (e.expired) {
-    personality.lease_expired(now);
+    personality.stop_every_axis(module::axis::items::kPiLeaseExpired, now);
     spdlog::warn(
         "commissioning lease of pid {} expired without release: every moving axis stopped "
         "(immediate stop, position invalid; health bit 6)",

@@ -121,6 +121,8 @@ inline constexpr Item kPiLateEdge{
     L::kPositionInvalid, {91, 91, 91}, "a late-edge fault stopped it (stepmod)"};
 inline constexpr Item kPiLeaseExpired{
     L::kPositionInvalid, {92, 92, 92}, "commissioning lease expired (stepmod)"};
+inline constexpr Item kPiInputLost{
+    L::kPositionInvalid, {93, 93, 93}, "an input edge was lost (stepmod)"};
 inline constexpr Item kPiFault{L::kPositionInvalid, {0, 0, 0}, "a fault stopped the axis"};
 
 // Every item above, for the documentation table.
@@ -185,6 +187,7 @@ inline constexpr std::array kAll{&kConfigInvalid,
                                  &kPiPlcStopped,
                                  &kPiLateEdge,
                                  &kPiLeaseExpired,
+                                 &kPiInputLost,
                                  &kPiFault};
 
 }  // namespace stepmod::module::axis::items

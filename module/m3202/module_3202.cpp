@@ -84,8 +84,8 @@ void Module3202::shutdown() {
   for (Channel& c : channels_) c.axis.plc_stopped();  // immediate stop of motions under way
 }
 
-void Module3202::lease_expired(Nanos /*now*/) {
-  for (Channel& c : channels_) c.axis.plc_stopped(axis::items::kPiLeaseExpired);
+void Module3202::stop_every_axis(const axis::Item& why, Nanos /*now*/) {
+  for (Channel& c : channels_) c.axis.plc_stopped(why);
 }
 
 axis::ErrorReason Module3202::reason(unsigned axis) const {

@@ -22,7 +22,7 @@ class Module3202 final : public Personality {
   void on_input(const gpio::InputEvent& e) override;
   void scan(const ImageWords& out, ImageWords& in, Nanos now) override;
   void plc_stopped(Nanos now) override;
-  void lease_expired(Nanos now) override;
+  void stop_every_axis(const axis::Item& why, Nanos now) override;
   axis::ErrorReason reason(unsigned axis) const override;
   // The blend profile message (digest 5.8; 3202-IP-11..17, CE-19).
   std::int32_t on_message(std::span<const std::int32_t> data, Nanos now) override;

@@ -55,8 +55,8 @@ void Module3601::shutdown() {
   axis_.plc_stopped();  // immediate stop of a motion under way
 }
 
-void Module3601::lease_expired(Nanos /*now*/) {
-  axis_.plc_stopped(axis::items::kPiLeaseExpired);
+void Module3601::stop_every_axis(const axis::Item& why, Nanos /*now*/) {
+  axis_.plc_stopped(why);
 }
 
 axis::ErrorReason Module3601::reason(unsigned /*axis*/) const {

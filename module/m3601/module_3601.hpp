@@ -18,7 +18,7 @@ class Module3601 final : public Personality {
   void on_input(const gpio::InputEvent& e) override;
   void scan(const ImageWords& out, ImageWords& in, Nanos now) override;
   void plc_stopped(Nanos now) override;
-  void lease_expired(Nanos now) override;
+  void stop_every_axis(const axis::Item& why, Nanos now) override;
   axis::ErrorReason reason(unsigned axis) const override;
   void shutdown() override;
   DriveState drive_state(unsigned axis) const noexcept override;

@@ -108,8 +108,8 @@ void Module3602::shutdown() {
   }
 }
 
-void Module3602::lease_expired(Nanos /*now*/) {
-  for (Channel& c : axes_) c.axis.plc_stopped(axis::items::kPiLeaseExpired);
+void Module3602::stop_every_axis(const axis::Item& why, Nanos /*now*/) {
+  for (Channel& c : axes_) c.axis.plc_stopped(why);
 }
 
 axis::ErrorReason Module3602::reason(unsigned axis) const {

@@ -166,7 +166,7 @@ TEST_F(Commissioning, WaitEndsInMoveCompleteOrSaysWhyNot) {
   ASSERT_TRUE(eventually([&] { return moving(); }, milliseconds(5000)));
   ctl("panel force 1 estop 1", 0);
   const CtlRun w = ctl("wait-idle", 1);
-  EXPECT_NE(w.err.find("Input Error"), std::string::npos) << w.err;
+  EXPECT_NE(w.err.find("Input Error"), std::string::npos) << w.err << daemon_->log();
   EXPECT_NE(w.err.find("3601-IE-01: E-stop active: stopped at"), std::string::npos) << w.err;
   int status = 0;
   ::waitpid(mover, &status, 0);

@@ -45,6 +45,9 @@ event_ring = 2
   const std::string log = daemon.log();
   EXPECT_NE(log.find("input event(s) lost"), std::string::npos) << log;
   EXPECT_NE(log.find("1 moving axis/axes stopped, position invalid"), std::string::npos) << log;
+  // The reason names the loss, not a PLC that never left Run mode (3601-PI-07 before).
+  EXPECT_NE(log.find("3601-PI-S3: an input edge was lost (stepmod)"), std::string::npos) << log;
+  EXPECT_EQ(plc.client().read_reason(0).item, 10693u);
 }
 
 }  // namespace

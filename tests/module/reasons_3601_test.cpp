@@ -3,6 +3,7 @@
 // one test per error list (CFG, CE, IP, IE, HI, PI) of each module, named after the item.
 #include <gtest/gtest.h>
 
+#include "module/axis/error_items.hpp"
 #include "tests/module/plc_3601.hpp"
 #include "tests/module/reasons_rig.hpp"
 
@@ -102,8 +103,19 @@ TEST_F(Reasons3601, PI_07_PlcLeavingRunModeWhileMoving) {
   EXPECT_EQ(reason().code, 10607u);
   EXPECT_EQ(text(reason()), "3601-PI-07: the PLC left Run mode while moving");
   ASSERT_TRUE(wait_idle());
-  vm_.stack().personality().lease_expired(vm_.now());  // idle now: nothing new
-  EXPECT_EQ(reason().code, 10607u);
+  vm_.stack().personality().stop_every_axis(module::axis::items::kPiLeaseExpired, vm_.now());
+  EXPECT_EQ(reason().code, 10607u) << "idle now: nothing new";
+}
+
+// stepmod's own: the daemon lost an input edge (a kernel line FIFO overflowed) while moving.
+TEST_F(Reasons3601, PI_S3_InputEdgeLostWhileMoving) {
+  configure();
+  command(m::cmd_msw::kRelativeMove, {.target = 50'000});
+  vm_.run_for(100 * kNsPerMs);
+  vm_.stack().personality().stop_every_axis(module::axis::items::kPiInputLost, vm_.now());
+  EXPECT_TRUE(status(m::status_msw::kPositionInvalid));
+  EXPECT_EQ(reason().code, 10693u);
+  EXPECT_EQ(text(reason()), "3601-PI-S3: an input edge was lost (stepmod)");
 }
 
 }  // namespace
