@@ -20,7 +20,8 @@ struct SimAxisSetup {
 class SimBackend final : public Backend {
  public:
   // `event_capacity`: per-axis input event ring (power of two).
-  explicit SimBackend(std::span<const SimAxisSetup> axes, std::size_t event_capacity = 4096);
+  explicit SimBackend(std::span<const SimAxisSetup> axes,
+                      std::size_t event_capacity = kDefaultSimEventRing);
 
   unsigned axes() const noexcept override { return static_cast<unsigned>(machines_.size()); }
   void write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept override;

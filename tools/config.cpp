@@ -16,6 +16,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "gpio/sim_machine.hpp"
 #include "tools/config_keys.hpp"
 
 namespace stepmod::tools {
@@ -544,7 +545,8 @@ class Parser {
 
   // [axis.sim] event_ring: the simulated input event FIFO, a power of two (SpscRing).
   std::size_t sim_event_ring(const toml::table* s, const std::string& p) const {
-    const int64_t v = get_int(s, p, "event_ring", 4096, 2, 1 << 20);
+    const int64_t v = get_int(s, p, "event_ring",
+                              static_cast<std::int64_t>(gpio::kDefaultSimEventRing), 2, 1 << 20);
     if ((v & (v - 1)) != 0) {
       fail(s->get("event_ring")->source(), join(p, "event_ring"),
            "must be a power of two, 2 .. 1048576 (default 4096)");

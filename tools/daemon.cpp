@@ -226,7 +226,8 @@ void raise_planner_thread(planner::PlannerThread& planner, int rt_priority) {
 // not when the scheduler next gives it a time slice (on a single-core board a busy process,
 // the soft PLC for one, otherwise makes it lose edges; an E-stop edge would wait as well).
 // Real-time, below the pulse thread; set after the other threads have been started so that
-// they do not inherit it. The simulated machine has no such buffer: left as it is.
+// they do not inherit it. The simulated machine's FIFO is sized to ride out an ordinary thread's
+// stalls instead (gpio::kDefaultSimEventRing): left as it is.
 void raise_control_thread(int rt_priority) {
   sched_param sp{};
   sp.sched_priority = std::max(1, rt_priority - 10);

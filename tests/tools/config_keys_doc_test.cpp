@@ -137,7 +137,7 @@ home_to = 20
 contacts = "NO"
 encoder_ratio = 1.0
 marker_every = 4000
-event_ring = 4096
+event_ring = 65536
 [modbus]
 enabled = false
 listen = "127.0.0.1:1502"
