@@ -99,9 +99,12 @@ void AxisPlanner::apply_cut() noexcept {
 
 void AxisPlanner::stop_after(std::uint32_t epoch, const StopAfterSpec& c) noexcept {
   if (!m_.active || epoch != m_.epoch || source_ != &profile_) return;
-  // Steps of this motion up to c.t, counting the ones already planned after it.
-  // c.t is a wall-clock time (the registration input's edge): converted to the motion's time.
-  const std::int64_t end = planned_steps_at(c.t - slip()) + std::max<std::int64_t>(c.steps, 0);
+  // Steps of this motion up to c.t, counting the ones already planned after it: as the pulse
+  // thread's history counted them, or else c.t, a wall-clock time (the registration input's
+  // edge), converted to the motion's time. That conversion takes the slip of now, one step
+  // short when the motion slipped a step's time between c.t and now (a loaded machine).
+  const std::int64_t at_t = c.done_at_t >= 0 ? c.done_at_t : planned_steps_at(c.t - slip());
+  const std::int64_t end = at_t + std::max<std::int64_t>(c.steps, 0);
   if (end >= m_.at.end) return;  // already ends there or sooner
   if (end <= m_.at.k) {
     finish_at_frontier();  // the count was reached by steps already planned: end at once

@@ -68,7 +68,9 @@ class MotionPort {
   // timestamp, the scan time of a Hold), or as soon after it as the planner can still replace the
   // queued edges (StopSpec).
   bool stop(Ramp decel, Nanos trigger_t) noexcept { return send(StopSpec{decel, trigger_t}); }
-  bool stop_after(Nanos t, std::int64_t steps) noexcept {
+  // `done_at_t`: the motion's steps output up to t, when the caller knows them (the step history
+  // and the motion's start count); -1: the planner converts t with the slip of now.
+  bool stop_after(Nanos t, std::int64_t steps, std::int64_t done_at_t = -1) noexcept {
     // Exactness backstop in the pulse thread (AxisControl::limit_steps): the count at t plus
     // `steps` in the motion's direction, once the motion's own edges have started to run.
     std::int64_t at_t = 0;
@@ -77,7 +79,7 @@ class MotionPort {
       ctl_.limit_steps.store(at_t + (ccw ? -steps : steps), std::memory_order_relaxed);
       ctl_.limit_epoch.store(epoch_, std::memory_order_release);
     }
-    return send(StopAfterSpec{t, steps});
+    return send(StopAfterSpec{t, steps, done_at_t});
   }
   // Immediate stop: takes effect in the pulse thread at its next loop, planner or not.
   void immediate_stop() noexcept {

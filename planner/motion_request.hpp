@@ -93,6 +93,10 @@ struct StopSpec {  // controlled stop: decelerate to vs with `ramp`, then end
 struct StopAfterSpec {  // registration: end exactly `steps` steps after the step count at `t`
   Nanos t = 0;
   std::int64_t steps = 0;
+  // The motion's own steps output up to `t`, read from the pulse thread's step history by the
+  // caller (-1: unknown). Exact where the planner's own conversion of the wall-clock `t` to the
+  // motion's time (with the slip of now) is not: after a slip that grew since `t`.
+  std::int64_t done_at_t = -1;
 };
 struct AbortSpec {};  // immediate stop (the pulse thread already drops the motion's edges)
 struct GpoSpec {      // general-purpose output level (3602)

@@ -307,7 +307,7 @@ void ManualMove::registration_check(Nanos now, Nanos present_since, StopCause ca
   run_.triggered = true;
   ax_.stop_cause = cause;  // Stopped when the count has been output (3601-STP-01)
   // Exactly R further steps, the deceleration included (digest 7.9 step 4, planner).
-  ax_.motion.stop_after(t, run_.count);
+  ax_.motion.stop_after(t, run_.count, registration_steps_at(t));
 }
 
 // The store bit rising with no command bit set: Program Minimum Registration Move Distance (3601

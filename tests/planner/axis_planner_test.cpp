@@ -364,6 +364,24 @@ TEST(StopAfter, DuringAccelerationFreezesSpeedAndShortCountDeceleratesHarder) {
   EXPECT_NEAR(static_cast<double>(st.back().t - st[st.size() - 2].t), 1e6, 0.05e6);
 }
 
+// The caller's count at the trigger (the pulse thread's history) wins over the planner's
+// conversion of the trigger time: after a slip that grew since the trigger, that conversion is
+// short (issue 16: a registration of 3,000 gave 2,999 on a loaded machine).
+TEST(StopAfter, CountAtTheTriggerFromTheHistoryIsUsedAsGiven) {
+  Harness h;
+  const std::uint32_t ep = h.start_run(run(1'000, 1'000, 10'000, 10'000));
+  h.run_for(500 * kMs);
+  const Nanos trigger = h.now - 1 * kMs;
+  const std::int64_t by_time = count_at_or_before(h.steps(ep), trigger);
+  StopAfterSpec c;
+  c.t = trigger;
+  c.steps = 100;
+  c.done_at_t = by_time - 1;  // the history says one step fewer had gone out by then
+  h.send(c);
+  ASSERT_TRUE(h.run_until_finished(ep));
+  EXPECT_EQ(static_cast<std::int64_t>(h.steps(ep).size()), by_time - 1 + 100);
+}
+
 TEST(StopAfter, CountAlreadyPassedEndsAtOnce) {
   Harness h;
   const std::uint32_t ep = h.start_run(run(1'000, 1'000, 10'000, 10'000));
