@@ -26,6 +26,14 @@ import urllib.request
 STEPMODD, STEPMODCTL, WEB, WWW, SRC = sys.argv[1:6] if len(sys.argv) >= 6 else [None] * 5
 
 
+def screenshot_path(name):
+    """The docs' screenshots: rewritten in docs/ only with STEPMOD_UPDATE_DOCS=1 (a test run
+    leaves the source tree as it found it), else written beside the test in the build tree."""
+    if os.environ.get("STEPMOD_UPDATE_DOCS") == "1":
+        return os.path.join(SRC, "docs", name)
+    return os.path.join(os.getcwd(), name)
+
+
 def browser_missing():
     missing = [p for p in ("chromium", "chromedriver") if shutil.which(p) is None]
     try:
@@ -326,7 +334,7 @@ class Web3601(unittest.TestCase):
     def test_held_jog_moves_and_release_stops(self):
         self.jog_until_moving()
         time.sleep(0.5)
-        self.c.d.save_screenshot(os.path.join(SRC, "docs", "web-3601-jog.png"))
+        self.c.d.save_screenshot(screenshot_path("web-3601-jog.png"))
         release_button(self.c)
         wait_for(lambda: not self.m.moving(), 5, "the jog to end")
         p = self.m.motor_position()
@@ -472,7 +480,7 @@ class Web3202(unittest.TestCase):
         self.wait(lambda: self.m.motor_position(1) > start + 200, 10, "channel 1 to move")
         self.assertIn("Moving CW", bits_on(self.c, 0))
         time.sleep(0.5)
-        self.c.d.save_screenshot(os.path.join(SRC, "docs", "web-3202-jog.png"))
+        self.c.d.save_screenshot(screenshot_path("web-3202-jog.png"))
         release_button(self.c)
         self.wait_still(0)
         p = self.m.motor_position(1)
@@ -521,7 +529,7 @@ class Web3602(unittest.TestCase):
             m.ctl("path", "wait")
             wait_for(lambda: c.text("#unit-0 .pos") == str(m.image_position(1)) and
                      c.text("#unit-1 .pos") == str(m.image_position(2)), 5, "both positions")
-            c.d.save_screenshot(os.path.join(SRC, "docs", "web-3602-circle.png"))
+            c.d.save_screenshot(screenshot_path("web-3602-circle.png"))
             # Then a line to the circle's centre, and the move's picture from the trace.
             r = m.ctl("path", "line", "2000", "0", "--speed", "6000", "--accel", "20",
                       "--decel", "20")
@@ -538,7 +546,7 @@ class Web3602(unittest.TestCase):
             self.assertRegex(c.text("#pic-axis1 h2"), r"^axis1: 10000 steps, end position 2000 ")
             self.assertRegex(c.text("#pic-axis2 h2"), r"^axis2: 8000 steps, end position 0 ")
             c.d.execute_script("document.getElementById('pic-xy').scrollIntoView()")
-            c.d.save_screenshot(os.path.join(SRC, "docs", "web-3602-path.png"))
+            c.d.save_screenshot(screenshot_path("web-3602-path.png"))
         finally:
             if c:
                 c.close()
