@@ -549,7 +549,7 @@ class Parser {
                               static_cast<std::int64_t>(gpio::kDefaultSimEventRing), 2, 1 << 20);
     if ((v & (v - 1)) != 0) {
       fail(s->get("event_ring")->source(), join(p, "event_ring"),
-           "must be a power of two, 2 .. 1048576 (default 4096)");
+           "must be a power of two, 2 .. 1048576 (default 65536)");
     }
     return static_cast<std::size_t>(v);
   }

@@ -122,7 +122,7 @@ void Axis::dispatch_command(const AxisCommand& c, CommandKind kind, Nanos now) {
       if (c.follower) {
         follower_.command(c, dir);
       } else {
-        manual_.command(c, dir);
+        manual_.command(c, dir, now);
       }
       break;
     }

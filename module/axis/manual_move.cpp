@@ -11,7 +11,7 @@ namespace stepmod::module::axis {
 // Manual Move + / - (level held): 3601 manual Ch.4 "Manual Move". With target
 // words != 0 it is a Registration Move (A3: firmware >= 3.1 semantics; the old-firmware errors
 // 3601-CE-16 / IP-08 are not emulated).
-void ManualMove::command(const AxisCommand& c, planner::Direction dir) {
+void ManualMove::command(const AxisCommand& c, planner::Direction dir, Nanos now) {
   if (ax_.moving()) {
     ax_.reject(items::kMoveWhileMoving, "a jog while a motion is running");  // 3601-CE-03
     return;
@@ -50,6 +50,7 @@ void ManualMove::command(const AxisCommand& c, planner::Direction dir) {
     // after the bit's release) applies to the next registration move.
     run_.dmin = min_registration_;
     run_.start_steps = ax_.motion.steps();
+    run_.start_t = now;
   } else if (profile->vp == 0) {
     run_.kind = Kind::kOneShot;
   }
@@ -277,6 +278,9 @@ std::int64_t ManualMove::registration_steps_at(Nanos t) const noexcept {
 // the firmware's step-counting would make it. Otherwise it starts at the time the condition
 // appeared (the External edge's timestamp, or the scan that saw the bit reset).
 void ManualMove::registration_check(Nanos now, Nanos present_since, StopCause cause) {
+  // A condition present since before the move started (an External edge stamped then and
+  // delivered late) counts from the start: the steps of a motion before it are not this move's.
+  present_since = std::max(present_since, run_.start_t);
   Nanos t = present_since;
   const std::int64_t dmin = run_.dmin;
   if (dmin != 0) {

@@ -15,7 +15,7 @@ class ManualMove {
   explicit ManualMove(AxisState& ax) noexcept : ax_(ax) {}
 
   // A rising Manual + / - (without the follower flag).
-  void command(const AxisCommand& c, planner::Direction dir);
+  void command(const AxisCommand& c, planner::Direction dir, Nanos now);
   // Every command-mode scan, first: a released command is a controlled stop (3601-STP-01).
   void levels(const AxisCommand& c);
   // Every command-mode scan of a configured axis: runtime changes (3601-CE-17/19/30..33), the
@@ -56,6 +56,7 @@ class ManualMove {
     std::int32_t count = 0;        // steps output after the trigger (R)
     std::int32_t dmin = 0;         // minimum distance in force at the start
     std::int64_t start_steps = 0;  // pulse count at the start
+    Nanos start_t = 0;             // the scan that started it: none of its steps before
     bool triggered = false;        // the trigger has been acted on (stop_after sent)
     Nanos released_since = -1;     // scan that first saw the command reset
     Nanos external_since = -1;     // time the External input became active

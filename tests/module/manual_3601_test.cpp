@@ -568,6 +568,31 @@ TEST_F(Manual3601, Registration_ExactlyRStepsAfterTheExternalEdge) {
   EXPECT_NEAR(period_before(vm_.step_times(0).back(), 3 * kNsPerMs), 1e6, 1e5);
 }
 
+// An External edge stamped while an earlier move still ran, delivered only after the registration
+// move started (a loaded control thread): it triggers the registration at its start, and the
+// earlier move's steps after the edge are not counted as this move's.
+TEST_F(Manual3601, Registration_EdgeStampedBeforeTheMoveStartedCountsFromTheStart) {
+  command(cmd::kRelativeMove, {.target = 2'000, .speed = 10'000, .accel = 10, .decel = 10});
+  vm_.run_for(100 * kNsPerMs);
+  ASSERT_TRUE(moving());
+  const Nanos edge = vm_.now();  // the earlier move has steps to go
+  ASSERT_TRUE(wait_idle());
+  const std::int64_t after_edge = static_cast<std::int64_t>(steps_after(edge));
+  ASSERT_GT(after_edge, 100);
+  set_words(0, 0, 0, 0, 0, 0);
+  vm_.scans(2);
+  const std::int64_t before = motor();
+  start(cmd::kManualCw, {.target = 6'000, .speed = 10'000, .accel = 10, .decel = 10});
+  vm_.scans(2);
+  ASSERT_TRUE(moving());
+  vm_.sim().force(0, 1u << static_cast<unsigned>(InputLine::kExternal),
+                  1u << static_cast<unsigned>(InputLine::kExternal), edge);
+  ASSERT_TRUE(wait_idle());
+  EXPECT_EQ(motor(), before + 6'000) << "the earlier move's " << after_edge << " steps";
+  EXPECT_TRUE(status(kStopped));
+  EXPECT_FALSE(errors());
+}
+
 // At constant speed (Vp <= Vs) no steps are needed to stop, so any count >= 1 is legal, and the
 // planner has already queued a lookahead's worth of steps (4 ms = 40 at 10,000 steps/s) when
 // the trigger comes: the pulse thread's step-count cap keeps the count exact anyway.
