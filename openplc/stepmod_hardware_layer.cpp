@@ -26,8 +26,8 @@
 // mapUnusedIO()), and only they are forwarded to the module; the others are written as 0, never
 // from OpenPLC's Modbus registers. updateBuffersIn() takes one consistent seqlock snapshot of the
 // input image; a snapshot that fails (the module publishing on every try) keeps the last good
-// words, and %IW42 (link) drops to 0, with every %IW 0, only after kLinkLossNs without a good
-// snapshot or when the image goes away (a real loss). updateBuffersOut() writes the output image
+// words, and %IW42 (link) drops to 0, with every %IW 0, only after kLinkLossNs of failed tries
+// with no good one between, or when the image goes away (a real loss). updateBuffersOut() writes the output image
 // as one seqlock write and increments the PLC heartbeat (docs/interface.md 3.2): with [module]
 // plc_timeout_ms set, a stopped or dead runtime stops the axes as a PLC leaving Run mode does
 // (the stop's disableOutputs() only writes zeros, which stops nothing). The image is looked for
@@ -65,7 +65,11 @@ struct Link {
   int logged_missing;
   // The last good snapshot of the mapped image (valid while has_good).
   int has_good;
-  int64_t good_ns;  // when it was taken
+  // Since when every try has failed (valid while failing). Counted from the first failed try,
+  // not from the last good one: a runtime whose own scan thread was held up (a loaded machine)
+  // and then finds the module mid-publication once has not lost the link.
+  int failing;
+  int64_t failing_since_ns;
   int32_t in[STEPMOD_MAX_WORDS];
   uint16_t header[kHeaderRegs];
   unsigned regs;
@@ -86,6 +90,7 @@ void unmap() {
   if (g_link.img != nullptr) munmap(g_link.img, STEPMOD_IMAGE_SIZE);
   g_link.img = nullptr;
   g_link.has_good = 0;
+  g_link.failing = 0;
 }
 
 // Maps the image if it exists and is a valid layout-1 stepmod image; 1 on success.
@@ -155,7 +160,11 @@ void take_snapshot() {
   int32_t in[STEPMOD_MAX_WORDS] = {0};
   uint32_t health = 0;
   uint32_t late = 0;
-  if (!stepmod_read_inputs(im, in) || !stepmod_read_health(im, &health, &late)) return;
+  if (!stepmod_read_inputs(im, in) || !stepmod_read_health(im, &health, &late)) {
+    if (!g_link.failing) g_link.failing_since_ns = stepmod_monotonic_ns();
+    g_link.failing = 1;
+    return;
+  }
   const uint64_t scans = stepmod_scan_counter(im);
   memcpy(g_link.in, in, sizeof in);
   g_link.word_bytes = im->word_bytes;
@@ -172,7 +181,7 @@ void take_snapshot() {
   h[8] = (uint16_t)(late & 0xFFFFu);
   h[9] = (uint16_t)(late >> 16);
   g_link.has_good = 1;
-  g_link.good_ns = stepmod_monotonic_ns();
+  g_link.failing = 0;
 }
 
 }  // namespace
@@ -195,7 +204,9 @@ void finalizeHardware() {
 void updateBuffersIn() {
   check_link();
   take_snapshot();
-  const int linked = g_link.has_good && stepmod_monotonic_ns() - g_link.good_ns < kLinkLossNs;
+  const int linked =
+      g_link.has_good &&
+      (!g_link.failing || stepmod_monotonic_ns() - g_link.failing_since_ns < kLinkLossNs);
   const unsigned regs = linked ? g_link.regs : 0u;
   pthread_mutex_lock(&bufferLock);
   for (unsigned r = 0; r < kRegs; ++r) {
