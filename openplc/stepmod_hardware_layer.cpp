@@ -27,12 +27,12 @@
 // from OpenPLC's Modbus registers. updateBuffersIn() takes one consistent seqlock snapshot of the
 // input image; a snapshot that fails (the module publishing on every try) keeps the last good
 // words, and %IW42 (link) drops to 0, with every %IW 0, only after kLinkLossNs of failed tries
-// with no good one between, or when the image goes away (a real loss). updateBuffersOut() writes the output image
-// as one seqlock write and increments the PLC heartbeat (docs/interface.md 3.2): with [module]
-// plc_timeout_ms set, a stopped or dead runtime stops the axes as a PLC leaving Run mode does
-// (the stop's disableOutputs() only writes zeros, which stops nothing). The image is looked for
-// (and its identity checked) on every scan: one stat() of /dev/shm.
-// Only libc and the plain-C header stepmod_image.h (copied next to this file) are needed.
+// with no good one between, or when the image goes away (a real loss). updateBuffersOut() writes
+// the output image as one seqlock write and increments the PLC heartbeat (docs/interface.md 3.2):
+// with [module] plc_timeout_ms set, a stopped or dead runtime stops the axes as a PLC leaving Run
+// mode does (the stop's disableOutputs() only writes zeros, which stops nothing). The image is
+// looked for (and its identity checked) on every scan: one stat() of /dev/shm. Only libc and the
+// plain-C header stepmod_image.h (copied next to this file) are needed.
 #include <fcntl.h>
 #include <pthread.h>
 #include <stdio.h>
