@@ -3,6 +3,7 @@
 #include "plc/status_3202.hpp"
 #include "web/bit_json.hpp"
 #include "web/module_views.hpp"
+#include "web/two_unit_controls.hpp"
 #include "words/words_3202.hpp"
 
 namespace stepmod::web::view3202 {
@@ -10,39 +11,17 @@ namespace {
 
 // The 3202's two channels: steps/s^2 rates, one configuration DINT (bit 31, the mode, is added
 // by plc/), jog = the manual-move bits held.
-class Controls3202 final : public Controls {
+class Controls3202 final : public TwoUnitControls<plc::Plc3202> {
  public:
-  explicit Controls3202(plc::Port& port) : plc_(port) {}
-  void release_jogs() override {
-    for (unsigned u = 0; u < 2; ++u) plc_.jog_release(u);
-  }
+  using TwoUnitControls::TwoUnitControls;
 
  protected:
-  plc::Outcome move(unsigned u, bool a, std::int32_t t, const plc::Profile& p) override {
-    return plc_.move(u, a, t, p);
-  }
-  plc::Outcome jog_press(unsigned u, bool cw, const plc::Profile& p) override {
-    return plc_.jog_press(u, cw, p);
-  }
-  plc::Outcome jog_release(unsigned u) override { return plc_.jog_release(u); }
-  plc::Outcome home(unsigned u, bool cw, const plc::Profile& p) override {
-    return plc_.home(u, cw, p);
-  }
-  plc::Outcome hold(unsigned u) override { return plc_.hold(u); }
-  plc::Outcome resume(unsigned u) override { return plc_.resume(u, std::nullopt); }
-  plc::Outcome stop(unsigned u) override { return plc_.immediate_stop(u); }
-  plc::Outcome reset(unsigned u) override { return plc_.reset_errors(u); }
-  plc::Outcome preset(unsigned u, std::int32_t p) override { return plc_.preset_position(u, p); }
   std::uint32_t config_bits(const nlohmann::json& req) const override {
     return static_cast<std::uint32_t>(request_int(req, "bits", 0, 0x7FFFFFFF));
   }
   plc::Outcome configure(unsigned u, std::uint32_t bits, std::int32_t vs) override {
     return plc_.configure(u, bits, vs);
   }
-  unsigned units() const override { return 2; }
-
- private:
-  plc::Plc3202 plc_;
 };
 
 }  // namespace

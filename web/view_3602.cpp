@@ -3,42 +3,21 @@
 #include "plc/status_3602.hpp"
 #include "web/bit_json.hpp"
 #include "web/module_views.hpp"
+#include "web/two_unit_controls.hpp"
 #include "words/words_3602.hpp"
 
 namespace stepmod::web::view3602 {
 namespace {
 
-class Controls3602 final : public Controls {
+class Controls3602 final : public TwoUnitControls<plc::Plc3602> {
  public:
-  explicit Controls3602(plc::Port& port) : plc_(port) {}
-  void release_jogs() override {
-    for (unsigned u = 0; u < 2; ++u) plc_.jog_release(u);
-  }
+  using TwoUnitControls::TwoUnitControls;
 
  protected:
-  plc::Outcome move(unsigned u, bool a, std::int32_t t, const plc::Profile& p) override {
-    return plc_.move(u, a, t, p);
-  }
-  plc::Outcome jog_press(unsigned u, bool cw, const plc::Profile& p) override {
-    return plc_.jog_press(u, cw, p);
-  }
-  plc::Outcome jog_release(unsigned u) override { return plc_.jog_release(u); }
-  plc::Outcome home(unsigned u, bool cw, const plc::Profile& p) override {
-    return plc_.home(u, cw, p);
-  }
-  plc::Outcome hold(unsigned u) override { return plc_.hold(u); }
-  plc::Outcome resume(unsigned u) override { return plc_.resume(u, std::nullopt); }
-  plc::Outcome stop(unsigned u) override { return plc_.immediate_stop(u); }
-  plc::Outcome reset(unsigned u) override { return plc_.reset_errors(u); }
-  plc::Outcome preset(unsigned u, std::int32_t p) override { return plc_.preset_position(u, p); }
   plc::Outcome configure(unsigned u, std::uint32_t bits, std::int32_t vs) override {
     return plc_.configure(u, static_cast<std::uint16_t>(bits >> 16),
                           static_cast<std::uint16_t>(bits & 0xFFFFu), vs);
   }
-  unsigned units() const override { return 2; }
-
- private:
-  plc::Plc3602 plc_;
 };
 
 }  // namespace
