@@ -191,7 +191,10 @@ void warn_pulse_setup(const rt::PulseThread::Options& po, const rt::PulseThread:
         "priority: pulse timing will suffer under load",
         po.priority, std::strerror(st.sched_errno));
   }
-  if (!st.memory_locked) {
+  if (!po.lock_memory) {
+    // A sanitizer build never asks (its shadow memory cannot be locked): no refusal to report.
+    spdlog::info("memory locking is off in this sanitizer build");
+  } else if (!st.memory_locked) {
     spdlog::warn("mlockall refused ({}); memory is not locked", std::strerror(st.mlock_errno));
   }
   if (po.cpu >= 0 && !st.pinned) {
