@@ -13,10 +13,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
 #include <vector>
+
+#include "ipc/stepmod_image.h"
 
 extern char** environ;
 
@@ -67,6 +70,43 @@ int wait_exit(pid_t pid, int timeout_ms) {
   return -1;
 }
 
+// What a test needs of the header of an image or panel file in /dev/shm. nullopt while there is
+// no whole one (not created yet, or between the unlink of a stale one and its replacement).
+struct ShmHead {
+  std::uint64_t owner_pid = 0;
+  std::uint64_t scans = 0;  // the image's scan counter (0 for a panel)
+};
+
+template <typename Header>
+std::optional<Header> read_header(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return std::nullopt;
+  Header h{};
+  const ssize_t n = ::pread(fd, &h, sizeof h, 0);
+  ::close(fd);
+  if (n != static_cast<ssize_t>(sizeof h)) return std::nullopt;
+  return h;
+}
+
+std::optional<ShmHead> image_head(const std::string& path) {
+  const auto im = read_header<stepmod_image_t>(path);
+  if (!im || stepmod_magic_is(im->magic, STEPMOD_IMAGE_MAGIC) == 0) return std::nullopt;
+  return ShmHead{im->owner_pid, im->scan_counter};
+}
+
+std::optional<ShmHead> panel_head(const std::string& path) {
+  const auto p = read_header<stepmod_panel_t>(path);
+  if (!p || stepmod_magic_is(p->magic, STEPMOD_PANEL_MAGIC) == 0) return std::nullopt;
+  return ShmHead{p->owner_pid, 0};
+}
+
+// Removes `path` if the daemon `pid` owns it: a killed daemon cannot remove its own files, and
+// one left behind would be found by a later test whose process got the same pid (the same
+// unique name). A file another daemon of the name owns now is left alone.
+void remove_if_owned(const std::optional<ShmHead>& head, const std::string& path, pid_t pid) {
+  if (head && head->owner_pid == static_cast<std::uint64_t>(pid)) ::unlink(path.c_str());
+}
+
 std::string read_file(const std::string& path) {
   std::ifstream in(path);
   std::stringstream ss;
@@ -102,28 +142,30 @@ DaemonProcess::DaemonProcess(const std::string& toml, const DaemonOptions& optio
     args.push_back(trace_);
   }
   pid_ = spawn(args, log_);
+  spawned_ = pid_;
 }
 
 DaemonProcess::~DaemonProcess() {
   if (pid_ > 0) {
     kill(pid_, SIGKILL);
     waitpid(pid_, nullptr, 0);
-    // A killed daemon cannot clean up after itself.
-    ::unlink(("/dev/shm/stepmod." + name_).c_str());
-    ::unlink(("/dev/shm/stepmod." + name_ + ".sim").c_str());
   }
+  const std::string image = "/dev/shm/stepmod." + name_;
+  remove_if_owned(image_head(image), image, spawned_);
+  remove_if_owned(panel_head(image + ".sim"), image + ".sim", spawned_);
   std::error_code ec;
   if (std::getenv("STEPMOD_KEEP_TEST_FILES") == nullptr) std::filesystem::remove_all(dir_, ec);
 }
 
 bool DaemonProcess::wait_ready(int timeout_ms) {
+  // Up means the image names this daemon as its owner and a scan has been published. The file
+  // alone is not enough: one a killed daemon of the same name left is there before this daemon
+  // replaces it, and a client that mapped it would wait for scans that never come.
   const std::string shm = "/dev/shm/stepmod." + name_;
   const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
   while (std::chrono::steady_clock::now() < end) {
-    struct stat st {};
-    if (::stat(shm.c_str(), &st) == 0 && st.st_size == 4096) {
-      // The image is created before the threads start: give them a moment to come up.
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    const std::optional<ShmHead> head = image_head(shm);
+    if (head && head->owner_pid == static_cast<std::uint64_t>(pid_) && head->scans > 0) {
       return true;
     }
     int status = 0;

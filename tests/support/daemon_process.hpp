@@ -33,7 +33,8 @@ class DaemonProcess {
   const std::string& name() const { return name_; }
   const std::string& trace_path() const { return trace_; }
   const std::string& config_path() const { return config_; }
-  // Waits until the shared-memory image exists (the daemon is up); false on timeout or exit.
+  // Waits until the daemon is up: its shared-memory image names it as the owner and has been
+  // scanned once. False on timeout or exit.
   bool wait_ready(int timeout_ms = 10'000);
   // SIGTERM and wait; returns the exit status (or -1 if it did not exit in time).
   int terminate(int timeout_ms = 10'000);
@@ -55,7 +56,8 @@ class DaemonProcess {
   std::string config_;
   std::string trace_;
   std::string log_;
-  pid_t pid_ = -1;
+  pid_t pid_ = -1;      // -1 once the daemon has been waited for
+  pid_t spawned_ = -1;  // the daemon's pid, kept: the owner of the files it may leave
 };
 
 }  // namespace stepmod::testing
