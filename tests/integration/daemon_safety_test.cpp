@@ -192,6 +192,11 @@ TEST_F(DaemonSafety, StaleHeartbeatKeepsTheModuleStoppedAndIgnoresNewCommands) {
   ASSERT_TRUE(plc_->wait([&] { return !plc_->moving(); }, milliseconds(3'000)));
   EXPECT_TRUE(plc_->status(kPositionInvalid));
   EXPECT_NE(health().flags & STEPMOD_HEALTH_PLC_STALE, 0u);
+  // The panel publishes the motor's position at the top of a scan loop, the status words at its
+  // end: the scan that says "stopped" can come before the panel shows the last step. At rest,
+  // the motor is where the module counted its steps.
+  ASSERT_TRUE(plc_->wait([&] { return motor() == plc_->position(); }, milliseconds(1'000)))
+      << "motor " << motor() << ", module position " << plc_->position();
   const std::int64_t rest = motor();
 
   // With the heartbeat still stale, a new relative move is written: nothing moves.
@@ -281,7 +286,9 @@ TEST_F(DaemonSafety, ADaemonThatFindsACrashedOnesImageSaysWhatItReplaced) {
   daemon_->signal(SIGKILL);
   ASSERT_GE(daemon_->wait_exit(), 0);
   // The crashed daemon's image is still there, so "the image exists" does not mean the new
-  // daemon is up: wait until the image names it as its owner.
+  // daemon is up: wait until the image names it as its owner. The crashed one's handle is kept
+  // to the end: destroyed now, it would remove the image it left before the new daemon finds it.
+  const std::unique_ptr<DaemonProcess> crashed_daemon = std::move(daemon_);
   daemon_ = std::make_unique<DaemonProcess>(sim_3601_config("", kSim), true, name);
   const auto owned = [&] {
     try {
