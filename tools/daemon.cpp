@@ -96,6 +96,7 @@ struct Daemon::Impl {
     return stack->engine().trace_dropped() + input_trace_dropped.load(std::memory_order_relaxed);
   }
   void sync_panel();
+  void publish_panel();
   void shutdown_motion();
   void idle_outputs();
   void trace_input_record(const TraceRecord& r);
@@ -363,6 +364,9 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     kick();
     notice_cpu_need(now);
     reasons.scan(personality, *image);
+    // The machine as of this scan, before the status: a reader that sees "stopped" in the status
+    // finds the panel showing the motor's last step, not the one of the loop's top.
+    if (panel) publish_panel();
     image->publish_inputs(in, health(supervisor.flags() | lease.flags()));
     // Done only once the status that shows the message's effect is published: a PLC that reads
     // the status bits when its message is done (INTERFACE.md 3: an error is in the status bits)
@@ -548,9 +552,16 @@ void Daemon::Impl::log_supervision(const ipc::PlcSupervisor& sup, Nanos now) {
   }
 }
 
+// The panel's forced inputs into the simulated machine, and the machine back to the panel.
 void Daemon::Impl::sync_panel() {
   for (unsigned a = 0; a < stack->shape().axes; ++a) {
     sim->force(a, panel->force_mask(a), panel->force_levels(a));
+  }
+  publish_panel();
+}
+
+void Daemon::Impl::publish_panel() {
+  for (unsigned a = 0; a < stack->shape().axes; ++a) {
     panel->publish_position(a, sim->position(a));
     panel->publish_encoder(a, sim->encoder(a));
     panel->publish_outputs(a, sim->output_levels(a));
