@@ -110,6 +110,8 @@ void Axis::enter_command_mode() {
 }
 
 void Axis::poll_motion_end() {
+  busy_at_poll_ = st_.motion.busy();
+  epoch_at_poll_ = st_.motion.epoch();
   // Late-edge guard (issue 12; rt::PulseEngine::set_late_limit): the pulse thread cut the motion
   // rather than burst its late steps out. The PLC sees what an Immediate Stop gives (3601-STP-03,
   // PI-02: Stopped, Position Invalid), so its program re-homes; immediate_stop() also ends the
@@ -131,7 +133,7 @@ void Axis::poll_motion_end() {
     }
     return;
   }
-  if (st_.activity == Activity::kIdle || st_.activity == Activity::kFollower || st_.motion.busy()) {
+  if (st_.activity == Activity::kIdle || st_.activity == Activity::kFollower || busy_at_poll_) {
     return;
   }
   if (st_.activity == Activity::kHoming) {
@@ -239,12 +241,19 @@ void Axis::plc_stopped(const Item& why) {
   st_.explain_new_errors();
 }
 
+// A motion submitted in this scan runs from its submission; one that ended after the poll still
+// runs for this scan, and the next scan's poll gives its outcome (Move Complete, Stopped, Hold)
+// together with the moving bits' clearing.
+bool Axis::busy_this_scan() const noexcept {
+  return st_.motion.epoch() != epoch_at_poll_ ? st_.motion.busy() : busy_at_poll_;
+}
+
 AxisStatus Axis::status() const noexcept {
   AxisStatus s;
   const Latches& l = st_.status;
   s.configuration_mode = config_mode_;
   const bool pulsing = st_.activity != Activity::kCoordinated || coordinated_stepped_;
-  if (st_.moving() && st_.motion.busy() && pulsing) {
+  if (st_.moving() && busy_this_scan() && pulsing) {
     // 3601-DIR-01: direction of the pulses being output.
     s.moving_cw = st_.dir == planner::Direction::kCw;
     s.moving_ccw = !s.moving_cw;

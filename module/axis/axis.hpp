@@ -146,6 +146,8 @@ class Axis {
   void input_edge(const gpio::InputEvent& e);  // on_input() without the reason check
   // The pulse thread has ended the motion: its outcome in the status latches.
   void poll_motion_end();
+  // Whether the motion runs, as this scan sees it (status()).
+  bool busy_this_scan() const noexcept;
   // An encoder count changed at `t` (X4 decoding).
   void encoder_changed(Nanos t);
 
@@ -156,6 +158,11 @@ class Axis {
   Blend blend_;
   Encoder encoder_;
   Follower follower_;
+
+  // The motion as poll_motion_end() found it: the pulse thread ends a motion at any instant, and
+  // one scan's status must show the running motion or its outcome, not a moment in between.
+  bool busy_at_poll_ = false;
+  std::uint32_t epoch_at_poll_ = 0;
 
   bool config_mode_ = false;
   bool config_after_motion_ = false;   // CE-01: mode requested while moving

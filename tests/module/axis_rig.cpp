@@ -108,9 +108,11 @@ void AxisRig::step_until(Nanos t) {
     } else {
       deliver_inputs();
       axis_->scan(image_, config_words_, now_);
-      status_ = axis_->status();
       next_scan_ += kScan;
       next_plan_ = std::min(next_plan_, now_ + kPlannerWake);
+      // Edges and planning only: the next scan is after it (scan_to_status_ < kScan).
+      if (scan_to_status_ > 0) step_until(now_ + scan_to_status_);
+      status_ = axis_->status();
     }
   }
   now_ = std::max(now_, t);

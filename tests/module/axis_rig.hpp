@@ -45,6 +45,9 @@ class AxisRig {
   void clear();
 
   void scans(unsigned n) { run_for(static_cast<Nanos>(n) * kScan); }
+  // The control thread held off the CPU for `d` (< kScan) between a scan and its status, while
+  // the pulse thread and the planner go on: what a loaded machine does now and then.
+  void preempt_between_scan_and_status(Nanos d) noexcept { scan_to_status_ = d; }
   void run_for(Nanos d);
   // Runs until the axis is at rest (no direction shown), at most `limit`.
   bool wait_idle(Nanos limit = 30 * kNsPerSec);
@@ -73,6 +76,7 @@ class AxisRig {
   Nanos now_;
   Nanos next_scan_;
   Nanos next_plan_;
+  Nanos scan_to_status_ = 0;
   std::uint32_t forced_mask_ = 0;
   std::uint32_t forced_levels_ = 0;
 };

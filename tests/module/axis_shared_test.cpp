@@ -44,6 +44,25 @@ TEST_P(AxisShared, MC_01_RelativeMoveOutputsExactlyItsStepsOnce) {
   EXPECT_EQ(rig_.motor(), 4'000);
 }
 
+// 3601-MC-01 and DIR-01 in one scan's status: the scan that clears the moving bits sets Move
+// Complete. Here the move's last edge goes out while the control thread is held off between its
+// scan and its status (a loaded machine). A status that took "moving" from that later instant and
+// the outcome from the scan's start showed one scan with neither, and a PLC that waits for the
+// moving bits to clear and then reads Move Complete took the move for one that did not complete.
+TEST_P(AxisShared, MC_01_DIR_01_TheScanThatClearsTheMovingBitsSetsMoveComplete) {
+  rig_.configure();
+  rig_.preempt_between_scan_and_status(AxisRig::kScan - kNsPerUs);
+  for (const std::int32_t target : {2'000, -1'500, 777}) {
+    rig_.command(CommandKind::kRelativeMove, {.target = target});
+    ASSERT_TRUE(rig_.moving()) << target;
+    ASSERT_TRUE(rig_.run_until_true([this] { return !rig_.moving(); }, 10 * kNsPerSec));
+    EXPECT_TRUE(rig_.status().move_complete) << target;
+    // 3601/3202-STP-N1: a completed move is not Stopped (the 3602's Stopped is "idle", STP-01).
+    EXPECT_EQ(rig_.status().stopped, rules().stopped_means_idle) << target;
+  }
+  EXPECT_EQ(rig_.motor(), 2'000 - 1'500 + 777);
+}
+
 // 3601-CE-02 (3202/3602: "more than one command bit"): several commands at once are a Command
 // Error and nothing moves.
 TEST_P(AxisShared, CE_02_SeveralCommandsAtOnce) {
