@@ -2,7 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -38,6 +39,10 @@ std::string replace_all(std::string s, const std::string& from, const std::strin
 // qemu-user and so is the daemon: STEPMOD_TEST_EMULATOR (set by ctest from
 // CMAKE_CROSSCOMPILING_EMULATOR, words separated by spaces) goes in front of the program, since
 // without binfmt_misc the kernel cannot start a foreign binary by itself.
+// The child is killed when this process dies (PR_SET_PDEATHSIG): a test process that ends
+// without its destructors (a sanitizer's halt, a ctest timeout) must not leave a real-time
+// daemon running. One would hold its image name, t<pid>-<n>, and a later test process given
+// the same pid would have its daemon refused that name.
 pid_t spawn(const std::vector<std::string>& program_args, const std::string& log) {
   std::vector<std::string> args;
   if (const char* emu = std::getenv("STEPMOD_TEST_EMULATOR"); emu != nullptr && *emu != '\0') {
@@ -45,17 +50,27 @@ pid_t spawn(const std::vector<std::string>& program_args, const std::string& log
     for (std::string w; words >> w;) args.push_back(w);
   }
   args.insert(args.end(), program_args.begin(), program_args.end());
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-  posix_spawn_file_actions_adddup2(&fa, 1, 2);
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) throw std::runtime_error("cannot start " + args[0]);
+  const int out = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  if (out < 0) throw std::runtime_error("cannot open " + log);
+  const pid_t parent = getpid();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    // The child of a threaded process: async-signal-safe calls only, up to the exec.
+    if (prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || getppid() != parent) _exit(127);
+    if (dup2(out, 1) < 0 || dup2(out, 2) < 0) _exit(127);
+    execve(argv[0], argv.data(), environ);
+    constexpr char kFailed[] = "spawn: execve failed: ";
+    (void)!write(2, kFailed, sizeof kFailed - 1);
+    (void)!write(2, argv[0], std::strlen(argv[0]));
+    (void)!write(2, "\n", 1);
+    _exit(127);
+  }
+  ::close(out);
+  if (pid < 0) throw std::runtime_error("cannot start " + args[0]);
   return pid;
 }
 
