@@ -68,6 +68,11 @@ struct Daemon::Impl {
   // motion it was last given for.
   std::vector<std::uint32_t> cpu_notice_epoch;
   bool trace_loss_logged = false;
+  // Published scans and the longest time between two of them: a PLC sees nothing new for that
+  // long (the control thread held off the CPU), logged at exit.
+  std::uint64_t scans_published = 0;
+  Nanos longest_scan_gap = 0;
+  Nanos last_publish = 0;
   // Input events lost (gpio::Backend::lost_events): the count already acted on, and each axis'
   // motion epoch at the last loss (health bit 5 lasts until one of them has a new motion).
   std::uint64_t lost_inputs_seen = 0;
@@ -97,6 +102,7 @@ struct Daemon::Impl {
   }
   void sync_panel();
   void publish_panel();
+  void note_scan_published() noexcept;
   void shutdown_motion();
   void idle_outputs();
   void trace_input_record(const TraceRecord& r);
@@ -284,6 +290,8 @@ bool Daemon::run(const std::atomic<bool>& stop) {
   spdlog::info(
       "wake-ups: pulse thread {} loops, {} sleeps ({} starved polls); planner thread {} passes",
       pulse.loops(), pulse.sleeps(), pulse.starved_polls(), planner.loops());
+  spdlog::info("control thread: {} scans published, longest {} us between two", d.scans_published,
+               d.longest_scan_gap / kNsPerUs);
   const bool trace_complete = d.finish_trace();
   if (d.backend->lost_events() > 0) {
     spdlog::warn("{} input events were lost in all", d.backend->lost_events());
@@ -368,6 +376,7 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     // finds the panel showing the motor's last step, not the one of the loop's top.
     if (panel) publish_panel();
     image->publish_inputs(in, health(supervisor.flags() | lease.flags()));
+    note_scan_published();
     // Done only once the status that shows the message's effect is published: a PLC that reads
     // the status bits when its message is done (INTERFACE.md 3: an error is in the status bits)
     // finds them. Marked done before this publication, a refused message was seen done with
@@ -377,6 +386,12 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     next_scan += config.scan_ns;
     if (next_scan <= now) next_scan = now + config.scan_ns;  // overrun: skip, never burst
   }
+}
+
+void Daemon::Impl::note_scan_published() noexcept {
+  const Nanos now = monotonic_now();
+  if (scans_published++ > 0) longest_scan_gap = std::max(longest_scan_gap, now - last_publish);
+  last_publish = now;
 }
 
 ipc::Health Daemon::Impl::health(std::uint32_t supervisor_flags) {
