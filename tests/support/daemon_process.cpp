@@ -22,8 +22,6 @@
 
 #include "ipc/stepmod_image.h"
 
-extern char** environ;
-
 namespace stepmod::testing {
 
 namespace {
