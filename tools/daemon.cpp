@@ -68,9 +68,8 @@ struct Daemon::Impl {
   // motion it was last given for.
   std::vector<std::uint32_t> cpu_notice_epoch;
   bool trace_loss_logged = false;
-  // Published scans and the longest time between two of them: a PLC sees nothing new for that
-  // long (the control thread held off the CPU), logged at exit.
-  std::uint64_t scans_published = 0;
+  // The longest time between two published scans (the image counts them): a PLC sees nothing
+  // new for that long (the control thread held off the CPU), logged at exit. 0: none yet.
   Nanos longest_scan_gap = 0;
   Nanos last_publish = 0;
   // Input events lost (gpio::Backend::lost_events): the count already acted on, and each axis'
@@ -290,8 +289,8 @@ bool Daemon::run(const std::atomic<bool>& stop) {
   spdlog::info(
       "wake-ups: pulse thread {} loops, {} sleeps ({} starved polls); planner thread {} passes",
       pulse.loops(), pulse.sleeps(), pulse.starved_polls(), planner.loops());
-  spdlog::info("control thread: {} scans published, longest {} us between two", d.scans_published,
-               d.longest_scan_gap / kNsPerUs);
+  spdlog::info("control thread: {} scans published, longest {} us between two",
+               d.image->scan_counter(), d.longest_scan_gap / kNsPerUs);
   const bool trace_complete = d.finish_trace();
   if (d.backend->lost_events() > 0) {
     spdlog::warn("{} input events were lost in all", d.backend->lost_events());
@@ -390,7 +389,7 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
 
 void Daemon::Impl::note_scan_published() noexcept {
   const Nanos now = monotonic_now();
-  if (scans_published++ > 0) longest_scan_gap = std::max(longest_scan_gap, now - last_publish);
+  if (last_publish != 0) longest_scan_gap = std::max(longest_scan_gap, now - last_publish);
   last_publish = now;
 }
 
