@@ -99,7 +99,7 @@ struct Daemon::Impl {
   std::uint64_t trace_dropped() const noexcept {
     return stack->engine().trace_dropped() + input_trace_dropped.load(std::memory_order_relaxed);
   }
-  void sync_panel();
+  void take_panel_forces();
   void publish_panel();
   void note_scan_published() noexcept;
   void shutdown_motion();
@@ -337,7 +337,7 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     const Nanos now = monotonic_now();
     check_lost_inputs(now);
     kick();
-    if (panel) sync_panel();
+    if (panel) take_panel_forces();
     if (now < next_scan) continue;
 
     // One consistent snapshot per scan; a PLC caught mid-write keeps the previous snapshot.
@@ -566,12 +566,12 @@ void Daemon::Impl::log_supervision(const ipc::PlcSupervisor& sup, Nanos now) {
   }
 }
 
-// The panel's forced inputs into the simulated machine, and the machine back to the panel.
-void Daemon::Impl::sync_panel() {
+// The panel's forced inputs into the simulated machine: at every wake, so that a forced edge is
+// an input event at once. The machine goes back to the panel once per scan (publish_panel).
+void Daemon::Impl::take_panel_forces() {
   for (unsigned a = 0; a < stack->shape().axes; ++a) {
     sim->force(a, panel->force_mask(a), panel->force_levels(a));
   }
-  publish_panel();
 }
 
 void Daemon::Impl::publish_panel() {
@@ -611,7 +611,7 @@ void Daemon::Impl::shutdown_motion() {
       std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
   }
-  if (panel) sync_panel();
+  if (panel) publish_panel();
 }
 
 }  // namespace stepmod::tools
