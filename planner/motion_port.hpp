@@ -94,6 +94,11 @@ class MotionPort {
   std::uint32_t epoch() const noexcept { return epoch_; }
   bool busy() const noexcept { return fb_.finished_epoch.load(std::memory_order_acquire) < epoch_; }
   std::int64_t steps() const noexcept { return fb_.steps.load(std::memory_order_acquire); }
+  // When the last step counted in steps() went out (0: none yet).
+  Nanos last_step_time() const noexcept {
+    (void)fb_.steps.load(std::memory_order_acquire);  // stored after last_step_t
+    return fb_.last_step_t.load(std::memory_order_relaxed);
+  }
   // Step count at a past time t (capture, registration): exact while t is within the history.
   bool steps_at(Nanos t, std::int64_t& out) const noexcept {
     return history_.steps_at(t, steps(), out);

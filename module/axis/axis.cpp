@@ -20,6 +20,7 @@ Axis::Axis(const ModuleRules& rules, gpio::Backend& backend, planner::MotionPort
 }
 
 void Axis::scan(const AxisCommand& c, const std::optional<AxisConfig>& configuration, Nanos now) {
+  st_.scan_now = now;
   poll_motion_end();
   if (config_mode_) {
     if (c.configuration_mode) {
@@ -100,7 +101,7 @@ void Axis::enter_command_mode() {
   st_.motion.set_pulse_format(step_dir);
   st_.set_position(0);
   // A18 (b): the encoder and capture registers are zeroed by a configuration too.
-  st_.encoder = 0;
+  st_.write_encoder(0);
   st_.capture = 0;
   st_.status = Latches{};
   st_.status.position_invalid = true;

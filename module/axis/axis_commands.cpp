@@ -286,7 +286,7 @@ void Axis::command_preset_position(const AxisCommand& c) {
   // 3601-MC-03: MC is left as it is; the 3602 clears it (3602-MC-02, digest 8.0).
   if (st_.rules.preset_clears_move_complete) st_.status.move_complete = false;
   // Digest 7.12: with diagnostic feedback the encoder register (own pulse count) is preset too.
-  if (st_.cfg.diagnostic_feedback) st_.encoder = *c.target;
+  if (st_.cfg.diagnostic_feedback) st_.write_encoder(*c.target);
 }
 
 // Reset Errors: clears CE, IE, HI and IP, never PI or CfgE (A7). The dialect's word rule

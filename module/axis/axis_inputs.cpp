@@ -16,10 +16,11 @@ void Axis::input_edge(const gpio::InputEvent& e) {
 
   if (e.line == InputLine::kEncA || e.line == InputLine::kEncB) {
     // X4 decoding runs on every edge so the decoder never loses the phase; the register counts
-    // only while the quadrature encoder is configured (moving or not, digest 7.12).
+    // only while the quadrature encoder is configured (moving or not, digest 7.12), and only the
+    // edges after its last write (AxisState::write_encoder).
     const int d =
         quadrature_.update(st_.inputs.level(InputLine::kEncA), st_.inputs.level(InputLine::kEncB));
-    if (d != 0 && st_.configured && st_.cfg.quadrature_encoder) {
+    if (d != 0 && st_.configured && st_.cfg.quadrature_encoder && st_.counts_encoder_edge(e.t)) {
       st_.encoder += d;
       encoder_changed(e.t);
     }

@@ -3,6 +3,7 @@
 // the motion under way and the registers, with the helpers the manuals' rules share (starting a
 // move, the start checks, the stops). Each feature (homing.hpp, manual_move.hpp, blend.hpp,
 // encoder.hpp, follower.hpp) owns its own state and gets this one by reference.
+#include <algorithm>
 #include <cstdarg>
 #include <cstdint>
 #include <optional>
@@ -78,6 +79,17 @@ struct AxisState {
   std::int64_t origin = 0;   // pulse count at which the reported position is 0
   std::int64_t encoder = 0;  // encoder register (X4 counts, or own steps with diagnostic feedback)
   std::int64_t capture = 0;  // captured value
+  // Writing the register (homing, Preset Encoder, a configuration) sets it as of an instant: the
+  // scan's, or the axis' last step if that is later. An A/B edge stamped at or before it but
+  // delivered after it (input events reach the control thread some time after the pulse thread
+  // has stepped and reported the motion's end) is motion of before the write: not counted.
+  void write_encoder(std::int64_t value) noexcept {
+    encoder = value;
+    encoder_written_at = std::max(scan_now, motion.last_step_time());
+  }
+  bool counts_encoder_edge(Nanos t) const noexcept { return t > encoder_written_at; }
+  Nanos scan_now = 0;            // the running scan's time (Axis::scan)
+  Nanos encoder_written_at = 0;  // see write_encoder()
 
   bool moving() const noexcept { return activity != Activity::kIdle; }
   std::int64_t position() const noexcept { return motion.steps() - origin; }

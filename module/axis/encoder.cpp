@@ -91,7 +91,7 @@ void Encoder::preset(const AxisCommand& c) {
     ax_.reject();
     return;
   }
-  ax_.encoder = *c.target;  // position and Move Complete are left as they are
+  ax_.write_encoder(*c.target);  // position and Move Complete are left as they are
 }
 
 // ---- Per scan --------------------------------------------------------------------------------

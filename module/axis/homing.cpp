@@ -273,7 +273,7 @@ void Homing::event(Event ev) {
       // too will be reset to zero." Done once the motion has ended, so the step count is final.
       ax_.activity = Activity::kIdle;
       ax_.set_position(0);
-      ax_.encoder = 0;
+      ax_.write_encoder(0);
       ax_.capture = 0;
       ax_.status.at_home = true;            // 3601-AH-01
       ax_.status.position_invalid = false;  // 3601-PI-C1

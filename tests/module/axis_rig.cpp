@@ -86,8 +86,12 @@ void AxisRig::deliver_inputs() {
   std::array<gpio::InputEvent, 256> events{};
   for (;;) {
     const std::size_t n = sim_->wait_events(events, 0);
-    for (std::size_t i = 0; i < n; ++i) axis_->on_input(events[i]);
-    if (n < events.size()) return;
+    pending_inputs_.insert(pending_inputs_.end(), events.begin(), events.begin() + n);
+    if (n < events.size()) break;
+  }
+  while (!pending_inputs_.empty() && pending_inputs_.front().t + input_delay_ <= now_) {
+    axis_->on_input(pending_inputs_.front());
+    pending_inputs_.pop_front();
   }
 }
 

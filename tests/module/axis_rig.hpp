@@ -5,6 +5,7 @@
 // are tested once and every module inherits them.
 #include <gtest/gtest.h>
 
+#include <deque>
 #include <memory>
 #include <optional>
 
@@ -48,6 +49,9 @@ class AxisRig {
   // The control thread held off the CPU for `d` (< kScan) between a scan and its status, while
   // the pulse thread and the planner go on: what a loaded machine does now and then.
   void preempt_between_scan_and_status(Nanos d) noexcept { scan_to_status_ = d; }
+  // Input events reach the axis only `d` after their stamp (at the first scan or edge after):
+  // the line-event path of a loaded machine, behind the pulse thread's own feedback.
+  void delay_inputs(Nanos d) noexcept { input_delay_ = d; }
   void run_for(Nanos d);
   // Runs until the axis is at rest (no direction shown), at most `limit`.
   bool wait_idle(Nanos limit = 30 * kNsPerSec);
@@ -77,6 +81,8 @@ class AxisRig {
   Nanos next_scan_;
   Nanos next_plan_;
   Nanos scan_to_status_ = 0;
+  Nanos input_delay_ = 0;
+  std::deque<gpio::InputEvent> pending_inputs_;  // taken from the machine, not yet delivered
   std::uint32_t forced_mask_ = 0;
   std::uint32_t forced_levels_ = 0;
 };

@@ -488,6 +488,25 @@ TEST_P(AxisShared, HI_06_HomeWithLimitDuringHomingPerModule) {
   EXPECT_EQ(rig_.status().home_invalid, rules().homing_home_with_limit_is_error);
 }
 
+// 3601-AH-01 (3202 alike): a completed homing zeroes the position and the encoder as of one
+// instant. Input events reach the control thread some time after the pulse thread has reported
+// the motion's end (a loaded machine): the A/B edges of the last steps, delivered after the zero,
+// are motion of before it and must not count after it.
+TEST_P(AxisShared, AH_01_EncoderEdgesDeliveredAfterTheHomingsEndDoNotCountPastTheZero) {
+  if (!rules().has_encoder) GTEST_SKIP() << "no encoder input on this module";
+  rig_.configure();
+  rig_.delay_inputs(3'500 * kNsPerUs);
+  rig_.command(CommandKind::kFindHomeCw, {.target = 0, .speed = 5'000});
+  ASSERT_TRUE(rig_.run_until_true([this] { return rig_.status().at_home; }, 30 * kNsPerSec));
+  const std::int64_t rest = rig_.motor();
+  rig_.scans(20);  // every event delivered
+  EXPECT_EQ(rig_.motor(), rest);
+  EXPECT_EQ(rig_.status().position, 0);
+  EXPECT_EQ(rig_.status().encoder, 0);
+  // The home edge came late too: the creep went a few steps past it, and the zero is there.
+  EXPECT_GT(rest, 5'000);
+}
+
 std::string module_name(const ::testing::TestParamInfo<ModuleType>& info) {
   return std::to_string(static_cast<unsigned>(info.param));
 }
