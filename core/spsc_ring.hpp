@@ -57,6 +57,8 @@ class SpscRing {
   void pop() noexcept {
     tail_.store(tail_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
   }
+  // How many elements the consumer has popped in all (it tells whether a pass popped any).
+  std::size_t popped() const noexcept { return tail_.load(std::memory_order_relaxed); }
   bool try_pop(T& out) noexcept {
     const T* p = peek();
     if (p == nullptr) return false;

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <thread>
 
 #include "core/clock.hpp"
 #include "rt/edge.hpp"
@@ -97,13 +98,29 @@ class StepHistory {
     e.t.store(t, std::memory_order_release);
     e.steps.store(steps, std::memory_order_release);
     count_.store(i + 1, std::memory_order_release);
+    stamping_.store((stamping_.load(std::memory_order_relaxed) | 1) + 1, std::memory_order_release);
   }
+
+  // Pulse thread, before it reads the clock a step will be stamped with: until record() (or
+  // withdraw(), no step after all) readers wait. Otherwise a reader asking about an event
+  // stamped after that clock read, while the pulse thread is between the read and the record,
+  // would miss the step (a registration or capture one step short). Sequentially consistent: the
+  // store is visible before the clock read that follows it (the vDSO's counter read is ordered).
+  void announce() noexcept {
+    stamping_.store(stamping_.load(std::memory_order_relaxed) | 1, std::memory_order_seq_cst);
+  }
+  void withdraw() noexcept {
+    stamping_.store((stamping_.load(std::memory_order_relaxed) | 1) + 1, std::memory_order_release);
+  }
+  // A step announced and not yet recorded or withdrawn (tests).
+  bool stamping() const noexcept { return (stamping_.load(std::memory_order_acquire) & 1) != 0; }
 
   // Step count at time t: the count after the last step at or before t (0 if t is before the
   // first step ever). `now_steps` is returned when no step has been recorded yet. Returns false
   // if t is older than the history still held, or if the writer kept overwriting the entries
   // being read (only if the reader is preempted for most of kSize steps).
   bool steps_at(Nanos t, std::int64_t now_steps, std::int64_t& out) const noexcept {
+    wait_for_stamp();
     for (int attempt = 0; attempt < 4; ++attempt) {
       const std::uint64_t n = count_.load(std::memory_order_acquire);
       if (n == 0) {
@@ -139,13 +156,27 @@ class StepHistory {
 
  private:
   static constexpr std::size_t kMargin = 64;
+  // Readers: until no step is between its clock read and its record (announce()). The pulse
+  // thread is there for well under a microsecond unless preempted (not real-time, or a loaded
+  // test machine): then yield to it, for at most kStampWait; after that, answer as things are.
+  static constexpr Nanos kStampWait = 10 * kNsPerMs;
+  void wait_for_stamp() const noexcept {
+    if ((stamping_.load(std::memory_order_acquire) & 1) == 0) return;
+    const Nanos give_up = monotonic_now() + kStampWait;
+    for (int spins = 0; (stamping_.load(std::memory_order_acquire) & 1) != 0; ++spins) {
+      if (spins < 100) continue;
+      if (monotonic_now() > give_up) return;
+      std::this_thread::yield();
+    }
+  }
   struct Entry {
     std::atomic<Nanos> t{0};
     std::atomic<std::int64_t> steps{0};
   };
   Entry entries_[kSize];
-  std::atomic<std::uint64_t> count_{0};    // entries completely written
-  std::atomic<std::uint64_t> writing_{0};  // entries whose writing has begun
+  std::atomic<std::uint64_t> count_{0};     // entries completely written
+  std::atomic<std::uint64_t> writing_{0};   // entries whose writing has begun
+  std::atomic<std::uint64_t> stamping_{0};  // odd: a step is being stamped (announce())
 };
 
 }  // namespace stepmod::rt

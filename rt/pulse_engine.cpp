@@ -38,9 +38,10 @@ Nanos PulseEngine::next_due() noexcept {
   for (Cell& c : cells_) c.wait_after = kNever;
   for (unsigned axis = 0; axis < axes_.size(); ++axis) {
     Nanos refill_at = 0;
-    const Edge* e = prepare_head(axis, refill_at);
+    bool unsettled = false;
+    const Edge* e = prepare_head(axis, refill_at, unsettled);
     heads_[axis] = e;
-    if (e == nullptr && in_motion_[axis] != 0) {
+    if (e == nullptr && (in_motion_[axis] != 0 || unsettled)) {
       starved = true;
       // refill_at is a planned time of the motion: on the wire it comes its slip later.
       dry_until = std::min(dry_until, refill_at == 0 ? 0 : refill_at + slip_of(axis));
@@ -70,26 +71,51 @@ Nanos PulseEngine::next_due() noexcept {
   return best;
 }
 
-const Edge* PulseEngine::prepare_head(unsigned axis, Nanos& refill_at) noexcept {
+const Edge* PulseEngine::prepare_head(unsigned axis, Nanos& refill_at, bool& unsettled) noexcept {
   const AxisLink& link = axes_[axis];
   if (link.control != nullptr &&
       link.control->abort_epoch.load(std::memory_order_acquire) > abort_seen_[axis]) {
     apply_abort(axis);
   }
-  // Every call, not only when an abort arrives: the planner may still push edges of a motion
-  // it has not yet learnt was aborted, and aborted edges queued behind a GPO edge reach the
-  // head only after it has been executed.
-  drop_stale(axis);
-  if (link.control != nullptr) link.control->cut.before_next(*link.edges);  // edge_cut.hpp
-  drop_beyond_limit(axis);
-  // Before the peek (AxisControl::refill_at): a promise that came with a refill also makes the
-  // edges pushed before it visible.
-  refill_at = link.control != nullptr ? link.control->refill_at.load(std::memory_order_acquire) : 0;
-  const Edge* e = link.edges->peek();
+  // Bounded, as everything in the pulse thread: while the planner pushes edges as fast as the
+  // checks drop them, the axis has nothing ready and is polled again at once (starved, refill_at
+  // 0); an edge is never written unchecked.
+  const Edge* e = nullptr;
+  bool examined = false;
+  for (int pass = 0; pass < kHeadPasses && !examined; ++pass) {
+    examined = examine_head(axis, refill_at, e);
+  }
+  unsettled = !examined;
+  if (unsettled) {
+    refill_at = 0;
+    return nullptr;
+  }
   if (e != nullptr && (e->flags & edge_flag::kMotion) != 0 && e->epoch != track_[axis].epoch) {
     bind(axis, *e);
   }
   return e;
+}
+
+// One pass of the head's checks; true if they all looked at the head `e` it returns. The planner
+// pushes meanwhile: an edge pushed into a ring a check found empty, or behind one it popped, has
+// not been looked at by every check, and would otherwise be written unchecked (a stale edge of a
+// stopped motion, a step beyond a cap).
+bool PulseEngine::examine_head(unsigned axis, Nanos& refill_at, const Edge*& e) noexcept {
+  const AxisLink& link = axes_[axis];
+  SpscRing<Edge>& ring = *link.edges;
+  const std::size_t popped = ring.popped();
+  const Edge* const head = ring.peek();
+  // Every call, not only when an abort arrives: the planner may still push edges of a motion
+  // it has not yet learnt was aborted, and aborted edges queued behind a GPO edge reach the
+  // head only after it has been executed.
+  drop_stale(axis);
+  if (link.control != nullptr) link.control->cut.before_next(ring);  // edge_cut.hpp
+  drop_beyond_limit(axis);
+  // Before the peek (AxisControl::refill_at): a promise that came with a refill also makes the
+  // edges pushed before it visible.
+  refill_at = link.control != nullptr ? link.control->refill_at.load(std::memory_order_acquire) : 0;
+  e = ring.peek();
+  return ring.popped() == popped && e == head;
 }
 
 bool PulseEngine::waits_for_group(unsigned axis, const Edge& e) const noexcept {
@@ -321,7 +347,28 @@ void PulseEngine::write(unsigned axis, OutputLine line, bool level, Nanos t) noe
   }
 }
 
+void PulseEngine::announce() noexcept {
+  if (next_axis_ < 0) return;
+  const auto axis = static_cast<unsigned>(next_axis_);
+  const Edge* e = heads_[axis];
+  StepHistory* h = axes_[axis].history;
+  if (h == nullptr || e == nullptr || e->dpos == 0 || announced_ != nullptr) return;
+  h->announce();
+  announced_ = h;
+}
+
+void PulseEngine::withdraw() noexcept {
+  if (announced_ == nullptr) return;
+  announced_->withdraw();
+  announced_ = nullptr;
+}
+
 void PulseEngine::execute_one(Nanos write_time) noexcept {
+  execute_head(write_time);
+  withdraw();  // if the announced step was not written (cut by the guard), or recorded already
+}
+
+void PulseEngine::execute_head(Nanos write_time) noexcept {
   if (next_axis_ < 0) return;
   const auto axis = static_cast<unsigned>(next_axis_);
   next_axis_ = -1;  // a second call without next_due() must not run a possibly later edge
@@ -371,7 +418,10 @@ void PulseEngine::execute_one(Nanos write_time) noexcept {
       const std::int64_t steps = fb->steps.load(std::memory_order_relaxed) + e.dpos;
       // History first: a reader that sees the new count in `steps` and then asks the history
       // for a time after this step finds it there.
-      if (link.history != nullptr) link.history->record(write_time, steps);
+      if (link.history != nullptr) {
+        link.history->record(write_time, steps);
+        if (announced_ == link.history) announced_ = nullptr;  // record() ended the announcement
+      }
       fb->last_step_t.store(write_time, std::memory_order_relaxed);
       fb->steps.store(steps, std::memory_order_release);
     }

@@ -40,6 +40,12 @@ class PulseEngine {
   // write, the feedback and the trace with `write_time`; lateness = write_time - edge time.
   void execute_one(Nanos write_time) noexcept;
 
+  // Between next_due() and the clock read that stamps execute_one(): if the edge found is a
+  // step, its axis' history is told a step is being stamped (StepHistory::announce), so that
+  // no reader misses it. execute_one() ends that; withdraw() ends it when the edge is not due.
+  void announce() noexcept;
+  void withdraw() noexcept;
+
   // As of the last next_due(): some axis is in a motion (its last executed motion edge was not
   // the motion's last) and has no edge queued: the planner is behind, an edge may come any time.
   bool starved() const noexcept { return starved_; }
@@ -93,8 +99,12 @@ class PulseEngine {
 
   // Applies what was asked of `axis` since the last look (immediate stop, cut, step cap), binds
   // the motion of a head edge not yet bound, and returns the head edge (null: empty ring);
-  // `refill_at`: the planner's promise for its next edge (AxisControl::refill_at).
-  const Edge* prepare_head(unsigned axis, Nanos& refill_at) noexcept;
+  // `refill_at`: the planner's promise for its next edge (AxisControl::refill_at). `unsettled`:
+  // null because edges kept arriving while the checks ran (look again at once).
+  const Edge* prepare_head(unsigned axis, Nanos& refill_at, bool& unsettled) noexcept;
+  // One pass of the checks; true if every check looked at the head `e` it returns.
+  bool examine_head(unsigned axis, Nanos& refill_at, const Edge*& e) noexcept;
+  static constexpr int kHeadPasses = 4;  // prepare_head: passes of examine_head at most
   // Within a group, edges go out in planned-time order across the members: a member's edge
   // planned after the promised next edge of a starved member (its ring ran dry mid-motion: the
   // planner, held off, refills the members one after the other) waits until that edge has come;
@@ -102,6 +112,7 @@ class PulseEngine {
   // the member refilled first would run ahead of the other and the path would come apart.
   bool waits_for_group(unsigned axis, const Edge& e) const noexcept;
   void apply_abort(unsigned axis) noexcept;
+  void execute_head(Nanos write_time) noexcept;  // execute_one() but the announcement's end
   void write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept;
   void drop_stale(unsigned axis) noexcept;
   void drop_beyond_limit(unsigned axis) noexcept;
@@ -132,7 +143,8 @@ class PulseEngine {
   std::vector<std::uint32_t> abort_seen_;
   SpscRing<TraceRecord>* trace_;
   LatenessStats stats_;
-  int next_axis_ = -1;  // axis of the edge next_due() found
+  int next_axis_ = -1;                // axis of the edge next_due() found
+  StepHistory* announced_ = nullptr;  // the history announce() told of a step, until it ends
   bool starved_ = false;
   Nanos dry_until_ = kNever;
   std::atomic<std::uint64_t> trace_dropped_{0};

@@ -191,6 +191,7 @@ void PulseThread::loop() noexcept {
   while (!stop_.load(std::memory_order_acquire)) {
     loops_.store(++loops, std::memory_order_relaxed);
     const Nanos t = engine_.next_due();
+    engine_.announce();  // before the clock read that would stamp a step (StepHistory::announce)
     const Nanos now = monotonic_now();
     if (t != kNever && t <= now) {
       // Stamped with the clock read just before the write: lateness includes the loop's own
@@ -199,6 +200,7 @@ void PulseThread::loop() noexcept {
       edges_.store(++edges, std::memory_order_relaxed);
       continue;
     }
+    engine_.withdraw();
     doorbell.see(doorbell_.load(std::memory_order_acquire), now);
     if (budget.window_over(now)) budget.close_window(now, thread_cpu_now());
     const Nanos spin = std::min(adaptive.spin(), budget.spin_cap());

@@ -355,6 +355,41 @@ TEST(PulseEngine, StepCountCapCountsDownForACcwMotion) {
   EXPECT_EQ(rig.fb(0).finished_epoch.load(), 2u);
 }
 
+// A step's stamp is announced to its history before the clock read (StepHistory::announce):
+// every way out of the loop's turn ends the announcement, or readers would wait for nothing.
+TEST(PulseEngine, AStepAnnouncedIsRecordedWithdrawnOrCutAndNeverLeftPending) {
+  Rig rig(1);
+  rig.engine->set_late_limit(kNsPerMs);
+  auto& ring = rig.ring(0);
+  for (int i = 0; i < 3; ++i) push_step(ring, 100'000 + i * 50'000, kWidth, 7, +1, 0, i == 2);
+  const StepHistory& h = rig.history(0);
+  // Not due yet: announced, then withdrawn.
+  Nanos t = rig.engine->next_due();
+  rig.engine->announce();
+  EXPECT_TRUE(h.stamping());
+  rig.engine->withdraw();
+  EXPECT_FALSE(h.stamping());
+  // Written: the record ends it.
+  t = rig.engine->next_due();
+  rig.engine->announce();
+  rig.engine->execute_one(t);
+  EXPECT_FALSE(h.stamping());
+  EXPECT_EQ(rig.fb(0).steps.load(), 1);
+  // A trailing edge is no step: nothing announced.
+  t = rig.engine->next_due();
+  rig.engine->announce();
+  EXPECT_FALSE(h.stamping());
+  rig.engine->execute_one(t);
+  // Cut by the guard (5 ms late): not written, and the announcement ends.
+  t = rig.engine->next_due();
+  rig.engine->announce();
+  EXPECT_TRUE(h.stamping());
+  rig.engine->execute_one(t + 5 * kNsPerMs);
+  EXPECT_FALSE(h.stamping());
+  EXPECT_EQ(rig.fb(0).late_faults.load(), 1u);
+  EXPECT_EQ(rig.fb(0).steps.load(), 1);
+}
+
 // ---- Late-edge guard (issue 12): a fault of the axis, never a burst --------------------------
 
 constexpr Nanos kLimit = 1'000'000;  // 1 ms, stepmodd's default
