@@ -188,12 +188,13 @@ class Console:
     def wait_message(self, pattern, timeout=10):
         try:
             return wait_for(lambda: re.search(pattern, self.message()), timeout,
-                            "message /%s/ (last: %r)" % (pattern, self.message()))
+                            "message /%s/" % pattern)
         except AssertionError as e:
             # The deadman's limit is 250 ms: a page whose timers stalled longer (a loaded machine)
             # lost the lease, and the daemon stopped the axes, as it must.
             gap = self.d.execute_script("return window.consoleStats.maxTickGap")
-            raise AssertionError("%s; the page's longest timer gap: %s ms" % (e, gap)) from None
+            raise AssertionError("%s (the page says %r); the page's longest timer gap: %s ms" %
+                                 (e, self.message(), gap)) from None
 
     def take(self):
         self.click("#take")
@@ -313,6 +314,30 @@ class Web3601(unittest.TestCase):
         time.sleep(1.1)  # stepmodctl in an earlier test was a PLC: its heartbeat goes quiet
         self.c.take()
         self.c.configure_plain()
+
+    def test_a_batch_sampled_before_the_take_does_not_end_the_hold(self):
+        """stepmod-web's sampler and its replies are separate threads: a batch sampled just before
+        the take can reach the page after the reply. It must not end the page's hold (the page
+        would stop its keep-alives and the lease would expire under the operator); a batch that
+        shows the lease free after one has shown it held does."""
+        free = ("{type: 'batch', t_us: [], pos: [], status: [], health: {names: '', flags: 0},"
+                " plc: {stale: false, quiet_ms: 5000, heartbeat: 0}, lease: {holder: 0}}")
+        # The batch that shows the lease free arrives right behind the take's reply.
+        self.c.d.execute_script(
+            "const ws = state.ws, handle = ws.onmessage;"
+            "ws.onmessage = (ev) => { handle(ev); const m = JSON.parse(ev.data);"
+            "  if (m.type === 'reply' && m.op === 'take') {"
+            "    ws.onmessage = handle; handle({data: JSON.stringify(%s)}); } };" % free)
+        time.sleep(1.1)  # stepmodctl in an earlier test was a PLC: its heartbeat goes quiet
+        self.c.take()
+        self.assertRegex(self.c.message(), r"take: lease taken")
+        wait_for(lambda: re.search(r"held by this console", self.c.text("#lease")), 5,
+                 "the page showing the lease held (%r)" % self.c.text("#lease"))
+        time.sleep(0.5)  # the keep-alives went on: still held
+        self.assertRegex(self.c.text("#lease"), r"held by this console")
+        self.c.d.execute_script("onMessage({data: JSON.stringify(%s)})" % free)
+        self.assertRegex(self.c.message(), r"the lease ended")
+        self.assertFalse(self.c.d.execute_script("return state.holding"))
 
     def test_refused_move_shows_its_reason(self):
         self.take_configured()

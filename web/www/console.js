@@ -5,6 +5,7 @@
 "use strict";
 
 const state = { ws: null, module: null, units: [], holding: false, myLease: false,
+                leaseSeen: false, takenAt: 0,
                 batches: 0, samples: 0, rateT0: performance.now(), jog: null };
 const $ = (id) => document.getElementById(id);
 window.consoleStats = { batches: 0, samples: 0, rate: 0, sampleRate: 0 };
@@ -187,7 +188,13 @@ function showBatch(b) {
     (b.plc.quiet_ms < 1000 ? `heartbeat live (${b.plc.heartbeat})` : `no heartbeat for ${(b.plc.quiet_ms / 1000).toFixed(1)} s`);
   const holder = b.lease.holder;
   state.myLease = state.holding && holder !== 0;
-  if (state.holding && holder === 0) { state.holding = false; say("the lease ended (expired or freed): the axes were stopped", true); }
+  // The batches and the replies come from separate threads of stepmod-web: a batch sampled just
+  // before the take can arrive after its reply. "Free" ends this page's hold only once a batch
+  // has shown the lease held, or a second after the take; else the page would stop its
+  // keep-alives and the lease would expire under the operator.
+  if (state.holding && holder !== 0) state.leaseSeen = true;
+  const stale = !state.leaseSeen && performance.now() - state.takenAt < 1000;
+  if (state.holding && holder === 0 && !stale) { state.holding = false; say("the lease ended (expired or freed): the axes were stopped", true); }
   $("lease").textContent = holder === 0 ? "free" : (state.holding ? `held by this console (process ${holder})` : `held by process ${holder}`);
 }
 
@@ -196,7 +203,7 @@ function onMessage(ev) {
   if (m.type === "hello") buildUnits(m);
   else if (m.type === "batch") showBatch(m);
   else if (m.type === "reply") {
-    if (m.op === "take" && m.ok) state.holding = true;
+    if (m.op === "take" && m.ok) { state.holding = true; state.leaseSeen = false; state.takenAt = performance.now(); }
     if (m.op === "release" && m.ok) state.holding = false;
     const why = m.reason && m.reason.seq && !m.ok ? ` — ${m.reason.text}` : "";
     say(`${m.op}: ${m.message}${why}`, !m.ok);
