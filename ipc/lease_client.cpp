@@ -1,5 +1,8 @@
 #include "ipc/lease_client.hpp"
 
+#include <pthread.h>
+#include <sched.h>
+
 namespace stepmod::ipc {
 
 LeaseClient::LeaseClient(Client& client, std::uint32_t pid)
@@ -28,6 +31,10 @@ LeaseClient::Take LeaseClient::take(std::chrono::milliseconds quiet) {
   taken_ = true;
   stop_ = false;
   renewer_ = std::thread([this] { renew_loop(); });
+  // Set from here, before its first renewal (kRenewEvery away), so that take() reports it.
+  sched_param sp{};
+  sp.sched_priority = kRenewerPriority;
+  renewer_realtime_ = pthread_setschedparam(renewer_.native_handle(), SCHED_FIFO, &sp) == 0;
   return Take::kTaken;
 }
 
@@ -48,6 +55,7 @@ void LeaseClient::release() {
   if (renewer_.joinable()) renewer_.join();
   lease_.release();
   taken_ = false;
+  renewer_realtime_ = false;
 }
 
 }  // namespace stepmod::ipc

@@ -4,6 +4,12 @@
 // motion, so that the daemon stops the axes if the tool dies or hangs). It is ipc::Lease
 // (ipc/lease.hpp, the one lease implementation) plus the check that no PLC is in control and a
 // thread that renews it every 50 ms while held.
+//
+// The renewer runs at SCHED_FIFO when the process may (root, CAP_SYS_NICE or RLIMIT_RTPRIO): the
+// daemon's watcher is its control thread, itself SCHED_FIFO, and a renewer at normal priority
+// held off the CPU for the lease's 350 ms of slack by ordinary load (busy processes, two daemons'
+// pulse threads on a two-core board) had its lease expire and every axis stop mid-move. Watchdog
+// daemons do the same for the same reason. It wakes for a few microseconds every 50 ms.
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -20,6 +26,9 @@ class LeaseClient {
   static constexpr std::chrono::milliseconds kAhead = Lease::kAhead;
   static constexpr std::chrono::milliseconds kRenewEvery{50};
   static_assert(kRenewEvery < Lease::kRenewAtLeastEvery);
+  // Above every normal thread and stepmodd's trace writer (SCHED_FIFO 1), below its planner,
+  // control and pulse threads at the default [rt] priority (60, 70, 80).
+  static constexpr int kRenewerPriority = 5;
 
   // `pid`: the holder id written into the image (this process' by default).
   explicit LeaseClient(Client& client, std::uint32_t pid = 0);
@@ -40,6 +49,8 @@ class LeaseClient {
   void release();
   // Ours, as far as the image says (the daemon frees an expired lease).
   bool held() const noexcept { return lease_.held(); }
+  // The renewer runs at SCHED_FIFO kRenewerPriority (false: the process may not, or not taken).
+  bool renewer_realtime() const noexcept { return renewer_realtime_; }
   std::uint32_t pid() const noexcept { return lease_.id(); }
 
  private:
@@ -52,6 +63,7 @@ class LeaseClient {
   std::condition_variable cv_;
   bool stop_ = false;
   bool taken_ = false;
+  bool renewer_realtime_ = false;
   std::thread renewer_;
 };
 

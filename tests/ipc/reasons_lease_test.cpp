@@ -2,10 +2,15 @@
 // lease (3.5, docs/commissioning.md): the daemon's LeaseWatch, the tools' Lease (explicit renew)
 // and LeaseClient (renewed by its thread) over a real shared-memory image.
 #include <gtest/gtest.h>
+#include <pthread.h>
+#include <sched.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <thread>
 
@@ -61,6 +66,41 @@ TEST(ReasonBlock, AtOffset448PlusSixtyFourPerAxisUnderTheInputSeqlock) {
   EXPECT_STREQ(reinterpret_cast<const char*>(raw + 448 + 64 + 8),
                "3602-CE-06: Vp 400 is below Vs 1000");
   EXPECT_EQ(client.read_reason(0).seq, 0u);  // axis 1 untouched
+}
+
+// Threads of this process the kernel runs at SCHED_FIFO `priority` (/proc/self/task/*/stat:
+// rt_priority and policy, the 40th and 41st fields; the 3rd onwards follow the name's ')').
+int fifo_threads_at(int priority) {
+  int n = 0;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
+    std::ifstream in(task.path() / "stat");
+    std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto close = stat.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream fields(stat.substr(close + 2));
+    std::string f;
+    int rt_priority = -1;
+    int policy = -1;
+    for (int i = 3; i <= 41 && fields >> f; ++i) {
+      if (i == 40) rt_priority = std::stoi(f);
+      if (i == 41) policy = std::stoi(f);
+    }
+    if (policy == SCHED_FIFO && rt_priority == priority) ++n;
+  }
+  return n;
+}
+
+// Whether this process may run a thread at SCHED_FIFO `priority` (root, CAP_SYS_NICE or
+// RLIMIT_RTPRIO), asked of a probe thread of its own.
+bool may_run_fifo_at(int priority) {
+  bool ok = false;
+  std::thread probe([&] {
+    sched_param sp{};
+    sp.sched_priority = priority;
+    ok = pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp) == 0;
+  });
+  probe.join();
+  return ok;
 }
 
 class Lease : public ::testing::Test {
@@ -156,6 +196,23 @@ TEST_F(Lease, RefusedWhileAPlcHeartbeatIsLive) {
   // A second tool finds it held.
   LeaseClient other(client_, 4545);
   EXPECT_EQ(other.take(std::chrono::milliseconds(1)), LeaseClient::Take::kHeldByOther);
+}
+
+// The daemon's watcher is its SCHED_FIFO control thread: a renewer at normal priority held off
+// the CPU by ordinary load let stepmodctl's lease expire mid-move (CI, Debian 13 stage). The
+// renewer runs at SCHED_FIFO kRenewerPriority whenever the process may, and the kernel says so.
+TEST_F(Lease, RenewerRunsAtSchedFifoWheneverTheProcessMay) {
+  const int prio = LeaseClient::kRenewerPriority;
+  const bool may = may_run_fifo_at(prio);
+  const int before = fifo_threads_at(prio);
+  LeaseClient tool(client_, 4646);
+  image_.publish_inputs(ImageWords{}, Health{STEPMOD_HEALTH_PLC_STALE, 0, 0});
+  ASSERT_EQ(tool.take(std::chrono::milliseconds(1)), LeaseClient::Take::kTaken);
+  EXPECT_EQ(tool.renewer_realtime(), may);
+  EXPECT_EQ(fifo_threads_at(prio), before + (may ? 1 : 0));
+  tool.release();
+  EXPECT_FALSE(tool.renewer_realtime());
+  EXPECT_EQ(fifo_threads_at(prio), before);  // the renewer is gone with the lease
 }
 
 // The explicit core (stepmod-web's deadman): held while renewed, expired by the daemon once the
