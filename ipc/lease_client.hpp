@@ -7,9 +7,10 @@
 //
 // The renewer runs at SCHED_FIFO when the process may (root, CAP_SYS_NICE or RLIMIT_RTPRIO): the
 // daemon's watcher is its control thread, itself SCHED_FIFO, and a renewer at normal priority
-// held off the CPU for the lease's 350 ms of slack by ordinary load (busy processes, two daemons'
-// pulse threads on a two-core board) had its lease expire and every axis stop mid-move. Watchdog
-// daemons do the same for the same reason. It wakes for a few microseconds every 50 ms.
+// held off the CPU for the lease's 350 ms of slack (CI's Debian 13 stage: ctest -j 2 on two
+// cores, test daemons' real-time threads beside other tests) had its lease expire and the axis
+// stop mid-move. Watchdog daemons do the same for the same reason. It wakes for a few
+// microseconds every 50 ms.
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
