@@ -14,7 +14,12 @@ struct ModbusOptions {
   std::uint16_t port = 1502;
   std::uint8_t unit_id = 1;
   bool writes = false;  // true: a master may write the output words (it then is the PLC)
+  // Connections served at once; a new one beyond them closes the longest-idle one
+  // (ipc/modbus_connection.hpp).
   unsigned max_clients = 4;
+  // A connection nothing has come from for this long is closed: an idle socket does not hold one
+  // of the max_clients places for ever.
+  unsigned idle_timeout_ms = 5000;
   // Source addresses/networks a connection may come from; empty: any (the listen address is
   // then the only gate).
   std::vector<AllowNet> allow;

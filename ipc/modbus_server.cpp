@@ -29,13 +29,7 @@ constexpr std::size_t kMaxPendingOut = std::size_t{64} * 1024;
 // Bytes read per recv(): whole frames of a pipelining client at once.
 constexpr std::size_t kReadChunk = 4096;
 
-struct Connection {
-  int fd = -1;
-  std::string peer;
-  std::vector<std::uint8_t> in;
-  std::vector<std::uint8_t> out;
-  Nanos frame_start = 0;  // when the first byte of the incomplete frame in `in` came; 0: none
-};
+using Connection = ModbusConnection;
 
 std::string peer_name(const sockaddr_in& a) {
   char host[INET_ADDRSTRLEN] = "?";
@@ -43,18 +37,24 @@ std::string peer_name(const sockaddr_in& a) {
   return std::string(host) + ":" + std::to_string(ntohs(a.sin_port));
 }
 
-// Counts refusals and logs them at most once per period.
-struct RefusalLog {
-  Nanos last = 0;
-  std::uint64_t quiet = 0;  // refused since the last line
-  void refused(Nanos now, const std::string& peer, const char* why) {
-    ++quiet;
-    if (last != 0 && now - last < ModbusServer::kRefusalLogPeriod) return;
-    spdlog::warn("modbus: connection from {} refused ({}); {} refused since the last such line",
-                 peer, why, quiet);
-    last = now;
-    quiet = 0;
+// Counts events of one kind and lets a log line about them through at most once per period: a
+// client that connects in a loop cannot flood the journal.
+class LogThrottle {
+ public:
+  // Counts one event; true when a line is due, with `since` = the events since the last line
+  // (this one included).
+  bool count(Nanos now, std::uint64_t& since) {
+    ++quiet_;
+    if (last_ != 0 && now - last_ < ModbusServer::kLogPeriod) return false;
+    since = quiet_;
+    last_ = now;
+    quiet_ = 0;
+    return true;
   }
+
+ private:
+  Nanos last_ = 0;
+  std::uint64_t quiet_ = 0;
 };
 }  // namespace
 
@@ -64,7 +64,9 @@ struct ModbusServer::Impl {
   int listen_fd = -1;
   int wake_fd = -1;
   std::list<Connection> clients;
-  RefusalLog refusals;
+  LogThrottle refused_log;
+  LogThrottle evicted_log;
+  LogThrottle idle_log;
 
   ~Impl() {
     for (Connection& c : clients) ::close(c.fd);
@@ -72,10 +74,13 @@ struct ModbusServer::Impl {
     if (wake_fd >= 0) ::close(wake_fd);
   }
   void accept_one(const ModbusOptions& o);
+  void make_room(const std::string& newcomer, Nanos now);
+  bool serve(Connection& c, short revents, std::uint8_t unit_id);
   bool receive(Connection& c, std::uint8_t unit_id);
   bool answer(Connection& c, std::uint8_t unit_id);
   bool send_pending(Connection& c);
-  int poll_timeout_ms(Nanos now) const;
+  bool timed_out(const Connection& c, Nanos now, Nanos idle_timeout);
+  int poll_timeout_ms(Nanos now, Nanos idle_timeout) const;
 };
 
 namespace {
@@ -138,16 +143,49 @@ void ModbusServer::Impl::accept_one(const ModbusOptions& o) {
       ::accept4(listen_fd, reinterpret_cast<sockaddr*>(&a), &len, SOCK_NONBLOCK | SOCK_CLOEXEC);
   if (fd < 0) return;
   const std::string peer = peer_name(a);
+  const Nanos now = monotonic_now();
+  std::uint64_t since = 0;
   if (!address_allowed(o.allow, a.sin_addr.s_addr)) {
-    refusals.refused(monotonic_now(), peer, "not in [modbus] allow");
+    if (refused_log.count(now, since)) {
+      spdlog::warn(
+          "modbus: connection from {} refused (not in [modbus] allow); {} refused since the last "
+          "such line",
+          peer, since);
+    }
     ::close(fd);
-  } else if (clients.size() >= o.max_clients) {
-    // Over [modbus] max_clients: the connection is closed at once.
-    refusals.refused(monotonic_now(), peer, "max_clients connected already");
-    ::close(fd);
-  } else {
-    clients.push_back(Connection{fd, peer, {}, {}, 0});
+    return;
   }
+  if (clients.size() >= o.max_clients) make_room(peer, now);
+  Connection c;
+  c.fd = fd;
+  c.peer = peer;
+  c.last_heard = now;
+  clients.push_back(std::move(c));
+}
+
+// [modbus] max_clients are connected and `newcomer` comes: the longest-idle connection
+// (eviction_choice) is closed for it. Refusing the newcomer instead let sockets that never ask
+// anything keep a reconnecting PLC out until they went away.
+void ModbusServer::Impl::make_room(const std::string& newcomer, Nanos now) {
+  const auto victim = eviction_choice(clients);
+  std::uint64_t since = 0;
+  if (evicted_log.count(now, since)) {
+    spdlog::warn(
+        "modbus: {} closed to make room for {} (max_clients reached; it had {} for {} ms); {} "
+        "closed so since the last such line",
+        victim->peer, newcomer, victim->served ? "been idle" : "asked nothing",
+        (now - victim->last_heard) / kNsPerMs, since);
+  }
+  ::close(victim->fd);
+  clients.erase(victim);
+}
+
+// One connection's turn after poll(); false: close it.
+bool ModbusServer::Impl::serve(Connection& c, short revents, std::uint8_t unit_id) {
+  if ((revents & POLLOUT) && !send_pending(c)) return false;
+  if ((revents & (POLLIN | POLLHUP | POLLERR)) && !receive(c, unit_id)) return false;
+  // After a malformed frame: closed once the answers owed to the frames before it are sent.
+  return c.closing_since == 0 || !c.out.empty();
 }
 
 // Reads what the socket has; false: the connection is to be closed.
@@ -162,35 +200,51 @@ bool ModbusServer::Impl::receive(Connection& c, std::uint8_t unit_id) {
       if (errno == EINTR) continue;
       return errno == EAGAIN || errno == EWOULDBLOCK;
     }
-    if (c.in.empty()) c.frame_start = monotonic_now();
+    // After a malformed frame what follows is read and dropped: closing a socket with unread
+    // bytes sends a reset, which may cost the client the answers still on their way.
+    if (c.closing_since != 0) continue;
+    const Nanos now = monotonic_now();
+    c.last_heard = now;
+    if (c.in.empty()) c.frame_start = now;
     c.in.insert(c.in.end(), buf, buf + n);
-    if (!answer(c, unit_id)) return false;
+    if (!answer(c, unit_id)) {
+      c.closing_since = now;
+      c.in.clear();
+      c.frame_start = 0;
+    }
+    if (!send_pending(c)) return false;
     if (c.out.size() > kMaxPendingOut) return false;  // sends, never reads its answers
   }
   return true;
 }
 
-// Answers every whole frame in c.in; false on a malformed frame (closed without an answer).
+// Puts the answer to every whole frame in c.in into c.out; false on a malformed frame (left
+// unanswered: the connection is to be closed once the answers before it are sent).
 bool ModbusServer::Impl::answer(Connection& c, std::uint8_t unit_id) {
   std::size_t used = 0;
+  bool well_formed = true;
   for (;;) {
     MbapFrame f;
     const MbapStatus s = parse_mbap(std::span<const std::uint8_t>(c.in).subspan(used), f);
     if (s == MbapStatus::kIncomplete) break;
-    if (s != MbapStatus::kFrame) return false;
+    if (s != MbapStatus::kFrame) {
+      well_formed = false;
+      break;
+    }
     if (f.unit != unit_id) {
       // Addressed to another unit behind this "gateway": there is none.
       append_exception(c.out, f, ModbusException::kGatewayTargetFailed);
     } else {
       append_response(c.out, f, regs->handle(f.pdu));
     }
+    c.served = true;
     used += f.size;
   }
   if (used > 0) {
     c.in.erase(c.in.begin(), c.in.begin() + static_cast<std::ptrdiff_t>(used));
     c.frame_start = c.in.empty() ? 0 : monotonic_now();
   }
-  return send_pending(c);
+  return well_formed;
 }
 
 // Sends what the socket takes now; false on an error (the peer is gone).
@@ -210,12 +264,27 @@ bool ModbusServer::Impl::send_pending(Connection& c) {
   return true;
 }
 
-// Until the earliest frame time-out, or -1 (none pending).
-int ModbusServer::Impl::poll_timeout_ms(Nanos now) const {
+// Whether `c` is past one of its time-outs (ipc/modbus_connection.hpp) at `now`; logs why.
+bool ModbusServer::Impl::timed_out(const Connection& c, Nanos now, Nanos idle_timeout) {
+  const ModbusTimeout t = next_timeout(c, idle_timeout);
+  if (now < t.at) return false;
+  std::uint64_t since = 0;
+  if (!t.idle) {
+    spdlog::debug("modbus: {}: {}: closed", c.peer, t.why);
+  } else if (idle_log.count(now, since)) {
+    spdlog::info(
+        "modbus: {} closed after {} ms without a byte ([modbus] idle_timeout_ms); {} closed so "
+        "since the last such line",
+        c.peer, idle_timeout / kNsPerMs, since);
+  }
+  return true;
+}
+
+// Until the earliest time-out of a connection, or -1 (no connection).
+int ModbusServer::Impl::poll_timeout_ms(Nanos now, Nanos idle_timeout) const {
   Nanos first = -1;
   for (const Connection& c : clients) {
-    if (c.frame_start == 0) continue;
-    const Nanos left = std::max<Nanos>(0, c.frame_start + kFrameTimeout - now);
+    const Nanos left = std::max<Nanos>(0, next_timeout(c, idle_timeout).at - now);
     if (first < 0 || left < first) first = left;
   }
   return first < 0 ? -1 : static_cast<int>((first + kNsPerMs - 1) / kNsPerMs);
@@ -227,6 +296,7 @@ void ModbusServer::run() noexcept {
   // control thread.
   sched_param sp{};
   pthread_setschedparam(pthread_self(), SCHED_OTHER, &sp);
+  const Nanos idle_timeout = Nanos{options_.idle_timeout_ms} * kNsPerMs;
 
   std::vector<pollfd> fds;
   std::vector<Connection*> polled;
@@ -237,7 +307,7 @@ void ModbusServer::run() noexcept {
       fds.push_back({c.fd, static_cast<short>(POLLIN | (c.out.empty() ? 0 : POLLOUT)), 0});
       polled.push_back(&c);
     }
-    if (::poll(fds.data(), fds.size(), d.poll_timeout_ms(monotonic_now())) < 0) {
+    if (::poll(fds.data(), fds.size(), d.poll_timeout_ms(monotonic_now(), idle_timeout)) < 0) {
       if (errno == EINTR) continue;
       spdlog::error("modbus: poll: {}; server stopped", std::strerror(errno));
       return;
@@ -247,17 +317,8 @@ void ModbusServer::run() noexcept {
     const Nanos now = monotonic_now();
     for (std::size_t i = 0; i < polled.size(); ++i) {
       Connection& c = *polled[i];
-      bool keep = true;
-      if (fds[i + 2].revents & POLLOUT) keep = d.send_pending(c);
-      if (keep && (fds[i + 2].revents & (POLLIN | POLLHUP | POLLERR))) {
-        keep = d.receive(c, options_.unit_id);
-      }
-      if (keep && c.frame_start != 0 && now - c.frame_start >= kFrameTimeout) {
-        spdlog::debug("modbus: {}: frame incomplete after {} ms: closed", c.peer,
-                      kFrameTimeout / kNsPerMs);
-        keep = false;
-      }
-      if (!keep) {
+      if (!d.serve(c, fds[i + 2].revents, options_.unit_id) ||
+          d.timed_out(c, now, idle_timeout)) {
         ::close(c.fd);
         c.fd = -1;
       }

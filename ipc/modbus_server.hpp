@@ -7,26 +7,28 @@
 // No client can hold up another (docs/hardening.md): every socket is non-blocking, each
 // connection has its own receive and send buffers, and one poll() serves them all, so a client
 // that sends a frame a byte at a time delays nobody; a frame not complete kFrameTimeout after its
-// first byte closes its connection. Frames are checked as Modbus/TCP defines them (ipc/mbap.hpp):
-// a malformed one gets exception 03 or a closed connection, never a normal answer.
+// first byte closes its connection, and so does [modbus] idle_timeout_ms without a byte. Nor can
+// clients that connect and ask nothing keep the PLC out: with max_clients connected, a new
+// connection closes the longest-idle one (ipc/modbus_connection.hpp says which). Frames are
+// checked as Modbus/TCP defines them (ipc/mbap.hpp): a malformed one gets exception 03 or a
+// closed connection, never a normal answer; the frames before it are answered first.
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <thread>
 
 #include "core/clock.hpp"
+#include "ipc/modbus_connection.hpp"
 #include "ipc/modbus_options.hpp"
 
 namespace stepmod::ipc {
 
 class ModbusServer {
  public:
-  // A frame must be complete this long after its first byte arrived, else the connection is
-  // closed (a request is one TCP segment from any real master).
-  static constexpr Nanos kFrameTimeout = 500 * kNsPerMs;
-  // Refused connections (max_clients, allow) are logged at most once per this period, with the
-  // number refused since the last line.
-  static constexpr Nanos kRefusalLogPeriod = 10 * kNsPerSec;
+  static constexpr Nanos kFrameTimeout = kModbusFrameTimeout;
+  // Refused connections (allow), connections closed for a new one and idle connections closed
+  // are each logged at most once per this period, with the number since the last such line.
+  static constexpr Nanos kLogPeriod = 10 * kNsPerSec;
 
   // Maps the image of module `name` (created by this process's ShmImage beforehand), binds
   // options.address:port and starts serving. Throws IpcError (address in use, bad address...).

@@ -182,6 +182,9 @@ class Parser {
     m.writes = get_bool(t, p, "writes", false);
     m.unit_id = static_cast<std::uint8_t>(get_int(t, p, "unit_id", 1, 0, 255));
     m.max_clients = static_cast<unsigned>(get_int(t, p, "max_clients", 4, 1, 64));
+    // Up to an hour: longer would let idle sockets hold their places all but for ever.
+    m.idle_timeout_ms =
+        static_cast<unsigned>(get_int(t, p, "idle_timeout_ms", 5000, 100, 3'600'000));
     if (const toml::node* n = t->get("listen")) {
       const auto* s = n->as_string();
       const std::string text = s != nullptr ? s->get() : std::string();

@@ -63,6 +63,7 @@ inline constexpr ConfigKey kConfigKeys[] = {
     {"modbus", "unit_id"},
     {"modbus", "writes"},
     {"modbus", "max_clients"},
+    {"modbus", "idle_timeout_ms"},
     {"modbus", "allow"},
 };
 

@@ -1,7 +1,9 @@
-// The Modbus/TCP server against slow, malformed and unwelcome clients (docs/hardening.md), with
-// raw sockets: a client dribbling a request a byte at a time delays no other; every malformed
-// MBAP frame gets exception 03 or a closed connection, never a normal answer; [modbus] allow
-// refuses other sources, and the refusals are logged at a bounded rate.
+// The Modbus/TCP server against slow, malformed, idle and unwelcome clients (docs/hardening.md),
+// with raw sockets: a client dribbling a request a byte at a time delays no other; every malformed
+// MBAP frame gets exception 03 or a closed connection, never a normal answer, and the frames
+// before it are answered first; idle sockets in every place do not keep a polling PLC out, and
+// are closed after [modbus] idle_timeout_ms; [modbus] allow refuses other sources, and the
+// refusals are logged at a bounded rate.
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
@@ -13,6 +15,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -239,6 +242,125 @@ TEST_F(DaemonModbusFraming, ADribblingClientDelaysNoOtherAndIsClosedOnTimeOut) {
   const Bytes got = slow.receive(1, milliseconds(2000), &closed);
   EXPECT_TRUE(closed);
   EXPECT_TRUE(got.empty());
+}
+
+// A master that sends a good request and a malformed frame in one write (a pipelining client
+// with a bug): the good one was executed, so its answer is sent before the connection is
+// closed. Before: closed at once, the executed request unanswered.
+TEST_F(DaemonModbusFraming, TheAnswersBeforeAMalformedFrameInTheSameWriteAreSentBeforeTheClose) {
+  start();
+  const std::vector<std::pair<const char*, Bytes>> bad = {
+      {"protocol id 1", read_request(1, 1)},
+      {"length 0", read_request(1, 0, 0)},
+      {"function 0x80", read_request(1, 0, 6, 0x80)},
+  };
+  for (const auto& [what, frame] : bad) {
+    for (int good = 1; good <= 2; ++good) {
+      Bytes write;
+      for (int i = 0; i < good; ++i) {
+        const Bytes g = read_request(static_cast<std::uint16_t>(40 + i));
+        write.insert(write.end(), g.begin(), g.end());
+      }
+      write.insert(write.end(), frame.begin(), frame.end());
+      const Reply r = exchange(write, milliseconds(3000));
+      ASSERT_EQ(r.bytes.size(), 11u * good) << what << " after " << good << " good frame(s)";
+      for (int i = 0; i < good; ++i) {
+        const std::size_t at = 11u * i;
+        EXPECT_EQ(r.bytes[at + 1], 40 + i) << what << ": the transaction ids in order";
+        EXPECT_EQ((r.bytes[at + 9] << 8) | r.bytes[at + 10], 3601) << what;
+      }
+      EXPECT_TRUE(r.closed) << what << ": the malformed frame still closes the connection";
+    }
+  }
+}
+
+// max_clients (4) sockets that connected and ask nothing, then the PLC: it is let in at once
+// (the longest-idle socket is closed for it), and while more such sockets keep coming it is
+// never the one closed, though it polls only every 100 ms and each new socket connected after
+// its last poll. Before: the PLC was refused for as long as the idle sockets stayed.
+TEST_F(DaemonModbusFraming, IdleSocketsInEveryPlaceDoNotKeepAPollingPlcOut) {
+  start();  // max_clients = 4, idle_timeout_ms = 5000: the defaults
+  std::vector<std::unique_ptr<Conn>> idle;
+  for (int i = 0; i < 4; ++i) idle.push_back(std::make_unique<Conn>(port_));
+  // Connected after them: the kernel queues connections in order, the server accepts in order.
+  Conn plc(port_);
+  const auto t0 = Clock::now();
+  plc.send(read_request(1));
+  bool closed = false;
+  const Bytes first = plc.receive(11, milliseconds(3000), &closed);
+  const double first_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  ASSERT_EQ(first.size(), 11u) << (closed ? "the PLC was refused" : "no answer") << "\n"
+                               << daemon_->log();
+  EXPECT_LT(first_ms, 2500.0) << "served by an idle time-out (5 s), not at once";
+  bool idle_closed = false;
+  EXPECT_TRUE(idle[0]->receive(1, milliseconds(3000), &idle_closed).empty());
+  EXPECT_TRUE(idle_closed) << "the longest-idle socket is the one closed";
+
+  // A new idle socket every 20 ms for 1.5 s; the PLC polls every 100 ms meanwhile.
+  std::atomic<bool> polling{true};
+  std::thread churn([&] {
+    std::vector<std::unique_ptr<Conn>> more;
+    while (polling) {
+      more.push_back(std::make_unique<Conn>(port_));
+      std::this_thread::sleep_for(milliseconds(20));
+    }
+  });
+  std::uint16_t tid = 2;
+  for (const auto end = Clock::now() + milliseconds(1500); Clock::now() < end; ++tid) {
+    plc.send(read_request(tid));
+    const Bytes a = plc.receive(11, milliseconds(3000), &closed);
+    if (a.size() != 11u) {
+      ADD_FAILURE() << "poll " << tid << (closed ? ": the PLC was closed" : ": no answer");
+      break;
+    }
+    EXPECT_EQ(a[1], static_cast<std::uint8_t>(tid));
+    std::this_thread::sleep_for(milliseconds(100));
+  }
+  polling = false;
+  churn.join();
+  EXPECT_GT(tid, 5) << "the PLC polled a few times";
+  EXPECT_NE(daemon_->log().find("closed to make room for"), std::string::npos)
+      << "the closing is logged\n"
+      << daemon_->log();
+}
+
+// [modbus] idle_timeout_ms: a socket that asks nothing, and one that asked once and went quiet,
+// are closed after it; one that keeps asking is not.
+TEST_F(DaemonModbusFraming, AnIdleConnectionIsClosedAfterIdleTimeoutMs) {
+  start("idle_timeout_ms = 300\n");
+  Conn idle(port_);
+  const auto connected = Clock::now();
+  std::atomic<double> idle_ms{-1};
+  std::thread watch([&] {
+    bool closed = false;
+    const Bytes got = idle.receive(1, milliseconds(5000), &closed);
+    if (closed && got.empty()) {
+      idle_ms = std::chrono::duration<double, std::milli>(Clock::now() - connected).count();
+    }
+  });
+  // No ASSERT until the watcher is joined: a return would leave its thread running.
+  Conn once(port_);
+  once.send(read_request(1));
+  EXPECT_EQ(once.receive(11, milliseconds(3000)).size(), 11u);
+  Conn busy(port_);
+  std::uint16_t tid = 2;
+  for (const auto end = Clock::now() + milliseconds(1200); Clock::now() < end; ++tid) {
+    busy.send(read_request(tid));
+    bool closed = false;
+    if (busy.receive(11, milliseconds(3000), &closed).size() != 11u) {
+      ADD_FAILURE() << (closed ? "closed while asking every 100 ms" : "no answer");
+      break;
+    }
+    std::this_thread::sleep_for(milliseconds(100));
+  }
+  watch.join();
+  const double closed_ms = idle_ms.load();
+  std::printf("idle connection closed after %.0f ms (idle_timeout_ms = 300)\n", closed_ms);
+  EXPECT_GE(closed_ms, 250.0) << "closed before its time-out, or never (-1)";
+  EXPECT_LT(closed_ms, 4000.0);
+  bool once_closed = false;
+  EXPECT_TRUE(once.receive(1, milliseconds(3000), &once_closed).empty());
+  EXPECT_TRUE(once_closed) << "a connection that asked once, then nothing";
 }
 
 TEST_F(DaemonModbusFraming, AllowListRefusesOtherSourcesAndLogsAtABoundedRate) {

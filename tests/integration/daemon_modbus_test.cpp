@@ -403,14 +403,20 @@ TEST_F(DaemonModbus, MaxClientsAndAFloodThatCostsNoScans) {
     clients.push_back(connect_client(port_));
     ASSERT_NE(clients.back(), nullptr);
   }
-  // One more than max_clients: accepted by the kernel, closed by the server at once.
+  // One more than max_clients: let in, and the longest-idle client (the first: none has asked
+  // anything yet) is closed for it; the newcomer floods in its place.
   modbus_t* extra = connect_client(port_);
   ASSERT_NE(extra, nullptr);
   std::uint16_t regs[16] = {};
-  modbus_set_response_timeout(extra, 1, 0);
-  EXPECT_EQ(modbus_read_input_registers(extra, 0, 1, regs), -1);
-  modbus_close(extra);
-  modbus_free(extra);
+  modbus_set_response_timeout(extra, 5, 0);
+  EXPECT_EQ(modbus_read_input_registers(extra, 1000, 1, regs), 1);
+  EXPECT_EQ(regs[0], 3601);
+  modbus_set_response_timeout(clients[0], 2, 0);
+  EXPECT_EQ(modbus_read_input_registers(clients[0], 1000, 1, regs), -1)
+      << "the longest-idle client still served";
+  modbus_close(clients[0]);
+  modbus_free(clients[0]);
+  clients[0] = extra;
 
   std::atomic<bool> stop{false};
   std::atomic<std::uint64_t> answered{0};

@@ -144,6 +144,7 @@ listen = "127.0.0.1:1502"
 unit_id = 1
 writes = false
 max_clients = 4
+idle_timeout_ms = 5000
 allow = ["127.0.0.1"]
 )";
   EXPECT_EQ(parse_config(every_key, "keys.toml").name, "keys");

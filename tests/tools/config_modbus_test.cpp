@@ -35,6 +35,7 @@ TEST(ConfigModbus, OffByDefaultWithContractDefaults) {
   EXPECT_EQ(c.modbus.unit_id, 1);
   EXPECT_FALSE(c.modbus.writes);
   EXPECT_EQ(c.modbus.max_clients, 4u);
+  EXPECT_EQ(c.modbus.idle_timeout_ms, 5000u);
   // An empty table changes nothing either.
   EXPECT_FALSE(parse_config(std::string(kBase) + "[modbus]\n", "t.toml").modbus.enabled);
 }
@@ -46,6 +47,7 @@ listen = "0.0.0.0:5020"
 unit_id = 17
 writes = true
 max_clients = 9
+idle_timeout_ms = 250
 )",
                                 "t.toml");
   EXPECT_TRUE(c.modbus.enabled);
@@ -54,12 +56,13 @@ max_clients = 9
   EXPECT_EQ(c.modbus.unit_id, 17);
   EXPECT_TRUE(c.modbus.writes);
   EXPECT_EQ(c.modbus.max_clients, 9u);
+  EXPECT_EQ(c.modbus.idle_timeout_ms, 250u);
 }
 
 TEST(ConfigModbusError, UnknownKey) {
   EXPECT_EQ(error_of("[modbus]\nport = 502\n"),
             "test.toml:9: key 'modbus.port': unknown key (expected one of: enabled, listen, "
-            "unit_id, writes, max_clients, allow)");
+            "unit_id, writes, max_clients, idle_timeout_ms, allow)");
 }
 
 TEST(ConfigModbusError, BooleansMustBeBooleans) {
@@ -89,6 +92,12 @@ TEST(ConfigModbusError, Ranges) {
             "test.toml:9: key 'modbus.max_clients': must be an integer 1..64");
   EXPECT_EQ(error_of("[modbus]\nmax_clients = 65\n"),
             "test.toml:9: key 'modbus.max_clients': must be an integer 1..64");
+  EXPECT_EQ(error_of("[modbus]\nidle_timeout_ms = 99\n"),
+            "test.toml:9: key 'modbus.idle_timeout_ms': must be an integer 100..3600000");
+  EXPECT_EQ(error_of("[modbus]\nidle_timeout_ms = 3600001\n"),
+            "test.toml:9: key 'modbus.idle_timeout_ms': must be an integer 100..3600000");
+  EXPECT_EQ(error_of("[modbus]\nidle_timeout_ms = 2.5\n"),
+            "test.toml:9: key 'modbus.idle_timeout_ms': must be an integer 100..3600000");
 }
 
 TEST(ConfigModbusError, MustBeATable) {
