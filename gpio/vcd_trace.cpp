@@ -2,6 +2,7 @@
 
 #include "core/version.hpp"
 
+#include <fcntl.h>
 #include <pthread.h>
 #include <sched.h>
 #include <unistd.h>
@@ -69,13 +70,15 @@ std::vector<TraceWire> trace_wires(Backend& backend) {
 VcdTrace::VcdTrace(const std::string& path, std::span<const TraceWire> wires, Nanos start,
                    bool loss_marker)
     : path_(path), start_(start), wires_(wires.begin(), wires.end()) {
-  NewFile file = create_file_beside(path, "trace file");
-  tmp_path_ = std::move(file.path);
-  f_ = ::fdopen(file.fd, "w");
+  file_ = create_file_beside(path, "trace file");
+  // The stream writes through its own descriptor; file_.fd stays open after fclose(), so that
+  // close() can name an unnamed (O_TMPFILE) file once the stream's errors are known.
+  const int stream_fd = ::fcntl(file_.fd, F_DUPFD_CLOEXEC, 0);
+  f_ = stream_fd >= 0 ? ::fdopen(stream_fd, "w") : nullptr;
   if (f_ == nullptr) {
     const std::string why = std::strerror(errno);
-    ::close(file.fd);
-    ::unlink(tmp_path_.c_str());
+    if (stream_fd >= 0) ::close(stream_fd);
+    discard(file_);
     throw std::runtime_error("trace file '" + path + "': " + why);
   }
   unsigned max_axis = 0;
@@ -126,7 +129,7 @@ void VcdTrace::abandon() noexcept {
   if (f_ == nullptr) return;
   std::fclose(f_);
   f_ = nullptr;
-  ::unlink(tmp_path_.c_str());
+  discard(file_);
 }
 
 int VcdTrace::wire_index(const TraceRecord& r) const noexcept {
@@ -185,16 +188,12 @@ void VcdTrace::close(Nanos end) {
   const int close_errno = errno;
   f_ = nullptr;
   if (bad || rc != 0) {
-    ::unlink(tmp_path_.c_str());
+    discard(file_);
     throw std::runtime_error("trace file '" + path_ + "': write failed: " +
                              std::strerror(!flushed ? flush_errno : close_errno));
   }
   // Replaces the name, never what a link there points to.
-  if (::rename(tmp_path_.c_str(), path_.c_str()) != 0) {
-    const std::string why = std::strerror(errno);
-    ::unlink(tmp_path_.c_str());
-    throw std::runtime_error("trace file '" + path_ + "': cannot put it in place: " + why);
-  }
+  put_in_place(file_, path_, "trace file");
 }
 
 void write_merged(std::span<OrderedReader* const> readers, VcdTrace& vcd) {

@@ -19,6 +19,7 @@
 #include "core/spsc_ring.hpp"
 #include "core/trace_record.hpp"
 #include "gpio/backend.hpp"
+#include "gpio/trace_file.hpp"
 #include "gpio/trace_spool.hpp"
 
 namespace stepmod::gpio {
@@ -75,7 +76,7 @@ class VcdTrace {
   int wire_index(const TraceRecord& r) const noexcept;
 
   std::string path_;
-  std::string tmp_path_;  // the new file, renamed to path_ by close()
+  NewFile file_;  // the new file (gpio/trace_file.hpp), put in place at path_ by close()
   std::FILE* f_ = nullptr;
   Nanos start_ = 0;
   Nanos last_ = 0;  // last written time, relative

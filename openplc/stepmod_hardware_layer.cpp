@@ -7,8 +7,9 @@
 //                    word, high half first)
 //   %IW32 .. %IW47   module type, word size (bytes), output words, input words, scan counter
 //                    bits 15..0 and 31..16, health flags (docs/interface.md 3.3) low and high,
-//                    late-edge faults low and high, %IW42 link (see below), %IW43..%IW47
-//                    reserved (0)
+//                    late-edge faults low and high (Modbus 1000..1009); %IW42 link (below);
+//                    %IW43..%IW46 the error reasons' item codes, axis 1 high/low, axis 2
+//                    high/low (docs/interface.md 3.4, Modbus 1016..1019); %IW47 reserved (0)
 //   %QW0  .. %QW31   the module's output words (same layout as the inputs)
 //
 // The module is /dev/shm/stepmod.<name>; <name> comes from the environment variable STEPMOD_NAME
@@ -25,16 +26,21 @@
 // So: the %QW words the program declares are recorded in initializeHardware() (before
 // mapUnusedIO()), and only they are forwarded to the module; the others are written as 0, never
 // from OpenPLC's Modbus registers. updateBuffersIn() takes one consistent seqlock snapshot of the
-// input image; a snapshot that fails (the module publishing on every try) keeps the last good
-// words, and %IW42 (link) drops to 0, with every %IW 0, only after kLinkLossNs of failed tries
-// with no good one between, or when the image goes away (a real loss). updateBuffersOut() writes
-// the output image as one seqlock write and increments the PLC heartbeat (docs/interface.md 3.2):
-// with [module] plc_timeout_ms set, a stopped or dead runtime stops the axes as a PLC leaving Run
+// input image. %IW42 (link) is 1 only while a stepmodd is scanning the image: it has published
+// it at least once and the layer saw its scan counter advance within the last kLinkLossNs
+// (CLOCK_MONOTONIC here). An image that exists but is not yet published (a daemon starting),
+// whose counter is frozen (a daemon stopped with SIGSTOP, or killed: its image stays until a new
+// daemon replaces it) or gone is link 0, and every %IW 0. A snapshot that fails (the module
+// publishing on every try) keeps the last good words; it too drops the link only after
+// kLinkLossNs of failed tries with no good one between. updateBuffersOut() writes the output
+// image as one seqlock write and increments the PLC heartbeat (docs/interface.md 3.2): with
+// [module] plc_timeout_ms set, a stopped or dead runtime stops the axes as a PLC leaving Run
 // mode does (the stop's disableOutputs() only writes zeros, which stops nothing). The image is
 // looked for (and its identity checked) on every scan: one stat() of /dev/shm. Only libc and the
 // plain-C header stepmod_image.h (copied next to this file) are needed.
 #include <fcntl.h>
 #include <pthread.h>
+#include <sched.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -51,9 +57,11 @@ namespace {
 const unsigned kRegs = 32;      // %IW0..31 / %QW0..31: 16 words of at most 32 bits
 const unsigned kHeaderIw = 32;  // %IW32..47
 const unsigned kHeaderRegs = 16;
-const unsigned kLinkOffset = 10;  // %IW42
-// How long the input snapshot may keep failing before %IW42 says the link is lost: far longer
-// than a module's publication (microseconds), shorter than any sensible reaction of a program.
+const unsigned kLinkOffset = 10;    // %IW42
+const unsigned kReasonOffset = 11;  // %IW43..%IW46: the reasons' item codes, as Modbus 1016..1019
+// How long the link lasts without a sign of a live module (its scan counter advancing, a good
+// snapshot): far longer than a module's scan (1 ms by default) and its publication
+// (microseconds), shorter than any sensible reaction of a program.
 const int64_t kLinkLossNs = 100000000;
 
 struct Link {
@@ -62,8 +70,20 @@ struct Link {
   stepmod_image_t* img;
   ino_t ino;  // identity of the mapped object: a restarted daemon makes a new one
   dev_t dev;
+  // The mapped image's shape as checked when it was mapped (never re-read: the bounds of every
+  // copy from and to the image).
+  unsigned word_bytes;
+  unsigned input_words;
+  unsigned output_words;
   int logged_missing;
-  // The last good snapshot of the mapped image (valid while has_good).
+  // Is a module scanning the image? Its scan counter as last read, and when (CLOCK_MONOTONIC,
+  // this process's clock) the layer last saw it change. A count seen once proves nothing: a
+  // stopped or killed daemon's image keeps its last one.
+  uint64_t scans;
+  int seen_advance;
+  int64_t advanced_ns;
+  int scanning;  // as decided by the last scan (the log says when it changes)
+  // The last good snapshot of a published image (valid while has_good).
   int has_good;
   // Since when every try has failed (valid while failing). Counted from the first failed try,
   // not from the last good one: a runtime whose own scan thread was held up (a loaded machine)
@@ -73,7 +93,6 @@ struct Link {
   int32_t in[STEPMOD_MAX_WORDS];
   uint16_t header[kHeaderRegs];
   unsigned regs;
-  unsigned word_bytes;
   // The %QW the program declares (bound by glueVars() before initializeHardware()).
   unsigned char qw_declared[kRegs];
 };
@@ -91,6 +110,8 @@ void unmap() {
   g_link.img = nullptr;
   g_link.has_good = 0;
   g_link.failing = 0;
+  g_link.seen_advance = 0;
+  g_link.scanning = 0;
 }
 
 // Maps the image if it exists and is a valid layout-1 stepmod image; 1 on success.
@@ -116,6 +137,10 @@ int map_image() {
   g_link.img = im;
   g_link.ino = st.st_ino;
   g_link.dev = st.st_dev;
+  g_link.word_bytes = im->word_bytes;
+  g_link.input_words = im->input_words;
+  g_link.output_words = im->output_words;
+  g_link.scans = stepmod_scan_counter(im);
   return 1;
 }
 
@@ -134,7 +159,7 @@ void check_link() {
     unmap();
   }
   if (present && map_image()) {
-    log_line("stepmod: linked to %s%s\n", g_link.path, "");
+    log_line("stepmod: found module image %s%s\n", g_link.path, "");
     g_link.logged_missing = 0;
   } else if (!g_link.logged_missing) {
     log_line("stepmod: no module image %s (is stepmodd running?)%s\n", g_link.path, "");
@@ -153,35 +178,93 @@ void set_iw(unsigned i, uint16_t v) {
   if (int_input[i] != nullptr) *int_input[i] = v;  // NULL: the program does not use this %IW
 }
 
-// Takes a snapshot of the mapped image into g_link; keeps the last good one if it fails.
-void take_snapshot() {
+// What one input publication holds for the program (docs/interface.md 3, 3.3, 3.4).
+struct Publication {
+  int32_t in[STEPMOD_MAX_WORDS];
+  uint32_t health;
+  uint32_t late;
+  uint32_t items[2];
+};
+
+// One consistent seqlock snapshot of all of it (the order of stepmod_image.h's readers: acquire
+// loads, then the sequence again); 0 if a write overlapped every try.
+int read_publication(const stepmod_image_t* im, Publication* p) {
+  for (unsigned t = 0; t < 1000u; ++t) {
+    if (t > 0 && (t % 32u) == 0u) sched_yield();
+    const uint32_t s0 = __atomic_load_n(&im->input_seq, __ATOMIC_ACQUIRE);
+    if (s0 & 1u) continue;
+    for (unsigned i = 0; i < g_link.input_words; ++i) {
+      p->in[i] = stepmod_word_load(&im->input_image, g_link.word_bytes, i);
+    }
+    p->health = __atomic_load_n(&im->health_flags, __ATOMIC_ACQUIRE);
+    p->late = __atomic_load_n(&im->late_faults, __ATOMIC_ACQUIRE);
+    for (unsigned a = 0; a < 2u; ++a) {
+      p->items[a] = __atomic_load_n(&im->reasons[a].item, __ATOMIC_ACQUIRE);
+    }
+    if (__atomic_load_n(&im->input_seq, __ATOMIC_RELAXED) == s0) return 1;
+  }
+  return 0;
+}
+
+void keep_publication(const Publication& p, uint64_t scans) {
+  const stepmod_image_t* im = g_link.img;
+  memcpy(g_link.in, p.in, sizeof p.in);
+  g_link.regs = g_link.input_words * g_link.word_bytes / 2u;
+  uint16_t* h = g_link.header;
+  h[0] = (uint16_t)im->module_type;
+  h[1] = (uint16_t)g_link.word_bytes;
+  h[2] = (uint16_t)g_link.output_words;
+  h[3] = (uint16_t)g_link.input_words;
+  h[4] = (uint16_t)(scans & 0xFFFFu);
+  h[5] = (uint16_t)((scans >> 16) & 0xFFFFu);
+  h[6] = (uint16_t)(p.health & 0xFFFFu);
+  h[7] = (uint16_t)(p.health >> 16);
+  h[8] = (uint16_t)(p.late & 0xFFFFu);
+  h[9] = (uint16_t)(p.late >> 16);
+  for (unsigned a = 0; a < 2u; ++a) {
+    h[kReasonOffset + 2 * a] = (uint16_t)(p.items[a] >> 16);
+    h[kReasonOffset + 2 * a + 1] = (uint16_t)(p.items[a] & 0xFFFFu);
+  }
+}
+
+// Reads the scan counter and takes a snapshot of the mapped image into g_link; a snapshot that
+// fails keeps the last good one.
+void take_snapshot(int64_t now) {
   stepmod_image_t* im = g_link.img;
   if (im == nullptr) return;
-  int32_t in[STEPMOD_MAX_WORDS] = {0};
-  uint32_t health = 0;
-  uint32_t late = 0;
-  if (!stepmod_read_inputs(im, in) || !stepmod_read_health(im, &health, &late)) {
-    if (!g_link.failing) g_link.failing_since_ns = stepmod_monotonic_ns();
+  // The counter before the words: a count of 1 or more read here (an acquire load of what the
+  // daemon increments after each publication) means the snapshot below is of that publication
+  // or a later one, never of the zeros the image is created with before its first scan.
+  const uint64_t scans = stepmod_scan_counter(im);
+  if (scans != g_link.scans) {
+    g_link.scans = scans;
+    g_link.seen_advance = 1;
+    g_link.advanced_ns = now;
+  }
+  Publication p = {};
+  if (!read_publication(im, &p)) {
+    if (!g_link.failing) g_link.failing_since_ns = now;
     g_link.failing = 1;
     return;
   }
-  const uint64_t scans = stepmod_scan_counter(im);
-  memcpy(g_link.in, in, sizeof in);
-  g_link.word_bytes = im->word_bytes;
-  g_link.regs = im->input_words * im->word_bytes / 2u;
-  uint16_t* h = g_link.header;
-  h[0] = (uint16_t)im->module_type;
-  h[1] = (uint16_t)im->word_bytes;
-  h[2] = (uint16_t)im->output_words;
-  h[3] = (uint16_t)im->input_words;
-  h[4] = (uint16_t)(scans & 0xFFFFu);
-  h[5] = (uint16_t)((scans >> 16) & 0xFFFFu);
-  h[6] = (uint16_t)(health & 0xFFFFu);
-  h[7] = (uint16_t)(health >> 16);
-  h[8] = (uint16_t)(late & 0xFFFFu);
-  h[9] = (uint16_t)(late >> 16);
-  g_link.has_good = 1;
   g_link.failing = 0;
+  if (scans == 0) return;  // nothing published yet
+  keep_publication(p, scans);
+  g_link.has_good = 1;
+}
+
+// The link rule (openplc/README.md): a module that has published and is scanning now, and a
+// good snapshot not older than the failed tries allow.
+int link_up(int64_t now) {
+  const int scanning = g_link.seen_advance && now - g_link.advanced_ns < kLinkLossNs;
+  if (scanning != g_link.scanning) {
+    log_line(scanning ? "stepmod: module image %s is scanned: link up%s\n"
+                      : "stepmod: module image %s not scanned for 100 ms: link down%s\n",
+             g_link.path, scanning ? "" : " (stepmodd stopped or dead?)");
+    g_link.scanning = scanning;
+  }
+  return scanning && g_link.has_good &&
+         (!g_link.failing || now - g_link.failing_since_ns < kLinkLossNs);
 }
 
 }  // namespace
@@ -203,10 +286,10 @@ void finalizeHardware() {
 
 void updateBuffersIn() {
   check_link();
-  take_snapshot();
-  const int linked =
-      g_link.has_good &&
-      (!g_link.failing || stepmod_monotonic_ns() - g_link.failing_since_ns < kLinkLossNs);
+  const int64_t now = stepmod_monotonic_ns();
+  take_snapshot(now);
+  // Link down: every %IW 0 (the documented link-down values), never words nobody scans.
+  const int linked = link_up(now);
   const unsigned regs = linked ? g_link.regs : 0u;
   pthread_mutex_lock(&bufferLock);
   for (unsigned r = 0; r < kRegs; ++r) {
@@ -221,8 +304,8 @@ void updateBuffersIn() {
 void updateBuffersOut() {
   stepmod_image_t* im = g_link.img;
   if (im == nullptr) return;
-  const unsigned word_bytes = im->word_bytes;
-  const unsigned words = im->output_words;
+  const unsigned word_bytes = g_link.word_bytes;
+  const unsigned words = g_link.output_words;
   int32_t out[STEPMOD_MAX_WORDS] = {0};
   pthread_mutex_lock(&bufferLock);
   for (unsigned r = 0; r < words * word_bytes / 2u; ++r) {
@@ -240,6 +323,6 @@ void updateBuffersOut() {
   pthread_mutex_unlock(&bufferLock);
   // The whole output image, every scan, as the backplane carries it; then the heartbeat: this
   // PLC is in Run mode.
-  stepmod_write_outputs(im, out);
+  stepmod_seq_write(&im->output_seq, &im->output_image, word_bytes, words, out);
   stepmod_heartbeat(im);
 }

@@ -1,6 +1,7 @@
 // The trace's files against a hostile or full directory (docs/hardening.md): links and FIFOs
-// planted under the trace's names, a trace path used again, a full disk, a killed daemon's spools
-// recovered, and records of several lines collected out of order put back at their times.
+// planted under the trace's names (and its old temporary names), the new file unnamed or
+// randomly named, a trace path used again, a full disk, a killed daemon's spools recovered, and
+// records of several lines collected out of order put back at their times.
 #include <gtest/gtest.h>
 #include <sys/mount.h>
 #include <sys/stat.h>
@@ -15,6 +16,7 @@
 #include <sstream>
 #include <thread>
 
+#include "gpio/trace_file.hpp"
 #include "gpio/trace_recover.hpp"
 #include "gpio/vcd_trace.hpp"
 
@@ -174,6 +176,66 @@ TEST_F(TraceFiles, TheSameTracePathWorksAgainAndNothingIsLeftBeside) {
     EXPECT_NE(slurp(at("a.vcd")).find("#" + std::to_string(100 + run)), std::string::npos);
   }
   EXPECT_EQ(entries(), (std::vector<std::string>{"a.vcd"}));
+}
+
+// The VCD was once written to "a.vcd.tmp.<pid>.<n>", n = 0, 1, ... giving up after 100 names
+// taken: anyone could plant them and make the trace fail (stepmodd exit 3). Now the new file has
+// no name (O_TMPFILE) or a random one; links planted under the old names change nothing, and
+// none is followed.
+TEST_F(TraceFiles, LinksPlantedUnderTheOldTemporaryNamesNeitherFailTheTraceNorAreFollowed) {
+  put(at("victim"), "precious\n");
+  const std::string old = at("a.vcd.tmp." + std::to_string(::getpid()) + ".");
+  constexpr int kPlanted = 300;
+  for (int n = 0; n < kPlanted; ++n) {
+    ASSERT_EQ(::symlink(at("victim").c_str(), (old + std::to_string(n)).c_str()), 0);
+  }
+  SpscRing<TraceRecord> outs(8), ins(8);
+  TraceWriter w(at("a.vcd"), kWires, 0, outs, ins);
+  outs.try_push(rec(100, 0, false, true));
+  const TraceOutcome o = w.stop();
+  EXPECT_TRUE(o.complete) << o.problem;
+  EXPECT_NE(slurp(at("a.vcd")).find("#100"), std::string::npos);
+  EXPECT_EQ(slurp(at("victim")), "precious\n");
+  EXPECT_EQ(entries().size(), kPlanted + 2u) << "a.vcd, the victim and the planted links";
+  struct stat st {};
+  ASSERT_EQ(::lstat(at("a.vcd").c_str(), &st), 0);
+  EXPECT_TRUE(S_ISREG(st.st_mode));
+}
+
+// Where O_TMPFILE works (this test's directory), the file has no name until it is complete.
+TEST_F(TraceFiles, NewFileHasNoNameUntilItIsPutInPlace) {
+  NewFile f = create_file_beside(at("a.vcd"), "trace file");
+  if (!f.path.empty()) {
+    discard(f);
+    GTEST_SKIP() << "no O_TMPFILE (or no /proc) here: the random-name test covers this";
+  }
+  ASSERT_EQ(::write(f.fd, "vcd\n", 4), 4);
+  EXPECT_TRUE(entries().empty());
+  put_in_place(f, at("a.vcd"), "trace file");
+  EXPECT_EQ(f.fd, -1);
+  EXPECT_EQ(slurp(at("a.vcd")), "vcd\n");
+  EXPECT_EQ(entries(), (std::vector<std::string>{"a.vcd"}));
+}
+
+// Without O_TMPFILE: a random name (64 bits, no pid, no counter), created new; put in place by a
+// rename that replaces a link planted at the trace path rather than following it.
+TEST_F(TraceFiles, WithoutTmpfileTheNewFileHasARandomNameAndReplacesALinkAtThePath) {
+  put(at("victim"), "precious\n");
+  ASSERT_EQ(::symlink(at("victim").c_str(), at("a.vcd").c_str()), 0);
+  NewFile f = create_file_beside(at("a.vcd"), "trace file", Naming::kRandomName);
+  NewFile g = create_file_beside(at("a.vcd"), "trace file", Naming::kRandomName);
+  const std::string prefix = at("a.vcd.tmp.");
+  ASSERT_EQ(f.path.rfind(prefix, 0), 0u) << f.path;
+  const std::string hex = f.path.substr(prefix.size());
+  EXPECT_EQ(hex.size(), 16u) << f.path;
+  EXPECT_EQ(hex.find_first_not_of("0123456789abcdef"), std::string::npos) << f.path;
+  EXPECT_NE(f.path, g.path);
+  discard(g);
+  ASSERT_EQ(::write(f.fd, "vcd\n", 4), 4);
+  put_in_place(f, at("a.vcd"), "trace file");
+  EXPECT_EQ(slurp(at("victim")), "precious\n");
+  EXPECT_EQ(slurp(at("a.vcd")), "vcd\n");
+  EXPECT_EQ(entries(), (std::vector<std::string>{"a.vcd", "victim"}));
 }
 
 // Two axes' inputs, each line in order, collected axis by axis (the sim backend and the gpiod

@@ -1,7 +1,8 @@
 // stepmodd's --trace files against a hostile or full directory (docs/hardening.md): a link or
-// FIFO under the trace's names stops the start with exit status 1 and touches nothing; a full
-// disk sets health bit 4 while running and ends with exit status 3 and the spools kept; a killed
-// daemon's spools become a VCD with `stepmodctl trace recover`.
+// FIFO under the trace's names stops the start with exit status 1 and touches nothing; links
+// under the VCD's old temporary names change nothing; a full disk sets health bit 4 while
+// running and ends with exit status 3 and the spools kept; a killed daemon's spools become a VCD
+// with `stepmodctl trace recover`.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/mount.h>
@@ -102,6 +103,25 @@ TEST_F(DaemonTraceFiles, FifoPlantedAtTheVcdPathWhileRunningDoesNotHoldUpSigterm
   const Vcd vcd = read_vcd(at("a.vcd"));
   EXPECT_EQ(vcd.rising("axis1.home").size(), 2u);
   EXPECT_FALSE(fs::exists(at("a.vcd.out.spool")));
+}
+
+// Issue 29: the VCD's temporary name was "a.vcd.tmp.<pid>.<n>", and 100 names planted in the
+// trace's directory made stepmodd give up the VCD and exit 3. Links planted under those names
+// now neither fail the trace nor are followed.
+TEST_F(DaemonTraceFiles, LinksPlantedUnderTheOldTemporaryNamesDoNotFailTheTrace) {
+  std::ofstream(at("victim")) << "precious\n";
+  start();
+  ASSERT_TRUE(daemon_->wait_ready()) << daemon_->log();
+  const std::string old = at("a.vcd.tmp." + std::to_string(daemon_->pid()) + ".");
+  for (int n = 0; n < 200; ++n) {
+    ASSERT_EQ(::symlink(at("victim").c_str(), (old + std::to_string(n)).c_str()), 0);
+  }
+  toggle_home(2);
+  EXPECT_EQ(daemon_->terminate(10'000), 0) << daemon_->log();
+  ASSERT_TRUE(fs::exists(at("a.vcd"))) << daemon_->log();
+  const Vcd vcd = read_vcd(at("a.vcd"));
+  EXPECT_EQ(vcd.rising("axis1.home").size(), 1u);
+  EXPECT_EQ(slurp(at("victim")), "precious\n");
 }
 
 TEST_F(DaemonTraceFiles, KilledDaemonsSpoolsAreRecoveredWithStepmodctl) {

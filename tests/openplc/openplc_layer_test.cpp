@@ -21,17 +21,11 @@
 #include "ipc/shm_image.hpp"
 #include "ipc/sim_panel.hpp"
 #include "tests/openplc/ladder.h"
+#include "tests/openplc/layer_program.hpp"
 #include "tests/openplc/openplc_runtime.hpp"
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/sim_config.hpp"
 #include "words/words_3601.hpp"
-
-namespace {
-std::string g_log;
-}
-extern "C" void openplc_log(char* logmsg) {
-  g_log += logmsg;
-}
 
 namespace stepmod::testing {
 namespace {
@@ -39,23 +33,6 @@ namespace {
 namespace m = words::m3601;
 using namespace m::status_msw;
 using std::chrono::milliseconds;
-
-// The PLC program's located variables, bound as glueVars() binds them. Some addresses are left
-// unbound on purpose: mapUnusedIO() puts OpenPLC's Modbus registers behind them.
-struct Program {
-  IEC_UINT iw[48] = {};
-  IEC_UINT qw[32] = {};
-  unsigned qw_first = 0;  // the %QW the program declares: qw_first .. qw_end-1
-  unsigned qw_end = 8;
-  std::function<void()> bind() {
-    return [this] {
-      for (unsigned i = 0; i < 6; ++i) int_input[i] = &iw[i];  // %IW6, %IW7 (capture): unused
-      for (unsigned i = 32; i < 43; ++i) int_input[i] = &iw[i];
-      for (unsigned i = qw_first; i < qw_end; ++i) int_output[i] = &qw[i];
-    };
-  }
-  ~Program() { openplc::reset(); }
-};
 
 // One OpenPLC scan, then the rest of the task's period.
 template <typename Logic>
@@ -98,21 +75,24 @@ void configure_move_and_stop(const std::string& config) {
   ASSERT_TRUE(daemon.wait_ready()) << daemon.log();
   ::setenv("STEPMOD_NAME", daemon.name().c_str(), 1);
   Program prog;
-  g_log.clear();
+  openplc::log().clear();
   openplc::start(prog.bind());
-  EXPECT_NE(g_log.find("stepmod: linked to /dev/shm/stepmod." + daemon.name()), std::string::npos)
-      << g_log;
+  EXPECT_NE(openplc::log().find("stepmod: found module image /dev/shm/stepmod." + daemon.name()),
+            std::string::npos)
+      << openplc::log();
 
   // The program: a step sequencer in the PLC's own terms.
   enum Step { kConfig, kCommandMode, kMove, kRelease, kDone, kLong, kLongRelease, kRunning };
   Step step = kConfig;
   std::int32_t target = 2500;
   auto logic = [&] {
+    // %IW42: the layer's link bit. While it is 0 the words are not the module's (all 0): the
+    // sequence waits (a loaded machine may hold up the test's daemon for 100 ms).
+    if (prog.iw[42] != 1) return;
     const IEC_UINT status = prog.iw[0];
     IEC_UINT* qw = prog.qw;
     switch (step) {
       case kConfig:
-        if (prog.iw[42] != 1) return;  // %IW42: the layer's link bit
         qw[0] = m::cfg_msw::kConfigMode | m::cfg_msw::kCaptureUsed | m::cfg_msw::kExternalUsed |
                 m::cfg_msw::kHomeUsed | m::cfg_msw::kEStopUsed | m::cfg_msw::kCwLimitUsed |
                 m::cfg_msw::kCcwLimitUsed | m::cfg_msw::kQuadratureEncoder |
@@ -203,9 +183,10 @@ TEST(OpenPlcLayer, NoDaemonMeansNoLinkAndZeroInputs) {
   Program prog;
   prog.iw[0] = 0x1234;
   prog.iw[42] = 7;
-  g_log.clear();
+  openplc::log().clear();
   openplc::start(prog.bind());
-  EXPECT_NE(g_log.find("no module image /dev/shm/stepmod.openplc-absent"), std::string::npos);
+  EXPECT_NE(openplc::log().find("no module image /dev/shm/stepmod.openplc-absent"),
+            std::string::npos);
   EXPECT_EQ(prog.iw[0], 0);
   EXPECT_EQ(prog.iw[42], 0);
   openplc::scan([] {});
@@ -226,6 +207,9 @@ TEST(OpenPlcLayer, ThirtyTwoBitWordsOfA3202AreTwoRegistersHighHalfFirst) {
     for (unsigned i = 0; i < 48; ++i) int_input[i] = &iw[i];
     for (unsigned i = 0; i < 32; ++i) int_output[i] = &qw[i];
   });
+  EXPECT_EQ(iw[42], 0) << "a count seen once is no sign of a module scanning";
+  image.publish_inputs(in, ipc::Health{.flags = 0x00010002u, .late_faults = 3});
+  openplc::scan([] {});
   EXPECT_EQ(iw[0], 0x1234);
   EXPECT_EQ(iw[1], 0x5678);
   EXPECT_EQ(iw[30], 0xFFFF);
@@ -233,7 +217,7 @@ TEST(OpenPlcLayer, ThirtyTwoBitWordsOfA3202AreTwoRegistersHighHalfFirst) {
   EXPECT_EQ(iw[32], 3202);
   EXPECT_EQ(iw[33], 4);
   EXPECT_EQ(iw[34], 16);
-  EXPECT_EQ(iw[36], 1);  // one publication
+  EXPECT_EQ(iw[36], 2);  // two publications
   EXPECT_EQ(iw[38], 2);  // health low
   EXPECT_EQ(iw[39], 1);  // health high
   EXPECT_EQ(iw[40], 3);  // late-edge faults
@@ -251,19 +235,6 @@ TEST(OpenPlcLayer, ThirtyTwoBitWordsOfA3202AreTwoRegistersHighHalfFirst) {
   finalizeHardware();
   openplc::reset();
 }
-
-// A 3601 image without a daemon, linked through the runtime's start.
-struct ImageRig {
-  std::string name = "openplc-rig-" + std::to_string(::getpid());
-  ipc::ShmImage image{name, shape_of(ModuleType::k3601)};
-  Program prog;
-  void publish(std::int32_t w0) {
-    ImageWords in{};
-    in.w[0] = w0;
-    image.publish_inputs(in, ipc::Health{});
-  }
-  stepmod_image_t& raw() { return const_cast<stepmod_image_t&>(image.raw()); }
-};
 
 // Real OpenPLC binds every %QW the program does not declare to its Modbus holding registers
 // (mapUnusedIO()): a Modbus client of OpenPLC once put a 3601 into configuration mode through
@@ -286,37 +257,43 @@ TEST(OpenPlcLayer, QwTheProgramDoesNotDeclareIsNeverDrivenFromOpenPlcsModbusRegi
   openplc::stop();
 }
 
-// A snapshot that fails (the module caught publishing on every try: here its sequence held odd)
-// keeps the last good words and the link; only failed tries for longer than the layer's 100 ms
-// drop them. Counted from the first failed try: a runtime held up for longer than that between
-// two scans (a loaded machine; here a 150 ms sleep) is not cut off by one failure after it.
+// A snapshot that fails (the module caught publishing on every try: here its sequence held odd
+// while its scan counter goes on) keeps the last good words and the link; only failed tries for
+// longer than the layer's 100 ms drop them. Counted from the first failed try: a runtime held up
+// for longer than that between two scans (a loaded machine; here a 150 ms sleep) is not cut off
+// by one failure after it.
 TEST(OpenPlcLayer, FailedSnapshotKeepsTheLastGoodWordsAndTheLinkUntilARealLoss) {
   ImageRig rig;
   ::setenv("STEPMOD_NAME", rig.name.c_str(), 1);
   rig.publish(0x1234);
   openplc::start(rig.prog.bind());
+  rig.scan();
   ASSERT_EQ(rig.prog.iw[0], 0x1234);
   ASSERT_EQ(rig.prog.iw[42], 1);
   std::this_thread::sleep_for(milliseconds(150));  // the runtime's scan thread held up
   const std::uint32_t seq = __atomic_load_n(&rig.raw().input_seq, __ATOMIC_ACQUIRE);
   __atomic_store_n(&rig.raw().input_seq, seq + 1, __ATOMIC_RELEASE);  // a writer "inside"
+  rig.tick();
   openplc::scan([] {});
   EXPECT_EQ(rig.prog.iw[0], 0x1234) << "the last good words, not zeros";
   EXPECT_EQ(rig.prog.iw[42], 1) << "one failed snapshot is not a lost link";
   std::this_thread::sleep_for(milliseconds(150));
+  rig.tick();
   openplc::scan([] {});
   EXPECT_EQ(rig.prog.iw[42], 0) << "no good snapshot for 150 ms: the link is lost";
   EXPECT_EQ(rig.prog.iw[0], 0);
   __atomic_store_n(&rig.raw().input_seq, seq + 2, __ATOMIC_RELEASE);
+  rig.tick();
   openplc::scan([] {});
   EXPECT_EQ(rig.prog.iw[42], 1);
   EXPECT_EQ(rig.prog.iw[0], 0x1234);
   openplc::stop();
 }
 
-// The layer looks for the image on every scan: a daemon started after the runtime is linked on
-// the next scan, well inside any plc_timeout_ms (it was once a second).
-TEST(OpenPlcLayer, ImageCreatedAfterTheStartIsLinkedOnTheNextScan) {
+// The layer looks for the image on every scan: a daemon started after the runtime is found on
+// the next scan, well inside any plc_timeout_ms (it was once a second), and linked as soon as
+// its scan counter is seen to advance.
+TEST(OpenPlcLayer, ImageCreatedAfterTheStartIsFoundOnTheNextScan) {
   const std::string name = "openplc-late-" + std::to_string(::getpid());
   ::setenv("STEPMOD_NAME", name.c_str(), 1);
   Program prog;
@@ -328,9 +305,11 @@ TEST(OpenPlcLayer, ImageCreatedAfterTheStartIsLinkedOnTheNextScan) {
   image.publish_inputs(in, ipc::Health{});
   const std::uint64_t hb = image.heartbeat();
   openplc::scan([] {});
+  EXPECT_EQ(image.heartbeat(), hb + 1) << "its heartbeat from that scan on";
+  image.publish_inputs(in, ipc::Health{});
+  openplc::scan([] {});
   EXPECT_EQ(prog.iw[42], 1);
   EXPECT_EQ(prog.iw[1], 77);
-  EXPECT_EQ(image.heartbeat(), hb + 1) << "and its heartbeat from that scan on";
   openplc::stop();
 }
 

@@ -25,6 +25,12 @@ IEC_UINT mb_holding_regs[8192];
 
 namespace {
 std::function<void()> g_bind;
+std::string g_log;
+}  // namespace
+
+// utils.cpp: OpenPLC's log (here a string the tests read).
+extern "C" void openplc_log(char* logmsg) {
+  g_log += logmsg;
 }
 
 void glueVars() {
@@ -83,6 +89,10 @@ void reset() {
   for (auto& p : int_output) p = nullptr;
   std::memset(mb_input_regs, 0, sizeof mb_input_regs);
   std::memset(mb_holding_regs, 0, sizeof mb_holding_regs);
+}
+
+std::string& log() {
+  return g_log;
 }
 
 }  // namespace openplc

@@ -4,6 +4,7 @@
 // bb35f69): the buffers, bufferLock, mapUnusedIO() and disableOutputs(), and main.cpp's order of
 // calls -- start, scan, stop. Definitions live in openplc_runtime.cpp (one per test binary).
 #include <functional>
+#include <string>
 
 #include "tests/openplc/ladder.h"
 
@@ -24,5 +25,7 @@ void scan(const std::function<void()>& program);
 void stop();
 // Every pointer back to NULL and the Modbus registers to 0 (between tests).
 void reset();
+// What the layer logged through utils.cpp's openplc_log() (clear it at will).
+std::string& log();
 
 }  // namespace openplc
