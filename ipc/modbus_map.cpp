@@ -108,6 +108,12 @@ ModbusResult ModbusMap::read_inputs(ModbusResult r) const noexcept {
   const bool words = end <= input_regs_;
   const bool header = first >= kHeaderBase && end <= kHeaderBase + kHeaderRegisters;
   if (!words && !header) return fail(r, ModbusException::kIllegalDataAddress);
+  // Before the daemon's first publication the words are the zeros of a new image, not the
+  // module's state: a master that read them would take "Module OK = 0, position 0" as a fact.
+  // It gets "busy" and retries; the header (scan counter 0) stays readable to say why.
+  if (words && __atomic_load_n(&img_.scan_counter, __ATOMIC_ACQUIRE) == 0) {
+    return fail(r, ModbusException::kServerDeviceBusy);
+  }
 
   // One consistent publication: the input words and the health fields share the input seqlock.
   std::int32_t in[STEPMOD_MAX_WORDS] = {};

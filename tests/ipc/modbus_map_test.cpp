@@ -27,6 +27,7 @@ struct Image {
     std::int32_t buf[16] = {};
     for (std::size_t i = 0; i < w.size(); ++i) buf[i] = w[i];
     stepmod_seq_write(&img->input_seq, &img->input_image, img->word_bytes, img->input_words, buf);
+    ++img->scan_counter;  // as the daemon counts each publication
   }
   void set_outputs(const std::vector<std::int32_t>& w) {
     std::int32_t buf[16] = {};
@@ -131,6 +132,22 @@ TEST(ModbusMap, ReasonItemCodesIn1016To1019) {
   const auto r = map.handle(read_pdu(modbus_fc::kReadInput, 1016, 4));
   ASSERT_EQ(r.exception, ModbusException::kNone);
   EXPECT_EQ(values(r), (std::vector<std::uint16_t>{0, 20205, 0x0001, 0x0002}));
+}
+
+// A new image's zeros are not the module's state: until the daemon's first publication the
+// input words answer "busy" (0x06), the header (scan counter 0) answers.
+TEST(ModbusMap, InputWordsAreBusyUntilTheFirstPublication) {
+  Image im(3601, 2, 8, 8);
+  ModbusMap map(*im.img, false);
+  EXPECT_EQ(map.handle(read_pdu(modbus_fc::kReadInput, 0, 8)).exception,
+            ModbusException::kServerDeviceBusy);
+  const auto header = map.handle(read_pdu(modbus_fc::kReadInput, 1000, 6));
+  ASSERT_EQ(header.exception, ModbusException::kNone);
+  EXPECT_EQ(header.values[4], 0u);
+  im.set_inputs({5});
+  const auto r = map.handle(read_pdu(modbus_fc::kReadInput, 0, 1));
+  ASSERT_EQ(r.exception, ModbusException::kNone);
+  EXPECT_EQ(r.values[0], 5u);
 }
 
 TEST(ModbusMap, IllegalAddressesAndCounts) {

@@ -25,6 +25,7 @@ TEST(ModbusMapThreading, AWriterPreemptedMidPublicationIsWaitedForNotAnsweredBus
   img->output_words = 10;
   img->input_words = 10;
   std::memcpy(img->magic, STEPMOD_IMAGE_MAGIC, 8);
+  img->scan_counter = 1;  // a running daemon's image: published before
   stepmod_word_store(&img->input_image, 2, 0, 111);
   stepmod_word_store(&img->input_image, 2, 1, 222);
   const std::uint32_t odd = stepmod_seq_write_begin(&img->input_seq, STEPMOD_SEQ_STALE_NS);
