@@ -1,6 +1,10 @@
 #include "ipc/lease.hpp"
 
+#include <signal.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <climits>
 
 namespace stepmod::ipc {
 namespace {
@@ -29,18 +33,35 @@ void Lease::write_expiry() noexcept {
 
 bool Lease::take() {
   if (held()) return renew();
-  // The expiry first: the daemon reads it only once it sees a holder, and a losing taker's
-  // write is overwritten by the winner's next renewal (both at most kAhead ahead).
-  write_expiry();
+  // The holder first: a taker that loses writes nothing, so the expiry stays the holder's own.
+  // (Writing the expiry before the compare-and-swap let a page retrying "Take control" keep a
+  // SIGKILLed holder's lease alive, and its axis moving, for as long as it retried.)
   std::uint32_t free = 0;
   if (!holder_.compare_exchange_strong(free, id_, std::memory_order_acq_rel)) return false;
-  seq_.fetch_add(1, std::memory_order_acq_rel);
+  return complete_take();
+}
+
+bool Lease::take_over(std::uint32_t from) {
+  if (from == 0) return take();
+  if (from == id_) return renew();
+  std::uint32_t expected = from;
+  if (!holder_.compare_exchange_strong(expected, id_, std::memory_order_acq_rel)) return false;
+  return complete_take();
+}
+
+bool Lease::complete_take() noexcept {
+  // The expiry before the sequence: the daemon validates a take's expiry once it sees the new
+  // sequence (its acquire load of the sequence comes before that of the expiry). Until then the
+  // take is under way, and one that stays so for kLeaseMaxAheadNs is freed by the daemon.
   write_expiry();
-  return true;
+  seq_.fetch_add(1, std::memory_order_acq_rel);
+  return held();
 }
 
 bool Lease::renew() noexcept {
   if (!held()) return false;
+  // Freed and taken by another tool between the check and the store, this expiry lands in the
+  // new holder's lease: at most kAhead from now, and this process renews no more.
   write_expiry();
   return true;
 }
@@ -64,6 +85,12 @@ std::uint32_t Lease::holder_of(const stepmod_image_t& img) {
 
 std::uint64_t Lease::expiry_of(const stepmod_image_t& img) {
   return load(img.lease_expiry_ns);
+}
+
+bool Lease::process_running(std::uint32_t pid) noexcept {
+  // Above INT_MAX the pid_t would be negative: kill() would address a process group.
+  if (pid == 0 || pid > static_cast<std::uint32_t>(INT_MAX)) return false;
+  return ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM;
 }
 
 }  // namespace stepmod::ipc

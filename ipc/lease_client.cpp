@@ -24,10 +24,20 @@ bool LeaseClient::plc_quiet(std::chrono::milliseconds quiet) const {
 }
 
 LeaseClient::Take LeaseClient::take(std::chrono::milliseconds quiet) {
+  return start(0, quiet);
+}
+
+LeaseClient::Take LeaseClient::take_over(std::uint32_t from, std::chrono::milliseconds quiet) {
+  return start(from, quiet);
+}
+
+LeaseClient::Take LeaseClient::start(std::uint32_t from, std::chrono::milliseconds quiet) {
   if (taken_) return Take::kTaken;
-  if (lease_.holder() != 0) return Take::kHeldByOther;
+  const std::uint32_t holder = lease_.holder();
+  if (holder != 0 && holder != from) return Take::kHeldByOther;
   if (!plc_quiet(quiet)) return Take::kPlcInControl;
-  if (!lease_.take()) return Take::kHeldByOther;
+  // From `from`, or from 0 if the lease was freed meanwhile (take_over(0) is take()).
+  if (!lease_.take_over(from) && !(from != 0 && lease_.take())) return Take::kHeldByOther;
   taken_ = true;
   stop_ = false;
   renewer_ = std::thread([this] { renew_loop(); });

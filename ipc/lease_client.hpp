@@ -46,6 +46,10 @@ class LeaseClient {
   // bit 1, after [module] plc_timeout_ms), or the heartbeat does not change for `quiet` (watched
   // here; the contract's 1 s when plc_timeout_ms is 0). Then renews it from a thread.
   Take take(std::chrono::milliseconds quiet = std::chrono::milliseconds(1000));
+  // The same, but taking the lease over from holder `from` (stepmodctl --steal, the operator's
+  // explicit choice; the daemon logs it). kHeldByOther: `from` no longer holds it.
+  Take take_over(std::uint32_t from,
+                 std::chrono::milliseconds quiet = std::chrono::milliseconds(1000));
   // Stops renewing and gives the lease back (writes 0 if still ours). Idempotent.
   void release();
   // Ours, as far as the image says (the daemon frees an expired lease).
@@ -56,6 +60,7 @@ class LeaseClient {
 
  private:
   bool plc_quiet(std::chrono::milliseconds quiet) const;
+  Take start(std::uint32_t from, std::chrono::milliseconds quiet);
   void renew_loop();
 
   Client& client_;

@@ -3,6 +3,12 @@
 #include "ipc/stepmod_image.h"
 
 namespace stepmod::ipc {
+namespace {
+// A lease stands in for the heartbeat only with an expiry a live holder can have written.
+bool lease_stands(const PlcSupervisor::Sample& s) noexcept {
+  return s.lease_until != 0 && s.lease_until >= s.now && s.lease_until - s.now <= kLeaseMaxAheadNs;
+}
+}  // namespace
 
 PlcSupervisor::PlcSupervisor(Nanos heartbeat_timeout) noexcept
     : heartbeat_timeout_(heartbeat_timeout > 0 ? heartbeat_timeout : 0),
@@ -17,7 +23,7 @@ const ImageWords& PlcSupervisor::scan(const Sample& s) noexcept {
   std::uint32_t flags = 0;
 
   // Heartbeat (INTERFACE 3.2): stale while unchanged for the timeout.
-  if (s.heartbeat != heartbeat_ || s.lease_held) {
+  if (s.heartbeat != heartbeat_ || lease_stands(s)) {
     heartbeat_ = s.heartbeat;
     heartbeat_changed_ = s.now;
   }

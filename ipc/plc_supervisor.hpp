@@ -27,6 +27,7 @@
 
 #include "core/clock.hpp"
 #include "core/module_shape.hpp"
+#include "ipc/lease_limits.hpp"
 #include "ipc/stepmod_image.h"  // STEPMOD_HEALTH_* flags
 
 namespace stepmod::ipc {
@@ -47,9 +48,12 @@ class PlcSupervisor {
     bool snapshot_ok = false;        // a consistent snapshot was taken ...
     std::uint32_t snapshot_seq = 0;  // ... under this (even) sequence value
     ImageWords words{};              // ... of these words
-    // A commissioning lease is held (INTERFACE 3.5): the tool is the deadman, the heartbeat
-    // timeout is not applied (the heartbeat counts as fresh).
-    bool lease_held = false;
+    // The expiry of a commissioning lease held at this scan (INTERFACE 3.5; 0 = none), as the
+    // daemon's lease watch found it valid: while it stands, the tool is the deadman and the
+    // heartbeat counts as fresh. Only an expiry within [now, now + kLeaseMaxAheadNs] stands, so
+    // no lease word (garbage, a far-off or passed expiry) holds off the heartbeat timeout for
+    // longer than the 500 ms a live holder's lease lasts without renewal.
+    Nanos lease_until = 0;
   };
 
   // One scan. Returns the words the module is to scan this time (the live snapshot, the last

@@ -47,6 +47,10 @@ void add_globals(CLI::App& app, CtlOptions& o) {
   app.add_option("--name,-n", o.name, "module name: /dev/shm/stepmod.NAME (default stepmod)");
   app.add_option("--timeout", o.timeout_ms, "ms to wait for the module's scans/handshakes (2000)")
       ->check(CLI::NonNegativeNumber);
+  app.add_flag("--steal", o.steal,
+               "take the commissioning lease over from the tool that holds it, for this command "
+               "(logged by stepmodctl and stepmodd; without it a command is refused while another "
+               "running process holds the lease, except stop)");
   app.add_option("--axis", o.axis_no, "3602: the axis a command is for, 1 or 2 (1)")
       ->check(CLI::Range(1, 2));
   app.add_option("--channel,-c", o.channel_no, "3202: the channel a command is for, 1 or 2 (1)")

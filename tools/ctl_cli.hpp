@@ -17,6 +17,7 @@ struct CtlOptions {
   unsigned channel_no = 0;          // --channel, 1-based; 0 = not given
   Command cmd;                      // the module command
   bool wait = false;                // --wait of a motion command
+  bool steal = false;               // --steal: take the commissioning lease over (logged)
   std::string gpo_state;            // gpo on|off
   bool brief = false;               // status / watch --brief
   bool json = false;                // status --json

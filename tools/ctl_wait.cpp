@@ -80,24 +80,6 @@ int wait_motion_end(ipc::Client& client, const std::vector<unsigned>& units, Mot
   return rc;
 }
 
-std::unique_ptr<ipc::LeaseClient> take_lease(ipc::Client& client, std::ostream& err) {
-  auto lease = std::make_unique<ipc::LeaseClient>(client);
-  switch (lease->take()) {
-    case ipc::LeaseClient::Take::kTaken:
-      return lease;
-    case ipc::LeaseClient::Take::kPlcInControl:
-      err << "stepmodctl: a PLC heartbeat is live: no commissioning lease taken (the PLC is the "
-             "deadman)\n";
-      break;
-    case ipc::LeaseClient::Take::kHeldByOther:
-      err << "stepmodctl: the commissioning lease is held by pid "
-          << __atomic_load_n(&client.raw().lease_holder, __ATOMIC_ACQUIRE)
-          << ": waiting without it\n";
-      break;
-  }
-  return nullptr;
-}
-
 void warn_heartbeat_timeout(const ipc::Client& client, std::ostream& err) {
   if ((client.read_health().flags & STEPMOD_HEALTH_PLC_STALE) == 0) return;
   err << "stepmodctl: note: no PLC heartbeat, and stepmodd watches it ([module] "

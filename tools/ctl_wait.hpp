@@ -1,14 +1,11 @@
 #pragma once
-// stepmodctl's waiting: wait-idle and --wait (the end of a motion and why), the commissioning
-// lease a --wait command holds while no PLC is in control (INTERFACE 3.5, docs/commissioning.md),
-// and whether the daemon scans at all.
+// stepmodctl's waiting: wait-idle and --wait (the end of a motion and why), and whether the daemon
+// scans at all. The commissioning lease a --wait command holds is tools/ctl_lease.hpp's.
 #include <chrono>
 #include <iosfwd>
-#include <memory>
 #include <vector>
 
 #include "ipc/client.hpp"
-#include "ipc/lease_client.hpp"
 #include "tools/ctl_summary.hpp"
 
 namespace stepmod::tools::ctl {
@@ -22,10 +19,6 @@ bool daemon_scanning(const ipc::Client& client, std::chrono::milliseconds limit)
 // stopped scanning.
 int wait_motion_end(ipc::Client& client, const std::vector<unsigned>& units, Motion kind,
                     std::chrono::nanoseconds limit, std::ostream& out, std::ostream& err);
-
-// The lease for a --wait command: taken when no PLC is in control (nullptr and a note on `err`
-// when a PLC is, or another tool holds it).
-std::unique_ptr<ipc::LeaseClient> take_lease(ipc::Client& client, std::ostream& err);
 
 // A motion started without --wait: if the daemon watches the PLC heartbeat and no PLC keeps it
 // alive (health bit 1 now), say that [module] plc_timeout_ms will stop the motion.

@@ -348,7 +348,7 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     sample.heartbeat = image->heartbeat();
     sample.seq = image->output_seq();
     sample.snapshot_ok = image->read_outputs(sample.words, sample.snapshot_seq);
-    sample.lease_held = lease.scan(*image, sample.heartbeat, now, personality);
+    sample.lease_until = lease.scan(*image, sample.heartbeat, now, personality);
     // While a drive enabled a moment ago is not ready, the module keeps scanning the words it
     // had: a command issued meanwhile is a new edge once the drive is ready.
     const ImageWords& live = supervisor.scan(sample);

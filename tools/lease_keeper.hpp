@@ -8,10 +8,11 @@ namespace stepmod::tools {
 
 class LeaseKeeper {
  public:
-  // One scan, before the supervisor's: returns whether a lease is held (the heartbeat timeout
-  // is then not applied).
-  bool scan(ipc::ShmImage& image, std::uint64_t heartbeat, Nanos now,
-            module::Personality& personality);
+  // One scan, before the supervisor's: returns the expiry of the lease held and valid at this
+  // scan (0: none), for PlcSupervisor::Sample::lease_until (the heartbeat timeout is not applied
+  // while it stands).
+  Nanos scan(ipc::ShmImage& image, std::uint64_t heartbeat, Nanos now,
+             module::Personality& personality);
   std::uint32_t flags() const noexcept { return watch_.flags(); }
 
  private:

@@ -6,7 +6,8 @@
 // ctl_3202.cpp), which calls the PLC-side library (plc/).
 //
 // Exit status: 0 ok; 1 the module refused the command (an error bit with its reason), or a
-// waited-for motion did not end in Move Complete / At Home; 2 usage error (nothing written); 3 the
+// waited-for motion did not end in Move Complete / At Home, or another running process holds the
+// commissioning lease (tools/ctl_lease.hpp); 2 usage error (nothing written); 3 the
 // module cannot be reached (no image, no scan within --timeout: a stopped daemon).
 #include <CLI/CLI.hpp>
 
@@ -31,6 +32,7 @@
 #include "tools/ctl_cli.hpp"
 #include "tools/ctl_command.hpp"
 #include "tools/ctl_dialects.hpp"
+#include "tools/ctl_lease.hpp"
 #include "tools/ctl_report.hpp"
 #include "tools/ctl_status.hpp"
 #include "tools/ctl_wait.hpp"
@@ -54,7 +56,9 @@ constexpr const char* kDescription =
     "Exit status: 0 ok, 1 the module refused the command (an error bit it set for this command\n"
     "- Command Error, Invalid Profile, Home Invalid, Configuration Error - printed with the\n"
     "module's reason; a bit left by an earlier command is only a note for hold/resume/stop), or\n"
-    "a waited-for motion (--wait, wait-idle) did not end in Move Complete / At Home, 2 usage\n"
+    "a waited-for motion (--wait, wait-idle) did not end in Move Complete / At Home, or\n"
+    "another running process holds the commissioning lease (its pid is printed; nothing is\n"
+    "written; stop is never refused; --steal takes the lease over, logged), 2 usage\n"
     "error (also a command or value the module's words cannot carry; nothing is written), 3\n"
     "module unreachable (no image /dev/shm/stepmod.NAME, or no scan in time: a stopped daemon).\n"
     "Numbers accept 0x.. and 16#.. hex; negative numbers are written as they are:\n"
@@ -220,6 +224,10 @@ int run_raw_set(const CtlOptions& o, ipc::Client& client) {
   const bool narrow = client.shape().word_bytes == 2;
   const std::int64_t value = parse_in_range(o.raw_value, "VALUE", narrow ? INT16_MIN : INT32_MIN,
                                             narrow ? UINT16_MAX : UINT32_MAX, "the word size");
+  // A write like any command: refused under another running process' lease (--steal: taken over).
+  const LeasePlan lease =
+      plan_lease(client, LeaseRequest{false, o.steal, false, timeout}, std::cerr);
+  if (lease.refused) return kExitModuleError;
   client.write_word(static_cast<unsigned>(word),
                     static_cast<std::int32_t>(static_cast<std::uint32_t>(value)));
   if (!client.wait_scans(2, timeout)) {
@@ -241,22 +249,22 @@ unsigned unit_of(const CtlOptions& o) {
   return unit_no - 1;
 }
 
-// --wait: the commissioning lease while no PLC is in control; a lease holder is no PLC and
-// leaves the heartbeat alone. Without --wait, say when plc_timeout_ms will cut the motion.
-std::unique_ptr<ipc::LeaseClient> prepare_motion(const CtlOptions& o, ipc::Client& client,
-                                                 plc::ShmPort& port) {
-  std::unique_ptr<ipc::LeaseClient> lease;
-  if (o.wait && starts_motion(o.cmd.verb)) {
-    lease = take_lease(client, std::cerr);
-    if (lease) {
-      port.set_heartbeat(false);
-      // The daemon has seen it (and acts on the words again).
-      client.wait_scans(3, std::chrono::milliseconds(o.timeout_ms));
-    }
-  } else if (starts_motion(o.cmd.verb)) {
-    warn_heartbeat_timeout(client, std::cerr);
-  }
-  return lease;
+// The commissioning lease (tools/ctl_lease.hpp): held by another running process, the command
+// is refused (plan.refused: exit 1, nothing written) unless --steal; --wait holds it while no PLC
+// is in control, and a lease holder is no PLC (no heartbeat). A stop (and `path wait`, which
+// commands nothing) is never refused. Without
+// --wait, say when plc_timeout_ms will cut the motion.
+LeasePlan prepare_command(const CtlOptions& o, ipc::Client& client, plc::ShmPort& port) {
+  LeaseRequest r;
+  r.hold = o.wait && starts_motion(o.cmd.verb);
+  r.steal = o.steal;
+  r.never_refused = o.cmd.verb == Verb::kStop || o.cmd.verb == Verb::kPathWait;
+  r.timeout = std::chrono::milliseconds(o.timeout_ms);
+  LeasePlan plan = plan_lease(client, r, std::cerr);
+  if (plan.refused) return plan;
+  port.set_heartbeat(plan.heartbeat);
+  if (!r.hold && starts_motion(o.cmd.verb)) warn_heartbeat_timeout(client, std::cerr);
+  return plan;
 }
 
 // A stop or hold the module ignored (Command Error left set: 3601-CE-L1) while the axis still
@@ -287,7 +295,8 @@ int run_module_command(CtlOptions& o, ipc::Client& client) {
     return wait_motion_end(client, {cmd.unit}, Motion::kAny, millis(cmd.wait_seconds), std::cout,
                            std::cerr);
   }
-  const auto lease = prepare_motion(o, client, port);
+  const LeasePlan lease = prepare_command(o, client, port);
+  if (lease.refused) return kExitModuleError;
   const plc::Outcome out = registry::row_of(client.type()).run_command(cmd, port, client, timeout);
   print_outcome(client, out);
   if (!out.ok) return exit_for(out);

@@ -12,6 +12,15 @@ using Clock = std::chrono::steady_clock;
 nlohmann::json reply(const std::string& op, bool ok, const std::string& message) {
   return {{"type", "reply"}, {"op", op}, {"ok", ok}, {"message", message}};
 }
+
+// A take refused because another tool holds the lease: who, and whether it still runs.
+nlohmann::json held_by(std::uint32_t holder) {
+  return reply("take", false,
+               "refused: the lease is held by process " + std::to_string(holder) +
+                   (ipc::Lease::process_running(holder)
+                        ? ""
+                        : " (not running: stepmodd frees its lease within 0.5 s)"));
+}
 }  // namespace
 
 Commander::Commander(const std::string& module_name, const Sampler& sampler, Options opt)
@@ -65,6 +74,10 @@ nlohmann::json Commander::take(std::uintptr_t conn) {
   if (operator_ != 0 && operator_ != conn) {
     return reply("take", false, "another page of this console holds the lease");
   }
+  // Another tool's lease is not touched: not even by a take that would fail (issue 29: a page
+  // retrying "Take control" must not push a dead holder's deadline).
+  const std::uint32_t holder = lease_.holder();
+  if (holder != 0 && holder != lease_.id()) return held_by(holder);
   const PlcLink link = sampler_.plc_link();
   const auto quiet = Clock::now() - link.heartbeat_changed;
   if (!link.stale && quiet < opt_.plc_quiet) {
@@ -74,10 +87,7 @@ nlohmann::json Commander::take(std::uintptr_t conn) {
             std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(quiet).count()) +
             " ms ago)");
   }
-  if (!lease_.take()) {
-    return reply("take", false,
-                 "refused: the lease is held by process " + std::to_string(lease_.holder()));
-  }
+  if (!lease_.take()) return held_by(lease_.holder());
   operator_ = conn;
   last_keepalive_ = Clock::now();
   renewing_ = true;
@@ -94,7 +104,8 @@ nlohmann::json Commander::release(std::uintptr_t conn) {
 
 nlohmann::json Commander::command(const nlohmann::json& req, std::uintptr_t conn) {
   const std::string cmd = req.value("cmd", "");
-  if (operator_ != conn || !lease_.held()) {
+  // An Immediate Stop is never refused: from any page, whoever holds the lease.
+  if (cmd != "stop" && (operator_ != conn || !lease_.held())) {
     return reply(cmd, false, "refused: take the commissioning lease first");
   }
   try {

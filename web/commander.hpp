@@ -5,6 +5,8 @@
 // only while the operator's keep-alives arrive (at least every `keepalive_limit`); when they
 // stop (tab closed, focus lost, network gone) it is no longer renewed and the daemon stops the
 // axes at its expiry (at most 500 ms). Killing stepmod-web stops the renewal the same way.
+// A lease held by another tool is left alone (the take is refused with its pid), and a stop
+// command works from any page without the lease (a stop is never refused).
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -34,7 +36,7 @@ class Commander {
   Commander& operator=(const Commander&) = delete;
 
   // One request of connection `conn` ({"op": "take" | "release" | "keepalive" | "cmd", ...});
-  // the reply to send back (keep-alives get none: null).
+  // the reply to send back (keep-alives get none: null). A "cmd" needs the lease, but "stop".
   nlohmann::json handle(const nlohmann::json& req, std::uintptr_t conn);
   // The connection is gone: if it was the operator, the lease is no longer renewed.
   void disconnected(std::uintptr_t conn);

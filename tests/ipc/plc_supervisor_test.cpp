@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+
 namespace stepmod::ipc {
 namespace {
 
@@ -23,6 +25,7 @@ class Supervisor : public ::testing::Test {
     s.snapshot_ok = (seq_ & 1u) == 0;
     s.snapshot_seq = seq_;
     s.words = words_;
+    s.lease_until = lease_until_;
     return sup_.scan(s);
   }
   void scans(int n) {
@@ -39,6 +42,7 @@ class Supervisor : public ::testing::Test {
   std::uint64_t heartbeat_ = 1;
   std::uint32_t seq_ = 10;
   ImageWords words_{};
+  Nanos lease_until_ = 0;  // a commissioning lease's expiry (0: none)
 };
 
 TEST_F(Supervisor, LiveWordsPassWhileTheHeartbeatMoves) {
@@ -96,6 +100,50 @@ TEST_F(Supervisor, HeartbeatWatchOffNeverTrips) {
     s.snapshot_ok = true;
     off.scan(s);
     ASSERT_EQ(off.flags(), 0u);
+  }
+}
+
+// Issue 29: a lease stands in for the heartbeat only while its expiry is one a live holder writes
+// (now .. now + 500 ms). Before, any held lease reset the heartbeat timer at every scan: garbage
+// lease words switched the PLC watchdog off.
+TEST_F(Supervisor, ALeaseHoldsOffTheTimeoutOnlyWithinItsOwnExpiry) {
+  // A live holder's lease, renewed (400 ms ahead at every scan): no timeout for 1 s.
+  for (int i = 0; i < 1000; ++i) {
+    lease_until_ = now_ + kScan + 400 * kNsPerMs;
+    scan();
+    ASSERT_EQ(sup_.flags(), 0u) << i;
+  }
+  // No more renewals: the lease stands until its expiry, then the 50 ms timeout runs.
+  scans(400);
+  EXPECT_EQ(sup_.flags(), 0u);
+  scans(50);
+  EXPECT_TRUE(sup_.flags() & STEPMOD_HEALTH_PLC_STALE);
+  EXPECT_TRUE(sup_.tripped() || sup_.plc_lost());
+}
+
+TEST(SupervisorLease, AnExpiryNoLiveHolderWritesDoesNotHoldOffTheTimeout) {
+  const struct {
+    const char* what;
+    Nanos (*until)(Nanos now);
+  } cases[] = {
+      {"2^63-1", [](Nanos) { return Nanos{INT64_MAX}; }},
+      {"2^64-1 (read as -1)", [](Nanos) { return Nanos{-1}; }},
+      {"10 s ahead", [](Nanos now) { return now + 10 * kNsPerSec; }},
+      {"501 ms ahead", [](Nanos now) { return now + 501 * kNsPerMs; }},
+      {"passed", [](Nanos now) { return now - kNsPerMs; }},
+  };
+  for (const auto& c : cases) {
+    PlcSupervisor sup(50 * kNsPerMs);
+    PlcSupervisor::Sample s;
+    s.heartbeat = 7;
+    bool stale = false;
+    for (int i = 1; i <= 60 && !stale; ++i) {
+      s.now = kNsPerSec + i * kScan;
+      s.lease_until = c.until(s.now);
+      sup.scan(s);
+      stale = (sup.flags() & STEPMOD_HEALTH_PLC_STALE) != 0;
+    }
+    EXPECT_TRUE(stale) << c.what;
   }
 }
 

@@ -7,7 +7,10 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <climits>
+#include <cstdint>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -248,6 +251,137 @@ TEST_F(Lease, ExplicitLeaseExpiresWhenRenewalsStop) {
   EXPECT_FALSE(lease.renew());  // freed by the daemon: nothing written
   EXPECT_EQ(watch_.flags(), STEPMOD_HEALTH_LEASE_EXPIRED);
   EXPECT_TRUE(other.take());  // free again for the next tool
+}
+
+// ---- issue 29: only a live holder keeps a lease -------------------------------------------------
+
+// A take that finds the lease held writes nothing: not the expiry (before the fix it stored its
+// own expiry ahead of the compare-and-swap), not the sequence.
+TEST_F(Lease, TakeOfAHeldLeaseWritesNothing) {
+  ipc::Lease holder(client_, 6161);
+  ASSERT_TRUE(holder.take());
+  const std::uint64_t expiry = ipc::Lease::expiry_of(client_.raw());
+  const std::uint32_t seq = img().lease_seq;
+  ipc::Lease other(client_, 6262);
+  for (int i = 0; i < 20; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    EXPECT_FALSE(other.take());
+  }
+  EXPECT_EQ(ipc::Lease::expiry_of(client_.raw()), expiry);
+  EXPECT_EQ(img().lease_seq, seq);
+  EXPECT_EQ(holder.holder(), 6161u);
+}
+
+// A holder that died 100 ms before its expiry, and a tool retrying its take every 5 ms: the
+// daemon's watch still expires the dead holder's lease at its own expiry.
+TEST_F(Lease, RetriedTakeDoesNotExtendADeadHoldersLease) {
+  const Nanos last = stepmod_monotonic_ns() + 100'000'000;
+  img().lease_expiry_ns = static_cast<std::uint64_t>(last);
+  img().lease_holder = 999'998;
+  img().lease_seq = 3;
+  ASSERT_TRUE(scan().taken);
+  ipc::Lease retrier(client_, 6363);
+  LeaseWatch::Event e;
+  const Nanos give_up = last + 2'000'000'000;
+  while (!e.expired && stepmod_monotonic_ns() < give_up) {
+    EXPECT_FALSE(retrier.take());  // held by the dead holder until the watch frees it
+    e = scan();
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(e.expired) << "the retried take kept the dead holder's lease for 2 s";
+  EXPECT_EQ(e.holder, 999'998u);
+  // Expired at its own deadline: 5 ms polls, a loaded machine's margin.
+  EXPECT_LT(stepmod_monotonic_ns() - last, 300'000'000);
+  EXPECT_EQ(watch_.flags(), STEPMOD_HEALTH_LEASE_EXPIRED);
+  EXPECT_TRUE(retrier.take());  // then free for the live tool
+}
+
+// Expiries no live holder writes: expired (and freed, bit 6) at the scan that sees them.
+TEST_F(Lease, ExpiryFurtherAheadThanTheContractIsExpiredAtOnce) {
+  timespec rt{};
+  ::clock_gettime(CLOCK_REALTIME, &rt);
+  const std::uint64_t realtime = static_cast<std::uint64_t>(rt.tv_sec) * 1'000'000'000u +
+                                 static_cast<std::uint64_t>(rt.tv_nsec) + 400'000'000u;
+  const auto ahead = [](Nanos ns) {
+    return static_cast<std::uint64_t>(stepmod_monotonic_ns() + ns);
+  };
+  const std::uint64_t garbage[] = {ahead(10'000'000'000), ahead(700'000'000), realtime,
+                                   static_cast<std::uint64_t>(INT64_MAX), UINT64_MAX};
+  std::uint32_t pid = 7000;
+  for (const std::uint64_t expiry : garbage) {
+    img().lease_expiry_ns = expiry;
+    img().lease_holder = ++pid;
+    ++img().lease_seq;
+    const LeaseWatch::Event e = scan();
+    EXPECT_TRUE(e.taken) << expiry;
+    EXPECT_TRUE(e.expired) << expiry;
+    EXPECT_EQ(img().lease_holder, 0u) << expiry;
+    EXPECT_EQ(watch_.flags(), STEPMOD_HEALTH_LEASE_EXPIRED) << expiry;
+    EXPECT_FALSE(watch_.held());
+  }
+  // What a live holder writes (400 ms ahead) stands.
+  img().lease_expiry_ns = ahead(400'000'000);
+  img().lease_holder = ++pid;
+  ++img().lease_seq;
+  EXPECT_FALSE(scan().expired);
+  EXPECT_TRUE(watch_.held());
+}
+
+// The take's order, compare-and-swap first: between it and the take's expiry the image still holds
+// the previous holder's (here passed) expiry. That is no expiry of the new holder's: the watch
+// waits for the take's sequence increment, for 500 ms at most.
+TEST_F(Lease, TakeUnderWayIsNotExpiredByThePreviousExpiry) {
+  img().lease_expiry_ns = static_cast<std::uint64_t>(stepmod_monotonic_ns() - 1'000'000'000);
+  img().lease_holder = 8080;  // compare-and-swap done; expiry and sequence to come
+  LeaseWatch::Event e = scan();
+  EXPECT_FALSE(e.expired);
+  EXPECT_FALSE(e.taken);
+  EXPECT_FALSE(watch_.held());  // nothing held yet: the heartbeat timeout applies
+  img().lease_expiry_ns = static_cast<std::uint64_t>(stepmod_monotonic_ns() + 400'000'000);
+  ++img().lease_seq;
+  e = scan();
+  EXPECT_TRUE(e.taken);
+  EXPECT_FALSE(e.expired);
+  EXPECT_TRUE(watch_.held());
+  // A taker that dies between the two: expired once 500 ms have passed without the increment.
+  img().lease_holder = 0;
+  scan();
+  img().lease_holder = 9090;
+  const Nanos from = stepmod_monotonic_ns();
+  e = scan();
+  while (!e.expired && stepmod_monotonic_ns() - from < 2'000'000'000) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    e = scan();
+  }
+  ASSERT_TRUE(e.expired);
+  EXPECT_GE(stepmod_monotonic_ns() - from, kLeaseMaxAheadNs);
+  EXPECT_EQ(e.cause, LeaseWatch::Cause::kIncompleteTake);
+  EXPECT_EQ(img().lease_holder, 0u);
+  EXPECT_EQ(watch_.flags(), STEPMOD_HEALTH_LEASE_EXPIRED);
+}
+
+// stepmodctl --steal: the lease changes hands without a release, and the watch says from whom.
+TEST_F(Lease, TakeOverReplacesTheHolderAndTheWatchSaysFromWhom) {
+  ipc::Lease first(client_, 4711);
+  ipc::Lease second(client_, 4712);
+  ASSERT_TRUE(first.take());
+  EXPECT_TRUE(scan().taken);
+  EXPECT_FALSE(second.take_over(4799));  // not the holder: nothing
+  EXPECT_TRUE(first.held());
+  ASSERT_TRUE(second.take_over(4711));
+  EXPECT_FALSE(first.held());
+  EXPECT_FALSE(first.renew());  // the old holder's renewals stop
+  const LeaseWatch::Event e = scan();
+  EXPECT_TRUE(e.taken);
+  EXPECT_EQ(e.taken_from, 4711u);
+  EXPECT_EQ(e.holder, 4712u);
+  EXPECT_NE(watch_.held_until(), 0);
+}
+
+TEST(LeaseProcess, RunningIsKillZero) {
+  EXPECT_TRUE(ipc::Lease::process_running(static_cast<std::uint32_t>(::getpid())));
+  EXPECT_FALSE(ipc::Lease::process_running(0));
+  EXPECT_FALSE(ipc::Lease::process_running(0xFFFFFFFFu));  // not kill(-1, 0)
 }
 
 }  // namespace
