@@ -32,8 +32,8 @@
 #include "planner/planner.hpp"
 #include "planner/planner_thread.hpp"
 #include "rt/axis_feedback.hpp"
-#include "rt/pulse_engine.hpp"
-#include "rt/pulse_thread.hpp"
+#include "rt/step_output.hpp"
+#include "rt/step_output_factory.hpp"
 
 namespace {
 
@@ -81,7 +81,7 @@ class CheckingBackend final : public gpio::Backend {
   std::vector<AxisCheck> axes_;
 };
 
-// One machine: axes, rings, planner, engine, threads (tools/stack.cpp without the module).
+// One machine: axes, rings, planner, step output, threads (tools/stack.cpp without the module).
 struct Rig {
   struct Axis {
     SpscRing<rt::Edge> edges{1u << 15};  // as tools::StackOptions::edge_ring
@@ -111,8 +111,7 @@ struct Rig {
     planner::PlannerOptions popt;
     if (lookahead_ns > 0) popt.lookahead_ns = lookahead_ns;
     plan = std::make_unique<planner::Planner>(pa, popt);
-    engine = std::make_unique<rt::PulseEngine>(*backend, links, nullptr);
-    rt::PulseThread::Options po;
+    output = rt::make_step_output(rt::kPulseThreadOutput, {*backend, links, nullptr});
     po.priority = priority;
     if (min_spin_ns >= 0) po.min_spin_ns = min_spin_ns;
     po.cpu = cpu;
@@ -128,22 +127,18 @@ struct Rig {
       }
       pthread_setaffinity_np(pthread_self(), sizeof(set), &set);
     }
-    pulse = std::make_unique<rt::PulseThread>(*engine, po);
     plan_thread = std::make_unique<planner::PlannerThread>(*plan);
   }
   ~Rig() {
     if (plan_thread) plan_thread->stop();
-    if (pulse) {
-      pulse->stop();
-      pulse->join();
-    }
+    if (output) output->stop();
   }
 
   bool start() {
-    if (!pulse->start()) return false;
-    if (!pulse->status().fifo) {
+    if (!output->start(po)) return false;
+    if (!output->status().fifo) {
       std::fprintf(stderr, "warning: SCHED_FIFO refused (%s): run as root\n",
-                   std::strerror(pulse->status().sched_errno));
+                   std::strerror(output->status().sched_errno));
     }
     plan_thread->start();
     return true;
@@ -179,8 +174,8 @@ struct Rig {
   std::unique_ptr<CheckingBackend> backend;
   std::vector<std::unique_ptr<Axis>> axes;
   std::unique_ptr<planner::Planner> plan;
-  std::unique_ptr<rt::PulseEngine> engine;
-  std::unique_ptr<rt::PulseThread> pulse;
+  std::unique_ptr<rt::StepOutput> output;
+  rt::StepOutput::Options po;
   std::unique_ptr<planner::PlannerThread> plan_thread;
 };
 
@@ -226,7 +221,7 @@ int timing(int argc, char** argv) {
     std::printf("timing: move did not finish\n");
     return 1;
   }
-  const auto s = rig.engine->stats().snapshot();
+  const auto s = rig.output->stats().snapshot();
   const auto& c = rig.backend->check(0);
   std::printf(
       "edge timing: %llu edges at %.0f Hz, priority %d: lateness p50 %.2f us, p99 %.2f "
@@ -235,8 +230,8 @@ int timing(int argc, char** argv) {
       us(s.percentile(0.99)), us(s.percentile(0.999)), us(s.max),
       static_cast<unsigned long long>(c.level_repeats + c.time_backwards));
   std::printf("pulse thread: %llu loops, %llu sleeps, spin now %.1f us, process cpu %.2f s\n",
-              static_cast<unsigned long long>(rig.pulse->loops()),
-              static_cast<unsigned long long>(rig.pulse->sleeps()), us(rig.pulse->spin_now()),
+              static_cast<unsigned long long>(rig.output->loops()),
+              static_cast<unsigned long long>(rig.output->sleeps()), us(rig.output->spin_now()),
               cpu_seconds());
   std::printf(
       "RESULT bench=timing edges=%llu p50_us=%.3f p99_us=%.3f p999_us=%.3f max_us=%.3f "
@@ -244,7 +239,7 @@ int timing(int argc, char** argv) {
       static_cast<unsigned long long>(s.count), us(s.percentile(0.5)), us(s.percentile(0.99)),
       us(s.percentile(0.999)), us(s.max),
       static_cast<unsigned long long>(c.level_repeats + c.time_backwards),
-      rig.pulse->status().fifo ? 1 : 0);
+      rig.output->status().fifo ? 1 : 0);
   return 0;
 }
 
@@ -275,7 +270,7 @@ int rate(int argc, char** argv) {
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     const double cpu = cpu_seconds() - cpu0;
-    const auto s = rig.engine->stats().snapshot();
+    const auto s = rig.output->stats().snapshot();
     std::uint64_t errors = 0;
     for (unsigned a = 0; a < n_axes; ++a) {
       const auto& c = rig.backend->check(a);

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "core/clock.hpp"
+#include "core/spsc_ring.hpp"
 #include "rt/edge.hpp"
 #include "rt/edge_cut.hpp"
 #include "rt/slip.hpp"
@@ -177,6 +178,14 @@ class StepHistory {
   std::atomic<std::uint64_t> count_{0};     // entries completely written
   std::atomic<std::uint64_t> writing_{0};   // entries whose writing has begun
   std::atomic<std::uint64_t> stamping_{0};  // odd: a step is being stamped (announce())
+};
+
+// Everything a step output (rt/step_output.hpp) touches for one axis.
+struct AxisLink {
+  SpscRing<Edge>* edges = nullptr;   // consumer side: planner -> step output
+  AxisFeedback* feedback = nullptr;  // written by the step output
+  AxisControl* control = nullptr;    // read by it (immediate stop, cap, cut; written: cut's answer)
+  StepHistory* history = nullptr;    // written by it
 };
 
 }  // namespace stepmod::rt

@@ -2,11 +2,15 @@
 // One scheduled output change: the unit the planner hands to the pulse thread. Edges of one axis
 // travel in that axis' SpscRing<Edge> in non-decreasing time order.
 #include <cstdint>
+#include <limits>
 
 #include "core/clock.hpp"
 #include "core/lines.hpp"
 
 namespace stepmod::rt {
+
+// No edge: the time a step output answers when nothing is queued (StepOutput::next_due).
+inline constexpr Nanos kNever = std::numeric_limits<Nanos>::max();
 
 // Motion phase of the move an edge belongs to; drives the accelerating/decelerating status bits.
 enum class Phase : std::uint8_t { kCruise = 0, kAccel = 1, kDecel = 2 };

@@ -2,9 +2,10 @@
 // The pulse thread's work, separated from the thread itself so that tests can run it in virtual
 // time: take the earliest due edge over all axes, write it, account for it. Nothing here
 // allocates, locks, logs or makes a system call other than the backend's line write.
+// It is the first step output's work (rt/step_output.hpp; rt/pulse_thread_output.hpp wires it to
+// its thread); the control side reaches it only through that interface.
 #include <atomic>
 #include <cstdint>
-#include <limits>
 #include <span>
 #include <vector>
 
@@ -16,16 +17,6 @@
 #include "rt/lateness_stats.hpp"
 
 namespace stepmod::rt {
-
-inline constexpr Nanos kNever = std::numeric_limits<Nanos>::max();
-
-// Everything the pulse thread touches for one axis.
-struct AxisLink {
-  SpscRing<Edge>* edges = nullptr;   // consumer side: planner -> pulse thread
-  AxisFeedback* feedback = nullptr;  // written here
-  AxisControl* control = nullptr;    // read here (immediate stop)
-  StepHistory* history = nullptr;    // written here
-};
 
 class PulseEngine {
  public:

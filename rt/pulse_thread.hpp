@@ -42,44 +42,19 @@
 #include <cstdint>
 
 #include "core/clock.hpp"
+#include "rt/output_thread.hpp"
 #include "rt/pulse_engine.hpp"
 #include "rt/sleep_plan.hpp"
 
 namespace stepmod::rt {
 
-// Outside PulseThread so that `Options{}` can be a default argument of its constructor.
-struct PulseThreadOptions {
-  int priority = 80;                     // SCHED_FIFO priority (1 ... 99); <= 0: stay SCHED_OTHER
-  int cpu = -1;                          // CPU to pin to; -1 = not pinned
-  Nanos spin_ns = 100 * kNsPerUs;        // wake at most this long before an edge and spin to it
-  Nanos min_spin_ns = 10 * kNsPerUs;     // ... and at least this long (= spin_ns: fixed spin)
-  Nanos max_sleep_ns = 50 * kNsPerUs;    // longest sleep without looking for new work
-  Nanos quiet_sleep_ns = 50 * kNsPerUs;  // longest sleep when no ring() is recent (see above)
-  Nanos awake_ns = 20 * kNsPerMs;        // how long a ring() keeps the max_sleep_ns poll on
-  // Off-CPU share the thread keeps, per mille, on balance; 0 = off. See the note above.
-  unsigned min_off_cpu_permille = 70;
-  // mlockall(MCL_CURRENT | MCL_FUTURE | MCL_ONFAULT): pages stay resident once touched; nothing
-  // is populated that nobody uses (see setup()).
-  bool lock_memory = true;
-  std::size_t stack_bytes = std::size_t{256} * 1024;          // this thread's whole stack
-  std::size_t prefault_stack_bytes = std::size_t{64} * 1024;  // stack touched before the loop
-};
+// The options and the setup's status are every step output thread's (rt/output_thread.hpp).
+using PulseThreadOptions = OutputThreadOptions;
 
 class PulseThread {
  public:
-  using Options = PulseThreadOptions;
-
-  // What the setup obtained; valid once start() has returned. errno values are 0 on success or
-  // when the step was not requested.
-  struct Status {
-    bool started = false;
-    bool memory_locked = false;
-    int mlock_errno = 0;
-    bool fifo = false;  // SCHED_FIFO at Options::priority
-    int sched_errno = 0;
-    bool pinned = false;
-    int affinity_errno = 0;
-  };
+  using Options = OutputThreadOptions;
+  using Status = OutputThreadStatus;
 
   // The engine must outlive the thread, and belongs to it between start() and join().
   explicit PulseThread(PulseEngine& engine, Options options = Options{});

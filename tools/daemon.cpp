@@ -22,7 +22,7 @@
 #include "ipc/sim_panel.hpp"
 #include "module/axis/error_items.hpp"
 #include "planner/planner_thread.hpp"
-#include "rt/pulse_thread.hpp"
+#include "rt/step_output.hpp"
 #include "systemd/notify.hpp"
 #include "systemd/watchdog.hpp"
 #include "tools/backend_factory.hpp"
@@ -61,7 +61,7 @@ struct Daemon::Impl {
 #endif
   systemd::Watchdog watchdog;  // WatchdogSec=: petted per scan while the pulse thread loops
   std::atomic<std::uint64_t> input_trace_dropped{0};  // control thread writes, trace reads
-  rt::PulseThread* pulse = nullptr;                   // while run() runs
+  rt::StepOutput* pulse = nullptr;                    // while run() runs
   std::uint32_t planner_wakes = 0;              // the planner's wake counter as last seen by kick()
   std::vector<std::uint32_t> late_faults_seen;  // per axis: faults already logged
   // Per axis, for the "needs a CPU of its own" notice: the step count at the last scan and the
@@ -97,7 +97,7 @@ struct Daemon::Impl {
   bool input_loss_lasts() const noexcept;
   void notice_cpu_need(Nanos now);
   std::uint64_t trace_dropped() const noexcept {
-    return stack->engine().trace_dropped() + input_trace_dropped.load(std::memory_order_relaxed);
+    return stack->output().trace_dropped() + input_trace_dropped.load(std::memory_order_relaxed);
   }
   void take_panel_forces();
   void publish_panel();
@@ -167,7 +167,7 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
     }
     d.trace = std::make_unique<gpio::TraceWriter>(*trace_path, wires, d.start, *d.output_trace,
                                                   *d.input_trace);
-    d.trace->watch_losses(&d.stack->engine().trace_dropped_counter(), &d.input_trace_dropped);
+    d.trace->watch_losses(&d.stack->output().trace_dropped_counter(), &d.input_trace_dropped);
   }
 }
 
@@ -176,8 +176,8 @@ Daemon::~Daemon() = default;
 namespace {
 
 // The pulse thread's options from the configuration.
-rt::PulseThread::Options pulse_options(const Config& config) {
-  rt::PulseThread::Options po;
+rt::StepOutput::Options pulse_options(const Config& config) {
+  rt::StepOutput::Options po;
   po.priority = config.rt_priority;
   po.cpu = config.rt_cpu;
 #ifdef STEPMOD_SANITIZED
@@ -190,7 +190,7 @@ rt::PulseThread::Options pulse_options(const Config& config) {
 }
 
 // What the pulse thread's setup was refused, said once (the thread itself never logs).
-void warn_pulse_setup(const rt::PulseThread::Options& po, const rt::PulseThread::Status& st) {
+void warn_pulse_setup(const rt::StepOutput::Options& po, const rt::StepOutput::Status& st) {
   if (!st.fifo) {
     spdlog::warn(
         "pulse thread: SCHED_FIFO priority {} refused ({}); running without real-time "
@@ -255,12 +255,12 @@ void raise_control_thread(int rt_priority) {
 // (control_loop) until `stop`; then the orderly shutdown in the reverse order.
 bool Daemon::run(const std::atomic<bool>& stop) {
   Impl& d = *impl_;
-  const rt::PulseThread::Options po = pulse_options(d.config);
-  rt::PulseThread pulse(d.stack->engine(), po);
+  const rt::StepOutput::Options po = pulse_options(d.config);
+  rt::StepOutput& pulse = d.stack->output();
   d.pulse = &pulse;
   d.planner_wakes = d.stack->planner().wake_counter().load();
   if (d.trace) start_trace_thread(*d.trace);
-  if (!pulse.start()) throw std::runtime_error("cannot start the pulse thread");
+  if (!pulse.start(po)) throw std::runtime_error("cannot start the pulse thread");
   warn_pulse_setup(po, pulse.status());
   planner::PlannerThread planner(d.stack->planner());
   planner.start();
@@ -280,9 +280,8 @@ bool Daemon::run(const std::atomic<bool>& stop) {
   d.shutdown_motion();
   planner.stop();
   pulse.stop();
-  pulse.join();
   d.idle_outputs();
-  const auto stats = d.stack->engine().stats().snapshot();
+  const auto stats = pulse.stats().snapshot();
   spdlog::info("pulse thread: {} edges written, lateness p50 {} ns, p99.9 {} ns, max {} ns",
                stats.count, stats.percentile(0.5), stats.percentile(0.999), stats.max);
   // How often each real-time thread woke: the cost of a motion on a slow CPU is mostly there.
@@ -302,12 +301,12 @@ bool Daemon::run(const std::atomic<bool>& stop) {
 bool Daemon::Impl::finish_trace() {
   if (!trace) return true;
   const gpio::TraceOutcome t =
-      trace->stop(stack->engine().trace_dropped(), input_trace_dropped.load());
+      trace->stop(stack->output().trace_dropped(), input_trace_dropped.load());
   if (trace_dropped() > 0) {
     spdlog::error(
         "trace: {} output and {} input records lost (ring full): the VCD is "
         "incomplete (it says so, and marks where)",
-        stack->engine().trace_dropped(), input_trace_dropped.load());
+        stack->output().trace_dropped(), input_trace_dropped.load());
   }
   if (!t.complete) spdlog::error("trace: {}", t.problem);
   return t.complete && trace_dropped() == 0;

@@ -19,10 +19,10 @@ Stack::Stack(const StackOptions& options, gpio::Backend& backend, SpscRing<Trace
     links.push_back({&a->edges, &a->feedback, &a->control, &a->history});
   }
   planner_ = std::make_unique<planner::Planner>(planner_axes, options.planner);
-  engine_ = std::make_unique<rt::PulseEngine>(backend_, links, trace);
-  engine_->set_late_limit(options.late_limit_ns);
+  output_ = rt::make_step_output(options.step_output, {backend_, links, trace});
+  output_->set_late_limit(options.late_limit_ns);
   for (unsigned i = 0; i < options.lag_limit_steps.size() && i < shape_.axes; ++i) {
-    engine_->set_lag_limit(i, options.lag_limit_steps[i]);
+    output_->set_lag_limit(i, options.lag_limit_steps[i]);
   }
   std::vector<planner::MotionPort*> ports;
   for (unsigned i = 0; i < shape_.axes; ++i) {

@@ -1,9 +1,11 @@
 #pragma once
 // One emulated module's whole motion stack, wired but without threads: per-axis edge rings,
-// pulse-thread feedback and control, the planner, the pulse engine and the module personality.
+// step-output feedback and control, the planner, the step output (rt/step_output.hpp; made by
+// name, not started) and the module personality.
 // The daemon drives it with its threads (daemon.cpp); tests drive the very same objects in
 // virtual time (tests/support/virtual_machine.hpp).
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "core/spsc_ring.hpp"
@@ -13,7 +15,8 @@
 #include "planner/motion_port.hpp"
 #include "planner/planner.hpp"
 #include "rt/axis_feedback.hpp"
-#include "rt/pulse_engine.hpp"
+#include "rt/step_output.hpp"
+#include "rt/step_output_factory.hpp"
 
 namespace stepmod::tools {
 
@@ -22,9 +25,10 @@ struct StackOptions {
   std::vector<planner::AxisTiming> timing;  // one per axis
   planner::PlannerOptions planner;
   std::size_t edge_ring = 1u << 15;  // edges per axis: > lookahead x max edge rate (2 MHz x 4 ms)
-  Nanos late_limit_ns = 0;           // late-edge guard (rt::PulseEngine::set_late_limit); 0 = off
+  Nanos late_limit_ns = 0;           // late-edge guard (rt::StepOutput::set_late_limit); 0 = off
   std::vector<std::uint32_t>
-      lag_limit_steps;  // per axis (rt::PulseEngine::set_lag_limit); none/0 = off
+      lag_limit_steps;  // per axis (rt::StepOutput::set_lag_limit); none/0 = off
+  std::string step_output{rt::kPulseThreadOutput};  // rt::make_step_output's name
 };
 
 class Stack {
@@ -37,7 +41,7 @@ class Stack {
 
   gpio::Backend& backend() noexcept { return backend_; }
   planner::Planner& planner() noexcept { return *planner_; }
-  rt::PulseEngine& engine() noexcept { return *engine_; }
+  rt::StepOutput& output() noexcept { return *output_; }
   module::Personality& personality() noexcept { return *personality_; }
   const ModuleShape& shape() const noexcept { return shape_; }
   planner::MotionPort& motion(unsigned axis) noexcept { return *axes_[axis]->port; }
@@ -57,7 +61,8 @@ class Stack {
   ModuleShape shape_;
   std::vector<std::unique_ptr<Axis>> axes_;  // stable addresses: the threads hold pointers
   std::unique_ptr<planner::Planner> planner_;
-  std::unique_ptr<rt::PulseEngine> engine_;
+  // After the axes: destroyed (its thread stopped) before the rings and blocks it reads.
+  std::unique_ptr<rt::StepOutput> output_;
   std::unique_ptr<module::Personality> personality_;
 };
 

@@ -38,7 +38,7 @@ AxisRig::AxisRig(const ax::ModuleRules& rules)
   so.type = ModuleType::k3601;  // the stack's one-axis shape; its own personality stays unused
   so.timing.assign(o.axes.size(), o.timing);
   stack_ = std::make_unique<tools::Stack>(so, *sim_, nullptr);
-  stack_->engine().set_clock(&rig_clock);
+  stack_->output().set_clock(&rig_clock);
   t_rig_now = now_;
   axis_ = std::make_unique<ax::Axis>(rules, *sim_, stack_->motion(0));
   status_ = axis_->status();
@@ -96,15 +96,15 @@ void AxisRig::deliver_inputs() {
 }
 
 void AxisRig::step_until(Nanos t) {
-  rt::PulseEngine& engine = stack_->engine();
+  rt::StepOutput& output = stack_->output();
   for (;;) {
-    const Nanos edge = engine.next_due();
+    const Nanos edge = output.next_due();
     const Nanos next = std::min({edge, next_scan_, next_plan_});
     if (next > t) break;
     now_ = next;
     t_rig_now = now_;
     if (edge == now_) {
-      engine.execute_one(now_);
+      output.execute_one(now_);
       deliver_inputs();
     } else if (next_plan_ == now_) {
       const Nanos want = stack_->planner().service(now_);

@@ -1,5 +1,5 @@
 #pragma once
-// The shared axis (module/axis/) alone on the real planner, pulse engine and simulated machine,
+// The shared axis (module/axis/) alone on the real planner, step output and simulated machine,
 // in virtual time, driven with decoded commands: what every module's dialect hands it. One test
 // body runs for each module type's ModuleRules (3601, 3602, 3202), so the rules the manuals share
 // are tested once and every module inherits them.

@@ -13,7 +13,7 @@ constexpr Nanos kPlannerWake = 20 * kNsPerUs;
 // The planner is serviced at least this often even when it asks for less (bounded staleness).
 constexpr Nanos kPlannerMaxSleep = kNsPerMs;
 
-// The pulse engine stamps the writes it makes on its own (an immediate stop ending a pulse) with
+// The step output stamps the writes it makes on its own (an immediate stop ending a pulse) with
 // its clock: in virtual time that is the machine's `now`. One machine runs at a time per thread.
 thread_local Nanos t_virtual_now = kStart;
 Nanos virtual_clock() noexcept {
@@ -47,7 +47,7 @@ VirtualMachine::VirtualMachine(VirtualMachineOptions options)
   so.late_limit_ns = options_.late_limit_ns;
   so.lag_limit_steps.assign(options_.axes.size(), options_.lag_limit_steps);
   stack_ = std::make_unique<tools::Stack>(so, *sim_, nullptr);
-  stack_->engine().set_clock(&virtual_clock);
+  stack_->output().set_clock(&virtual_clock);
   step_times_.resize(options_.axes.size());
   last_steps_.assign(options_.axes.size(), 0);
 }
@@ -63,9 +63,9 @@ void VirtualMachine::deliver_inputs() {
 }
 
 void VirtualMachine::run_until(Nanos t) {
-  rt::PulseEngine& engine = stack_->engine();
+  rt::StepOutput& output = stack_->output();
   for (;;) {
-    Nanos edge = engine.next_due();
+    Nanos edge = output.next_due();
     // A stalled pulse thread writes what fell due in the stall when the stall ends.
     if (edge != rt::kNever && edge >= stall_from_ && edge < stall_to_) edge = stall_to_;
     const Nanos next = std::min({edge, next_scan_, next_plan_});
@@ -73,7 +73,7 @@ void VirtualMachine::run_until(Nanos t) {
     now_ = next;
     t_virtual_now = now_;
     if (edge == now_) {
-      engine.execute_one(now_);
+      output.execute_one(now_);
       for (unsigned a = 0; a < last_steps_.size(); ++a) {
         const std::int64_t s = stack_->feedback(a).steps.load();
         if (s != last_steps_[a]) step_times_[a].push_back(now_);
