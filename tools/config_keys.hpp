@@ -258,8 +258,9 @@ constexpr const ConfigKey* find_config_key(std::string_view table, std::string_v
 }
 
 // The row of `table`.`key`, found at compile time: a key that is not in the table does not
-// compile.
-consteval const ConfigKey& config_key(std::string_view table, std::string_view key) {
+// compile. (Plain strings: a reference returned for class temporaries would be a
+// -Wdangling-reference false alarm of newer compilers.)
+consteval const ConfigKey& config_key(const char* table, const char* key) {
   const ConfigKey* k = find_config_key(table, key);
   if (k == nullptr) throw "tools/config_keys.hpp has no such key";
   return *k;
