@@ -236,7 +236,7 @@ PulseEngine::Verdict PulseEngine::judge(unsigned axis, const Edge& e,
     const bool above_vs = tr.vs_interval == 0 || v.interval * 100 < tr.vs_interval * 99;
     if (above_vs) v.lag = v.pause / v.interval;
   }
-  v.fault = v.pause > late_limit_ ||
+  v.fault = (late_limit_ != 0 && v.pause > late_limit_) ||
             (tr.lag_limit != 0 && v.lag > static_cast<std::int64_t>(tr.lag_limit));
   return v;
 }

@@ -66,8 +66,8 @@ class PulseEngine {
   // never cut), and the fault is published in AxisFeedback. 0 = off (default: the engine alone
   // slips and measures; stepmodd sets [rt] late_limit_us and [axis] lag_limit_steps). Set before
   // use.
-  void set_late_limit(Nanos limit) noexcept { late_limit_ = limit > 0 ? limit : kNever; }
-  Nanos late_limit() const noexcept { return late_limit_ == kNever ? 0 : late_limit_; }
+  void set_late_limit(Nanos limit) noexcept { late_limit_ = limit > 0 ? limit : 0; }
+  Nanos late_limit() const noexcept { return late_limit_; }
   void set_lag_limit(unsigned axis, std::uint32_t steps) noexcept {
     if (axis < track_.size()) track_[axis].lag_limit = steps;
   }
@@ -177,7 +177,7 @@ class PulseEngine {
   };
   std::vector<Track> track_;
   ClockFn clock_ = &monotonic_now;
-  Nanos late_limit_ = kNever;
+  Nanos late_limit_ = 0;  // 0: off, as lag_limit
 };
 
 }  // namespace stepmod::rt

@@ -13,6 +13,7 @@
 #include "gpio/sim_machine.hpp"
 #include "ipc/modbus_options.hpp"
 #include "module/personality.hpp"
+#include "tools/config_keys.hpp"
 
 namespace stepmod::tools {
 
@@ -30,32 +31,36 @@ enum EnableRelease : std::uint8_t {
   kReleaseOnConfigMode = 8,  // the axis is in configuration mode
 };
 
+// The initial values are the keys' defaults (tools/config_keys.hpp), as the parser leaves them
+// for a key the file leaves out.
 struct AxisConfig : gpio::AxisLines {
-  Nanos step_pulse_ns = 2'000;
-  Nanos dir_setup_ns = 5'000;
+  Nanos step_pulse_ns = default_ns(config_key("axis", "step_pulse_ns"));
+  Nanos dir_setup_ns = default_ns(config_key("axis", "dir_setup_ns"));
   // Late-edge guard above Vs (docs/slip.md): output steps the axis may lag after a pause.
-  std::uint32_t lag_limit_steps = 8;
+  std::uint32_t lag_limit_steps =
+      static_cast<std::uint32_t>(config_key("axis", "lag_limit_steps").def);
   // Drive-enable output (AxisLines::enable): commands wait this long after asserting it.
-  Nanos enable_delay_ns = 10 * kNsPerMs;
+  Nanos enable_delay_ns = default_ns(config_key("axis", "enable_delay_us"));
   std::uint8_t enable_release = 0;  // EnableRelease bits
   SimAxisConfig sim;
 };
 
+// Initial values: as AxisConfig's.
 struct Config {
   std::string file;  // the path it was read from
   ModuleType type = ModuleType::k3601;
-  std::string name = "stepmod";
-  Nanos scan_ns = 1'000 * kNsPerUs;
-  Nanos plc_timeout_ns = 0;  // 0 = heartbeat watch off
-  enum class Backend { kSim, kGpiod } backend = Backend::kSim;
-  std::string chip = "gpiochip0";
-  int rt_priority = 80;
-  int rt_cpu = -1;
+  std::string name{config_key("module", "name").text};
+  Nanos scan_ns = default_ns(config_key("module", "scan_us"));
+  Nanos plc_timeout_ns = default_ns(config_key("module", "plc_timeout_ms"));  // 0: watch off
+  enum class Backend { kSim, kGpiod } backend{};  // the parser sets it from [gpio] backend
+  std::string chip{config_key("gpio", "chip").text};
+  int rt_priority = static_cast<int>(config_key("rt", "priority").def);
+  int rt_cpu = static_cast<int>(config_key("rt", "cpu").def);  // -1: not pinned
   // Late-edge guard: a pause in an axis' step train longer than this faults the axis at any
   // speed (rt::PulseEngine::set_late_limit; docs/slip.md).
-  Nanos late_limit_ns = 200'000 * kNsPerUs;
+  Nanos late_limit_ns = default_ns(config_key("rt", "late_limit_us"));
   std::vector<AxisConfig> axes;
-  ipc::ModbusOptions modbus;  // [modbus] (INTERFACE.md 6)
+  ipc::ModbusOptions modbus;  // [modbus] (INTERFACE.md 6), every field set by the parser
 };
 
 // Thrown for a bad file: what() is the whole message ("FILE:LINE: key 'axis[1].step': ...").

@@ -44,7 +44,8 @@ void add_wait(CLI::App* sub, bool& wait) {
 }
 
 void add_globals(CLI::App& app, CtlOptions& o) {
-  app.add_option("--name,-n", o.name, "module name: /dev/shm/stepmod.NAME (default stepmod)");
+  app.add_option("--name,-n", o.name,
+                 "module name: /dev/shm/stepmod.NAME (default " + o.name + ")");
   app.add_option("--timeout", o.timeout_ms, "ms to wait for the module's scans/handshakes (2000)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--steal", o.steal,

@@ -6,12 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "tools/config_keys.hpp"
 #include "tools/ctl_command.hpp"
 
 namespace stepmod::tools::ctl {
 
 struct CtlOptions {
-  std::string name = "stepmod";  // /dev/shm/stepmod.NAME
+  std::string name{config_key("module", "name").text};  // the daemon's default [module] name
   int timeout_ms = 2000;
   unsigned axis_no = 0;             // --axis, 1-based; 0 = not given
   unsigned channel_no = 0;          // --channel, 1-based; 0 = not given

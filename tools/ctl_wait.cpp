@@ -3,13 +3,17 @@
 #include <ostream>
 #include <thread>
 
+#include "tools/config_keys.hpp"
+
 namespace stepmod::tools::ctl {
 
 namespace {
 using Clock = std::chrono::steady_clock;
 constexpr auto kPoll = std::chrono::milliseconds(2);
-// A scan every scan_us (1 ms by default); this long without one is a daemon that stopped.
+// A scan every [module] scan_us; this long without one, ten of the longest scan periods the key
+// allows, is a daemon that stopped.
 constexpr auto kStallLimit = std::chrono::milliseconds(1000);
+static_assert(kStallLimit >= 10 * std::chrono::microseconds(config_key("module", "scan_us").max));
 // Longer than the homing's pauses at rest (2 s, digest 7.11).
 constexpr auto kHomingPause = std::chrono::milliseconds(2500);
 }  // namespace

@@ -35,7 +35,7 @@ int wait_for_signal() {
 }
 
 struct Args {
-  std::string name = "stepmod";
+  std::string name{stepmod::tools::config_key("module", "name").text};  // the daemon's default
   std::string config_path;
   std::string token_file = stepmod::web::kDefaultTokenFile;
   unsigned port = 0;

@@ -310,7 +310,7 @@ TEST_F(DaemonSafety, TraceOfAMillionStepsPerSecondMoveIsComplete) {
   // The trace is under test here, not the guard (its own tests above): the longest limit, so a
   // stall of a sanitizer build on a loaded machine (one cut the move after 200 ms under TSan)
   // does not end the move early.
-  start("", "", "late_limit_us = 1000000\n");
+  start("", "", kRelaxedLateLimit);
   plc_->configure();
   plc_->command(cmd::kPresetPosition, 0);
   plc_->command(cmd::kRelativeMove, kSteps, kSpeed, 2'000, 2'000);

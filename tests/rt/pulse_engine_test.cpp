@@ -392,7 +392,7 @@ TEST(PulseEngine, AStepAnnouncedIsRecordedWithdrawnOrCutAndNeverLeftPending) {
 
 // ---- Late-edge guard (issue 12): a fault of the axis, never a burst --------------------------
 
-constexpr Nanos kLimit = 1'000'000;  // 1 ms, stepmodd's default
+constexpr Nanos kLimit = 1'000'000;  // 1 ms: any limit will do; the lateness here is far beyond
 
 TEST(PulseEngineLateGuard, EdgeBeyondTheLimitCutsTheMotionAndPublishesTheFault) {
   Rig rig(1);

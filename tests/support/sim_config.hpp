@@ -1,22 +1,38 @@
 #pragma once
 // The config files of the end-to-end tests: modules on the simulated machine, named {NAME}
 // (DaemonProcess fills in a unique name); a 3601 with every input wired in one call.
+#include <cstdint>
 #include <initializer_list>
 #include <string>
 
+#include "tools/config_keys.hpp"
+
 namespace stepmod::testing {
 
+namespace sim_config_detail {
+// "late_limit_us = 200000\n": `key` = `value`, a line of its table.
+inline std::string key_line(const tools::ConfigKey& key, std::int64_t value) {
+  return std::string(key.key) + " = " + std::to_string(value) + "\n";
+}
+inline const tools::ConfigKey& kLateLimit = tools::config_key("rt", "late_limit_us");
+inline const tools::ConfigKey& kLagLimit = tools::config_key("axis", "lag_limit_steps");
+inline const std::string kRelaxedLate = key_line(kLateLimit, kLateLimit.max);
+inline const std::string kRelaxedLag = key_line(kLagLimit, kLagLimit.max);
+inline const std::string kDefaultLate = key_line(kLateLimit, kLateLimit.def);
+}  // namespace sim_config_detail
+
 // The late-edge guard's limits of the end-to-end tests that are not about it: the longest pause
-// 1 s, and no lag limit in practice. A test of the module's behaviour must not fail because this
-// shared machine (a loaded two-core VM with six developers' builds, the sanitizers, qemu)
-// stalled the pulse thread, which the product's guard rightly turns into a fault: above the
-// starting speed, a pause of more than 8 steps (0.8 ms at 10,000 steps/s) is one, and such
-// pauses happen here in ordinary release builds too. The guard's own tests pass
-// kDefaultLateLimit and no axis key (the product's defaults). Under TSan, with two daemon tests'
-// SCHED_FIFO pulse threads on two CPUs, stalls of more than 200 ms are on record.
-inline constexpr const char* kRelaxedLateLimit = "late_limit_us = 1000000\n";
-inline constexpr const char* kRelaxedLagLimit = "lag_limit_steps = 1000000\n";
-inline constexpr const char* kDefaultLateLimit = "late_limit_us = 200000\n";
+// and the largest lag the keys allow (tools/config_keys.hpp), no lag limit in practice. A test
+// of the module's behaviour must not fail because this shared machine (a loaded two-core VM with
+// six developers' builds, the sanitizers, qemu) stalled the pulse thread, which the product's
+// guard rightly turns into a fault: above the starting speed, a pause of more than the default
+// lag limit's steps (0.8 ms at 10,000 steps/s) is one, and such pauses happen here in ordinary
+// release builds too. The guard's own tests pass kDefaultLateLimit and no axis key (the
+// product's defaults). Under TSan, with two daemon tests' SCHED_FIFO pulse threads on two CPUs,
+// stalls longer than the default pause limit are on record.
+inline const char* const kRelaxedLateLimit = sim_config_detail::kRelaxedLate.c_str();
+inline const char* const kRelaxedLagLimit = sim_config_detail::kRelaxedLag.c_str();
+inline const char* const kDefaultLateLimit = sim_config_detail::kDefaultLate.c_str();
 
 // The [module], [gpio] and [rt] tables of every end-to-end test: a module of `type` on the
 // simulated machine, named {NAME}, scanning every 1 ms, its pulse thread at SCHED_FIFO 80.
