@@ -13,4 +13,11 @@ namespace stepmod::ipc {
 // lease holds off the PLC heartbeat timeout for at most this long past the scan that saw it valid.
 inline constexpr Nanos kLeaseMaxAheadNs = 500 * kNsPerMs;
 
+// The daemon reads its clock at the top of a scan and the lease words later in it; a control
+// thread preempted in between (a loaded machine, RT throttling) sees a live holder's fresh expiry
+// further ahead than the holder wrote it. An expiry is "too far ahead" only past kLeaseMaxAheadNs
+// and this slack (garbage is seconds ahead or more); the hold-off it grants stays capped at
+// kLeaseMaxAheadNs from the scan.
+inline constexpr Nanos kLeaseClockSlackNs = 150 * kNsPerMs;
+
 }  // namespace stepmod::ipc

@@ -1,5 +1,7 @@
 #include "ipc/lease_watch.hpp"
 
+#include <algorithm>
+
 namespace stepmod::ipc {
 
 LeaseWatch::Event LeaseWatch::scan(ShmImage& image, std::uint64_t heartbeat, Nanos now) noexcept {
@@ -77,11 +79,11 @@ void LeaseWatch::judge_expiry(ShmImage& image, const ShmImage::Lease& l, std::ui
   // CLOCK_REALTIME values are far ahead. Compared before subtracting, which cannot overflow then.
   if (l.expiry_ns < now) {
     expire(image, holder_, heartbeat, Cause::kPassed, e);
-  } else if (l.expiry_ns - now > kMaxAhead) {
+  } else if (l.expiry_ns - now > kMaxAhead + kLeaseClockSlackNs) {
     expire(image, holder_, heartbeat, Cause::kTooFarAhead, e);
     e.ahead = l.expiry_ns - now;
   } else {
-    held_until_ = l.expiry_ns;
+    held_until_ = std::min(l.expiry_ns, now + kMaxAhead);
   }
 }
 
