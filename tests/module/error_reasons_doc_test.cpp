@@ -100,6 +100,13 @@ TEST(ErrorReasonsDoc, CodesAreWellFormedAndSentencesFit) {
   }
   EXPECT_EQ(item_code(ModuleType::k3601, ErrorList::kCommand, 5), 10205u);
   EXPECT_EQ(item_id(ModuleType::k3202, ErrorList::kPositionInvalid, 92), "3202-PI-S2");
+  // The 3602's lettered items: 5x B, 6x I, 7x J, 8x R.
+  EXPECT_EQ(item_id(ModuleType::k3602, ErrorList::kCommand, 51), "3602-CE-B1");
+  EXPECT_EQ(item_id(ModuleType::k3602, ErrorList::kCommand, 63), "3602-CE-I3");
+  EXPECT_EQ(item_id(ModuleType::k3602, ErrorList::kCommand, 73), "3602-CE-J3");
+  EXPECT_EQ(item_id(ModuleType::k3602, ErrorList::kCommand, 88), "3602-CE-R8");
+  EXPECT_EQ(item_id_of_code(20267), "3602-CE-I7");
+  EXPECT_EQ(item_id(ModuleType::k3601, ErrorList::kCommand, 42), "3601-CE-42");
   EXPECT_EQ(item_id_of_code(0), "");
 }
 
