@@ -76,6 +76,10 @@ Outcome Interp3602::finish(bool timed_out, const char* what) {
   if (msw & kCommandErrors) {
     o.ok = false;
     o.message = std::string(what) + ": " + set_bit_names(msw & kCommandErrors, m::kStatusMswBits);
+    // With axis 1's reason when it is one of these bits' (docs/error-reasons.md): the refusal
+    // names its item, as a single-axis command's does.
+    const auto r = port_.reason(0);
+    if (r && !r->text.empty() && (r->list() == 2 || r->list() == 3)) o.message += ": " + r->text;
   }
   return o;
 }

@@ -182,6 +182,7 @@ bool Axis::inputs_block_start(std::optional<planner::Direction> dir) {
   if (dir) return st_.inputs_block_start(*dir);
   if (!st_.estop_active()) return false;
   st_.status.input_error = true;
+  st_.note(items::kStartTowardLimit, "E-stop active: the path does not start");
   return true;
 }
 

@@ -101,15 +101,9 @@ class Axis {
   // Every axis of the motion has ended: the outcome on this axis.
   enum class CoordinatedEnd : std::uint8_t { kComplete, kHeld, kStopped };
   void end_coordinated(CoordinatedEnd end);
-  // A coordinated command refused: Command Error (with Invalid Profile for a profile error).
-  void reject_coordinated(bool invalid_profile) noexcept {
-    if (invalid_profile) {
-      st_.reject_profile();
-    } else {
-      st_.reject();
-    }
-  }
-  // The same with the item and sentence (AxisState::reject).
+  // A coordinated command refused: Command Error (with Invalid Profile for a profile error), its
+  // item and sentence recorded with it (AxisState::reject), so that the scan that shows the bit
+  // shows its reason.
   void reject_coordinated(bool invalid_profile, const Item& item, const char* text) noexcept {
     if (invalid_profile) {
       st_.reject_profile(item, "%s", text);
@@ -117,6 +111,9 @@ class Axis {
       st_.reject(item, "%s", text);
     }
   }
+  // After a coordinator has acted on the axis outside its scan: an error bit it set without a
+  // reason gets its list's general one now, not at the next scan (every shown bit has a reason).
+  void explain_new_errors() noexcept { st_.explain_new_errors(); }
   // A Resume of a held coordinated motion, accepted by this axis' rules (Hold state, the profile
   // in range and >= Vs): the new vector profile, once, for the coordinator.
   std::optional<Profile> take_coordinated_resume() noexcept {

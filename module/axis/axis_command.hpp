@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "module/axis/error_reason.hpp"
 #include "planner/motion_request.hpp"
 
 namespace stepmod::module::axis {
@@ -107,6 +108,9 @@ struct AxisCommand {
   // A word-level rule of the dialect is broken for the one command set (words that must be 0, a
   // command LSW that must be 0, ...), or for the minimum-registration store: Command Error.
   bool words_invalid = false;
+  // The checklist item of that rule when it is not the general one (items::kWordsNotZero): the
+  // 3602's single-axis command with the interpolation bits is 3602-CE-03.
+  const Item* words_item = nullptr;
   // The module's reserved command words are not 0 (3202-CE-05 / IP-03, and HI-04 for a homing
   // command): CE + IP (+ HI). Modules without reserved command words leave it false.
   bool reserved_words_nonzero = false;

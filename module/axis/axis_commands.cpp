@@ -75,6 +75,10 @@ std::optional<CommandKind> Axis::admitted_command(const AxisCommand& c, const Co
   }
   // The dialect's word-level rules for this command (3601-CE-09, CE-15, CE-21: words or the
   // command LSW that must be 0).
+  if (c.words_invalid && c.words_item != nullptr) {
+    st_.reject(*c.words_item);
+    return {};
+  }
   if (c.words_invalid) {
     st_.reject(items::kWordsNotZero, "words that must be 0 with this command are not");
     return {};

@@ -27,14 +27,7 @@ constexpr LatchBit kErrorBits[] = {
 void AxisState::record(ErrorList list, unsigned number, const char* text) noexcept {
   const ModuleType t = rules.type;
   char id[24];
-  const char* abbr = list_abbreviation(list);
-  if (number == 0) {
-    std::snprintf(id, sizeof id, "%u-%s", static_cast<unsigned>(t), abbr);
-  } else if (number > 90) {
-    std::snprintf(id, sizeof id, "%u-%s-S%u", static_cast<unsigned>(t), abbr, number - 90);
-  } else {
-    std::snprintf(id, sizeof id, "%u-%s-%02u", static_cast<unsigned>(t), abbr, number);
-  }
+  format_item_id(id, sizeof id, t, list, number);
   char full[sizeof id + 2 + kReasonTextSize];
   std::snprintf(full, sizeof full, "%s: %s", id, text);
   // Cut to the image's 56 bytes (with the NUL): the log and the image show the same text.

@@ -94,14 +94,9 @@ struct AxisState {
   bool moving() const noexcept { return activity != Activity::kIdle; }
   std::int64_t position() const noexcept { return motion.steps() - origin; }
   void set_position(std::int64_t p) noexcept { origin = motion.steps() - p; }
-  void reject() noexcept { status.command_error = true; }
-  void reject_profile() noexcept {
-    status.command_error = true;
-    status.invalid_profile = true;
-  }
-  // The same with the reason (docs/error-reasons.md): Command Error (and Invalid Profile) set
-  // here, the item and the sentence recorded with them. `fmt`: printf-style, short (the image
-  // keeps 56 bytes with the item id); nullptr: the item's general description.
+  // A refusal (docs/error-reasons.md): Command Error (and Invalid Profile) set here, the item and
+  // the sentence recorded with them; there is no refusal without its item. `fmt`: printf-style,
+  // short (the image keeps 56 bytes with the item id); nullptr: the item's general description.
   void reject(const Item& item, const char* fmt = nullptr, ...) noexcept
       __attribute__((format(printf, 3, 4)));
   void reject_profile(const Item& item, const char* fmt = nullptr, ...) noexcept

@@ -88,7 +88,7 @@ void Encoder::preset(const AxisCommand& c) {
   // Not under a motion that steers by the count (the manual does not say; an encoder move's
   // target would silently move). The follower cannot get here (CE-39 / CE-15).
   if (ax_.activity == Activity::kEncoderMove) {
-    ax_.reject();
+    ax_.reject(items::kMoveWhileMoving, "Preset Encoder while an encoder move runs");
     return;
   }
   ax_.write_encoder(*c.target);  // position and Move Complete are left as they are

@@ -16,14 +16,17 @@ inline constexpr Item kConfigInvalid{L::kConfiguration, {0, 0, 0}, "the configur
 inline constexpr Item kPowerUp{L::kConfiguration, {1, 1, 0}, "not configured since power-up"};
 
 // ---- Command Error ----
+// The manuals only say a module "has to be configured before starting any operations"; the
+// Command Error is stepmod's answer, so the item is its own (S2).
 inline constexpr Item kNotConfigured{
-    L::kCommand, {0, 0, 0}, "a command before the axis is configured"};
+    L::kCommand, {92, 92, 92}, "a command before configuration (stepmod)"};
 inline constexpr Item kConfigWhileMoving{
     L::kCommand, {1, 1, 1}, "configuration mode requested while moving"};
 inline constexpr Item kSeveralCommands{L::kCommand, {2, 2, 2}, "more than one command bit set"};
 inline constexpr Item kUndefinedCommand{L::kCommand, {2, 2, 24}, "an undefined command bit set"};
+// The 3202 states it (manual Ch.4, the moves' note 2) without a number in its list: S3.
 inline constexpr Item kMoveWhileMoving{
-    L::kCommand, {3, 4, 0}, "a move while another motion is running"};
+    L::kCommand, {3, 4, 93}, "a move while another motion is running"};
 inline constexpr Item kWordsNotZero{
     L::kCommand, {15, 10, 9}, "command words that must be 0 are not"};
 inline constexpr Item kReservedWords{L::kCommand, {0, 10, 5}, "reserved command words not 0"};
@@ -38,22 +41,44 @@ inline constexpr Item kResumeNotHeld{L::kCommand, {8, 9, 8}, "Resume when not in
 inline constexpr Item kHomeSCurve{L::kCommand, {10, 11, 10}, "Find Home with S-curve"};
 inline constexpr Item kHomeNoLimit{
     L::kCommand, {13, 0, 22}, "Find Home toward no configured end limit"};
-inline constexpr Item kHomeTarget{L::kCommand, {0, 10, 0}, "Find Home with a target not 0"};
+// Find Home with a target: the 3602's reserved words (CE-10, HI-04 also); the 3601's and 3202's
+// Home Invalid item (3601-HI-02, 3202-HI-01; A8: Command Error as well). homing.cpp records the
+// one this module's lists number (numbered()).
+inline constexpr Item kHomeTarget{L::kCommand, {0, 10, 0}, "Find Home with a target not 0 (3602)"};
+inline constexpr Item kHomeTargetHi{
+    L::kHomeInvalid, {2, 0, 1}, "Find Home with a target not 0 (3601, 3202)"};
 inline constexpr Item kHomeNoInput{L::kCommand, {0, 12, 0}, "Find Home without the home input"};
 inline constexpr Item kNoEncoder{
     L::kCommand, {14, 0, 23}, "encoder move with no encoder configured"};
 inline constexpr Item kPresetEncoderNoEncoder{
     L::kCommand, {11, 0, 11}, "Preset Encoder with no encoder configured"};
+// Registration and blend: the 3602's lettered items (R1.., B1..: error_reason.hpp).
 inline constexpr Item kMinRegRange{
-    L::kCommand, {25, 0, 0}, "minimum registration distance out of range"};
+    L::kCommand, {25, 81, 0}, "minimum registration distance out of range"};
 inline constexpr Item kRegExternal{
-    L::kCommand, {27, 0, 0}, "registration move with External active"};
+    L::kCommand, {27, 83, 0}, "registration move with External active"};
 inline constexpr Item kRegTooShort{
-    L::kCommand, {28, 0, 0}, "registration steps fewer than to stop"};
-inline constexpr Item kRegNegative{L::kCommand, {29, 0, 0}, "a negative registration count"};
-inline constexpr Item kBlendNotStored{L::kCommand, {20, 0, 17}, "Run Blend with no profile stored"};
+    L::kCommand, {28, 84, 0}, "registration steps fewer than to stop"};
+inline constexpr Item kRegNegative{L::kCommand, {29, 85, 0}, "a negative registration count"};
+inline constexpr Item kJogWithTarget{L::kCommand, {0, 0, 12}, "a manual move with a target not 0"};
+// A manual (jog) or registration move changed while it runs: motion stops (J1.., R6..).
+inline constexpr Item kJogConstantSpeed{
+    L::kCommand, {17, 71, 15}, "a speed change on a constant-speed jog"};
+inline constexpr Item kJogInvalidChange{
+    L::kCommand, {19, 72, 16}, "an invalid speed, accel or decel in a jog"};
+inline constexpr Item kJogSpeedZero{L::kCommand, {19, 72, 14}, "a jog's speed changed to 0"};
+inline constexpr Item kJogTargetWritten{
+    L::kCommand, {30, 73, 13}, "a target written while a jog runs"};
+inline constexpr Item kRegCountChanged{
+    L::kCommand, {31, 86, 0}, "registration count changed after the start"};
+inline constexpr Item kRegSpeedIncreased{
+    L::kCommand, {32, 87, 0}, "a registration move's speed increased"};
+inline constexpr Item kRegRatesChanged{
+    L::kCommand, {33, 88, 0}, "registration accel or decel changed"};
+inline constexpr Item kBlendNotStored{
+    L::kCommand, {20, 51, 17}, "Run Blend with no profile stored"};
 inline constexpr Item kBlendWhileBlending{
-    L::kCommand, {22, 0, 19}, "blend programming while a blend runs"};
+    L::kCommand, {22, 54, 19}, "blend programming while a blend runs"};
 inline constexpr Item kHoldDuringBlend{L::kCommand, {23, 8, 20}, "Hold during a blend"};
 inline constexpr Item kFollowerNoEncoder{
     L::kCommand, {34, 0, 0}, "follower mode with no encoder configured"};
@@ -125,6 +150,11 @@ inline constexpr Item kPiInputLost{
     L::kPositionInvalid, {93, 93, 93}, "an input edge was lost (stepmod)"};
 inline constexpr Item kPiFault{L::kPositionInvalid, {0, 0, 0}, "a fault stopped the axis"};
 
+// Of two items for one condition in different lists, the one module `t` numbers (`a` first).
+inline const Item& numbered(const Item& a, const Item& b, ModuleType t) noexcept {
+  return a.number(t) != 0 ? a : b;
+}
+
 // Every item above, for the documentation table.
 inline constexpr std::array kAll{&kConfigInvalid,
                                  &kPowerUp,
@@ -143,6 +173,7 @@ inline constexpr std::array kAll{&kConfigInvalid,
                                  &kHomeSCurve,
                                  &kHomeNoLimit,
                                  &kHomeTarget,
+                                 &kHomeTargetHi,
                                  &kHomeNoInput,
                                  &kNoEncoder,
                                  &kPresetEncoderNoEncoder,
@@ -150,6 +181,14 @@ inline constexpr std::array kAll{&kConfigInvalid,
                                  &kRegExternal,
                                  &kRegTooShort,
                                  &kRegNegative,
+                                 &kJogWithTarget,
+                                 &kJogConstantSpeed,
+                                 &kJogInvalidChange,
+                                 &kJogSpeedZero,
+                                 &kJogTargetWritten,
+                                 &kRegCountChanged,
+                                 &kRegSpeedIncreased,
+                                 &kRegRatesChanged,
                                  &kBlendNotStored,
                                  &kBlendWhileBlending,
                                  &kHoldDuringBlend,

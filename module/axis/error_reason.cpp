@@ -1,5 +1,7 @@
 #include "module/axis/error_reason.hpp"
 
+#include <cstdio>
+
 namespace stepmod::module::axis {
 
 const char* list_abbreviation(ErrorList list) noexcept {
@@ -24,11 +26,25 @@ std::uint32_t item_code(ModuleType t, ErrorList list, unsigned number) noexcept 
   return shape_of(t).reason_digit * 10000u + static_cast<unsigned>(list) * 100u + number;
 }
 
+void format_item_id(char* out, std::size_t size, ModuleType t, ErrorList list,
+                    unsigned number) noexcept {
+  const auto type = static_cast<unsigned>(t);
+  const char* abbr = list_abbreviation(list);
+  // The lettered items (error_reason.hpp): the tens digit from 5 on names the letter.
+  static constexpr char kLetters[] = {'B', 'I', 'J', 'R', 'S'};
+  if (number == 0) {
+    std::snprintf(out, size, "%u-%s", type, abbr);
+  } else if (number > 50 && number < 100 && number % 10 != 0) {
+    std::snprintf(out, size, "%u-%s-%c%u", type, abbr, kLetters[number / 10 - 5], number % 10);
+  } else {
+    std::snprintf(out, size, "%u-%s-%02u", type, abbr, number);
+  }
+}
+
 std::string item_id(ModuleType t, ErrorList list, unsigned number) {
-  std::string id = std::to_string(static_cast<unsigned>(t)) + "-" + list_abbreviation(list);
-  if (number == 0) return id;
-  if (number > 90) return id + "-S" + std::to_string(number - 90);
-  return id + (number < 10 ? "-0" : "-") + std::to_string(number);
+  char id[24];
+  format_item_id(id, sizeof id, t, list, number);
+  return id;
 }
 
 std::string item_id_of_code(std::uint32_t code) {

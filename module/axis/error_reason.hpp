@@ -3,6 +3,7 @@
 // item and one sentence. The shared axis code names a condition once (error_items.hpp); each
 // module numbers its checklist items differently, so an Item carries every module's number.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -21,9 +22,11 @@ enum class ErrorList : std::uint8_t {
 };
 
 // One condition that sets an error bit, with its item number in each module's list
-// (0 = that module's list has no item for it: the reason names the list only). Numbers 91..99
-// are stepmod's own items (conditions the manuals cannot have: a late edge, a lost lease), shown
-// as S1..S9.
+// (0 = that module's list has no item for it: the reason names the list only). Numbers 1..50 are
+// the list's own numbers; from 51 on the tens digit is a letter and the units digit a number:
+// the lettered items of the 3602's Command Error list (5x: B, blend; 6x: I, interpolated move;
+// 7x: J, jog; 8x: R, registration) and stepmod's own items (9x: S; conditions the manuals
+// cannot have, such as a late edge or a lost lease, or whose error the manuals leave open).
 struct Item {
   ErrorList list;
   // The item's number in each module's list, in kModuleShapes' order (3601, 3602, 3202).
@@ -39,8 +42,11 @@ struct Item {
 // list digit * 100 + number.
 // 0 means no reason. Stable: a code is never reused for another item.
 std::uint32_t item_code(ModuleType t, ErrorList list, unsigned number) noexcept;
-// "3601-CE-05", "3601-PI-S1", "3602-IP" (number 0).
+// "3601-CE-05", "3601-PI-S1", "3602-CE-I3", "3602-IP" (number 0).
 std::string item_id(ModuleType t, ErrorList list, unsigned number);
+// The same into `out` (at most `size` bytes with the NUL), for the control thread: no allocation.
+void format_item_id(char* out, std::size_t size, ModuleType t, ErrorList list,
+                    unsigned number) noexcept;
 // The same from a code; empty for 0 or a code that is not well-formed.
 std::string item_id_of_code(std::uint32_t code);
 const char* list_abbreviation(ErrorList list) noexcept;

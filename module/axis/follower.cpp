@@ -127,7 +127,7 @@ bool Follower::params(const AxisCommand& c) {
   }
   // 3601-CE-04 / IP-02: accel or decel outside the follower's 0 ... maximum (rules.hpp).
   if (accel < 0 || accel > ax_.rules.accel_max || decel < 0 || decel > ax_.rules.accel_max) {
-    ax_.reject_profile();
+    ax_.reject_profile(items::kOutOfRange, "follower accel or decel out of range");
     return false;
   }
   if (div != f_.div) {

@@ -138,7 +138,8 @@ bool Homing::admitted(const AxisCommand& c, planner::Direction dir) {
   }
   // 3601-HI-02: the target words must be 0. A8: CE as well, no motion.
   if (!c.target || *c.target != 0) {
-    ax_.reject(items::kHomeTarget, "Find Home with a target %lld (must be 0)",
+    ax_.reject(items::numbered(items::kHomeTarget, items::kHomeTargetHi, ax_.rules.type),
+               "Find Home with a target %lld (must be 0)",
                static_cast<long long>(c.target.value_or(0)));
     ax_.status.home_invalid = true;
     return false;
@@ -215,7 +216,7 @@ bool Homing::run(planner::Direction d, bool creep) {
     // The planner queue is full: the sequence cannot go on; refuse rather than hang.
     ax_.activity = Activity::kIdle;
     h_.segment = false;
-    ax_.reject();
+    ax_.reject(items::kPlannerFull, "planner queue full: homing stopped, re-home");
     ax_.status.position_invalid = true;
     return false;
   }
@@ -237,6 +238,7 @@ void Homing::event(Event ev) {
       ax_.activity = Activity::kIdle;
       ax_.status.position_invalid = true;
       ax_.status.stopped = true;
+      ax_.note(items::kPiFault, "homing motion ended early: re-home");
     }
     return;  // any other event has no meaning in this step (e.g. the home input in H-B search)
   }

@@ -18,7 +18,7 @@ void ManualMove::command(const AxisCommand& c, planner::Direction dir, Nanos now
   }
   const auto target = c.target;
   if (!target) {
-    ax_.reject_profile();  // 3601-CE-04
+    ax_.reject_profile(items::kOutOfRange, "jog target words out of range");  // 3601-CE-04
     return;
   }
   const auto profile = ax_.read_profile(c, false);  // Vp < Vs is legal for manual moves (CE-05)
@@ -86,7 +86,7 @@ void ManualMove::command(const AxisCommand& c, planner::Direction dir, Nanos now
     ax_.activity = Activity::kIdle;
     ax_.stop_cause = StopCause::kNone;
     one_shot_held_ = false;
-    ax_.reject();
+    ax_.reject(items::kPlannerFull);  // refuse rather than lose the command
   }
 }
 
@@ -94,6 +94,12 @@ void ManualMove::command(const AxisCommand& c, planner::Direction dir, Nanos now
 // after raising the error. The move does not start.
 bool ManualMove::registration_start_allowed(std::int32_t count, double vp,
                                             const planner::Ramp& decel) {
+  // 3202-CE-12 / IP-07: a module without registration moves takes no target with a jog.
+  if (!ax_.rules.has_registration) {
+    ax_.reject_profile(items::kJogWithTarget, "manual move with target %d (must be 0)",
+                       static_cast<int>(count));
+    return false;
+  }
   // 3601-CE-29 / IP-14: a negative registration count.
   if (count < 0) {
     ax_.reject_profile(items::kRegNegative);
@@ -108,7 +114,7 @@ bool ManualMove::registration_start_allowed(std::int32_t count, double vp,
   // (Vp = 0) has no stop condition to count from, so target != 0 with Vp = 0 is refused as an
   // invalid profile rather than silently ignoring the target.
   if (vp == 0) {
-    ax_.reject_profile();
+    ax_.reject_profile(items::kOutOfRange, "registration move at speed 0");
     return false;
   }
   // 3601-CE-27 / IP-12: started with the External input active, whatever the minimum distance
@@ -159,7 +165,7 @@ void ManualMove::scan(const AxisCommand& c, const CommandSet& rising, Nanos now)
     if (run_.triggered && held &&
         (ax_.stop_cause == StopCause::kRelease || ax_.stop_cause == StopCause::kExternal) &&
         c.target != run_.target) {
-      error_stop();
+      error_stop(items::kRegCountChanged);
     }
     return;
   }
@@ -209,7 +215,7 @@ void ManualMove::runtime_checks(const AxisCommand& c) {
   // 3601-CE-30 / IP-15: a target written into a plain manual move (it started with 0 / 0);
   // 3601-CE-31 / IP-16: the registration count changed after the start.
   if (c.target != run_.target) {
-    error_stop();
+    error_stop(registration ? items::kRegCountChanged : items::kJogTargetWritten);
     return;
   }
   // Accel / decel changes alone are not looked at until the speed words change.
@@ -218,7 +224,7 @@ void ManualMove::runtime_checks(const AxisCommand& c) {
   }
   // 3601-CE-17 / IP-09: no speed change in constant-speed mode (initial Vp <= Vs).
   if (!run_.ramped) {
-    error_stop();
+    error_stop(items::kJogConstantSpeed);
     return;
   }
   const auto& speed = c.speed;
@@ -226,19 +232,19 @@ void ManualMove::runtime_checks(const AxisCommand& c) {
   // valid; A13: a change to speed 0 counts as invalid.
   if (!ax_.speed_in_range(speed) || *speed == 0 || !ax_.rate_in_range(c.accel) ||
       !ax_.rate_in_range(c.decel)) {
-    error_stop();
+    error_stop(speed && *speed == 0 ? items::kJogSpeedZero : items::kJogInvalidChange);
     return;
   }
   if (registration) {
     // 3601-CE-32 / IP-17: a registration move's speed may only be lowered (any increase over
     // the speed in force is refused: the start check of CE-28 was made for that speed).
     if (*speed > run_.vp) {
-      error_stop();
+      error_stop(items::kRegSpeedIncreased);
       return;
     }
     // 3601-CE-33 / IP-18: accel or decel different from the start's, together with the speed.
     if (c.accel != run_.accel || c.decel != run_.decel) {
-      error_stop();
+      error_stop(items::kRegRatesChanged);
       return;
     }
   }
@@ -255,9 +261,9 @@ void ManualMove::runtime_checks(const AxisCommand& c) {
 
 // An invalid runtime change: CE + IP and an immediate stop (A10: immediate on the 3601, and no
 // PI: the 3601's PI list does not name it, and the step count stays exact). The move has
-// ended, so Stopped follows as for any manual move that stopped (3601-STP-01).
-void ManualMove::error_stop() {
-  ax_.reject_profile();
+// ended, so Stopped follows as for any manual move that stopped (3601-STP-01). `why`: the item.
+void ManualMove::error_stop(const Item& why) {
+  ax_.reject_profile(why);
   ax_.motion.immediate_stop();
   ax_.stop_cause = StopCause::kImmediate;
 }
@@ -319,7 +325,7 @@ void ManualMove::registration_check(Nanos now, Nanos present_since, StopCause ca
 void ManualMove::store_min_registration(const AxisCommand& c) {
   // The dialect's word rules (words that must be 0 with the store flag).
   if (c.words_invalid) {
-    ax_.reject();
+    ax_.reject(items::kWordsNotZero, "words that must be 0 with the store flag are not");
     return;
   }
   // 3601-CE-25: outside 0 ... 8,388,607 or negative (CE only; the value in force is kept).

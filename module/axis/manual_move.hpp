@@ -37,7 +37,7 @@ class ManualMove {
   bool owns_release() const noexcept;
   bool registration_start_allowed(std::int32_t count, double vp, const planner::Ramp& decel);
   void runtime_checks(const AxisCommand& c);
-  void error_stop();
+  void error_stop(const Item& why);
   void registration_check(Nanos now, Nanos present_since, StopCause cause);
   std::int64_t registration_steps_at(Nanos t) const noexcept;
 

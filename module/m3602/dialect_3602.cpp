@@ -6,6 +6,7 @@
 #include "core/lines.hpp"
 #include "module/axis/rules.hpp"
 #include "module/blend_types_16bit.hpp"
+#include "module/m3602/interpolated_items.hpp"
 #include "words/words_3602.hpp"
 
 namespace stepmod::module::m3602 {
@@ -232,6 +233,9 @@ axis::AxisCommand command_from_words(const ImageWords& out) noexcept {
   if (c.blend_program && has_invalid_pair(out)) c.blend_first.final_shape.reset();
   c.blend_segment = blend_segment_block(out, c);
   c.words_invalid = word_rules_broken(out, c, lsw);
+  // 3602-CE-03: the broken rule is the interpolation bits with a command bit.
+  if (!c.commands.empty() && (lsw & cmd_lsw::kInterpolation))
+    c.words_item = &items::kPathWithCommandBit;
   return c;
 }
 

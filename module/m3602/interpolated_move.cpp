@@ -4,9 +4,11 @@
 #include "module/m3602/rules_3602.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "module/axis/rules.hpp"
 #include "module/m3602/circle_methods.hpp"
+#include "module/m3602/interpolated_items.hpp"
 
 namespace stepmod::module::m3602 {
 
@@ -53,7 +55,7 @@ axis::AxisCommand InterpolatedMove::filter_axis2(const axis::AxisCommand& c) {
   if (state_ == State::kRunning && !rising.empty()) {
     // 3602-CE-I2 (Immediate Stop on axis 2 does not stop the path), A46 (any other command):
     // refused, Command Error on axis 1.
-    reject(false);
+    reject(items::kPathAxis2Command, "axis 2 command while a path runs");
     axis2_refused_ = axis2_refused_.with(rising);
   }
   axis2_refused_ = axis2_refused_.common(c.commands);  // released bits are forgotten
@@ -94,22 +96,37 @@ bool InterpolatedMove::admissible(const InterpolatedCommand& c) {
   switch (c.fault) {
     case InterpolationFault::kNone:
       break;
-    case InterpolationFault::kPattern:      // 3602-CE-I6 (A34)
+    case InterpolationFault::kPattern:  // 3602-CE-I6 (A34)
+      reject(items::kPathPattern, "path bits 10..14 name no method");
+      return false;
     case InterpolationFault::kCommandBits:  // 3602-CE-03
-      reject(false);
+      reject(items::kPathWithCommandBit, "a command MSW bit with the path bits");
       return false;
     case InterpolationFault::kReserved:  // 3602-CE-I5 / IP-18 (and CE-I4: stale words 8..15)
-    case InterpolationFault::kRange:     // 3602-CE-05 / IP-02
-      reject(true);
+      reject_profile(items::kPathReserved, "reserved words of the path block not 0");
+      return false;
+    case InterpolationFault::kRange:  // 3602-CE-05 / IP-02
+      reject_profile(axis::items::kOutOfRange, "a path coordinate out of range");
       return false;
   }
   // 3602-CE-I3: both axes configured, enabled and in command mode.
+  if (refuse_not_ready(x_, 1) || refuse_not_ready(y_, 2)) return false;
   // 3602-CE-04: a move while either axis moves; the running motion is unaffected.
-  if (!x_.commandable() || !y_.commandable() || state_ == State::kRunning || x_.moving() ||
-      y_.moving()) {
-    reject(false);
+  if (state_ == State::kRunning || x_.moving() || y_.moving()) {
+    reject(axis::items::kMoveWhileMoving, "a path while an axis moves");
     return false;
   }
+  return true;
+}
+
+bool InterpolatedMove::refuse_not_ready(const axis::Axis& a, unsigned number) noexcept {
+  if (a.commandable()) return false;
+  const char* why = a.in_configuration_mode()    ? "is in configuration mode"
+                    : a.drive_state().configured ? "is disabled"
+                                                 : "is not configured";
+  char text[48];
+  std::snprintf(text, sizeof text, "path: axis %u %s", number, why);
+  reject(items::kPathAxesNotReady, text);
   return true;
 }
 
@@ -120,30 +137,61 @@ std::optional<planner::PathSpec> InterpolatedMove::path_of(const InterpolatedCom
   const auto rate_ok = [](std::int64_t r) {
     return r >= kRules3602.accel_min && r <= kRules3602.accel_max;
   };
-  if (c.speed < 1 || c.speed > rules.speed_max || c.speed < vs || !rate_ok(c.accel) ||
-      !rate_ok(c.decel)) {
-    reject(true);
+  if (c.speed < 1 || c.speed > rules.speed_max || !rate_ok(c.accel) || !rate_ok(c.decel)) {
+    reject_profile(axis::items::kOutOfRange, "path speed, accel or decel out of range");
+    return std::nullopt;
+  }
+  if (c.speed < vs) {
+    char text[48];
+    std::snprintf(text, sizeof text, "path Vp %d is below Vs %d", static_cast<int>(c.speed),
+                  static_cast<int>(vs));
+    reject_profile(axis::items::kVpBelowVs, text);
     return std::nullopt;
   }
   // 3602-CE-07 / IP-17: absolute coordinates need both positions valid.
   const axis::AxisStatus sx = x_.status();
   const axis::AxisStatus sy = y_.status();
   if (c.absolute && (sx.position_invalid || sy.position_invalid)) {
-    reject(true);
+    reject_profile(axis::items::kAbsoluteWithPi, "absolute path with a position invalid");
     return std::nullopt;
   }
   // 3602-CE-I7 (A36) / IP-03 (A32): the geometry, or no motion.
   const PathGeometry g = path_geometry(c, sx.position, sy.position);
-  if (g.fault != GeometryFault::kNone) {
-    reject(true);
-    return std::nullopt;
-  }
+  if (!geometry_ok(g.fault)) return std::nullopt;
   planner::PathSpec spec = g.spec;
   spec.vs = vs;
   spec.vp = c.speed;
   spec.accel = {static_cast<double>(c.accel), c.shape};
   spec.decel = {static_cast<double>(c.decel), c.shape};
   return spec;
+}
+
+bool InterpolatedMove::geometry_ok(GeometryFault fault) noexcept {
+  const char* text = nullptr;
+  switch (fault) {
+    case GeometryFault::kNone:
+      return true;
+    case GeometryFault::kOverflow:
+      reject_profile(axis::items::kProfileOverflow, "the path does not fit 32-bit registers");
+      return false;
+    case GeometryFault::kRadiiDiffer:
+      text = "circle: start and end radii differ";
+      break;
+    case GeometryFault::kStartIsEnd:
+      text = "circle: end point = start point";
+      break;
+    case GeometryFault::kCollinear:
+      text = "circle: the three points are on a line";
+      break;
+    case GeometryFault::kRadiusTooSmall:
+      text = "circle: radius below half the chord";
+      break;
+    case GeometryFault::kRadiusTooLarge:
+      text = "circle: radius above 2,147,483,647";
+      break;
+  }
+  reject_profile(items::kPathGeometry, text);
+  return false;
 }
 
 void InterpolatedMove::begin_path(const planner::PathSpec& spec) {
@@ -181,7 +229,7 @@ bool InterpolatedMove::start(bool resume) {
   const bool started =
       resume ? group_.resume(spec_.vp, spec_.accel, spec_.decel) : group_.start(spec_);
   if (!started) {
-    reject(false);
+    reject(axis::items::kPlannerFull, "planner queue full: the path does not start");
     return false;
   }
   x_.begin_coordinated(spec_.decel);
@@ -233,8 +281,13 @@ void InterpolatedMove::poll_end() {
 // vector values; axis 1 has checked them and its Hold state).
 void InterpolatedMove::resume(const axis::Profile& p) {
   // Axis 2 must still be where the hold left it, idle and in command mode.
-  if (state_ != State::kHeld || !y_.commandable() || y_.moving() || py_.steps() != held_y_steps_) {
-    reject(false);
+  if (refuse_not_ready(y_, 2)) return;
+  if (y_.moving()) {
+    reject(axis::items::kMoveWhileMoving, "path Resume while axis 2 moves");
+    return;
+  }
+  if (state_ != State::kHeld || py_.steps() != held_y_steps_) {
+    reject(axis::items::kResumeNotHeld, "path Resume: axis 2 has left the path");
     return;
   }
   if (x_.inputs_block_start(std::nullopt) || y_.inputs_block_start(std::nullopt)) return;

@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "module/axis/axis.hpp"
+#include "module/m3602/circle_methods.hpp"
 #include "module/m3602/interpolated_command.hpp"
 #include "planner/motion_port.hpp"
 #include "planner/path_group.hpp"
@@ -59,11 +60,22 @@ class InterpolatedMove {
   // The vector profile's rules (CE-05, CE-06, CE-07) and the geometry (CE-I7, IP-03): the path
   // relative to the start point, or nullopt (rejected).
   std::optional<planner::PathSpec> path_of(const InterpolatedCommand& c);
+  // The geometry's refusal (CE-I7, IP-03), if any: false after it.
+  bool geometry_ok(GeometryFault fault) noexcept;
   // An accepted path: blocked by inputs (A15), complete at once (at its end point), held from
   // the start (External, A17), or started on both axes.
   void begin_path(const planner::PathSpec& spec);
-  // Rejections: every interpolated error is reported on axis 1 only (3602-CE-I1).
-  void reject(bool invalid_profile) noexcept { x_.reject_coordinated(invalid_profile); }
+  // Rejections: every interpolated error is reported on axis 1 only (3602-CE-I1), with its item
+  // and sentence (interpolated_items.hpp) recorded with the bit, in the same scan.
+  void reject(const axis::Item& item, const char* text) noexcept {
+    x_.reject_coordinated(false, item, text);
+  }
+  void reject_profile(const axis::Item& item, const char* text) noexcept {
+    x_.reject_coordinated(true, item, text);
+  }
+  // 3602-CE-I3: axis `a` (1 or 2) is not configured, enabled and in command mode; true after
+  // the refusal.
+  bool refuse_not_ready(const axis::Axis& a, unsigned number) noexcept;
   // Both parts of `spec_` started on one time base; false if the planner refused one.
   bool start(bool resume);
   void carry_stops();

@@ -80,6 +80,7 @@ void Module3602::on_input(const gpio::InputEvent& e) {
   if (e.axis >= axes_.size()) return;
   axes_[e.axis].axis.on_input(e);
   interpolated_.after_input();  // a limit on one axis of a path stops the other at once
+  for (Channel& c : axes_) c.axis.explain_new_errors();
 }
 
 void Module3602::scan(const ImageWords& out, ImageWords& in, Nanos now) {
@@ -90,6 +91,9 @@ void Module3602::scan(const ImageWords& out, ImageWords& in, Nanos now) {
   axes_[1].scan(words[1], interpolated_.filter_axis2(command_from_words(words[1])), now);
   // The interpolated block spans all sixteen words; axis 1's LSW bits 9..14 select it.
   interpolated_.scan(interpolated_from_words(out));
+  // The path acts on the axes after their scans (a refusal, a stop carried over): the reasons
+  // of this scan are complete only now, before the status that shows their bits.
+  for (Channel& c : axes_) c.axis.explain_new_errors();
   for (unsigned a = 0; a < axes_.size(); ++a) {
     ImageWords axis_in;
     axes_[a].publish(words[a], a == 0 && interpolated_.running(), axis_in);

@@ -228,6 +228,9 @@ TEST_F(Ctl3602, PathLineFullCircleHeldArcAndARefusedRadius) {
   // |R| < |E - S| / 2: no such circle (3602-CE-I7), reported on axis 1.
   const CtlRun r = ctl("path radius ccw 1000 0 10 -s 20000 -a 100 -d 100", 1);
   EXPECT_NE(r.err.find("Command Error"), std::string::npos) << r.err;
+  // With its item, as every refusal (docs/error-reasons.md).
+  EXPECT_NE(r.err.find("3602-CE-I7: circle: radius below half the chord"), std::string::npos)
+      << r.err;
   EXPECT_NE(r.out.find("3602 axis 1 in COMMAND mode"), std::string::npos) << r.out;
   ctl("--axis 1 reset");
   EXPECT_FALSE(status(0).has(m2::status_msw::kCommandError));

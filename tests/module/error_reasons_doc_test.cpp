@@ -8,11 +8,13 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "module/axis/error_items.hpp"
 #include "module/m3202/config_3202.hpp"
 #include "module/m3601/config_3601.hpp"
 #include "module/m3602/config_3602.hpp"
+#include "module/m3602/interpolated_items.hpp"
 
 namespace stepmod::module::axis {
 namespace {
@@ -53,6 +55,11 @@ std::string generated_table() {
     for (ModuleType t : kTypes) o << " " << cell(t, it->list, it->number(t)) << " |";
     o << " " << it->what << " |\n";
   }
+  o << "\n### Conditions of the 3602's interpolated move\n\n| item | condition |\n|---|---|\n";
+  for (const Item* it : m3602::items::kAll) {
+    o << "| " << cell(ModuleType::k3602, it->list, it->number(ModuleType::k3602)) << " | "
+      << it->what << " |\n";
+  }
   o << "\n### Configuration checks of each module\n\n| item | condition |\n|---|---|\n";
   config_rows(o, ModuleType::k3601, m3601::ConfigFault::kUnusedWordsNonZero);
   config_rows(o, ModuleType::k3602, m3602::ConfigFault::kReservedWords);
@@ -89,7 +96,9 @@ TEST(ErrorReasonsDoc, TableMatchesTheCatalogue) {
 // Stable numbering: no two conditions share a code within a module unless they are the same
 // checklist item, and every default sentence fits the image's 56 bytes with the longest id.
 TEST(ErrorReasonsDoc, CodesAreWellFormedAndSentencesFit) {
-  for (const Item* it : items::kAll) {
+  std::vector<const Item*> all(items::kAll.begin(), items::kAll.end());
+  all.insert(all.end(), m3602::items::kAll.begin(), m3602::items::kAll.end());
+  for (const Item* it : all) {
     EXPECT_LE(std::string(it->what).size() + std::string("3601-CFG-S1: ").size(),
               kReasonTextSize - 1)
         << it->what;
@@ -100,6 +109,13 @@ TEST(ErrorReasonsDoc, CodesAreWellFormedAndSentencesFit) {
   }
   EXPECT_EQ(item_code(ModuleType::k3601, ErrorList::kCommand, 5), 10205u);
   EXPECT_EQ(item_id(ModuleType::k3202, ErrorList::kPositionInvalid, 92), "3202-PI-S2");
+  // The 3602's lettered items: 5x B, 6x I, 7x J, 8x R.
+  EXPECT_EQ(item_id(ModuleType::k3602, ErrorList::kCommand, 51), "3602-CE-B1");
+  EXPECT_EQ(item_id(ModuleType::k3602, ErrorList::kCommand, 63), "3602-CE-I3");
+  EXPECT_EQ(item_id(ModuleType::k3602, ErrorList::kCommand, 73), "3602-CE-J3");
+  EXPECT_EQ(item_id(ModuleType::k3602, ErrorList::kCommand, 88), "3602-CE-R8");
+  EXPECT_EQ(item_id_of_code(20267), "3602-CE-I7");
+  EXPECT_EQ(item_id(ModuleType::k3601, ErrorList::kCommand, 42), "3601-CE-42");
   EXPECT_EQ(item_id_of_code(0), "");
 }
 

@@ -28,6 +28,35 @@ TEST_F(Reasons3202, CE_04_VpBelowVs) {
   EXPECT_EQ(text(reason(0)), "3202-CE-04: Vp 999 is below Vs 1000");
 }
 
+// A channel never configured is disabled and ignores commands (3202-DIS-01); after an invalid
+// configuration it refuses them.
+TEST_F(Reasons3202, CE_S2_MoveBeforeConfigurationNamesItsItem) {
+  configure(1, kFull3202 | (1u << 7));  // 3202-CFG-09: not configured
+  command(1, m2::cmd_bit::kRelativeMove, {.target = 100});
+  EXPECT_TRUE(status(1, m2::status_bit::kCommandError));
+  EXPECT_EQ(reason(1).code, 30292u);
+  EXPECT_EQ(text(reason(1)), "3202-CE-S2: not configured: configure the axis first");
+}
+
+// The 3202 states it (Ch.4, the moves' note 2) without numbering it in its list: stepmod's S3.
+TEST_F(Reasons3202, CE_S3_MoveWhileAnotherRuns) {
+  configure(0);
+  command(0, m2::cmd_bit::kRelativeMove, {.target = 50'000});
+  command(0, m2::cmd_bit::kAbsoluteMove, {.target = 100});
+  EXPECT_TRUE(status(0, m2::status_bit::kCommandError));
+  EXPECT_EQ(reason(0).code, 30293u);
+  EXPECT_EQ(text(reason(0)), "3202-CE-S3: a move while a motion is running");
+}
+
+// No registration on the 3202: a manual move with a target is 3202-CE-12 (IP-07 also).
+TEST_F(Reasons3202, CE_12_ManualMoveWithATarget) {
+  configure(0);
+  command(0, m2::cmd_bit::kManualCw, {.target = -300});
+  EXPECT_TRUE(status(0, m2::status_bit::kInvalidProfile));
+  EXPECT_EQ(reason(0).code, 30212u);
+  EXPECT_EQ(text(reason(0)), "3202-CE-12: manual move with target -300 (must be 0)");
+}
+
 TEST_F(Reasons3202, IP_15_BlendMessageBeforeTheChannelIsConfigured) {
   std::array<std::int32_t, STEPMOD_MSG_DINTS> msg{};
   msg[m2::msg_dint::kChannel] = 2;

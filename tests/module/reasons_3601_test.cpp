@@ -38,6 +38,37 @@ TEST_F(Reasons3601, CE_05_VpBelowVsNamesBothSpeeds) {
   EXPECT_EQ(text(reason()), "3601-CE-05: Vp 500 is below Vs 1000");
 }
 
+// stepmod's own: the manual only says the module must be configured before any operation.
+TEST_F(Reasons3601, CE_S2_MoveBeforeConfigurationNamesItsItem) {
+  vm_.scans(2);
+  command(m::cmd_msw::kRelativeMove, {.target = 100});
+  EXPECT_TRUE(status(m::status_msw::kCommandError));
+  EXPECT_EQ(reason().code, 10292u);
+  EXPECT_EQ(text(reason()), "3601-CE-S2: not configured: configure the axis first");
+}
+
+// A jog's target changed while it runs: the move stops with its own item, not the list's.
+TEST_F(Reasons3601, CE_30_TargetWrittenIntoARunningJog) {
+  configure();
+  set_words(m::cmd_msw::kManualCw, 0, 0, 10'000, 10, 10);
+  vm_.run_for(100 * kNsPerMs);
+  set_words(m::cmd_msw::kManualCw, 0, 500, 10'000, 10, 10);
+  vm_.scans(2);
+  EXPECT_TRUE(status(m::status_msw::kCommandError));
+  EXPECT_EQ(reason().code, 10230u);
+  EXPECT_EQ(text(reason()), "3601-CE-30: a target written while a jog runs");
+}
+
+// 3601-HI-02 (A8: Command Error as well): the reason names the manual's item, Home Invalid's.
+TEST_F(Reasons3601, HI_02_FindHomeWithATargetNamesTheHomeInvalidItem) {
+  configure();
+  command(m::cmd_msw::kFindHomeCw, {.target = 300});
+  EXPECT_TRUE(status(m::status_msw::kCommandError));
+  EXPECT_TRUE(status(m::status_msw::kHomeInvalid));
+  EXPECT_EQ(reason().code, 10502u);
+  EXPECT_EQ(text(reason()), "3601-HI-02: Find Home with a target 300 (must be 0)");
+}
+
 TEST_F(Reasons3601, CE_L1_ReasonSurvivesResetErrorsAndIgnoredCommands) {
   configure();
   command(m::cmd_msw::kRelativeMove, {.target = 100, .speed = 500});

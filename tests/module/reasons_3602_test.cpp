@@ -22,6 +22,25 @@ TEST_F(Reasons3602, CFG_03_CwInputFunction11) {
   EXPECT_EQ(reason(kAxis1).code, 20101u);  // axis 1 still as at power-up
 }
 
+TEST_F(Reasons3602, CE_S2_MoveBeforeConfigurationNamesItsItem) {
+  command(kAxis2, m2::cmd_msw::kRelativeMove, {.target = 100});
+  EXPECT_TRUE(status(kAxis2, m2::status_msw::kCommandError));
+  EXPECT_EQ(reason(kAxis2).code, 20292u);
+  EXPECT_EQ(text(reason(kAxis2)), "3602-CE-S2: not configured: configure the axis first");
+}
+
+// A registration move's speed raised while it runs: the 3602's lettered item (3602-CE-R7).
+TEST_F(Reasons3602, CE_R7_RegistrationSpeedIncreased) {
+  configure(kAxis1);
+  set_command(kAxis1, m2::cmd_msw::kJogCw, {.target = 20'000, .speed = 5'000});
+  vm_.run_for(100 * kNsPerMs);
+  set_command(kAxis1, m2::cmd_msw::kJogCw, {.target = 20'000, .speed = 8'000});
+  vm_.scans(2);
+  EXPECT_TRUE(status(kAxis1, m2::status_msw::kCommandError));
+  EXPECT_EQ(reason(kAxis1).code, 20287u);
+  EXPECT_EQ(text(reason(kAxis1)), "3602-CE-R7: a registration move's speed increased");
+}
+
 TEST_F(Reasons3602, CE_06_VpBelowVsOnAxis2) {
   configure(kAxis1);
   configure(kAxis2);
