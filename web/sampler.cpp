@@ -17,6 +17,8 @@ Sampler::Sampler(const std::string& module_name, Publish publish, std::chrono::m
     : client_(module_name), publish_(std::move(publish)), period_(period), batch_(batch) {
   link_.heartbeat = client_.heartbeat_value();
   link_.heartbeat_changed = Clock::now();
+  scan_ = client_.scan_counter();
+  scan_changed_ = link_.heartbeat_changed;
   thread_ = std::thread([this] { run(); });
 }
 
@@ -28,6 +30,11 @@ Sampler::~Sampler() {
 PlcLink Sampler::plc_link() const {
   std::lock_guard lock(link_m_);
   return link_;
+}
+
+std::chrono::milliseconds Sampler::image_quiet() const {
+  std::lock_guard lock(link_m_);
+  return std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - scan_changed_);
 }
 
 void Sampler::take_sample(std::int64_t t_us) {
@@ -42,7 +49,12 @@ void Sampler::take_sample(std::int64_t t_us) {
   pending_.push_back(s);
   samples_.fetch_add(1, std::memory_order_relaxed);
   const std::uint64_t hb = client_.heartbeat_value();
+  const std::uint64_t scan = client_.scan_counter();
   std::lock_guard lock(link_m_);
+  if (scan != scan_) {
+    scan_ = scan;
+    scan_changed_ = Clock::now();
+  }
   if (hb != link_.heartbeat) {
     link_.heartbeat = hb;
     link_.heartbeat_changed = Clock::now();
@@ -69,11 +81,16 @@ std::string Sampler::batch_json() {
   const PlcLink link = plc_link();
   const auto quiet_ms =
       std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - link.heartbeat_changed);
+  const auto image_ms = image_quiet();
+  // The image's strings (the reasons) come from another process: bad UTF-8 in them is written
+  // as U+FFFD rather than thrown out of this thread.
   return nlohmann::json{{"type", "batch"},
                         {"t_us", t},
                         {"pos", pos},
                         {"status", status},
                         {"scan", client_.scan_counter()},
+                        {"daemon",
+                         {{"quiet_ms", image_ms.count()}, {"gone", image_ms >= kDaemonGone}}},
                         {"health",
                          {{"flags", h.flags},
                           {"names", ipc::health_flag_names(h.flags)},
@@ -83,7 +100,7 @@ std::string Sampler::batch_json() {
                           {"quiet_ms", quiet_ms.count()},
                           {"stale", (h.flags & STEPMOD_HEALTH_PLC_STALE) != 0}}},
                         {"lease", {{"holder", ipc::Lease::holder_of(client_.raw())}}}}
-      .dump();
+      .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 void Sampler::run() {

@@ -23,6 +23,10 @@ struct PlcLink {
   bool stale = false;  // daemon health bit 1
 };
 
+// The daemon is taken for gone when its image's scan counter has not moved for this long (its
+// scan period is at most 100 ms; a stopped or killed daemon's image stays mapped, frozen).
+inline constexpr std::chrono::milliseconds kDaemonGone{500};
+
 class Sampler {
  public:
   using Publish = std::function<void(const std::string& json)>;
@@ -36,6 +40,8 @@ class Sampler {
 
   // The heartbeat as last seen (thread-safe copy).
   PlcLink plc_link() const;
+  // How long the image's scan counter has not moved (the daemon is gone past kDaemonGone).
+  std::chrono::milliseconds image_quiet() const;
   // Samples taken and batches published so far (for the measurement in docs/web-console.md).
   std::uint64_t samples() const noexcept { return samples_.load(); }
 
@@ -56,6 +62,8 @@ class Sampler {
   ImageWords last_in_{};
   mutable std::mutex link_m_;
   PlcLink link_;
+  std::uint64_t scan_ = 0;
+  std::chrono::steady_clock::time_point scan_changed_{};
   std::atomic<std::uint64_t> samples_{0};
   std::atomic<bool> stop_{false};
   std::thread thread_;

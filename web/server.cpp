@@ -2,32 +2,49 @@
 
 #include <civetweb.h>
 
+#include <cstdio>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <stdexcept>
+
+#include "web/conn_socket.hpp"
+#include "web/requests.hpp"
 
 namespace stepmod::web {
 namespace {
 
-constexpr std::size_t kQueueMax = 40;  // 2 s of batches for a slow page, then the oldest go
-
-Server* self(void* cb) {
-  return static_cast<Server*>(cb);
+Server* self(const mg_connection* c) {
+  return static_cast<Server*>(mg_get_user_data(mg_get_context(c)));
 }
-int http_cb(mg_connection* c, void* cb) {
-  return self(cb)->on_http(c);
+int init_connection_cb(const mg_connection* c, void** conn_data) {
+  *conn_data = nullptr;
+  self(c)->on_open(c);
+  return 0;
 }
-int ws_connect_cb(const mg_connection* c, void* cb) {
-  return self(cb)->on_ws_connect(c);
+void connection_close_cb(const mg_connection* c) {
+  self(c)->on_closed(c);
 }
-void ws_ready_cb(mg_connection* c, void* cb) {
-  self(cb)->on_ws_ready(c);
+int http_error_cb(mg_connection* c, int status, const char* msg) {
+  return self(c)->on_http_error(c, status, msg);
 }
-int ws_data_cb(mg_connection* c, int flags, char* data, size_t len, void* cb) {
-  return self(cb)->on_ws_data(c, flags, data, len);
+int http_cb(mg_connection* c, void*) {
+  return self(c)->on_http(c);
 }
-void ws_close_cb(const mg_connection* c, void* cb) {
-  self(cb)->on_ws_close(c);
+int ws_connect_cb(const mg_connection* c, void*) {
+  return self(c)->on_ws_connect(c);
+}
+void ws_ready_cb(mg_connection* c, void*) {
+  self(c)->on_ws_ready(c);
+}
+// civetweb's own frame reader is never used (it buffers a frame of any size): the console reads
+// the frames in on_ws_ready. It runs only after that returns, or where the socket was not found:
+// it closes the connection.
+int ws_data_cb(mg_connection*, int, char*, size_t, void*) {
+  return 0;
+}
+void ws_close_cb(const mg_connection* c, void*) {
+  self(c)->on_ws_close(c);
 }
 
 const char* mime_of(const std::string& path) {
@@ -46,157 +63,203 @@ std::string read_file(const std::string& path) {
   return s.str();
 }
 
-void respond(mg_connection* c, int status, const char* mime, const std::string& body,
-             const std::string& extra_headers = "") {
-  mg_printf(c,
-            "HTTP/1.1 %d %s\r\nContent-Type: %s\r\nContent-Length: %zu\r\n"
-            "Cache-Control: no-store\r\nX-Content-Type-Options: nosniff\r\n"
-            "Content-Security-Policy: default-src 'self'; connect-src 'self' ws: wss:\r\n"
-            "%sConnection: close\r\n\r\n",
-            status, mg_get_response_code_text(c, status), mime, body.size(), extra_headers.c_str());
+// On every answer: no page of another site may frame the console (clickjacking: a click on
+// "Take control" or a jog button under a decoy), nor read it, nor be given its address.
+constexpr const char* kSecurityHeaders =
+    "Cache-Control: no-store\r\n"
+    "X-Content-Type-Options: nosniff\r\n"
+    "X-Frame-Options: DENY\r\n"
+    "Content-Security-Policy: default-src 'self'; connect-src 'self'; frame-ancestors 'none'; "
+    "form-action 'self'; base-uri 'none'; object-src 'none'\r\n"
+    "Referrer-Policy: same-origin\r\n"  // (no-referrer would make the form's Origin "null")
+    "Cross-Origin-Opener-Policy: same-origin\r\n"
+    "Cross-Origin-Resource-Policy: same-origin\r\n";
+
+int respond(mg_connection* c, int status, const char* mime, const std::string& body,
+            const std::string& extra_headers = "") {
+  mg_printf(
+      c,
+      "HTTP/1.1 %d %s\r\nContent-Type: %s\r\nContent-Length: %zu\r\n%s%sConnection: close\r\n\r\n",
+      status, mg_get_response_code_text(c, status), mime, body.size(), kSecurityHeaders,
+      extra_headers.c_str());
   mg_write(c, body.data(), body.size());
+  return status;
+}
+
+// The socket of a connection whose request is being read. (During civetweb's init_connection
+// callback its request information is not given out yet; its address and ports, filled in
+// before, are given out from the moment the worker starts reading the request.)
+int socket_of_connection(const void* conn) {
+  const mg_request_info* ri = mg_get_request_info(static_cast<const mg_connection*>(conn));
+  if (ri == nullptr) return -1;
+  return socket_of(ri->remote_addr, static_cast<unsigned>(ri->remote_port),
+                   static_cast<unsigned>(ri->server_port));
+}
+
+std::string peer_of(const mg_request_info* ri) {
+  return std::string(ri->remote_addr) + ":" + std::to_string(ri->remote_port);
+}
+
+// A header as a log shows it: printable ASCII, at most 100 characters.
+std::string printable(const char* s) {
+  std::string out = s != nullptr ? s : "none";
+  if (out.size() > 100) out.resize(100);
+  for (char& ch : out) ch = ch >= 0x20 && ch < 0x7F ? ch : '?';
+  return out;
 }
 
 }  // namespace
 
 Server::Server(const ServerOptions& opt, Auth& auth, Commander& commander, const std::string& hello)
-    : opt_(opt), auth_(auth), commander_(commander), hello_(hello) {
+    : opt_(opt),
+      auth_(auth),
+      commander_(commander),
+      hello_(hello),
+      hosts_(opt.listen, opt.port, opt.allow_hosts),
+      guard_(kMaxWaiting, [](const void* conn) { return socket_of_connection(conn); }),
+      hub_(WsLimits{}, [this](std::uintptr_t id, std::string_view msg, bool text) {
+        return answer(commander_, id, msg, text);
+      }) {
   const std::string ports = opt.listen + ":" + std::to_string(opt.port);
-  const char* options[] = {"listening_ports",   ports.c_str(), "num_threads", "8",
-                           "enable_keep_alive", "no",          nullptr};
+  const std::string threads = std::to_string(kServerThreads);
+  const std::string timeout = std::to_string(kRequestTimeoutMs);
+  // clang-format off
+  const char* options[] = {"listening_ports", ports.c_str(),
+                           "num_threads", threads.c_str(),
+                           "request_timeout_ms", timeout.c_str(),
+                           "enable_keep_alive", "no",
+                           nullptr};
+  // clang-format on
   mg_callbacks callbacks{};
+  callbacks.init_connection = init_connection_cb;
+  callbacks.connection_close = connection_close_cb;
+  callbacks.http_error = http_error_cb;
   ctx_ = mg_start(&callbacks, this, options);
   if (ctx_ == nullptr) throw std::runtime_error("cannot listen on " + ports);
   mg_set_request_handler(ctx_, "/", http_cb, this);
   mg_set_websocket_handler(ctx_, "/ws", ws_connect_cb, ws_ready_cb, ws_data_cb, ws_close_cb, this);
-  pusher_ = std::thread([this] { push_loop(); });
 }
 
 Server::~Server() {
-  {
-    std::lock_guard lock(m_);
-    stop_ = true;
-  }
-  cv_.notify_all();
-  pusher_.join();
+  hub_.stop();  // every WebSocket's thread returns to civetweb, which then stops
   mg_stop(ctx_);
 }
 
-void Server::publish(const std::string& json) {
-  {
-    std::lock_guard lock(m_);
-    if (sockets_.empty()) return;
-    if (queue_.size() >= kQueueMax) queue_.pop_front();
-    queue_.push_back(json);
-  }
-  cv_.notify_all();
+void Server::on_open(const mg_connection* c) {
+  guard_.opened(c);
 }
 
-void Server::push_loop() {
-  std::unique_lock lock(m_);
-  for (;;) {
-    cv_.wait(lock, [this] { return stop_ || !queue_.empty(); });
-    if (stop_) return;
-    const std::string msg = std::move(queue_.front());
-    queue_.pop_front();
-    for (mg_connection* c : sockets_) send(c, msg);
-  }
+int Server::on_http_error(mg_connection* c, int status, const char* msg) {
+  guard_.request_read(c);
+  respond(c, status, "text/plain; charset=utf-8", std::to_string(status) + ": " + msg + "\n");
+  return 0;  // answered here, with the security headers
 }
 
-void Server::send(mg_connection* c, const std::string& text) {
-  mg_lock_connection(c);
-  mg_websocket_write(c, MG_WEBSOCKET_OPCODE_TEXT, text.data(), text.size());
-  mg_unlock_connection(c);
+int Server::check_login(mg_connection* c, const std::string& client) {
+  if (!hosts_.origin_ok(mg_get_header(c, "Origin"), mg_get_header(c, "Host"))) {
+    guard_.request_read(c);
+    return respond(c, 403, "text/plain; charset=utf-8",
+                   "403: the login form must come from this console's own page (Origin, Host)\n");
+  }
+  const std::int64_t wait = limiter_.wait_ms(client);
+  if (wait > 0) {
+    guard_.request_read(c);
+    return respond(c, 429, "text/plain; charset=utf-8",
+                   "429: too many wrong tokens from this address: try again later\n",
+                   "Retry-After: " + std::to_string((wait + 999) / 1000) + "\r\n");
+  }
+  return 0;
 }
 
 int Server::login(mg_connection* c) {
   const mg_request_info* ri = mg_get_request_info(c);
+  const std::string client = ri->remote_addr;
   const std::string page = read_file(opt_.www_dir + "/login.html");
-  if (std::string(ri->request_method) != "POST") {
-    respond(c, 200, "text/html; charset=utf-8", page);
-    return 200;
-  }
+  if (const int refused = check_login(c, client); refused != 0) return refused;
   char body[512] = {};
   const int n = mg_read(c, body, sizeof body - 1);
+  guard_.request_read(c);
   char token[256] = {};
   if (n <= 0 || mg_get_var(body, static_cast<size_t>(n), "token", token, sizeof token) < 0) {
-    respond(c, 400, "text/plain", "the login form needs a token\n");
-    return 400;
+    return respond(c, 400, "text/plain", "the login form needs a token\n");
   }
   const std::string id = auth_.login(token);
   if (id.empty()) {
-    respond(c, 401, "text/html; charset=utf-8", page);
-    return 401;
+    limiter_.failed(client);
+    return respond(c, 401, "text/html; charset=utf-8", page);
   }
-  respond(c, 303, "text/plain", "logged in\n",
-          std::string("Set-Cookie: ") + Auth::kCookie + "=" + id +
-              "; HttpOnly; SameSite=Strict; Path=/\r\nLocation: /\r\n");
-  return 303;
+  limiter_.succeeded(client);
+  std::fprintf(stderr, "stepmod-web: login from %s: a session opened\n", client.c_str());
+  return respond(c, 303, "text/plain", "logged in\n",
+                 std::string("Set-Cookie: ") + Auth::kCookie + "=" + id +
+                     "; HttpOnly; SameSite=Strict; Path=/\r\nLocation: /\r\n");
 }
 
 int Server::serve_file(mg_connection* c, const std::string& uri) {
-  static const std::set<std::string> kFiles = {"/index.html", "/console.js", "/plot.js",
-                                               "/style.css", "/picture.html", "/picture.js"};
+  static const std::set<std::string> kFiles = {"/index.html", "/console.js",   "/plot.js",
+                                               "/style.css",  "/picture.html", "/picture.js"};
   const std::string path = uri == "/" ? "/index.html" : uri;
-  if (kFiles.count(path) == 0) {
-    respond(c, 404, "text/plain", "not found\n");
-    return 404;
-  }
-  respond(c, 200, mime_of(path), read_file(opt_.www_dir + path));
-  return 200;
+  if (kFiles.count(path) == 0) return respond(c, 404, "text/plain", "not found\n");
+  return respond(c, 200, mime_of(path), read_file(opt_.www_dir + path));
 }
 
 int Server::on_http(mg_connection* c) {
   const mg_request_info* ri = mg_get_request_info(c);
   const std::string uri = ri->local_uri != nullptr ? ri->local_uri : "/";
-  if (uri == "/login") return login(c);
+  if (uri == "/login" && std::string(ri->request_method) == "POST") return login(c);
+  guard_.request_read(c);
+  if (!hosts_.host_ok(mg_get_header(c, "Host"))) {
+    return respond(c, 421, "text/plain; charset=utf-8",
+                   "421: this console is not served under that name (Host header; see "
+                   "stepmod-web --allow-host)\n");
+  }
+  if (uri == "/login")
+    return respond(c, 200, "text/html; charset=utf-8", read_file(opt_.www_dir + "/login.html"));
   if (uri == "/style.css") return serve_file(c, uri);  // the login page's look: no secret
   if (!auth_.valid(mg_get_header(c, "Cookie"))) {
     // The page itself answers 401 with the login form, so a browser shows it.
     if (uri == "/" || uri == "/index.html") {
-      respond(c, 401, "text/html; charset=utf-8", read_file(opt_.www_dir + "/login.html"));
-    } else {
-      respond(c, 401, "text/plain", "401: log in first (/login)\n");
+      return respond(c, 401, "text/html; charset=utf-8", read_file(opt_.www_dir + "/login.html"));
     }
-    return 401;
+    return respond(c, 401, "text/plain", "401: log in first (/login)\n");
   }
-  if (uri == "/api/hello") {
-    respond(c, 200, "application/json", hello_);
-    return 200;
-  }
+  if (uri == "/api/hello") return respond(c, 200, "application/json", hello_);
   return serve_file(c, uri);
 }
 
 int Server::on_ws_connect(const mg_connection* c) {
-  return auth_.valid(mg_get_header(c, "Cookie")) ? 0 : 1;  // nonzero: civetweb closes it
+  guard_.request_read(c);
+  const mg_request_info* ri = mg_get_request_info(c);
+  const char* why = nullptr;
+  if (!hosts_.origin_ok(mg_get_header(c, "Origin"), mg_get_header(c, "Host"))) {
+    why = "not from this console's own page (Origin, Host)";
+  } else if (!auth_.valid(mg_get_header(c, "Cookie"))) {
+    why = "no session";
+  }
+  if (why == nullptr) return 0;
+  if (unsigned skipped = 0; refusals_.pass(skipped)) {
+    const std::string more =
+        skipped > 0 ? " (and " + std::to_string(skipped) + " more not logged)" : "";
+    std::fprintf(stderr, "stepmod-web: WebSocket from %s (Origin %s) refused: %s%s\n",
+                 peer_of(ri).c_str(), printable(mg_get_header(c, "Origin")).c_str(), why,
+                 more.c_str());
+  }
+  return 1;  // nonzero: civetweb closes it without the handshake
 }
 
 void Server::on_ws_ready(mg_connection* c) {
-  send(c, hello_);
-  std::lock_guard lock(m_);
-  sockets_.insert(c);
-}
-
-int Server::on_ws_data(mg_connection* c, int flags, char* data, std::size_t len) {
-  const int opcode = flags & 0xF;
-  if (opcode == MG_WEBSOCKET_OPCODE_CONNECTION_CLOSE) return 0;
-  if (opcode != MG_WEBSOCKET_OPCODE_TEXT) return 1;
-  nlohmann::json reply;
-  try {
-    reply = commander_.handle(nlohmann::json::parse(std::string(data, len)),
-                              reinterpret_cast<std::uintptr_t>(c));
-  } catch (const nlohmann::json::exception& e) {
-    reply = {
-        {"type", "reply"}, {"ok", false}, {"message", std::string("bad request: ") + e.what()}};
+  const mg_request_info* ri = mg_get_request_info(c);
+  const int fd = socket_of_connection(c);
+  if (fd < 0) {
+    std::fprintf(stderr, "stepmod-web: WebSocket from %s: its socket not found, closed\n",
+                 peer_of(ri).c_str());
+    return;
   }
-  if (!reply.is_null()) send(c, reply.dump());
-  return 1;
+  hub_.serve(fd, reinterpret_cast<std::uintptr_t>(c), peer_of(ri), hello_);
 }
 
 void Server::on_ws_close(const mg_connection* c) {
   commander_.disconnected(reinterpret_cast<std::uintptr_t>(c));
-  std::lock_guard lock(m_);
-  sockets_.erase(const_cast<mg_connection*>(c));
 }
 
 }  // namespace stepmod::web

@@ -56,6 +56,10 @@ void add_options(CLI::App& app, Args& a) {
                  "address to listen on (default 127.0.0.1; another address exposes the "
                  "console to that network: do it only on purpose)")
       ->capture_default_str();
+  app.add_option("--allow-host", a.opt.allow_hosts,
+                 "another name the console is served under (NAME or NAME:PORT; repeatable): "
+                 "requests naming any other host are refused (default: 127.0.0.1, localhost, "
+                 "[::1] and the --listen address, or every interface address for 0.0.0.0)");
   app.add_option("--port", a.port, "TCP port (default 8610 + the name's trailing number)")
       ->check(CLI::Range(1, 65535));
   app.add_option("--token-file", a.token_file, "access token file")->capture_default_str();

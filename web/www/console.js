@@ -2,20 +2,29 @@
 // the page's requests. Controls act only under the commissioning lease; while this page holds it
 // and has the focus it sends keep-alives 20 times a second, and stepmod-web renews the lease
 // only while they arrive (the deadman). A jog button acts only while it is held down.
+// The page says how old its data is: "stale" when no update came for STALE_MS, "daemon gone"
+// when the daemon's image stopped advancing; Take control is offered only on a live view, and
+// a page that saw no update for BLIND_MS stops its keep-alives (its operator no longer sees the
+// axes: the lease expires and the daemon stops them).
 "use strict";
 
+const STALE_MS = 500;
+const BLIND_MS = 1000;
 const state = { ws: null, module: null, units: [], holding: false, myLease: false,
-                leaseSeen: false, takenAt: 0,
+                leaseSeen: false, takenAt: 0, lastBatchAt: 0, daemon: null, blindSaid: false,
                 batches: 0, samples: 0, rateT0: performance.now(), jog: null };
 const $ = (id) => document.getElementById(id);
-window.consoleStats = { batches: 0, samples: 0, rate: 0, sampleRate: 0 };
+window.consoleStats = { batches: 0, samples: 0, rate: 0, sampleRate: 0,
+                        view: { state: "connecting", since: Date.now() } };
 
 function say(text, bad) {
   const m = $("msg"); m.textContent = text; m.style.color = bad ? "#ff8a80" : "#b9f6ca";
 }
 
 function send(obj) {
-  if (state.ws && state.ws.readyState === WebSocket.OPEN) state.ws.send(JSON.stringify(obj));
+  if (!state.ws || state.ws.readyState !== WebSocket.OPEN) return false;
+  state.ws.send(JSON.stringify(obj));
+  return true;
 }
 
 function num(root, cls) { return parseInt(root.querySelector(cls).value, 10); }
@@ -25,8 +34,12 @@ function profile(root) {
            decel: num(root, ".f-decel"), profile: num(root, ".f-profile") };
 }
 
+// Every command is sent whatever the lease or the view (an immediate stop above all: it is the
+// daemon that decides); one that cannot be sent says so.
 function command(unit, cmd, extra) {
-  send(Object.assign({ op: "cmd", unit: unit, cmd: cmd }, extra || {}));
+  if (!send(Object.assign({ op: "cmd", unit: unit, cmd: cmd }, extra || {}))) {
+    say(`${cmd}: NOT SENT: no connection to stepmod-web`, true);
+  }
 }
 
 function configBits(box, bits, prefix) {
@@ -164,6 +177,7 @@ function buildWords(box, words) {
 function showBatch(b) {
   state.batches++; state.samples += b.t_us.length;
   const now = performance.now();
+  state.lastBatchAt = now; state.daemon = b.daemon || null; state.blindSaid = false;
   if (now - state.rateT0 >= 1000) {
     const s = (now - state.rateT0) / 1000;
     window.consoleStats.rate = state.batches / s; window.consoleStats.sampleRate = state.samples / s;
@@ -212,10 +226,33 @@ function onMessage(ev) {
 
 function connect() {
   const ws = new WebSocket((location.protocol === "https:" ? "wss://" : "ws://") + location.host + "/ws");
-  state.ws = ws;
-  ws.onopen = () => { $("conn").textContent = "live"; };
-  ws.onclose = () => { $("conn").textContent = "closed"; state.holding = false; setTimeout(connect, 1000); };
+  state.ws = ws; state.lastBatchAt = 0;
+  ws.onclose = () => { state.holding = false; showView(); setTimeout(connect, 1000); };
   ws.onmessage = onMessage;
+}
+
+function viewState(age) {
+  if (!state.ws || state.ws.readyState !== WebSocket.OPEN) return "closed";
+  if (!state.lastBatchAt) return "connecting";
+  if (age > STALE_MS) return "stale";
+  if (state.daemon && state.daemon.gone) return "daemon gone";
+  return "live";
+}
+
+// The view's state and the data's age, ten times a second.
+function showView() {
+  const age = state.lastBatchAt ? performance.now() - state.lastBatchAt : 0;
+  const s = viewState(age);
+  if (s !== window.consoleStats.view.state) window.consoleStats.view = { state: s, since: Date.now() };
+  const secs = (ms) => `${(ms / 1000).toFixed(1)} s`;
+  $("conn").textContent = {
+    live: "live", connecting: "connecting", closed: "closed: reconnecting",
+    stale: `stale: no update for ${secs(age)}`,
+    "daemon gone": `daemon gone: its image stopped ${secs((state.daemon ? state.daemon.quiet_ms : 0) + age)} ago`,
+  }[s];
+  $("age").textContent = state.lastBatchAt ? `${Math.round(age)} ms` : "-";
+  $("take").disabled = s !== "live";
+  document.body.classList.toggle("notlive", s !== "live");
 }
 
 // The deadman: keep-alives only while this page holds the lease, is visible and has the focus.
@@ -226,7 +263,11 @@ function keepAlive() {
   }
   state.lastTick = now;
   if (state.holding && document.visibilityState === "visible" && document.hasFocus()) {
-    send({ op: "keepalive" });
+    if (now - state.lastBatchAt < BLIND_MS) send({ op: "keepalive" });
+    else if (!state.blindSaid) {
+      state.blindSaid = true;
+      say("no update for 1 s: keep-alives stopped, the lease expires and the axes stop", true);
+    }
   }
 }
 
@@ -236,5 +277,6 @@ window.addEventListener("load", () => {
   $("take").addEventListener("click", () => send({ op: "take" }));
   $("release").addEventListener("click", () => { endJog(); send({ op: "release" }); });
   setInterval(keepAlive, 50);
+  setInterval(showView, 100);
   connect();
 });
