@@ -8,6 +8,7 @@
 // suite names each document that still states the old one.
 #include <array>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <string>
@@ -260,10 +261,18 @@ constexpr const ConfigKey* find_config_key(std::string_view table, std::string_v
 // The row of `table`.`key`, found at compile time: a key that is not in the table does not
 // compile. (Plain strings: a reference returned for class temporaries would be a
 // -Wdangling-reference false alarm of newer compilers.)
+// (By index, not pointer: GCC's -fsanitize=undefined makes a compared pointer into the table
+// no constant expression, and the sanitizer builds would not compile.)
 consteval const ConfigKey& config_key(const char* table, const char* key) {
-  const ConfigKey* k = find_config_key(table, key);
-  if (k == nullptr) throw "tools/config_keys.hpp has no such key";
-  return *k;
+  const std::string_view t{table};
+  const std::string_view k{key};
+  for (std::size_t i = 0; i < std::size(kConfigKeys); ++i) {
+    if (kConfigKeys[i].table == t && kConfigKeys[i].key == k) return kConfigKeys[i];
+  }
+  for (std::size_t i = 0; i < std::size(kLineOptionKeys); ++i) {
+    if (kLineOptionKeys[i].table == t && kLineOptionKeys[i].key == k) return kLineOptionKeys[i];
+  }
+  throw "tools/config_keys.hpp has no such key";
 }
 
 constexpr Nanos unit_ns(Unit u) {
