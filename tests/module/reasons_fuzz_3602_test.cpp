@@ -3,6 +3,7 @@
 // scans in 3 minutes where they did not: a refused path set Command Error after the axis had
 // recorded its reasons for the scan.
 #include "tests/module/reasons_fuzz.hpp"
+#include "tests/module/rig_3602.hpp"
 #include "words/words_3602.hpp"
 
 namespace stepmod::testing::fuzz {
@@ -19,23 +20,6 @@ constexpr std::uint16_t kLimits =
 constexpr std::uint16_t kEStopCw =
     static_cast<std::uint16_t>((kLimits & ~m::cfg_msw::kCwFunction) |
                                (m::cfg_msw::kFunctionEStop << m::cfg_msw::kCwFunctionShift));
-
-VirtualMachineOptions machine() {
-  VirtualMachineOptions o;
-  o.type = ModuleType::k3602;
-  unsigned offset = 0;
-  for (unsigned a = 0; a < 2; ++a) {
-    gpio::SimAxisSetup s;
-    for (auto& line : s.lines.out) line = offset++;
-    for (auto& line : s.lines.in) line = offset++;
-    s.sim.cw_limit_at = 100'000;
-    s.sim.ccw_limit_at = -100'000;
-    s.sim.home_from = a == 0 ? 5'000 : -3'000;
-    s.sim.home_to = a == 0 ? 5'100 : -2'900;
-    o.axes.push_back(s);
-  }
-  return o;
-}
 
 void put_split(ImageWords& out, unsigned i, std::int32_t v) {
   const auto p = words::encode_3602(v);
@@ -154,7 +138,7 @@ class Driver3602 final : public Driver {
 
 TEST(ReasonsFuzz3602, ErrorBitsAndReasonsAgreeOnEveryScan) {
   const std::uint32_t s = seed(3602);
-  VirtualMachine vm(machine());
+  VirtualMachine vm(default_3602());  // the 3602 rig's machine
   ReasonChecker ck(vm);
   Driver3602 d;
   Rng r(s);
