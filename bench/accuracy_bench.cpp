@@ -1,6 +1,6 @@
 // Benchmark 6 of issue 5: step-time accuracy. For each profile, every step's scheduled time (the
 // leading edge the planner puts in the ring, relative to the motion's time 0) is compared with
-// its ideal time from the manual's profile equations (digest MODULES.md 7.2, 7.3):
+// its ideal time from the manuals' profile equations (ch. 2):
 //
 //   ramp V1 -> V2 at rate A, factor k (constant 1, triangular S 2, trapezoidal S 4/3):
 //     T = k |V2 - V1| / A,  D = T (V1 + V2) / 2;
@@ -155,7 +155,8 @@ std::vector<Nanos> planned(const Profile& p) {
 }  // namespace
 
 int main() {
-  // The digest's worked values (7.2), plus fast variants near the hardware limits.
+  // The worked values of the profile equations (manuals ch. 2), plus fast variants near the
+  // hardware limits.
   const Profile profiles[] = {
       {"trapezoid", AccelShape::kConstant, 20'000, 1'000, 10'000, 10'000, 10'000},
       {"triangle", AccelShape::kConstant, 5'000, 1'000, 10'000, 10'000, 10'000},

@@ -465,7 +465,7 @@ int guard(int argc, char** argv) {
 }
 
 // Issue 18: the planned step times of a single-axis move, from the planner itself (the
-// manual's profile equations, digest 7.2), in virtual time.
+// manuals' profile equations, ch. 2), in virtual time.
 std::vector<Nanos> planned_steps(const planner::MoveSpec& spec) {
   SpscRing<rt::Edge> ring(1u << 16);
   rt::AxisControl control;

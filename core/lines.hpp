@@ -1,7 +1,7 @@
 #pragma once
 // Line ids of one axis, shared by every layer: the planner schedules edges on output lines, the
 // pulse thread and the GPIO backends write them, the module reads input lines, the VCD trace and
-// the simulator panel name both. The orders are fixed by INTERFACE.md section 4 (panel bits).
+// the simulator panel name both. The orders are fixed by docs/interface.md section 4 (panel bits).
 #include <cstdint>
 
 namespace stepmod {
@@ -11,7 +11,7 @@ enum class OutputLine : std::uint8_t { kStep = 0, kDir = 1, kGpo = 2 };
 inline constexpr unsigned kOutputLinesPerAxis = 3;
 
 // Input lines of one axis. The first six are in the order of the simulator panel's force bits
-// (INTERFACE.md section 4): 0 capture, 1 external, 2 home, 3 E-stop, 4 CW limit, 5 CCW limit.
+// (docs/interface.md section 4): 0 capture, 1 external, 2 home, 3 E-stop, 4 CW limit, 5 CCW limit.
 enum class InputLine : std::uint8_t {
   kCapture = 0,
   kExternal = 1,

@@ -1,7 +1,7 @@
 #pragma once
-// The module types stepmod emulates and the shape of each one's I/O image (INTERFACE.md section 3
-// header fields): stated here once, read by the daemon, the PLC-side client, the config checker
-// and the module layer.
+// The module types stepmod emulates and the shape of each one's I/O image (docs/interface.md
+// section 3 header fields): stated here once, read by the daemon, the PLC-side client, the config
+// checker and the module layer.
 #include <array>
 #include <cstddef>
 #include <cstdint>

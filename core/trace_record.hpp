@@ -1,5 +1,5 @@
 #pragma once
-// One line change for the VCD trace (INTERFACE.md section 5): an output written by the pulse
+// One line change for the VCD trace (docs/interface.md section 5): an output written by the pulse
 // thread (at the time it was written) or an input edge (at the time it was stamped).
 #include <cstdint>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Which chip lines one axis uses: the `[[axis]]` line keys of INTERFACE.md section 2, without
+// Which chip lines one axis uses: the `[[axis]]` line keys of docs/interface.md section 2, without
 // the rest of the configuration, so that gpio/ does not depend on tools/. The daemon copies
 // tools::AxisConfig::out/in into this. An absent offset means "not wired".
 #include <optional>

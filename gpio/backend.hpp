@@ -1,6 +1,6 @@
 #pragma once
 // The one interface between stepmod and its GPIO lines. Two backends implement it:
-//   SimBackend   - the built-in simulated machine (INTERFACE.md section 2 [axis.sim], section 4)
+//   SimBackend   - the built-in simulated machine (docs/interface.md sections 2 [axis.sim], 4)
 //   GpiodBackend - a real chip through libgpiod 1.6, input events through io_uring
 // Outputs are written by the pulse thread; inputs are consumed by the control thread.
 #include <cstddef>
@@ -14,7 +14,7 @@
 
 namespace stepmod::gpio {
 
-// Config-file key of each line (INTERFACE.md section 2), also the VCD wire suffix.
+// Config-file key of each line (docs/interface.md section 2), also the VCD wire suffix.
 std::string_view input_key(InputLine l) noexcept;
 std::string_view output_key(OutputLine l) noexcept;
 

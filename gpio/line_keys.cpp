@@ -1,4 +1,4 @@
-// Config-file keys of the lines (INTERFACE.md section 2); also the VCD wire suffixes (section 5).
+// Config-file keys of the lines (docs/interface.md section 2); also the VCD wire suffixes (5).
 #include "gpio/backend.hpp"
 #include "gpio/line_options.hpp"
 

@@ -1,5 +1,5 @@
 #pragma once
-// Backend for `backend = "sim"`: one SimMachine per axis (INTERFACE.md section 2 [axis.sim]),
+// Backend for `backend = "sim"`: one SimMachine per axis (docs/interface.md section 2 [axis.sim]),
 // plus the accessors the simulator panel (section 4) needs.
 #include <atomic>
 #include <memory>

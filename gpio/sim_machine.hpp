@@ -1,7 +1,8 @@
 #pragma once
-// One simulated axis (INTERFACE.md section 2 [axis.sim], section 4): a drive and motor that follow
-// the step/dir (or CW/CCW) outputs, limit and home switches at fixed positions, and a quadrature
-// encoder with a marker. The motor moves only through `write()`, called by the pulse thread.
+// One simulated axis (docs/interface.md section 2 [axis.sim], section 4): a drive and motor that
+// follow the step/dir (or CW/CCW) outputs, limit and home switches at fixed positions, and a
+// quadrature encoder with a marker. The motor moves only through `write()`, called by the pulse
+// thread.
 //
 // Threads and why it is race-free without locks:
 //  * Producer (pulse thread, or whoever writes outputs while it is stopped): `write()`. It owns
@@ -85,7 +86,7 @@ class SimMachine {
   bool has_events() const noexcept {
     return !ring_.empty() || staged_size_ > 0 || forces_size_ > 0;
   }
-  // Panel forcing (INTERFACE.md section 4): bit i of `mask` forces panel input i (0 capture ..
+  // Panel forcing (docs/interface.md section 4): bit i of `mask` forces panel input i (0 capture ..
   // 5 CCW limit) to bit i of `levels`; a cleared bit gives the line back to the simulation.
   // `now` stamps the events this causes. Must be called on the consumer's thread (every scan;
   // an unchanged force costs nothing). read() sees it at once; poll() delivers its events in

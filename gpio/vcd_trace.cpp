@@ -97,7 +97,7 @@ VcdTrace::VcdTrace(const std::string& path, std::span<const TraceWire> wires, Na
   if (localtime_r(&now, &tm) != nullptr) std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S", &tm);
   std::fprintf(
       f_, "$date %s $end\n$version stepmod " STEPMOD_VERSION " $end\n$timescale 1 ns $end\n", date);
-  // The wires keep the names of INTERFACE.md section 5 verbatim (axis1.step, ...), inside one
+  // The wires keep the names of docs/interface.md section 5 verbatim (axis1.step, ...), inside one
   // top-level scope, which some readers require.
   std::fprintf(f_, "$scope module stepmod $end\n");
   for (std::size_t i = 0; i < wires_.size(); ++i) {

@@ -1,5 +1,5 @@
 #pragma once
-// The `--trace FILE.vcd` writer (INTERFACE.md section 5).
+// The `--trace FILE.vcd` writer (docs/interface.md section 5).
 //
 //   VcdTrace    - the file: header, one 1-bit wire per configured line named axis<N>.<key>,
 //                 initial values at #0, value changes in ns relative to the daemon's start.

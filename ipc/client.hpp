@@ -1,5 +1,5 @@
 #pragma once
-// PLC side of the shared-memory I/O image (INTERFACE.md section 3), for stepmodctl, tests and
+// PLC side of the shared-memory I/O image (docs/interface.md section 3), for stepmodctl, tests and
 // C++ soft PLCs. Any process; one Client per thread (it holds no locks, but write helpers are
 // read-modify-write sequences under the output seqlock).
 #include <chrono>
@@ -34,9 +34,9 @@ class Client {
   // sequence busy for kReadTries attempts.
   bool read_inputs(ImageWords& in) const noexcept;
   bool read_outputs(ImageWords& out) const noexcept;
-  // The daemon health words (INTERFACE.md 3.3), consistent with one input publication.
+  // The daemon health words (docs/interface.md 3.3), consistent with one input publication.
   Health read_health() const noexcept;
-  // The error reason of axis/channel `axis` (0-based; INTERFACE.md 3.4), consistent with one
+  // The error reason of axis/channel `axis` (0-based; docs/interface.md 3.4), consistent with one
   // input publication; seq 0 and an empty text when none (or no consistent read).
   stepmod_reason_t read_reason(unsigned axis) const noexcept;
 
@@ -55,11 +55,11 @@ class Client {
   // Waits until the scan counter reaches `target`.
   bool wait_scan_counter(std::uint64_t target, std::chrono::milliseconds timeout) const;
 
-  // PLC heartbeat (INTERFACE.md 3.2): +1; a PLC calls it every scan while in Run mode.
+  // PLC heartbeat (docs/interface.md 3.2): +1; a PLC calls it every scan while in Run mode.
   void heartbeat();
   std::uint64_t heartbeat_value() const noexcept;
 
-  // 3202 blend message (INTERFACE.md 3, offsets 192..415): writes the 52 DINTs, increments the
+  // 3202 blend message (docs/interface.md 3, offsets 192..415): writes the 52 DINTs, increments the
   // request sequence and waits for the module to mark it done. Returns the module's result
   // (0 accepted), or nullopt on timeout.
   std::optional<std::int32_t> send_message(std::span<const std::int32_t> data,

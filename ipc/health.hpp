@@ -1,5 +1,5 @@
 #pragma once
-// The daemon health words of INTERFACE.md section 3.3 (offsets 416, 420, and the extension at
+// The daemon health words of docs/interface.md section 3.3 (offsets 416, 420, and the extension at
 // 424), as the control thread publishes them with the input image and clients read them.
 #include <cstdint>
 #include <string>

@@ -1,6 +1,6 @@
 #pragma once
-// The commissioning lease kept by a thread (INTERFACE.md 3.5, docs/commissioning.md): for a tool
-// whose process being alive is the deadman (stepmodctl --wait holds it while it waits on its
+// The commissioning lease kept by a thread (docs/interface.md 3.5, docs/commissioning.md): for a
+// tool whose process being alive is the deadman (stepmodctl --wait holds it while it waits on its
 // motion, so that the daemon stops the axes if the tool dies or hangs). It is ipc::Lease
 // (ipc/lease.hpp, the one lease implementation) plus the check that no PLC is in control and a
 // thread that renews it every 50 ms while held.

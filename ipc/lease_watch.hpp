@@ -1,5 +1,5 @@
 #pragma once
-// The daemon's side of the commissioning lease (INTERFACE.md 3.5, docs/commissioning.md), one
+// The daemon's side of the commissioning lease (docs/interface.md 3.5, docs/commissioning.md), one
 // call per scan on the control thread: whether a tool holds the lease (the heartbeat timeout is
 // then not applied, until the expiry at most), whether it expired without release (every moving
 // axis stops: health bit 6) and whether a PLC heartbeat moved while it was held (two writers:

@@ -55,7 +55,7 @@ ModbusMap::ModbusMap(stepmod_image_t& image, bool writes)
 
 std::uint16_t ModbusMap::reg_of(const std::int32_t* words, unsigned reg) const noexcept {
   if (word_bytes_ == 2) return static_cast<std::uint16_t>(words[reg]);
-  // 3202: register 2k = bits 31..16 of word k, 2k+1 = bits 15..0 (INTERFACE.md 6).
+  // 3202: register 2k = bits 31..16 of word k, 2k+1 = bits 15..0 (docs/interface.md 6).
   const auto w = static_cast<std::uint32_t>(words[reg / 2]);
   return static_cast<std::uint16_t>(reg % 2 == 0 ? w >> 16 : w & 0xFFFFu);
 }
@@ -177,8 +177,8 @@ ModbusResult ModbusMap::write(ModbusResult r) noexcept {
   if (static_cast<unsigned>(r.address) + r.count > holding_regs_) {
     return fail(r, ModbusException::kIllegalDataAddress);
   }
-  // One seqlock write of the whole output image (INTERFACE.md 6): the registers not written keep
-  // their values (a 3202 word written by halves keeps its other half), read while the lock is
+  // One seqlock write of the whole output image (docs/interface.md 6): the registers not written
+  // keep their values (a 3202 word written by halves keeps its other half), read while the lock is
   // held so that no other cooperating writer can slip in between. The values are not checked:
   // a word outside the manual's ranges reaches the module as the PLC's word would.
   const std::uint32_t odd = stepmod_seq_write_begin(&img_.output_seq, STEPMOD_SEQ_STALE_NS);
@@ -202,7 +202,7 @@ ModbusResult ModbusMap::write(ModbusResult r) noexcept {
     stepmod_word_store(&img_.output_image, word_bytes_, i, out[i]);
   }
   stepmod_seq_write_end(&img_.output_seq, odd);
-  // The master that writes is the PLC: its writes are its heartbeat (INTERFACE.md 3.2, 6).
+  // The master that writes is the PLC: its writes are its heartbeat (docs/interface.md 3.2, 6).
   __atomic_fetch_add(&img_.plc_heartbeat, 1u, __ATOMIC_RELEASE);
   r.wrote = true;
   return r;

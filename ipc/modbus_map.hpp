@@ -1,5 +1,5 @@
 #pragma once
-// The Modbus register map of INTERFACE.md section 6 over a stepmod image: one request PDU in,
+// The Modbus register map of docs/interface.md section 6 over a stepmod image: one request PDU in,
 // register values or an exception code out. No sockets (ipc/modbus_server does the TCP side), so
 // every rule is unit-tested on an image in ordinary memory.
 //
@@ -32,8 +32,8 @@ enum class ModbusException : std::uint8_t {
 inline constexpr unsigned kModbusMaxRead = 125;   // functions 3 and 4
 inline constexpr unsigned kModbusMaxWrite = 123;  // function 16
 
-// Input registers from 1000: the header of INTERFACE.md 3, the health fields of 3.3 and the item
-// codes of the error reasons (3.4).
+// Input registers from 1000: the header of docs/interface.md 3, the health fields of 3.3 and the
+// item codes of the error reasons (3.4).
 inline constexpr std::uint16_t kHeaderBase = 1000;
 inline constexpr unsigned kHeaderRegisters = 20;
 enum HeaderRegister : std::uint16_t {
@@ -48,7 +48,7 @@ enum HeaderRegister : std::uint16_t {
   kHeaderLateLow = 8,
   kHeaderLateHigh = 9,
   // 10 .. 15 reserved: read as 0
-  // The error reasons' item codes (INTERFACE.md 3.4, docs/error-reasons.md), high half first.
+  // The error reasons' item codes (docs/interface.md 3.4, docs/error-reasons.md), high half first.
   kHeaderReason1High = 16,
   kHeaderReason1Low = 17,
   kHeaderReason2High = 18,

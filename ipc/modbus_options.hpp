@@ -1,5 +1,5 @@
 #pragma once
-// [modbus] of the configuration file (INTERFACE.md section 6), as the server uses it.
+// [modbus] of the configuration file (docs/interface.md section 6), as the server uses it.
 #include <cstdint>
 #include <string>
 #include <vector>

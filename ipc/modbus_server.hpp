@@ -1,6 +1,6 @@
 #pragma once
-// Modbus/TCP server of INTERFACE.md section 6, serving one module's shared-memory image. It runs
-// in its own thread at normal priority and reaches the image only through its seqlocks
+// Modbus/TCP server of docs/interface.md section 6, serving one module's shared-memory image. It
+// runs in its own thread at normal priority and reaches the image only through its seqlocks
 // (ModbusMap), never through the control thread: a flood of requests costs this thread CPU time,
 // not a scan.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Supervision of the PLC side of the image (INTERFACE.md 3.1-3.3), one object in the control
+// Supervision of the PLC side of the image (docs/interface.md 3.1-3.3), one object in the control
 // thread, fed once per scan with what the image showed. Pure logic (no clock, no logging), so it
 // is tested scan by scan; the daemon logs the transitions it reports.
 //

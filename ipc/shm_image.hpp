@@ -1,5 +1,5 @@
 #pragma once
-// Server side of the shared-memory I/O image (INTERFACE.md section 3), owned by stepmodd's
+// Server side of the shared-memory I/O image (docs/interface.md section 3), owned by stepmodd's
 // control thread: one output snapshot and one input publication per scan.
 #include <array>
 #include <cstdint>
@@ -13,7 +13,7 @@
 
 namespace stepmod::ipc {
 
-// A 3202 blend message (INTERFACE.md 3, offsets 192..415) waiting to be processed.
+// A 3202 blend message (docs/interface.md 3, offsets 192..415) waiting to be processed.
 struct BlendMessage {
   std::uint32_t seq = 0;  // the request sequence to acknowledge with finish_message()
   std::array<std::int32_t, STEPMOD_MSG_DINTS> data{};
@@ -48,7 +48,7 @@ class ShmImage {
   // Writes the input words under the input seqlock (each truncated to the word size), then
   // increments the scan counter: one call per completed scan.
   void publish_inputs(const ImageWords& in) noexcept { publish_inputs(in, health_); }
-  // The same with the daemon health words (INTERFACE.md 3.3), under the same seqlock.
+  // The same with the daemon health words (docs/interface.md 3.3), under the same seqlock.
   void publish_inputs(const ImageWords& in, const Health& health) noexcept;
 
   // "stale image of stepmodd pid N (module 3601, scan counter ..., ...)" if creating the image
@@ -56,7 +56,7 @@ class ShmImage {
   std::string replaced_description() const;
 
   std::uint64_t scan_counter() const noexcept;
-  // The PLC heartbeat value (INTERFACE.md 3.2); the caller watches it for changes.
+  // The PLC heartbeat value (docs/interface.md 3.2); the caller watches it for changes.
   std::uint64_t heartbeat() const noexcept;
 
   // 3202 blend message: a request the module has not finished yet (request seq != done seq).

@@ -16,8 +16,8 @@ class IpcError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Module names (INTERFACE.md 2 `module.name`): 1..64 characters of a-z, 0-9, '-', '_'. Keeps the
-// object inside /dev/shm (no '/') and the name usable in unit names and file names.
+// Module names (docs/interface.md 2 `module.name`): 1..64 characters of a-z, 0-9, '-', '_'. Keeps
+// the object inside /dev/shm (no '/') and the name usable in unit names and file names.
 inline constexpr std::size_t kMaxNameLength = 64;
 bool valid_name(std::string_view name) noexcept;
 // Throws IpcError naming the rule when `name` is not valid.

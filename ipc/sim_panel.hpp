@@ -1,5 +1,5 @@
 #pragma once
-// The simulator panel /dev/shm/stepmod.<name>.sim (INTERFACE.md section 4): the sim backend
+// The simulator panel /dev/shm/stepmod.<name>.sim (docs/interface.md section 4): the sim backend
 // publishes the simulated machine there and reads the inputs a person or a test forces.
 #include <cstdint>
 #include <string>

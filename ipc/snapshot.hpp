@@ -1,5 +1,5 @@
 #pragma once
-// One consistent seqlock snapshot of image words into ImageWords (INTERFACE.md 3.1),
+// One consistent seqlock snapshot of image words into ImageWords (docs/interface.md 3.1),
 // shared by the module's side (ShmImage) and the PLC's side (Client).
 #include "core/module_shape.hpp"
 #include "ipc/stepmod_image.h"

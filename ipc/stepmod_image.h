@@ -1,4 +1,4 @@
-/* stepmod shared-memory layouts (INTERFACE.md sections 3 and 4), for soft PLCs and tools.
+/* stepmod shared-memory layouts (docs/interface.md sections 3 and 4), for soft PLCs and tools.
  *
  * Plain C11 / C++ header, only libc/POSIX headers (strict -std=c11 needs _POSIX_C_SOURCE
  * >= 199309L for clock_gettime): a soft PLC written in C can include
@@ -8,7 +8,7 @@
  * I/O image: /dev/shm/stepmod.<name>   (shm_open("/stepmod.<name>"), 4096 bytes)
  * Sim panel: /dev/shm/stepmod.<name>.sim
  *
- * Extensions to INTERFACE.md (in its reserved space, as section 3 allows):
+ * Extensions to layout version 1 (in its reserved space, see docs/interface.md section 3):
  *   image offset 56 (u64): process id of the stepmodd that owns the image (0 = unknown). Lets a
  *                          new daemon tell a stale image left by a crashed one from a live one.
  *   panel offset 16 (u64): same for the simulator panel.
@@ -34,8 +34,8 @@ extern "C" {
 #define STEPMOD_STATIC_ASSERT(c, m) _Static_assert(c, m)
 #endif
 
-/* All integers are little-endian (INTERFACE.md 3); the structs below are native-endian, so this
- * header only describes the layout on a little-endian host. */
+/* All integers are little-endian (docs/interface.md 3); the structs below are native-endian, so
+ * this header only describes the layout on a little-endian host. */
 STEPMOD_STATIC_ASSERT(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
                       "the stepmod image is little-endian; this header maps it natively");
 
@@ -79,7 +79,8 @@ enum stepmod_image_offset {
   STEPMOD_OFF_END_OF_FIELDS = 592
 };
 
-/* Daemon health flags (offset 416, INTERFACE.md 3.3): a bit each, set while the condition lasts. */
+/* Daemon health flags (offset 416, docs/interface.md 3.3): a bit each, set while the condition
+ * lasts. */
 #define STEPMOD_HEALTH_LATE_EDGE (1u << 0)      /* a late-edge fault stopped an axis */
 #define STEPMOD_HEALTH_PLC_STALE (1u << 1)      /* PLC heartbeat stale: as in Program mode */
 #define STEPMOD_HEALTH_SEQ_STUCK (1u << 2)      /* output sequence left odd (PLC died mid-write) */
@@ -185,8 +186,8 @@ STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, unused) == STEPMOD_OFF_END_OF_FI
  *
  * stepmod_seq_write_begin() claims the lock with a compare-and-swap rather than a plain store, so
  * that two cooperating writers (a PLC program and `stepmodctl`) never interleave their updates;
- * a single writer behaves exactly as the plain protocol of INTERFACE.md 3.1. A writer that died
- * holding the lock (sequence stuck odd) is taken over after stale_ns.
+ * a single writer behaves exactly as the plain protocol of docs/interface.md 3.1. A writer that
+ * died holding the lock (sequence stuck odd) is taken over after stale_ns.
  * ------------------------------------------------------------------------------------------- */
 /* The magic is written last, as one 8-byte release store, by the creator of an object; a reader
  * whose acquire load sees it sees the whole header (8-byte aligned: it starts the mapping). */
@@ -344,7 +345,7 @@ static inline void stepmod_heartbeat(stepmod_image_t* im) {
 #define STEPMOD_PANEL_VERSION 1u
 #define STEPMOD_PANEL_MAX_AXES 2u
 
-/* Force-mask / level bits (INTERFACE.md 4), the order of InputLine. */
+/* Force-mask / level bits (docs/interface.md 4), the order of InputLine. */
 enum stepmod_panel_input {
   STEPMOD_IN_CAPTURE = 0,
   STEPMOD_IN_EXTERNAL = 1,

@@ -1,9 +1,9 @@
 #pragma once
 // The acceleration types of a first blend block, which the 3601 and 3602 manuals encode alike
-// (digest 3.8, 4.5): segment n's two-bit type pair in one of two words (segments 1..8, 9..16;
-// segment 1 or 9 in bits 1:0), the final deceleration's type in bits 15-14 of its word. Shared by
-// those two dialects only; each still reads its own words (where the pairs and the final
-// deceleration sit, and what else the final deceleration word holds).
+// (3601 manual ch. 5, 3602 manual table 9.2): segment n's two-bit type pair in one of two words
+// (segments 1..8, 9..16; segment 1 or 9 in bits 1:0), the final deceleration's type in bits 15-14
+// of its word. Shared by those two dialects only; each still reads its own words (where the pairs
+// and the final deceleration sit, and what else the final deceleration word holds).
 #include <cstdint>
 
 #include "core/module_shape.hpp"

@@ -33,19 +33,19 @@ class Personality {
   // writes the whole input image into `plc_in`.
   virtual void scan(const ImageWords& plc_out, ImageWords& plc_in, Nanos now) = 0;
 
-  // The PLC left Run mode (heartbeat timeout, INTERFACE.md 3.2): every move stops and the
+  // The PLC left Run mode (heartbeat timeout, docs/interface.md 3.2): every move stops and the
   // position becomes invalid, as the manuals say of a PLC switched to Program mode.
   virtual void plc_stopped(Nanos now) = 0;
   // The daemon stops every moving axis for a reason of its own, named by `why` (a stepmod item
-  // of axis/error_items.hpp): a commissioning lease expired without release (INTERFACE.md 3.5),
-  // an input edge lost. As plc_stopped: immediate stop, position invalid.
+  // of axis/error_items.hpp): a commissioning lease expired without release
+  // (docs/interface.md 3.5), an input edge lost. As plc_stopped: immediate stop, position invalid.
   virtual void stop_every_axis(const axis::Item& why, Nanos now) = 0;
 
   // The last reason recorded for an error bit of axis/channel `axis` (0-based;
   // docs/error-reasons.md); the control thread publishes it with the input image.
   virtual axis::ErrorReason reason(unsigned axis) const = 0;
 
-  // A message arrived through the image's mailbox (INTERFACE.md 3: the 3202's 52-DINT blend
+  // A message arrived through the image's mailbox (docs/interface.md 3: the 3202's 52-DINT blend
   // message); returns the message result (0 accepted). Modules without messages refuse it.
   virtual std::int32_t on_message(std::span<const std::int32_t> data, Nanos now) {
     (void)data;

@@ -110,7 +110,8 @@ void AxisPlanner::stop_after(std::uint32_t epoch, const StopAfterSpec& c) noexce
     finish_at_frontier();  // the count was reached by steps already planned: end at once
     return;
   }
-  // Digest 7.9 step 4: freeze the present speed, cruise, decelerate with the motion's decel.
+  // Registration (3601 manual ch. 4, 3602 ch. 2), after the trigger: freeze the present speed,
+  // cruise, decelerate with the motion's decel.
   replan_to_end(end, profile_.decel(), false);
 }
 

@@ -1,7 +1,8 @@
 #pragma once
-// A step source: the encoder follower's servo (FollowSpec, digest 7.12). It decides each next
-// step of a follow motion (direction, speed, earliest time, status phase) from the latest target;
-// the axis planner hands the decision to the edge emitter (the interface: planner/step_source.hpp).
+// A step source: the encoder follower's servo (FollowSpec, manuals 3601/3202 ch. 4). It decides
+// each next step of a follow motion (direction, speed, earliest time, status phase) from the latest
+// target; the axis planner hands the decision to the edge emitter (the interface:
+// planner/step_source.hpp).
 //
 // The law: the speed of the next step is the highest that
 //   * the accel allows from the previous step's speed (v^2 + 2a per step; 0 = jump to `speed`),

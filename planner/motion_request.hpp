@@ -16,7 +16,7 @@
 namespace stepmod::planner {
 
 // A finite move of `steps` (> 0) steps: jump to vs, ramp to vp (or a lower peak: triangle), ramp
-// down, last step at vs (digest 7.2, 7.3). vp <= vs means no ramps (constant speed vs... vp).
+// down, last step at vs (the manuals' ch. 2). vp <= vs means no ramps (constant speed vs... vp).
 struct MoveSpec {
   std::int64_t steps = 0;
   Direction dir = Direction::kCw;
@@ -27,7 +27,7 @@ struct MoveSpec {
 };
 
 // A move without an end (manual/jog move, homing search): runs until stopped. With vp <= vs the
-// axis jumps straight to vp ("constant-speed mode", digest 7.8).
+// axis jumps straight to vp ("constant-speed mode", manuals 3601/3202 ch. 4, 3602 ch. 2).
 struct RunSpec {
   Direction dir = Direction::kCw;
   double vs = 1.0;
@@ -36,7 +36,8 @@ struct RunSpec {
   Ramp decel;
 };
 
-// One blend segment (digest 7.10): reach `speed` within `length` steps using `ramp`.
+// One blend segment (manuals 3601/3202 ch. 4-5, 3602 ch. 9): reach `speed` within `length` steps
+// using `ramp`.
 struct BlendSegment {
   std::int64_t length = 0;
   double speed = 0.0;
@@ -52,13 +53,13 @@ struct BlendSpec {
   Ramp final_decel;
 };
 
-// Encoder follower (3601 fw 4.1, digest 7.12): a motion without an end whose goal moves. `target`
-// is the net step count (CW positive) from the follow motion's start that the axis must reach; the
-// module sends a new target as the master encoder counts. The planner closes the gap like a
-// velocity servo: each step is taken at the highest speed the ramps allow that still lets the axis
-// stop on the target (speed^2 <= vs^2 + 2 decel (remaining - 1)), so the steps never run ahead of
-// the known target unless the target moves back; a target behind the axis is reached by
-// decelerating to vs, reversing and following again. The count is exact: the axis ends on the
+// Encoder follower (3601 fw 4.1, manuals 3601/3202 ch. 4): a motion without an end whose goal
+// moves. `target` is the net step count (CW positive) from the follow motion's start that the axis
+// must reach; the module sends a new target as the master encoder counts. The planner closes the
+// gap like a velocity servo: each step is taken at the highest speed the ramps allow that still
+// lets the axis stop on the target (speed^2 <= vs^2 + 2 decel (remaining - 1)), so the steps never
+// run ahead of the known target unless the target moves back; a target behind the axis is reached
+// by decelerating to vs, reversing and following again. The count is exact: the axis ends on the
 // last target it was given.
 struct FollowSpec {
   std::int64_t target = 0;

@@ -1,6 +1,6 @@
 #pragma once
-// A step source: one coordinate of an interpolated path (planner/path_spec.hpp, digest 7.14).
-// The manual's profile (digest 7.2) runs on the path length s, s(t) a PhaseList like a move's;
+// A step source: one coordinate of an interpolated path (planner/path_spec.hpp, 3602 manual ch. 3).
+// The manuals' profile (ch. 2) runs on the path length s, s(t) a PhaseList like a move's;
 // the coordinate q(s) comes from the path's geometry (planner/path_law.hpp). The axis steps when
 // q reaches its next integer in its direction of travel, so its count n is always within one
 // step of q (hysteresis), and it turns where q reverses. X along an arc on which it rises from 0

@@ -1,11 +1,11 @@
 #pragma once
-// A coordinated path in the X-Y plane: the 3602's interpolated moves (digest 7.14). X is axis 1's
-// step count, Y axis 2's, increasing counts = CW pulses on that axis; X to the right and Y up, so
-// "CCW" is the mathematical positive sense. Coordinates are relative to the path's start point
+// A coordinated path in the X-Y plane: the 3602's interpolated moves (3602 manual ch. 3). X is axis
+// 1's step count, Y axis 2's, increasing counts = CW pulses on that axis; X to the right and Y up,
+// so "CCW" is the mathematical positive sense. Coordinates are relative to the path's start point
 // S = (0, 0). The module builds a PathSpec (the manual's methods and its "integer world" check
 // live there); the planner turns it into both axes' steps on one time base.
 //
-// The law: the manual's profile (digest 7.2) on the path length s; each axis' position is the
+// The law: the manuals' profile (ch. 2) on the path length s; each axis' position is the
 // path's X or Y at s, and each axis steps when that position reaches its next integer in its
 // direction of travel. Both axes solve the same s(t), so their steps interleave as the path
 // demands, and both end on the exact end point.

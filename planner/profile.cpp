@@ -124,14 +124,14 @@ void PhaseList::add_ramp(double v2, const Ramp& r) noexcept {
   const rt::Phase ph = v2 > v1 ? rt::Phase::kAccel : rt::Phase::kDecel;
   switch (r.shape) {
     case AccelShape::kTriangularS: {
-      // Acceleration rises linearly 0 -> A over T/2 and falls back to 0 (digest 7.2).
+      // Acceleration rises linearly 0 -> A over T/2 and falls back to 0 (the manuals' ch. 2).
       const double j = 2.0 * a / t;
       push(t / 2, 0.0, j, ph);
       push(t / 2, a, -j, ph);
       break;
     }
     case AccelShape::kTrapezoidalS: {
-      // Jerk T/4, constant acceleration T/2, jerk T/4 with J = 4A/T (digest 7.2).
+      // Jerk T/4, constant acceleration T/2, jerk T/4 with J = 4A/T (the manuals' ch. 2).
       const double j = 4.0 * a / t;
       push(t / 4, 0.0, j, ph);
       push(t / 2, a, 0.0, ph);

@@ -1,10 +1,10 @@
 #pragma once
-// The manuals' profile math (digest section 7.2) in steps, steps/s and steps/s^2, and the exact
+// The manuals' profile math (their ch. 2) in steps, steps/s and steps/s^2, and the exact
 // step-time solver built on it.
 //
 // A motion is a list of phases of constant jerk, so position is an exact piecewise cubic s(t).
 // Step k (k = 1, 2, ...) happens when s(t) = k: the first pulse comes about 1/Vs after time 0
-// and the last pulse of an N-step move exactly at Tt (digest 7.3, A29).
+// and the last pulse of an N-step move exactly at Tt (the manuals' ch. 2, A29).
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -31,7 +31,7 @@ enum class ProfileKind : std::uint8_t {
   kTriangle,       // Da + Dd > N: peak Vpk < Vp
 };
 
-// Digest 7.2 classification and totals of a MoveSpec (times in s, distances in steps).
+// Classification (the manuals' ch. 2) and totals of a MoveSpec (times in s, distances in steps).
 struct MoveProfile {
   ProfileKind kind = ProfileKind::kConstantSpeed;
   double vs = 0.0;                      // speed of the first and last pulse
@@ -45,7 +45,7 @@ MoveProfile classify_move(const MoveSpec& m) noexcept;
 MoveProfile classify_length(double length, double vs, double vp, const Ramp& accel,
                             const Ramp& decel) noexcept;
 
-// Speed of a constant-speed motion (vp <= vs): vp, or vs for vp = 0 (one-shot, digest 7.3).
+// Speed of a constant-speed motion (vp <= vs): vp, or vs for vp = 0 (one-shot, the manuals' ch. 2).
 inline double constant_speed(double vs, double vp) noexcept {
   return vp > 0.0 ? vp : vs;
 }
@@ -119,8 +119,9 @@ MoveProfile build_length(double length, double vs, double vp, const Ramp& accel,
                          PhaseList& out, double s0 = 0.0) noexcept;
 // Endless: ramp vs -> vp (or jump to vp in constant-speed mode), then cruise forever.
 void build_run(const RunSpec& r, PhaseList& out) noexcept;
-// Digest 7.10 / A21: each segment ramps from the previous speed within its length, the last one
-// also holds the final deceleration to vs, ending exactly at the sum of the lengths.
+// Blend moves (manuals 3601/3202 ch. 4-5, 3602 ch. 9; A21): each segment ramps from the previous
+// speed within its length, the last one also holds the final deceleration to vs, ending exactly at
+// the sum of the lengths.
 void build_blend(const BlendSpec& b, PhaseList& out) noexcept;
 std::int64_t blend_length(const BlendSpec& b) noexcept;
 

@@ -1,8 +1,8 @@
 #pragma once
 // A step source: the motion law of moves, runs and blends. Position is the piecewise cubic of the
-// manuals' profiles (planner/profile.hpp, digest 7.2); the shared StepSolver finds the time of
-// each step on it. Stops, registration counts and speed changes replan the law from a given step.
-// Progress (the newest step k and its time) belongs to the caller (the axis planner), which
+// manuals' profiles (planner/profile.hpp; the manuals' ch. 2); the shared StepSolver finds the time
+// of each step on it. Stops, registration counts and speed changes replan the law from a given
+// step. Progress (the newest step k and its time) belongs to the caller (the axis planner), which
 // hands each step to the edge emitter (the interface: planner/step_source.hpp).
 #include <cstdint>
 #include <limits>

@@ -12,7 +12,7 @@ inline constexpr Direction opposite(Direction d) noexcept {
   return d == Direction::kCw ? Direction::kCcw : Direction::kCw;
 }
 
-// The manuals' acceleration types (digest section 7.2). k = ramp time factor: 1, 2, 4/3.
+// The manuals' acceleration types (ch. 2). k = ramp time factor: 1, 2, 4/3.
 enum class AccelShape : std::uint8_t { kConstant = 0, kTriangularS = 1, kTrapezoidalS = 2 };
 
 struct Ramp {

@@ -1,10 +1,10 @@
 #pragma once
-// The 3602's interpolated moves as a PLC program writes them (digest 4.7, 4.8, 7.14): the block
-// in all sixteen output words, the data first with the command bits clear and the bits set
-// >= 10 ms later (the manual: the backplane moves the image in 8-word blocks, so words 8..15 may
-// still be stale when the bits arrive together with them), held, released. Hold and Resume of a
-// path are axis 1's Hold and Resume (interpolation bits 0 in the Resume). Kept apart from
-// plc_3602 (single-axis commands), which it uses for the edge-triggered axis-1 commands.
+// The 3602's interpolated moves as a PLC program writes them (3602 manual ch. 3, tables 9.4,
+// 9.23-9.26): the block in all sixteen output words, the data first with the command bits clear
+// and the bits set >= 10 ms later (the manual: the backplane moves the image in 8-word blocks, so
+// words 8..15 may still be stale when the bits arrive together with them), held, released. Hold and
+// Resume of a path are axis 1's Hold and Resume (interpolation bits 0 in the Resume). Kept apart
+// from plc_3602 (single-axis commands), which it uses for the edge-triggered axis-1 commands.
 #include <chrono>
 #include <cstdint>
 
@@ -36,7 +36,7 @@ struct PathMove3602 {
 };
 
 namespace m3602 {
-// Command LSW bits 9..14 of a move (digest 4.7 table).
+// Command LSW bits 9..14 of a move (3602 manual table 9.4).
 std::uint16_t interpolation_bits(const PathMove3602& m);
 // The block into all sixteen words (axis 2's command words 8 / 9 = 0, the method's unused words
 // 0). `command_bits`: with LSW bits 9..14 (else the data alone); `gpo`: axis 1's GPO bit kept.

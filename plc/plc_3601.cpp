@@ -146,7 +146,7 @@ Outcome Plc3601::home(bool cw, const Profile& p) {
   ImageWords w;
   const std::uint16_t bit = cw ? m::cmd_msw::kFindHomeCw : m::cmd_msw::kFindHomeCcw;
   w.w[m::out_word::kMsw] = bit;
-  // Homing is constant acceleration only and the target words must be 0 (digest 3.5).
+  // Homing is constant acceleration only and the target words must be 0 (3601 manual ch. 5).
   put_profile(w, p);
   // Keep the backplane proximity bit as the PLC left it: it is the PLC's input to homing.
   w.w[m::out_word::kLsw] = port_.outputs().w[m::out_word::kLsw] & m::cmd_lsw::kBackplaneProximity;
@@ -166,7 +166,7 @@ Outcome Plc3601::resume(const std::optional<Profile>& p) {
   w.w[m::out_word::kMsw] = m::cmd_msw::kResume;
   if (p) {
     put_profile(w, *p);
-    // S-curve bits must be supplied again with Resume (digest 3.5).
+    // S-curve bits must be supplied again with Resume (3601 manual ch. 5).
     constexpr std::int32_t kTypeBits = m::cmd_lsw::kSCurve | m::cmd_lsw::kTrapezoidalS;
     w.w[m::out_word::kLsw] = (w.w[m::out_word::kLsw] & ~kTypeBits) | accel_bits(p->type);
   }

@@ -42,7 +42,7 @@ class Plc3601 {
                     ImageWords* in_config = nullptr);
   Outcome move(bool absolute, std::int32_t target, const Profile& p, bool encoder_move = false);
   // Manual move (level-held bit) for `duration`, then released and waited until stopped.
-  // `registration` > 0 makes it a registration move (digest 7.9).
+  // `registration` > 0 makes it a registration move (3601 manual ch. 4).
   Outcome jog(bool cw, const Profile& p, std::chrono::milliseconds duration,
               std::int32_t registration = 0);
   // The same as a PLC holding the button: jog_press sets the level-held bit and returns once
@@ -59,13 +59,13 @@ class Plc3601 {
   Outcome preset_encoder(std::int32_t value);
   Outcome reset_errors();
   Outcome set_min_registration(std::int32_t distance);
-  // Blend programming handshake (digest 7.10): program bit held, one transmit edge per block,
-  // each acknowledged by the module.
+  // Blend programming handshake (3601 manual ch. 4-5): program bit held, one transmit edge per
+  // block, each acknowledged by the module.
   Outcome blend_program(const BlendProfile& b);
   Outcome blend_run(bool cw);
-  // Encoder follower mode (digest 7.12): the follower words stay written (the direction bit is a
-  // level) until end_follow(). `sense`: +1 same sense as the master, -1 reverse, 0 follower mode
-  // without motion. Multiplier and divisor 1..32767 each.
+  // Encoder follower mode (3601 manual ch. 4): the follower words stay written (the direction bit
+  // is a level) until end_follow(). `sense`: +1 same sense as the master, -1 reverse, 0 follower
+  // mode without motion. Multiplier and divisor 1..32767 each.
   Outcome follow(int sense, std::int16_t multiplier, std::int16_t divisor, std::int16_t accel,
                  std::int16_t decel);
   // Leaves follower mode: follower bit and direction bit released (all words 0).

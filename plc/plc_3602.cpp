@@ -171,7 +171,7 @@ Outcome Plc3602::resume(unsigned axis, const std::optional<Profile>& p) {
     m3602::put_split(w, b, m::out_word::kSpeedMsw, p->speed);
     w.w[b + m::out_word::kAccel] = static_cast<std::int16_t>(p->accel);
     w.w[b + m::out_word::kDecel] = static_cast<std::int16_t>(p->decel);
-    // The acceleration type is supplied again with Resume (digest 4.5).
+    // The acceleration type is supplied again with Resume (3602 manual ch. 9 table 9.2).
     constexpr std::uint16_t kTypeBits = m::cmd_lsw::kSCurve | m::cmd_lsw::kTrapezoidalS;
     const auto lsw = static_cast<std::uint16_t>(w.w[b + m::out_word::kLsw]);
     w.w[b + m::out_word::kLsw] =

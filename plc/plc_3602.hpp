@@ -2,7 +2,7 @@
 // The 3602 as a PLC program drives it, over any Port, one axis at a time (axis 0 = the manual's
 // axis 1): the axis' parameter words and command bit written as one write, held until the module
 // has scanned them, the edge-triggered bit released; the other axis' words are never touched, so
-// one axis can be configured or commanded while the other runs (digest 4).
+// one axis can be configured or commanded while the other runs (3602 manual).
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -33,7 +33,8 @@ class Plc3602 {
   // Error, Invalid Profile, Home Invalid.
   Outcome home(unsigned axis, bool cw, const Profile& p);
   // Jog (level-held bit) for `duration`, released, then waited until stopped. `registration` > 0
-  // makes it a registration move of that many steps after the stop trigger (digest 4.6 bit 7/8).
+  // makes it a registration move of that many steps after the stop trigger (3602 manual table 9.3,
+  // bits 7/8).
   Outcome jog(unsigned axis, bool cw, const Profile& p, std::chrono::milliseconds duration,
               std::int32_t registration = 0);
   // The same as a PLC holding the button: jog_press sets the level-held bit and returns once the
@@ -49,8 +50,8 @@ class Plc3602 {
   Outcome immediate_stop(unsigned axis);
   // Set Minimum Registration Distance: MSW 0, LSW bit 2 (0->1) with the distance in words 2/3.
   Outcome set_min_registration(unsigned axis, std::int32_t distance);
-  // Blend programming handshake (digest 4.5, 7.10): program bit held, one transmit edge per
-  // block, each acknowledged by the axis' Blend Block Acknowledge.
+  // Blend programming handshake (3602 manual ch. 9, table 9.2): program bit held, one transmit edge
+  // per block, each acknowledged by the axis' Blend Block Acknowledge.
   Outcome blend_program(unsigned axis, const BlendProfile& b);
   Outcome blend_run(unsigned axis, bool cw);
   // The general-purpose output (command LSW bit 7): a level, kept with every later command.

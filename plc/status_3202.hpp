@@ -1,5 +1,5 @@
 #pragma once
-// A 3202 channel's input DINTs decoded for a PLC program (digest 5.6, 5.7): the status word and
+// A 3202 channel's input DINTs decoded for a PLC program (3202 manual ch. 6): the status word and
 // the native 32-bit registers. Bit constants: words/words_3202.hpp.
 #include <cstdint>
 

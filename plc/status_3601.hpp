@@ -1,5 +1,5 @@
 #pragma once
-// A 3601's input words decoded for a PLC program (digest 3.9-3.12): status bits and the
+// A 3601's input words decoded for a PLC program (3601 manual ch. 6): status bits and the
 // decimal-split registers. Bit constants: words/words_3601.hpp.
 #include <cstdint>
 

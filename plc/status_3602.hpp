@@ -1,6 +1,6 @@
 #pragma once
-// A 3602's input words decoded for a PLC program, per axis (digest 4.4, 4.9-4.11): status bits
-// and the binary-split registers. Bit constants: words/words_3602.hpp.
+// A 3602's input words decoded for a PLC program, per axis (3602 manual table 8.5, ch. 9): status
+// bits and the binary-split registers. Bit constants: words/words_3602.hpp.
 #include <cstdint>
 
 #include "core/module_shape.hpp"

@@ -41,7 +41,7 @@ std::array<std::int32_t, 52> blend_message(std::int32_t channel_number, const Bl
   d[0] = channel_number;
   d[1] = static_cast<std::int32_t>(b.segments.size());
   std::uint32_t pairs = 0;
-  // The pair code: bit 0 S-curve, bit 1 trapezoidal (digest 5.8, same code as bits 16/17).
+  // The pair code: bit 0 S-curve, bit 1 trapezoidal (3202 manual ch. 5, same code as bits 16/17).
   auto pair = [](AccelType t) { return accel_bits(t) >> 16; };
   for (std::size_t n = 0; n < b.segments.size() && n < 16; ++n) {
     pairs |= pair(b.segments[n].type) << (2 * n);

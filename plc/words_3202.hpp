@@ -1,7 +1,7 @@
 #pragma once
-// The DINTs a PLC program writes to one 3202 channel (digest 5.1, 5.4), as pure functions: no
+// The DINTs a PLC program writes to one 3202 channel (3202 manual ch. 3, 5), as pure functions: no
 // I/O, so the tests can compare them word for word. Bit positions come from the module's table
-// (words/words_3202.hpp); numbers are native DINTs (digest 2.3).
+// (words/words_3202.hpp); numbers are native DINTs (3202 manual ch. 5).
 #include <array>
 #include <cstdint>
 
@@ -19,8 +19,8 @@ ChannelWords command_words(std::uint32_t command, std::int32_t target, std::int3
 // Configuration mode: configuration bits (the mode bit 31 is added) and starting speed.
 ChannelWords configuration_words(std::uint32_t bits, std::int32_t start_speed);
 
-// Command word bits 16/17 for an acceleration type (digest 5.5); the same code is a blend type
-// pair (digest 5.8).
+// Command word bits 16/17 for an acceleration type (3202 manual ch. 5); the same code is a blend
+// type pair (3202 manual ch. 5).
 std::uint32_t accel_bits(AccelType t);
 
 // The 52-DINT blend profile message for `channel_number` (the manual's 1 or 2; anything else is

@@ -68,7 +68,7 @@ std::vector<ImageWords> blend_blocks(const BlendProfile& b) {
   ImageWords first;
   first.w[2] = static_cast<std::int32_t>(b.segments.size());
   // Type pairs: two bits per segment, segments 1..8 in word 4, 9..16 in word 3 (low bit S-curve,
-  // high bit trapezoidal: the command LSW's code, digest 3.8).
+  // high bit trapezoidal: the command LSW's code, 3601 manual ch. 5).
   std::uint16_t pairs_lo = 0;
   std::uint16_t pairs_hi = 0;
   for (std::size_t i = 0; i < b.segments.size() && i < 16; ++i) {

@@ -1,7 +1,7 @@
 #pragma once
-// The words a PLC program writes to a 3601 (digest 3.1, 3.5, 3.8), as pure functions: no I/O,
+// The words a PLC program writes to a 3601 (3601 manual ch. 3, 5), as pure functions: no I/O,
 // so the tests can compare them word for word. Bit positions come from the module's table
-// (words/words_3601.hpp); numbers use the decimal split (digest 2.1).
+// (words/words_3601.hpp); numbers use the decimal split (3601 manual ch. 5).
 #include <cstdint>
 #include <vector>
 
@@ -21,7 +21,7 @@ void put_split(ImageWords& w, unsigned msw_index, std::int64_t value);
 // Speed (4/5), acceleration (6) and deceleration (7) of `p`.
 void put_profile(ImageWords& w, const Profile& p);
 
-// Encoder follower (digest 3.5, 7.12): `msw` the level-held direction bit (Manual CW = same
+// Encoder follower (3601 manual ch. 4, 5): `msw` the level-held direction bit (Manual CW = same
 // sense, Manual CCW = reverse, 0 = follower mode without motion), `lsw` normally just the
 // follower bit; multiplier and divisor are plain integers in words 2 and 3 (not split), words
 // 4/5 must be 0, accel/decel in 6/7.
@@ -31,8 +31,8 @@ ImageWords follower_words(std::uint16_t msw, std::int16_t multiplier, std::int16
 // Command LSW bits 0/1 for an acceleration type; the same code is a blend type pair.
 std::uint16_t accel_bits(AccelType t);
 
-// The blend programming blocks (digest 3.8): the first block (segment count, type pairs, final
-// deceleration) and one per segment; word 0 and the LSW handshake bits are the sequencer's.
+// The blend programming blocks (3601 manual ch. 5): the first block (segment count, type pairs,
+// final deceleration) and one per segment; word 0 and the LSW handshake bits are the sequencer's.
 std::vector<ImageWords> blend_blocks(const BlendProfile& b);
 
 }  // namespace stepmod::plc::m3601

@@ -1,8 +1,9 @@
 #pragma once
-// The words a PLC program writes to one axis of a 3602 (digest 4.1, 4.5), as pure functions: no
-// I/O, so the tests can compare them word for word. Bit positions come from the module's table
-// (words/words_3602.hpp); 32-bit numbers use the binary split (digest 2.2). Each axis owns
-// eight of the sixteen output words, from b = 8 * axis (axis 0 = the manual's axis 1).
+// The words a PLC program writes to one axis of a 3602 (3602 manual tables 8.1, 9.2), as pure
+// functions: no I/O, so the tests can compare them word for word. Bit positions come from the
+// module's table (words/words_3602.hpp); 32-bit numbers use the binary split (3602 manual ch. 9).
+// Each axis owns eight of the sixteen output words, from b = 8 * axis (axis 0 = the manual's axis
+// 1).
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -32,10 +33,10 @@ using AxisWords = std::array<std::int32_t, 8>;
 // Writes `a` into the axis' words of `w` (the other axis' words are left alone).
 void put_axis(ImageWords& w, unsigned axis, const AxisWords& a);
 
-// The blend programming blocks (digest 4.5, Tables 9.21/9.22): the first block (segment count,
-// type pairs of segments 9..16 / 1..8 in words 3 / 4, final deceleration type in bits 15..14 and
-// value in bits 10..0 of word 5) and one per segment (length 2/3, speed 4/5, rate 6). Words 0 and
-// 1 are 0: the handshake bits are the sequencer's.
+// The blend programming blocks (3602 manual tables 9.2, 9.21, 9.22): the first block (segment
+// count, type pairs of segments 9..16 / 1..8 in words 3 / 4, final deceleration type in bits 15..14
+// and value in bits 10..0 of word 5) and one per segment (length 2/3, speed 4/5, rate 6). Words 0
+// and 1 are 0: the handshake bits are the sequencer's.
 std::vector<AxisWords> blend_blocks(const BlendProfile& b);
 
 }  // namespace stepmod::plc::m3602

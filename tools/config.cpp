@@ -1,4 +1,4 @@
-// The configuration file of INTERFACE.md section 2. Strict by design: an unknown key is an
+// The configuration file of docs/interface.md section 2. Strict by design: an unknown key is an
 // error, because a misspelt key would otherwise silently fall back to its default and the daemon
 // would drive the machine with a setting the user did not write.
 #include "tools/config.hpp"
@@ -54,8 +54,8 @@ class Parser : ConfigReader {
   }
 
  private:
-  // [modbus] (INTERFACE.md 6). Every field is set, from its key or the key's default: the server
-  // has no defaults of its own.
+  // [modbus] (docs/interface.md 6). Every field is set, from its key or the key's default: the
+  // server has no defaults of its own.
   void parse_modbus(const toml::table* t, Config& c) const {
     const std::string p = "modbus";
     if (t != nullptr) check_keys(*t, p, "modbus");

@@ -1,6 +1,6 @@
 #pragma once
-// The daemon's configuration file (INTERFACE.md section 2), parsed and validated. A bad file is
-// reported with the file, the key, the problem and the line, and nothing is started.
+// The daemon's configuration file (docs/interface.md section 2), parsed and validated. A bad file
+// is reported with the file, the key, the problem and the line, and nothing is started.
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
@@ -60,7 +60,7 @@ struct Config {
   // speed (rt::PulseEngine::set_late_limit; docs/slip.md).
   Nanos late_limit_ns = default_ns(config_key("rt", "late_limit_us"));
   std::vector<AxisConfig> axes;
-  ipc::ModbusOptions modbus;  // [modbus] (INTERFACE.md 6), every field set by the parser
+  ipc::ModbusOptions modbus;  // [modbus] (docs/interface.md 6), every field set by the parser
 };
 
 // Thrown for a bad file: what() is the whole message ("FILE:LINE: key 'axis[1].step': ...").

@@ -1,6 +1,6 @@
-// stepmodctl's 3202 dialect: two channels (--channel 1|2), native DINTs (digest 2.3) and rates
-// in steps/s^2 (A31): the options are passed as given and the module judges them. The blend
-// profile is a 52-DINT message through the image's mailbox (INTERFACE.md 3).
+// stepmodctl's 3202 dialect: two channels (--channel 1|2), native DINTs (3202 manual ch. 5) and
+// rates in steps/s^2 (A31): the options are passed as given and the module judges them. The blend
+// profile is a 52-DINT message through the image's mailbox (docs/interface.md 3).
 #include "plc/plc_3202.hpp"
 #include "tools/ctl_args.hpp"
 #include "tools/ctl_blend.hpp"
@@ -32,7 +32,7 @@ std::uint32_t configuration_bits(const ConfigureArgs& a) {
   bits |= a.cw_ccw ? 0 : cb::kStepDirOutput;
   bits |= a.marker ? cb::kMarkerHoming : 0;
   bits |= a.disable ? cb::kDisable : 0;
-  // Active levels in bits 16..21: active high unless named (digest 5.2).
+  // Active levels in bits 16..21: active high unless named (3202 manual ch. 3).
   std::uint32_t levels = cb::kActiveLevels;
   for (const auto& in : a.active_low) levels &= ~(1u << (cb::kActiveLevelShift + input_index(in)));
   return bits | levels;

@@ -1,5 +1,5 @@
-// stepmodctl's 3601 dialect: one axis, numbers as the decimal split of two 16-bit words (digest
-// 2.1), accelerations in steps/ms/s in one 16-bit word each.
+// stepmodctl's 3601 dialect: one axis, numbers as the decimal split of two 16-bit words (3601
+// manual ch. 5), accelerations in steps/ms/s in one 16-bit word each.
 #include "plc/plc_3601.hpp"
 #include "tools/ctl_args.hpp"
 #include "tools/ctl_blend.hpp"
@@ -39,7 +39,7 @@ std::uint16_t configuration_msw(const ConfigureArgs& a) {
 }
 
 // Active levels in bits 0..5 (InputLine order); the manual advises active-high bits even for
-// unused inputs (digest 3.3).
+// unused inputs (3601 manual ch. 3).
 std::uint16_t configuration_lsw(const ConfigureArgs& a) {
   std::uint16_t lsw = 0x3F;
   for (const auto& in : a.active_low)

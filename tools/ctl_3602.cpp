@@ -1,5 +1,5 @@
 // stepmodctl's 3602 dialect: two axes (--axis 1|2), numbers as the binary split of two 16-bit
-// words (digest 2.2: every int32 fits, the module refuses what is out of its ranges),
+// words (3602 manual ch. 9: every int32 fits, the module refuses what is out of its ranges),
 // accelerations in steps/ms/s in one 16-bit word each. Interpolated moves (`path`) are
 // tools/ctl_path_3602.cpp's.
 #include "plc/plc_3602.hpp"
@@ -40,8 +40,8 @@ std::uint16_t configuration_msw(const ConfigureArgs& a) {
   return msw;
 }
 
-// Active levels of capture, external, home, CW, CCW in bits 0..4 (digest 4.3); active high
-// unless named.
+// Active levels of capture, external, home, CW, CCW in bits 0..4 (3602 manual ch. 8 table 8.3);
+// active high unless named.
 std::uint16_t configuration_lsw(const ConfigureArgs& a) {
   std::uint16_t lsw = 0x1F;
   for (const auto& in : a.active_low) {

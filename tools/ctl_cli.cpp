@@ -211,7 +211,7 @@ void add_follow(CLI::App& app, Command& cmd) {
                    "+ (same sense as the master), - (reverse), 0 (follower mode, no motion), off")
       ->required()
       ->check(CLI::IsMember({"+", "-", "0", "off"}));
-  // Words 2 and 3 carry multiplier and divisor as plain 16-bit integers (digest 3.5).
+  // Words 2 and 3 carry multiplier and divisor as plain 16-bit integers (3601 manual ch. 5).
   follow->add_option("--multiplier,-m", cmd.follow_multiplier, "ratio multiplier, 1..32767 (1)")
       ->check(CLI::Range(1, 32767));
   follow->add_option("--divisor,-D", cmd.follow_divisor, "ratio divisor, 1..32767 (1)")

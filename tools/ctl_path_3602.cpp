@@ -8,7 +8,8 @@ namespace stepmod::tools::ctl {
 
 namespace {
 
-// Points and the radius travel as the binary split of two 16-bit words (digest 4.7): any int32.
+// Points and the radius travel as the binary split of two 16-bit words (3602 manual ch. 9): any
+// int32.
 constexpr Limits kPoint{INT32_MIN, INT32_MAX, "the 3602's two words"};
 
 using Method = plc::PathMove3602::Method;

@@ -1,7 +1,8 @@
 #pragma once
 // Decoding of a module's input image for people (stepmodctl status/watch): every status bit by
 // the name the module's bit table gives it (words/words_3601.hpp, m3602/words_3602.hpp,
-// m3202/words_3202.hpp), positions as numbers in the module's own encoding (digest MODULES.md 2).
+// m3202/words_3202.hpp), positions as numbers in the module's own encoding (its manual's data
+// format).
 #include <cstdint>
 #include <string>
 
@@ -17,11 +18,11 @@ using plc::set_bit_names;
 // The whole decoded input image, multi-line, for `type`.
 std::string format_status(ModuleType type, const ImageWords& in);
 
-// The daemon health words (INTERFACE.md 3.3): flags by name, late-edge fault count and the
+// The daemon health words (docs/interface.md 3.3): flags by name, late-edge fault count and the
 // worst lateness.
 std::string format_health(const ipc::Health& h);
 
-// The simulator panel (INTERFACE.md 4): per axis the motor position, encoder count, output
+// The simulator panel (docs/interface.md 4): per axis the motor position, encoder count, output
 // levels and forced inputs.
 std::string format_panel(const ipc::SimPanelClient& p);
 

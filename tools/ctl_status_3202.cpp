@@ -37,7 +37,7 @@ void format_status_3202(std::ostringstream& o, const ImageWords& in) {
         << "  disabled=" << ((w0 & kDisabled) != 0) << "  Module OK=" << ((w0 & kModuleOk) != 0)
         << "\n";
       o << "  starting speed = " << in.w[b + kSpeed] << " steps/s\n";
-      // Firmware: major revision in bits 31..16, minor in 15..0 (digest 5.3).
+      // Firmware: major revision in bits 31..16, minor in 15..0 (3202 manual ch. 3).
       const auto fw = static_cast<std::uint32_t>(in.w[b + kFirmware]);
       o << "  firmware = " << (fw >> 16) << "." << (fw & 0xFFFF) << "\n";
       continue;

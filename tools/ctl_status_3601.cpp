@@ -21,7 +21,7 @@ void format_status_3601(std::ostringstream& o, const ImageWords& in) {
   if (w0 & m::status_msw::kConfigMode) {
     o << "3601 in CONFIGURATION mode\n";
     o << "  configuration bits MSW (mirror) = 16#" << hex(w0, 4) << "\n";
-    // Bits 0..12 mirror the configuration; 13 and 14 are status (digest 3.4).
+    // Bits 0..12 mirror the configuration; 13 and 14 are status (3601 manual ch. 3).
     for (const NamedBit& b : m::kConfigMswBits) {
       if ((1u << b.bit) < m::status_msw::kConfigurationError) one_field(o, w0, b);
     }

@@ -14,7 +14,7 @@ constexpr auto kPoll = std::chrono::milliseconds(2);
 // allows, is a daemon that stopped.
 constexpr auto kStallLimit = std::chrono::milliseconds(1000);
 static_assert(kStallLimit >= 10 * std::chrono::microseconds(config_key("module", "scan_us").max));
-// Longer than the homing's pauses at rest (2 s, digest 7.11).
+// Longer than the homing's pauses at rest (2 s, manuals ch. 4).
 constexpr auto kHomingPause = std::chrono::milliseconds(2500);
 }  // namespace
 

@@ -89,7 +89,7 @@ struct Daemon::Impl {
 
   void control_loop(const std::atomic<bool>& stop);
   bool finish_trace();  // after the threads: the VCD written; false if incomplete
-  // The daemon health words (INTERFACE.md 3.3) for this scan, logging new late-edge faults.
+  // The daemon health words (docs/interface.md 3.3) for this scan, logging new late-edge faults.
   ipc::Health health(std::uint32_t supervisor_flags);
   void log_supervision(const ipc::PlcSupervisor& sup, Nanos now);
   void check_lost_inputs(Nanos now);
@@ -356,8 +356,8 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     // As a PLC leaving Run mode (INTERFACE 3.2): every move stops, position invalid. Once per
     // loss; the frozen words keep anything new from starting until the PLC is back.
     if (supervisor.tripped()) personality.plc_stopped(now);
-    // The 3202's blend message (INTERFACE.md 3): handed over before the scan that reports it. Not
-    // while the PLC is lost: like the frozen words, nothing new is acted on until it is back.
+    // The 3202's blend message (docs/interface.md 3): handed over before the scan that reports it.
+    // Not while the PLC is lost: like the frozen words, nothing new is acted on until it is back.
     std::optional<ipc::BlendMessage> message;
     std::int32_t message_result = 0;
     if (!supervisor.plc_lost()) {
@@ -376,8 +376,8 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
     image->publish_inputs(in, health(supervisor.flags() | lease.flags()));
     note_scan_published();
     // Done only once the status that shows the message's effect is published: a PLC that reads
-    // the status bits when its message is done (INTERFACE.md 3: an error is in the status bits)
-    // finds them. Marked done before this publication, a refused message was seen done with
+    // the status bits when its message is done (docs/interface.md 3: an error is in the status
+    // bits) finds them. Marked done before this publication, a refused message was seen done with
     // Invalid Profile still clear (a loaded machine preempted the control thread in between).
     if (message) image->finish_message(message->seq, message_result);
     if (pulse != nullptr) watchdog.scan(now, pulse->loops());

@@ -1,5 +1,5 @@
 #pragma once
-// stepmodd's logger (INTERFACE.md 1): spdlog on stderr. When stderr is the systemd journal
+// stepmodd's logger (docs/interface.md 1): spdlog on stderr. When stderr is the systemd journal
 // (JOURNAL_STREAM names stderr's device and inode, systemd.exec(5)) every line starts with its
 // syslog priority, sd-daemon(3) style ("<4>" for a warning), so `journalctl -p warning` finds
 // faults; the journal adds its own time stamp. Elsewhere: colours and a time stamp as before.

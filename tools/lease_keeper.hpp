@@ -1,6 +1,6 @@
 #pragma once
-// The daemon's commissioning lease (INTERFACE.md 3.5, docs/commissioning.md): ipc::LeaseWatch's
-// verdicts acted on (an expired lease stops every moving axis) and logged.
+// The daemon's commissioning lease (docs/interface.md 3.5, docs/commissioning.md):
+// ipc::LeaseWatch's verdicts acted on (an expired lease stops every moving axis) and logged.
 #include "ipc/lease_watch.hpp"
 #include "module/personality.hpp"
 

@@ -1,5 +1,5 @@
 // stepmodctl: inspect and drive a running stepmod module through the same shared memory a soft
-// PLC uses (INTERFACE.md 1). This file is main and the commands every module shares (status,
+// PLC uses (docs/interface.md 1). This file is main and the commands every module shares (status,
 // watch, raw, panel, trace), one function each in a command table; the command line itself is
 // tools/ctl_cli.cpp. The module commands are parsed into a ctl::Command and run by the dialect
 // the image header names, through its registry row (tools/ctl_3601.cpp, ctl_3602.cpp,

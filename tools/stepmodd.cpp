@@ -1,4 +1,4 @@
-// stepmodd: one emulated stepper-controller module per process (INTERFACE.md section 1).
+// stepmodd: one emulated stepper-controller module per process (docs/interface.md section 1).
 //   stepmodd --config FILE [--trace FILE.vcd] [--log-level LEVEL]
 //   stepmodd --check --config FILE     validate the configuration only (creates nothing)
 //   stepmodd --version

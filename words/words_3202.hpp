@@ -1,9 +1,9 @@
 #pragma once
 // 3202 backplane words and bits, named as in the 3202 manual
-// (digest MODULES.md section 5). The only place these positions are written down: each DINT's bits
+// (3202 manual). The only place these positions are written down: each DINT's bits
 // are a constexpr table (bit, name), the constants below are looked up in the tables by name (as
 // in words_3601.hpp), and stepmodctl shows the same names. Each channel has 8 DINTs at b = 8 *
-// channel; indices below are relative to b. Values are native 32-bit integers (digest 2.3).
+// channel; indices below are relative to b. Values are native 32-bit integers (3202 manual ch. 5).
 // Includes nothing but the ground layer.
 #include <array>
 #include <cstdint>
@@ -14,15 +14,15 @@ namespace stepmod::words::m3202 {
 
 inline constexpr unsigned kWordsPerChannel = 8;
 
-// Output DINTs per channel, command mode (digest 5.4); configuration mode (5.1): 0 configuration
-// bits, 1 starting speed.
+// Output DINTs per channel, command mode (3202 manual ch. 5); configuration mode (ch. 3): 0
+// configuration bits, 1 starting speed.
 inline constexpr std::array<NamedWord, 5> kOutputWords = {{{0, "Command Word"},
                                                            {1, "Target Position"},
                                                            {2, "Programmed Speed"},
                                                            {3, "Acceleration"},
                                                            {4, "Deceleration"}}};
 
-// Input DINTs per channel, command mode (digest 5.6) and configuration mode (5.3).
+// Input DINTs per channel, command mode (3202 manual ch. 6) and configuration mode (ch. 3).
 inline constexpr std::array<NamedWord, 6> kInputWords = {{{0, "Status Word"},
                                                           {1, "Position"},
                                                           {2, "Encoder"},
@@ -30,7 +30,7 @@ inline constexpr std::array<NamedWord, 6> kInputWords = {{{0, "Status Word"},
                                                           {1, "Starting Speed"},
                                                           {3, "Firmware Revision"}}};
 
-// Configuration bits (digest 5.2).
+// Configuration bits (3202 manual ch. 3).
 inline constexpr std::array<NamedBit, 19> kConfigBits = {{
     {0, "Capture Input Used"},
     {1, "External Input Used"},
@@ -53,7 +53,7 @@ inline constexpr std::array<NamedBit, 19> kConfigBits = {{
     {31, "Configuration Mode"},
 }};
 
-// Configuration-mode echo (digest 5.3): the configuration bits except these.
+// Configuration-mode echo (3202 manual ch. 3): the configuration bits except these.
 inline constexpr std::array<NamedBit, 4> kConfigEchoBits = {{
     {13, "Configuration Error"},
     {28, "Channel Disabled"},
@@ -61,7 +61,7 @@ inline constexpr std::array<NamedBit, 4> kConfigEchoBits = {{
     {31, "Configuration Mode"},
 }};
 
-// Command word (digest 5.5).
+// Command word (3202 manual ch. 5).
 inline constexpr std::array<NamedBit, 19> kCommandBits = {{
     {0, "Absolute Move"},
     {1, "Relative Move"},
@@ -84,8 +84,8 @@ inline constexpr std::array<NamedBit, 19> kCommandBits = {{
     {31, "Configuration Mode"},
 }};
 
-// Status word (digest 5.7). Note Home Invalid and Invalid Profile sit at bits 14/15 here, not
-// at 8/9 as on the 3601/3602.
+// Status word (3202 manual ch. 6). Note Home Invalid and Invalid Profile sit at bits 14/15 here,
+// not at 8/9 as on the 3601/3602.
 inline constexpr std::array<NamedBit, 25> kStatusBits = {{
     {0, "Moving CW"},
     {1, "Moving CCW"},
@@ -200,7 +200,7 @@ inline constexpr std::uint32_t kModuleOk = field(kStatusBits, "Module OK");
 inline constexpr std::uint32_t kConfigMode = field(kStatusBits, "Configuration Mode");
 }  // namespace status_bit
 
-// Word indices relative to the channel's base (digest 5.1, 5.3, 5.4, 5.6).
+// Word indices relative to the channel's base (3202 manual ch. 3, 5, 6).
 namespace out_word {
 inline constexpr unsigned kCommand = 0;  // configuration mode: configuration bits
 inline constexpr unsigned kTarget = 1;   // configuration mode: starting speed
@@ -221,7 +221,7 @@ inline constexpr unsigned kCapture = 3;  // configuration mode: firmware revisio
 inline constexpr std::uint32_t kFirmwareMajor = 3;
 inline constexpr std::uint32_t kFirmwareMinor = 1;
 
-// DINT indices of the message (digest 5.8).
+// DINT indices of the message (3202 manual ch. 5).
 namespace msg_dint {
 inline constexpr unsigned kChannel = 0;       // 1 or 2
 inline constexpr unsigned kSegments = 1;      // 2 ... 16
@@ -243,7 +243,7 @@ constexpr unsigned channel_base(unsigned channel) noexcept {
 
 }  // namespace stepmod::words::m3202
 
-// ---- the number encoding: native DINT, digest 2.3 --------------------------------------------
+// ---- the number encoding: native DINT, 3202 manual ch. 5 ----------------------------------------
 namespace stepmod::words {
 
 constexpr std::int32_t decode_3202(std::int32_t w) noexcept {

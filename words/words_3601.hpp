@@ -1,6 +1,6 @@
 #pragma once
 // 3601 backplane words and bits, named as in the 3601 manual (shared/spec/manuals/001_...;
-// digest MODULES.md section 3). The only place these positions are written down: each word's
+// 3601 manual). The only place these positions are written down: each word's
 // bits are a constexpr table (bit, name), the constants below are looked up in the tables by
 // name, and stepmodctl shows the same names; the decimal split at the end. Includes nothing but
 // the ground layer: the emulator (module/), the PLC side (plc/) and stepmodctl include it.
@@ -19,10 +19,10 @@ inline constexpr std::uint16_t bit(unsigned n) {
   return static_cast<std::uint16_t>(1u << n);
 }
 
-// ---- the tables (digest 3.1-3.11) ------------------------------------------------------------
+// ---- the tables (3601 manual ch. 3, 5, 6) -------------------------------------------------------
 
-// Output words (PLC -> module), command mode (digest 3.5); configuration mode uses words 0..3 for
-// the configuration bits and the starting speed (digest 3.1).
+// Output words (PLC -> module), command mode (3601 manual ch. 5); configuration mode uses words
+// 0..3 for the configuration bits and the starting speed (3601 manual ch. 3).
 inline constexpr std::array<NamedWord, 8> kOutputWords = {{{0, "Command Word MSW"},
                                                            {1, "Command Word LSW"},
                                                            {2, "Target Position MSW"},
@@ -32,8 +32,8 @@ inline constexpr std::array<NamedWord, 8> kOutputWords = {{{0, "Command Word MSW
                                                            {6, "Acceleration"},
                                                            {7, "Deceleration"}}};
 
-// Input words (module -> PLC), command mode (digest 3.9) and configuration mode (digest 3.4:
-// words 0..3 mirror the accepted configuration, 6..7 the firmware revision).
+// Input words (module -> PLC), command mode (3601 manual ch. 6) and configuration mode (3601 manual
+// ch. 3: words 0..3 mirror the accepted configuration, 6..7 the firmware revision).
 inline constexpr std::array<NamedWord, 12> kInputWords = {{{0, "Status Word MSW"},
                                                            {1, "Status Word LSW"},
                                                            {2, "Position MSW"},
@@ -47,8 +47,8 @@ inline constexpr std::array<NamedWord, 12> kInputWords = {{{0, "Status Word MSW"
                                                            {6, "Firmware Major Revision"},
                                                            {7, "Firmware Minor Revision"}}};
 
-// Configuration bits MSW (output word 0 in configuration mode, digest 3.2). Bits 7, 11, 13 and
-// 14 are reserved.
+// Configuration bits MSW (output word 0 in configuration mode, 3601 manual ch. 3). Bits 7, 11, 13
+// and 14 are reserved.
 inline constexpr std::array<NamedBit, 12> kConfigMswBits = {{
     {0, "Capture Input Used"},
     {1, "External Input Used"},
@@ -64,8 +64,8 @@ inline constexpr std::array<NamedBit, 12> kConfigMswBits = {{
     {15, "Configuration Mode"},
 }};
 
-// Configuration bits LSW: active level per input, 1 = active high (digest 3.3). Bit n belongs to
-// the input whose "used" bit is bit n of the MSW. Bits 6..15 are reserved.
+// Configuration bits LSW: active level per input, 1 = active high (3601 manual ch. 3). Bit n
+// belongs to the input whose "used" bit is bit n of the MSW. Bits 6..15 are reserved.
 inline constexpr std::array<NamedBit, 6> kConfigLswBits = {{
     {0, "Capture Input Active High"},
     {1, "External Input Active High"},
@@ -75,8 +75,8 @@ inline constexpr std::array<NamedBit, 6> kConfigLswBits = {{
     {5, "CCW Limit Active High"},
 }};
 
-// Command word MSW (output word 0 in command mode, digest 3.6). Bits 0..13 are commands; at most
-// one may be set. Bit 14 is reserved.
+// Command word MSW (output word 0 in command mode, 3601 manual ch. 5). Bits 0..13 are commands; at
+// most one may be set. Bit 14 is reserved.
 inline constexpr std::array<NamedBit, 15> kCommandMswBits = {{
     {0, "Absolute Move"},
     {1, "Relative Move"},
@@ -95,7 +95,7 @@ inline constexpr std::array<NamedBit, 15> kCommandMswBits = {{
     {15, "Configuration Mode"},
 }};
 
-// Command word LSW (output word 1 in command mode, digest 3.7).
+// Command word LSW (output word 1 in command mode, 3601 manual ch. 5).
 inline constexpr std::array<NamedBit, 8> kCommandLswBits = {{
     {0, "S-Curve Acceleration (0 = constant)"},
     {1, "Trapezoidal S-Curve (0 = triangular)"},
@@ -107,7 +107,7 @@ inline constexpr std::array<NamedBit, 8> kCommandLswBits = {{
     {12, "Backplane Home Proximity"},
 }};
 
-// Status word MSW (input word 0, digest 3.10).
+// Status word MSW (input word 0, 3601 manual ch. 6).
 inline constexpr std::array<NamedBit, 16> kStatusMswBits = {{
     {0, "Moving CW"},
     {1, "Moving CCW"},
@@ -127,8 +127,8 @@ inline constexpr std::array<NamedBit, 16> kStatusMswBits = {{
     {15, "Configuration Mode"},
 }};
 
-// Status word LSW (input word 1, digest 3.11). Bits 0..5: logical input states, in the order of
-// the configuration bits (capture, external, home, E-stop, CW limit, CCW limit).
+// Status word LSW (input word 1, 3601 manual ch. 6). Bits 0..5: logical input states, in the order
+// of the configuration bits (capture, external, home, E-stop, CW limit, CCW limit).
 inline constexpr std::array<NamedBit, 11> kStatusLswBits = {{
     {0, "Capture Input Active"},
     {1, "External Input Active"},
@@ -277,14 +277,14 @@ inline constexpr std::uint16_t kProximityEcho =
     field(kStatusLswBits, "Backplane Home Proximity Echo");
 }  // namespace status_lsw
 
-// Firmware revision reported in configuration mode (digest 3.4): the features emulated are those
-// of firmware 4.1 (registration move, encoder follower).
+// Firmware revision reported in configuration mode (3601 manual ch. 3): the features emulated are
+// those of firmware 4.1 (registration move, encoder follower).
 inline constexpr std::uint16_t kFirmwareMajor = 4;
 inline constexpr std::uint16_t kFirmwareMinor = 1;
 
 }  // namespace stepmod::words::m3601
 
-// ---- the number encoding: decimal (thousands) split, digest 2.1 ------------------------------
+// ---- the number encoding: decimal (thousands) split, 3601 manual ch. 5 --------------------------
 // Words are passed as the sign-extended int32 values of ImageWords; only their low 16 bits count.
 namespace stepmod::words {
 

@@ -1,10 +1,10 @@
 #pragma once
 // 3602 backplane words and bits, named as in the 3602 manual (shared/spec/manuals/002_...;
-// digest MODULES.md section 4). The only place these positions are written down: stepmodctl
+// 3602 manual). The only place these positions are written down: stepmodctl
 // decodes a 3602's image by these names; the 3602 dialect (module and PLC side) takes its
 // constants from them (below). Each axis has 8 words at b = 8 * axis; indices below are relative
-// to b. 32-bit values are binary splits (digest 2.2, the encoding at the end). Includes nothing
-// but the ground layer.
+// to b. 32-bit values are binary splits (3602 manual ch. 9; the encoding at the end). Includes
+// nothing but the ground layer.
 #include <array>
 #include <cstdint>
 #include <string_view>
@@ -16,8 +16,8 @@ namespace stepmod::words::m3602 {
 
 inline constexpr unsigned kWordsPerAxis = 8;
 
-// Output words per axis, command mode (digest 4.5); configuration mode (4.1): 0/1 configuration
-// bits, 2/3 starting speed, 4 homing timeout.
+// Output words per axis, command mode (3602 manual ch. 9 table 9.2); configuration mode
+// (table 8.1): 0/1 configuration bits, 2/3 starting speed, 4 homing timeout.
 inline constexpr std::array<NamedWord, 8> kOutputWords = {{{0, "Command Bits MSW"},
                                                            {1, "Command Bits LSW"},
                                                            {2, "Target Position MSW"},
@@ -27,7 +27,8 @@ inline constexpr std::array<NamedWord, 8> kOutputWords = {{{0, "Command Bits MSW
                                                            {6, "Acceleration"},
                                                            {7, "Deceleration"}}};
 
-// Input words per axis, command mode (digest 4.9) and configuration mode (4.4: echoes).
+// Input words per axis, command mode (3602 manual ch. 9 table 9.27) and configuration mode
+// (table 8.5: echoes).
 inline constexpr std::array<NamedWord, 9> kInputWords = {{{0, "Status Bits MSW"},
                                                           {1, "Status Bits LSW"},
                                                           {2, "Position MSW"},
@@ -38,7 +39,7 @@ inline constexpr std::array<NamedWord, 9> kInputWords = {{{0, "Status Bits MSW"}
                                                           {3, "Starting Speed LSW"},
                                                           {4, "Homing Timeout"}}};
 
-// Configuration bits MSW (digest 4.2; the manual's bit columns were reconstructed there).
+// Configuration bits MSW (3602 manual ch. 8 table 8.2, whose bit columns had to be reconstructed).
 // CW/CCW input function: 00 not used, 01 overtravel limit, 10 emergency stop, 11 invalid.
 inline constexpr std::array<NamedBit, 9> kConfigMswBits = {{
     {0, "Capture Input Enabled"},
@@ -52,7 +53,7 @@ inline constexpr std::array<NamedBit, 9> kConfigMswBits = {{
     {15, "Configuration Mode"},
 }};
 
-// Configuration bits LSW: active level per input, 1 = active high (digest 4.3).
+// Configuration bits LSW: active level per input, 1 = active high (3602 manual ch. 8 table 8.3).
 inline constexpr std::array<NamedBit, 5> kConfigLswBits = {{
     {0, "Capture Input Active High"},
     {1, "External Input Active High"},
@@ -61,7 +62,7 @@ inline constexpr std::array<NamedBit, 5> kConfigLswBits = {{
     {4, "CCW Input Active High"},
 }};
 
-// Command bits MSW (digest 4.6).
+// Command bits MSW (3602 manual ch. 9 table 9.3).
 inline constexpr std::array<NamedBit, 14> kCommandMswBits = {{
     {0, "Absolute Move"},
     {1, "Relative Move"},
@@ -79,7 +80,7 @@ inline constexpr std::array<NamedBit, 14> kCommandMswBits = {{
     {15, "Configuration Mode"},
 }};
 
-// Command bits LSW (digest 4.7).
+// Command bits LSW (3602 manual ch. 9 table 9.4).
 inline constexpr std::array<NamedBit, 13> kCommandLswBits = {{
     {0, "S-Curve Acceleration (0 = constant)"},
     {1, "Trapezoidal S-Curve (0 = triangular)"},
@@ -96,7 +97,7 @@ inline constexpr std::array<NamedBit, 13> kCommandLswBits = {{
     {14, "Radius Method (with CW / CCW)"},
 }};
 
-// Status bits MSW (digest 4.10).
+// Status bits MSW (3602 manual ch. 9).
 inline constexpr std::array<NamedBit, 16> kStatusMswBits = {{
     {0, "CW Motion"},
     {1, "CCW Motion"},
@@ -116,7 +117,7 @@ inline constexpr std::array<NamedBit, 16> kStatusMswBits = {{
     {15, "Configuration Mode"},
 }};
 
-// Status bits LSW (digest 4.11).
+// Status bits LSW (3602 manual ch. 9).
 inline constexpr std::array<NamedBit, 11> kStatusLswBits = {{
     {0, "Capture Input Active"},
     {1, "External Input Active"},
@@ -145,7 +146,7 @@ inline constexpr unsigned kSpeedMsw = index_of(kOutputWords, "Programmed Speed M
 inline constexpr unsigned kSpeedLsw = index_of(kOutputWords, "Programmed Speed LSW");  // timeout
 inline constexpr unsigned kAccel = index_of(kOutputWords, "Acceleration");
 inline constexpr unsigned kDecel = index_of(kOutputWords, "Deceleration");
-// Configuration mode (digest 4.1).
+// Configuration mode (3602 manual ch. 8 table 8.1).
 inline constexpr unsigned kStartingSpeedMsw = kTargetMsw;
 inline constexpr unsigned kStartingSpeedLsw = kTargetLsw;
 inline constexpr unsigned kHomingTimeout = kSpeedMsw;
@@ -180,7 +181,7 @@ inline constexpr std::uint16_t kStepDirOutput =
 inline constexpr std::uint16_t kDisableAxis = field(kConfigMswBits, "Disable Axis");
 inline constexpr std::uint16_t kConfigMode = field(kConfigMswBits, "Configuration Mode");
 inline constexpr std::uint16_t kReserved = detail::unnamed(kConfigMswBits);  // 8, 9, 11, 12, 13
-// Input-function field values (digest 4.2).
+// Input-function field values (3602 manual ch. 8 table 8.2).
 inline constexpr unsigned kFunctionUnused = 0b00;
 inline constexpr unsigned kFunctionLimit = 0b01;
 inline constexpr unsigned kFunctionEStop = 0b10;
@@ -231,7 +232,8 @@ inline constexpr std::uint16_t kBlendTransmit = field(kCommandLswBits, "Blend Mo
 inline constexpr std::uint16_t kBackplaneProximity =
     field(kCommandLswBits, "Backplane Home Proximity");
 inline constexpr std::uint16_t kGpo = field(kCommandLswBits, "General-Purpose Output");
-// Interpolated moves (digest 4.7): bit 9 selects the coordinate system, bits 10..14 the method.
+// Interpolated moves (3602 manual ch. 9 table 9.4): bit 9 selects the coordinate system,
+// bits 10..14 the method.
 inline constexpr std::uint16_t kAbsoluteCoordinates =
     field(kCommandLswBits, "Absolute Interpolated Coordinates");
 inline constexpr std::uint16_t kLinear = field(kCommandLswBits, "Linear Interpolated Move");
@@ -250,7 +252,7 @@ inline constexpr std::uint16_t kInterpolatedAllowed =
     kInterpolation | kSCurve | kTrapezoidalS | kGpo;
 }  // namespace cmd_lsw
 
-// The interpolated move block (digest 4.8, Tables 9.23-9.26): all sixteen output words of the
+// The interpolated move block (3602 manual ch. 9 tables 9.23-9.26): all sixteen output words of the
 // module, indices from word 0 of axis 1. Axis 2's command words 8 / 9 must be 0.
 namespace interp_word {
 inline constexpr unsigned kMsw = out_word::kMsw;  // 16#0000
@@ -306,7 +308,7 @@ inline constexpr std::uint16_t kGpo = field(kStatusLswBits, "General-Purpose Out
 
 }  // namespace stepmod::words::m3602
 
-// ---- the number encoding: binary split, digest 2.2 -------------------------------------------
+// ---- the number encoding: binary split, 3602 manual ch. 9 ---------------------------------------
 namespace stepmod::words {
 
 // value = MSW << 16 | LSW (two's complement over both words); only the low 16 bits of each count.

@@ -10,8 +10,8 @@ BlendMessage blend_message_from_dints(std::span<const std::int32_t> data) noexce
   const auto pairs = static_cast<std::uint32_t>(dint(msg_dint::kTypePairs));
   for (unsigned n = 1; n <= m.first.shapes.size(); ++n) {
     const unsigned pair = (pairs >> (2 * (n - 1))) & 0x3u;
-    // A22 (same pair code as the 3601's, digest 3.8): the low bit selects S-curve; binary 10 is
-    // constant.
+    // A22 (same pair code as the 3601's, 3601 manual ch. 5): the low bit selects S-curve; binary 10
+    // is constant.
     m.first.shapes[n - 1] = !(pair & 0x1u)  ? planner::AccelShape::kConstant
                             : (pair & 0x2u) ? planner::AccelShape::kTrapezoidalS
                                             : planner::AccelShape::kTriangularS;
@@ -30,7 +30,7 @@ BlendMessage blend_message_from_dints(std::span<const std::int32_t> data) noexce
     default:
       break;  // 3202-IP-17: type 10 is invalid for the final deceleration
   }
-  // Digest 5.8 (inferred): the value is bits 29-0, steps/s^2 (A31).
+  // 3202 manual ch. 5 (inferred): the value is bits 29-0, steps/s^2 (A31).
   m.first.final_decel = static_cast<std::int64_t>(final_word & 0x3FFF'FFFFu);
   for (unsigned n = 0; n < m.segments.size(); ++n) {
     const unsigned base = msg_dint::kFirstSegment + msg_dint::kPerSegment * n;

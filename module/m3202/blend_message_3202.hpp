@@ -1,7 +1,7 @@
 #pragma once
-// The 3202's 52-DINT blend profile message (3202 manual Ch.5 "Blend Move Programming", digest
-// 5.8), as it arrives through the image's message mailbox (INTERFACE.md 3, offsets 192..415),
-// decoded into the shared axis' blend blocks. The checks are the axis' (Blend::program).
+// The 3202's 52-DINT blend profile message (3202 manual Ch.5 "Blend Move Programming"), as it
+// arrives through the image's message mailbox (docs/interface.md 3, offsets 192..415), decoded into
+// the shared axis' blend blocks. The checks are the axis' (Blend::program).
 #include <array>
 #include <cstdint>
 #include <span>

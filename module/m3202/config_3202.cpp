@@ -60,7 +60,7 @@ ConfigCheck check_config(const ImageWords& out, unsigned channel) noexcept {
   const bool encoder = bits & cfg_bit::kQuadratureEncoder;
   const bool diagnostic = bits & cfg_bit::kDiagnosticFeedback;
   // Checked in the manual's order; the first failing item is reported. #1 as on the 3601
-  // (digest 6.3 "inferred definition as on 3601"): marker homing is a way to home by itself.
+  // (3202 manual ch. 3, inferred): marker homing is a way to home by itself.
   if (!marker && !home) return fail(ConfigFault::kNoHoming);
   if (!(bits & (cfg_bit::kCwLimitUsed | cfg_bit::kCcwLimitUsed))) {
     return fail(ConfigFault::kNoEndLimit);
@@ -87,7 +87,7 @@ axis::AxisConfig to_axis_config(const Config3202& c) noexcept {
   axis::AxisConfig a;
   a.disabled = c.has(cfg_bit::kDisable);
   if (a.disabled) return a;  // A19: nothing else of a disabled channel's words is looked at
-  // Bits 0..5 ("used") and 16..21 (active levels) are both in InputLine order (digest 5.2).
+  // Bits 0..5 ("used") and 16..21 (active levels) are both in InputLine order (3202 manual ch. 3).
   a.inputs_used = static_cast<std::uint16_t>(c.bits & cfg_bit::kInputsUsed);
   a.inputs_active_high =
       static_cast<std::uint16_t>((c.bits & cfg_bit::kActiveLevels) >> cfg_bit::kActiveLevelShift);
@@ -95,8 +95,8 @@ axis::AxisConfig to_axis_config(const Config3202& c) noexcept {
   a.diagnostic_feedback = c.has(cfg_bit::kDiagnosticFeedback);
   a.step_dir_output = c.has(cfg_bit::kStepDirOutput);
   a.backplane_proximity = c.has(cfg_bit::kBackplaneProximity);
-  // Homing option by bits 12 / 2 / 6, as on the 3601 (digest 5.2, 3.2 table); CFG-10/11
-  // guarantee exactly one proximity source with marker homing.
+  // Homing option by bits 12 / 2 / 6, as on the 3601 (3202 manual ch. 3);
+  // CFG-10/11 guarantee exactly one proximity source with marker homing.
   if (c.has(cfg_bit::kMarkerHoming)) {
     a.homing = a.backplane_proximity ? axis::HomingVariant::kMarkerWithBackplane
                                      : axis::HomingVariant::kMarkerWithHome;

@@ -1,7 +1,7 @@
 #pragma once
-// 3202 configuration words of one channel (configuration mode, DINTs b+0..b+7, digest 5.1/5.2):
+// 3202 configuration words of one channel (configuration mode, DINTs b+0..b+7, 3202 manual ch. 3):
 // validation against the manual's list of invalid configurations (Ch.3 "Invalid Configurations"
-// #1..#11, digest 6.3 3202-CFG-02..12), the disable bit 28 (3202-CFG-13), and the translation
+// #1..#11 = checklist items 3202-CFG-02..12), the disable bit 28 (3202-CFG-13), and the translation
 // of a valid configuration into the shared axis' AxisConfig.
 #include <cstdint>
 #include <string_view>

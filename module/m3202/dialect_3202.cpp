@@ -1,5 +1,5 @@
 // The 3202's command and status DINTs <-> the shared axis' decoded command and status (3202
-// manual Ch.5 "Command Word Layout", Ch.6 "Status Word Layout"; digest 5.4-5.7).
+// manual Ch.5 "Command Word Layout", Ch.6 "Status Word Layout").
 #include "module/m3202/dialect_3202.hpp"
 #include "module/m3202/rules_3202.hpp"
 
@@ -44,8 +44,8 @@ planner::AccelShape shape_from_word(std::uint32_t w) noexcept {
                                       : planner::AccelShape::kTriangularS;
 }
 
-// The per-command "must be 0" rules of the command table (digest 5.4: speed/accel/decel 0 for
-// both presets, 3202-CE-09; target/speed/accel/decel 0 for Run Blend, 3202-CE-18).
+// The per-command "must be 0" rules of the command table (3202 manual ch. 5: speed/accel/decel 0
+// for both presets, 3202-CE-09; target/speed/accel/decel 0 for Run Blend, 3202-CE-18).
 bool word_rules_broken(const ImageWords& out, unsigned b, const axis::AxisCommand& c) noexcept {
   const auto only = c.commands.single();
   if (!only) return false;
@@ -75,7 +75,7 @@ axis::AxisCommand command_from_words(const ImageWords& out, unsigned channel) no
   }
   // 3202-CE-24, A33: a reserved command bit counts as an extra, undefined command.
   if (w & cmd_bit::kReserved) c.commands.set(CommandKind::kUndefined);
-  // Native DINTs (digest 2.3). A negative speed is no valid speed.
+  // Native DINTs (3202 manual ch. 5). A negative speed is no valid speed.
   c.target = out.w[b + out_word::kTarget];
   const std::int32_t speed = out.w[b + out_word::kSpeed];
   if (speed >= 0) c.speed = speed;
@@ -89,7 +89,7 @@ axis::AxisCommand command_from_words(const ImageWords& out, unsigned channel) no
     if (out.w[b + i] != 0) c.reserved_words_nonzero = true;
   }
   // The 3202 has no follower, no word-block blend programming and no minimum registration
-  // distance (digest 5.4): those flags stay false.
+  // distance (3202 manual ch. 5): those flags stay false.
   c.words_invalid = word_rules_broken(out, b, c);
   return c;
 }
@@ -109,7 +109,7 @@ void status_to_words(const axis::AxisStatus& s, bool disabled, unsigned channel,
   if (s.position_invalid) w |= status_bit::kPositionInvalid;
   if (s.input_error) w |= status_bit::kInputError;
   if (s.command_error) w |= status_bit::kCommandError;
-  // Digest 5.7 bit 13: never set while the channel is disabled.
+  // Status bit 13 (3202 manual ch. 6): never set while the channel is disabled.
   if (s.configuration_error && !disabled) w |= status_bit::kConfigurationError;
   if (s.home_invalid) w |= status_bit::kHomeInvalid;
   if (s.invalid_profile) w |= status_bit::kInvalidProfile;
@@ -120,7 +120,7 @@ void status_to_words(const axis::AxisStatus& s, bool disabled, unsigned channel,
   const unsigned b = channel_base(channel);
   for (unsigned i = 0; i < kWordsPerChannel; ++i) in.w[b + i] = 0;
   in.w[b + in_word::kStatus] = static_cast<std::int32_t>(w);
-  // Digest 2.3: the registers use all 32 bits and roll over.
+  // Native DINTs (3202 manual ch. 5, 6): the registers use all 32 bits and roll over.
   in.w[b + in_word::kPosition] = static_cast<std::int32_t>(static_cast<std::uint32_t>(s.position));
   in.w[b + in_word::kEncoder] = static_cast<std::int32_t>(static_cast<std::uint32_t>(s.encoder));
   in.w[b + in_word::kCapture] = static_cast<std::int32_t>(static_cast<std::uint32_t>(s.capture));
@@ -132,7 +132,7 @@ void configuration_image_to_words(const ConfigMirror& mirror, bool configuration
                                         status_bit::kChannelDisabled | status_bit::kModuleOk |
                                         status_bit::kConfigMode;
   std::uint32_t w0 = mirror.bits & ~kModuleBits;
-  // Digest 5.7 bit 13: never set while the channel is disabled.
+  // Status bit 13 (3202 manual ch. 6): never set while the channel is disabled.
   if (configuration_error && !disabled) w0 |= status_bit::kConfigurationError;
   if (disabled) w0 |= status_bit::kChannelDisabled;
   w0 |= status_bit::kModuleOk | status_bit::kConfigMode;

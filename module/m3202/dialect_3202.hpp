@@ -1,7 +1,7 @@
 #pragma once
 // The 3202 dialect: the only code that knows the 3202's DINT indices and bit positions
 // (words_3202.hpp names them). One channel at a time: channel 0 uses DINTs 0..7, channel 1
-// DINTs 8..15 (digest 5). Command DINTs -> AxisCommand, AxisStatus -> status DINTs, the
+// DINTs 8..15 (3202 manual). Command DINTs -> AxisCommand, AxisStatus -> status DINTs, the
 // configuration-mode image. Configuration DINTs -> AxisConfig is config_3202.hpp.
 #include <cstdint>
 
@@ -13,14 +13,14 @@
 namespace stepmod::module::m3202 {
 using namespace words::m3202;  // this module's words: words/words_3202.hpp
 
-// Command mode output DINTs of `channel` (digest 5.4/5.5), word-level rules included.
+// Command mode output DINTs of `channel` (3202 manual ch. 5), word-level rules included.
 axis::AxisCommand command_from_words(const ImageWords& out, unsigned channel) noexcept;
 
-// Command mode input DINTs of `channel` (digest 5.6/5.7). `disabled`: bit 28.
+// Command mode input DINTs of `channel` (3202 manual ch. 6). `disabled`: bit 28.
 void status_to_words(const axis::AxisStatus& s, bool disabled, unsigned channel,
                      ImageWords& in) noexcept;
 
-// Configuration mode input DINTs of `channel` (digest 5.3): DINT 0 mirrors the accepted
+// Configuration mode input DINTs of `channel` (3202 manual ch. 3): DINT 0 mirrors the accepted
 // configuration bits (A26: only accepted data) with CfgE (13), disabled (28), Module OK (30) and
 // the mode bit (31); DINT 1 the starting speed; DINT 3 the firmware revision.
 struct ConfigMirror {

@@ -41,7 +41,8 @@ void Module3202::scan_channel(unsigned ch, const ImageWords& out, ImageWords& in
     c.axis.set_configuration_fault(checklist_item(check.fault), describe(check.fault));
   }
   const bool was_config_mode = c.axis.in_configuration_mode();
-  // A disabled channel ignores its command bits (digest 5.7 bit 28); the mode bit still works.
+  // A disabled channel ignores its command bits (3202 manual ch. 6 bit 28); the mode bit still
+  // works.
   if (c.disabled && !was_config_mode) command.commands = axis::CommandSet{};
   c.axis.scan(command, configuration, now);
 

@@ -1,5 +1,5 @@
 #pragma once
-// The 3202 as a module::Personality: two independent channels (digest 5: configuration,
+// The 3202 as a module::Personality: two independent channels (3202 manual: configuration,
 // commands, errors and Reset Errors per channel), each one shared axis (module/axis/) with the
 // 3202's rules, and the 3202 dialect around them (config_3202, dialect_3202).
 #include <array>
@@ -24,7 +24,7 @@ class Module3202 final : public Personality {
   void plc_stopped(Nanos now) override;
   void stop_every_axis(const axis::Item& why, Nanos now) override;
   axis::ErrorReason reason(unsigned axis) const override;
-  // The blend profile message (digest 5.8; 3202-IP-11..17, CE-19).
+  // The blend profile message (3202 manual ch. 5; 3202-IP-11..17, CE-19).
   std::int32_t on_message(std::span<const std::int32_t> data, Nanos now) override;
   void shutdown() override;
   DriveState drive_state(unsigned axis) const noexcept override;

@@ -59,7 +59,7 @@ ConfigCheck check_config(const ImageWords& out) noexcept {
     return r;
   };
   // #1: limit-switch homing needs the home input; marker homing is a way to home by itself (its
-  // proximity source is checked by #9/#10). Digest 3.2 "(inferred ...)".
+  // proximity source is checked by #9/#10). 3601 manual ch. 3 (inferred).
   if (!marker && !home) return fail(ConfigFault::kNoHoming);
   if (!(msw & (cfg_msw::kCwLimitUsed | cfg_msw::kCcwLimitUsed))) {
     return fail(ConfigFault::kNoEndLimit);
@@ -89,7 +89,7 @@ ConfigCheck check_config(const ImageWords& out) noexcept {
 axis::AxisConfig to_axis_config(const Config3601& c) noexcept {
   axis::AxisConfig a;
   // The "used" bits of the MSW and the active-level bits of the LSW sit at the same positions,
-  // in InputLine order (capture, external, home, E-stop, CW limit, CCW limit), digest 3.2 / 3.3.
+  // in InputLine order (capture, external, home, E-stop, CW limit, CCW limit), 3601 manual ch. 3.
   constexpr std::uint16_t kInputBits = cfg_msw::kCaptureUsed | cfg_msw::kExternalUsed |
                                        cfg_msw::kHomeUsed | cfg_msw::kEStopUsed |
                                        cfg_msw::kCwLimitUsed | cfg_msw::kCcwLimitUsed;
@@ -99,7 +99,7 @@ axis::AxisConfig to_axis_config(const Config3601& c) noexcept {
   a.diagnostic_feedback = c.has(cfg_msw::kDiagnosticFeedback);
   a.step_dir_output = c.has(cfg_msw::kStepDirOutput);
   a.backplane_proximity = c.has(cfg_msw::kBackplaneProximity);
-  // Homing option (digest 3.2 table); CFG-10/11 guarantee exactly one proximity source with
+  // Homing option (3601 manual ch. 3 table); CFG-10/11 guarantee exactly one proximity source with
   // marker homing.
   const bool marker = c.has(cfg_msw::kMarkerHoming);
   if (marker) {

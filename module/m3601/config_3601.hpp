@@ -1,7 +1,7 @@
 #pragma once
 // 3601 configuration words (configuration mode, output words 0..7): validation against the
-// manual's list of invalid configurations (Ch.3 "Invalid Configurations" #1..#11, digest 6.1
-// 3601-CFG-02..12), and the translation of a valid one into the shared axis' AxisConfig.
+// manual's list of invalid configurations (Ch.3 "Invalid Configurations" #1..#11, the 3601
+// checklist 3601-CFG-02..12), and the translation of a valid one into the shared axis' AxisConfig.
 #include <cstdint>
 #include <optional>
 #include <string_view>

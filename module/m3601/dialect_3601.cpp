@@ -1,5 +1,5 @@
 // The 3601's command and status words <-> the shared axis' decoded command and status (3601
-// manual Ch.5 "Command Mode Output Data", Ch.6 "Input Data"; digest 3.5-3.11).
+// manual Ch.5 "Command Mode Output Data", Ch.6 "Input Data").
 #include "module/m3601/dialect_3601.hpp"
 #include "module/m3601/rules_3601.hpp"
 
@@ -14,10 +14,10 @@ namespace {
 
 using axis::CommandKind;
 
-// Accel/decel words are steps/ms/s; the shared code works in steps/s^2 (digest 7.1).
+// Accel/decel words are steps/ms/s; the shared code works in steps/s^2 (3601 manual ch. 5).
 constexpr std::int64_t kAccelUnit = kRules3601.accel_word_unit;
 
-// Command MSW bits 0..14 and the command each one asks for (digest 3.6). Bit 14 is reserved:
+// Command MSW bits 0..14 and the command each one asks for (3601 manual ch. 5). Bit 14 is reserved:
 // A33, set with or without a command it is a Command Error.
 struct CommandBit {
   std::uint16_t bit;
@@ -60,9 +60,9 @@ planner::AccelShape shape_from_lsw(std::uint16_t lsw) noexcept {
                                         : planner::AccelShape::kTriangularS;
 }
 
-// First blend block (digest 3.8): word 2 the segment count, words 4 / 3 the acceleration-type
-// pairs of segments 1..8 / 9..16 (two bits each, segment 1 or 9 in bits 1:0), word 5 the final
-// deceleration (type in bits 15-14, value in bits 13-0), words 6 and 7 zero.
+// First blend block (3601 manual ch. 5): word 2 the segment count, words 4 / 3 the
+// acceleration-type pairs of segments 1..8 / 9..16 (two bits each, segment 1 or 9 in bits 1:0),
+// word 5 the final deceleration (type in bits 15-14, value in bits 13-0), words 6 and 7 zero.
 constexpr unsigned kSegmentCountWord = 2;
 constexpr unsigned kPairs9To16Word = 3;
 constexpr unsigned kPairs1To8Word = 4;
@@ -78,7 +78,7 @@ axis::BlendFirstBlock blend_first_block(const ImageWords& out) noexcept {
   return b;
 }
 
-// Segment block (digest 3.8): words 2-3 length, 4-5 speed, 6 the rate, 7 zero.
+// Segment block (3601 manual ch. 5): words 2-3 length, 4-5 speed, 6 the rate, 7 zero.
 axis::BlendSegmentBlock blend_segment_block(const ImageWords& out,
                                             const axis::AxisCommand& c) noexcept {
   axis::BlendSegmentBlock b;
@@ -166,7 +166,7 @@ void status_to_words(const axis::AxisStatus& s, ImageWords& in) noexcept {
   if (s.configuration_error) msw |= status_msw::kConfigurationError;
 
   // Status LSW bits 0..5: the inputs in InputLine order (capture, external, home, E-stop, CW
-  // limit, CCW limit), digest 3.11.
+  // limit, CCW limit), 3601 manual ch. 6.
   constexpr std::uint16_t kInputBits = status_lsw::kCaptureActive | status_lsw::kExternalActive |
                                        status_lsw::kHomeActive | status_lsw::kEStopActive |
                                        status_lsw::kCwLimitActive | status_lsw::kCcwLimitActive;

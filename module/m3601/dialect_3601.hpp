@@ -15,15 +15,15 @@
 namespace stepmod::module::m3601 {
 using namespace words::m3601;  // this module's words: words/words_3601.hpp
 
-// Command mode output words 0..7 (digest 3.5-3.8), word-level rules included: a word or the
+// Command mode output words 0..7 (3601 manual ch. 5), word-level rules included: a word or the
 // command LSW that must be 0 for the one command set (3601-CE-09, CE-15, CE-21) or for the
-// minimum-registration store (digest 3.8) sets AxisCommand::words_invalid.
+// minimum-registration store (3601 manual ch. 4) sets AxisCommand::words_invalid.
 axis::AxisCommand command_from_words(const ImageWords& out) noexcept;
 
-// Command mode input words 0..7 (digest 3.9-3.11).
+// Command mode input words 0..7 (3601 manual ch. 6).
 void status_to_words(const axis::AxisStatus& s, ImageWords& in) noexcept;
 
-// Configuration mode input words (digest 3.4): words 0..3 mirror the accepted configuration
+// Configuration mode input words (3601 manual ch. 3): words 0..3 mirror the accepted configuration
 // (A26: only accepted data), word 0 also carries CfgE, Module OK and the mode bit; words 6/7 the
 // firmware revision.
 using ConfigMirror = std::array<std::uint16_t, 4>;

@@ -16,7 +16,7 @@ inline constexpr axis::ModuleRules kRules3601{
     .accel_min = 1'000,  // 1 ... 2000 steps/ms/s
     .accel_max = 2'000'000,
     .accel_word_unit = 1'000,
-    .blend_length_max = 8'388'607,  // digest 7.10 rule 2 (3601-IP-20)
+    .blend_length_max = 8'388'607,  // 3601 manual ch. 5 (3601-IP-20)
     .blend_segment_max = 8'388'607,
     .registration_max = 8'388'607,
     .has_encoder = true,

@@ -1,16 +1,16 @@
 #!/usr/bin/env bash
-# Every item of a module's checklist in the digest (MODULES.md section 6.x, items written
+# Every item of a module's checklist in the checklist file (its section 6.x, items written
 # **3601-CE-17**) has a GoogleTest whose name contains the item id with underscores (CE_17), in a
 # test suite named after the module (Commands3601, Homing3601, ...): ids repeat across modules.
 # A row of a table-driven test counts as a test of that name (see `tables` below).
-# Usage: named_items.sh DIGEST MODULE SECTION_HEADING NEXT_HEADING TESTS_DIR [PENDING]
+# Usage: named_items.sh CHECKLISTS MODULE SECTION_HEADING NEXT_HEADING TESTS_DIR [PENDING]
 # PENDING: item ids (e.g. "CE-I1 PI-07") of a part not written yet; they are listed, not failed.
-# Exit 77 (ctest: skipped) when the digest is not beside the checkout.
+# Exit 77 (ctest: skipped) when the checklist file is not beside the checkout.
 set -euo pipefail
-digest=$1 module=$2 from=$3 to=$4 tests=$5 pending=${6:-}
-[ -f "$digest" ] || { echo "no digest at $digest: skipped"; exit 77; }
+checklists=$1 module=$2 from=$3 to=$4 tests=$5 pending=${6:-}
+[ -f "$checklists" ] || { echo "no checklist file at $checklists: skipped"; exit 77; }
 
-items=$(sed -n "/^$from/,/^$to/p" "$digest" | grep -oE "\*\*$module-[A-Z]+-[A-Z0-9]+\*\*" |
+items=$(sed -n "/^$from/,/^$to/p" "$checklists" | grep -oE "\*\*$module-[A-Z]+-[A-Z0-9]+\*\*" |
   tr -d '*' | sed "s/^$module-//" | sort -u)
 [ -n "$items" ] || { echo "no $module items found between '$from' and '$to'"; exit 1; }
 suite="[[:space:]]*[A-Za-z0-9_]*${module}[A-Za-z0-9_]*[[:space:]]*,"

@@ -340,7 +340,7 @@ TEST(GpioSimMachine, EncoderMarkerWithRatioTwoCountsEncoderCounts) {
   EXPECT_EQ(ev.back().line, InputLine::kEncZ);
 }
 
-// ---- forcing (INTERFACE.md section 4) --------------------------------------------------------
+// ---- forcing (docs/interface.md section 4) ------------------------------------------------------
 
 constexpr std::uint32_t kHomeBit = 1u << 2;
 constexpr std::uint32_t kEStopBit = 1u << 3;

@@ -1,4 +1,4 @@
-// The VCD trace (INTERFACE.md section 5): file format, spooled merge, loss marker, parse-back.
+// The VCD trace (docs/interface.md section 5): file format, spooled merge, loss marker, parse-back.
 #include "gpio/vcd_trace.hpp"
 
 #include <gtest/gtest.h>

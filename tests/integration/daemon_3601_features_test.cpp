@@ -90,7 +90,7 @@ TEST_F(Daemon3601Features, AH_01_FindHomeThroughSharedMemory) {
 
 TEST_F(Daemon3601Features, MC_01_BlendProgrammedWithTheHandshakeRunsItsLength) {
   plc::BlendProfile b;
-  b.segments = {{10'000, 5'000, 10}, {10'000, 8'000, 10}};  // digest 7.10 worked check
+  b.segments = {{10'000, 5'000, 10}, {10'000, 8'000, 10}};  // blend, 3601 manual ch. 4-5
   b.final_decel = 10;
   ASSERT_TRUE(plc_->blend_program(b).ok);
   ASSERT_TRUE(plc_->preset_position(0).ok);

@@ -127,8 +127,8 @@ TEST_F(Daemon3601, RelativeMoveExactPulsesAndProfileTiming) {
   start();
   plc_->configure(1'000);
   plc_->command(cmd::kPresetPosition, 0);
-  // Vs 1,000, Vp 10,000, a = d = 10 steps/ms/s: the digest 7.2 worked example, N = 20,000:
-  // trapezoid, Ta = Td = 0.9 s, Da = Dd = 4,950, Dp = 10,100, Tt = 2.81 s.
+  // Vs 1,000, Vp 10,000, a = d = 10 steps/ms/s, N = 20,000, through the profile equations (3601
+  // manual ch. 2): trapezoid, Ta = Td = 0.9 s, Da = Dd = 4,950, Dp = 10,100, Tt = 2.81 s.
   plc_->command(cmd::kRelativeMove, 20'000, 10'000, 10, 10);
   ASSERT_TRUE(plc_->wait([&] { return plc_->status(kMoveComplete); }, milliseconds(20'000)));
   EXPECT_EQ(plc_->position(), 20'000);

@@ -137,7 +137,7 @@ std::int64_t monotonic_ns() {
   return std::int64_t{ts.tv_sec} * 1'000'000'000 + ts.tv_nsec;
 }
 
-// INTERFACE.md: at shutdown every output goes to its idle level before the lines are released.
+// docs/interface.md: at shutdown every output goes to its idle level before the lines are released.
 // The GPO is on when SIGTERM arrives; the trace shows it falling after the signal, exit 0.
 TEST_F(Daemon3602, GpoOnAtSigtermGoesLowAtShutdownExitZero) {
   ASSERT_TRUE(plc_->configure(0, kLimits, 0x1F, 1'000).ok);

@@ -1,4 +1,4 @@
-// End to end over Modbus/TCP (INTERFACE.md 6): the real stepmodd with [modbus] on loopback,
+// End to end over Modbus/TCP (docs/interface.md 6): the real stepmodd with [modbus] on loopback,
 // driven by Debian's own clients (mbpoll, python3-pymodbus) and by libmodbus, and checked
 // through the simulator panel: a move through Modbus only, the heartbeat of an accepted write,
 // the axis stopping when the master goes silent, refused writes, exceptions, max_clients and a

@@ -68,7 +68,7 @@ class Plc:
 
     def heartbeat(self):
         # As a PLC does every scan: the whole output image again. Unchanged words change nothing
-        # for the module; as an accepted write it is the PLC heartbeat (INTERFACE.md 3.2, 6).
+        # for the module; as an accepted write it is the PLC heartbeat (docs/interface.md 3.2, 6).
         self.write(self.out)
 
     def wait(self, cond, seconds, alive=True):

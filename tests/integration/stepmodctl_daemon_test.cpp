@@ -181,7 +181,8 @@ TEST_F(Ctl3602, GpoPresetMoveStopReset) {
   std::this_thread::sleep_for(milliseconds(300));
   ctl("--axis 1 stop");
   EXPECT_FALSE(status(0).moving());
-  EXPECT_TRUE(status(0).has(m2::status_msw::kPositionInvalid));  // Immediate Stop (digest 4.10)
+  // Immediate Stop sets Position Invalid (3602 manual ch. 9, status bits MSW).
+  EXPECT_TRUE(status(0).has(m2::status_msw::kPositionInvalid));
   EXPECT_GT(status(0).position, -50'100);
   const std::int32_t stopped_at = status(0).position;
   ctl("--axis 1 reset");

@@ -1,4 +1,5 @@
-// Number encodings of MODULES.md section 2, every range edge in both directions.
+// Number encodings of the manuals (3601 ch. 5, 3602 ch. 9, 3202 ch. 5), every range edge in both
+// directions.
 #include "words/words_3202.hpp"
 #include "words/words_3601.hpp"
 #include "words/words_3602.hpp"
@@ -13,9 +14,9 @@ namespace {
 
 using WP = WordPair;
 
-// ---- 3601 decimal split (digest 2.1) ----
+// ---- 3601 decimal split (3601 manual ch. 5) ----
 
-TEST(Codec3601, DigestExamplesDecode) {
+TEST(Codec3601, ManualExamplesDecode) {
   EXPECT_EQ(decode_3601(12, 345), 12'345);
   EXPECT_EQ(decode_3601(-12, -345), -12'345);
   EXPECT_EQ(decode_3601(12, 0), 12'000);
@@ -25,7 +26,7 @@ TEST(Codec3601, DigestExamplesDecode) {
   EXPECT_EQ(decode_3601(0, 0), 0);
 }
 
-TEST(Codec3601, DigestExamplesEncode) {
+TEST(Codec3601, ManualExamplesEncode) {
   EXPECT_EQ(encode_3601(12'345), (WP{12, 345}));
   EXPECT_EQ(encode_3601(-12'345), (WP{-12, -345}));
   EXPECT_EQ(encode_3601(12'000), (WP{12, 0}));
@@ -47,14 +48,14 @@ TEST(Codec3601, LswRangeEdges) {
   EXPECT_EQ(decode_3601(0, -999), -999);
   EXPECT_EQ(decode_3601(0, 1000), std::nullopt);
   EXPECT_EQ(decode_3601(0, -1000), std::nullopt);
-  EXPECT_EQ(decode_3601(1, 1000), std::nullopt);  // digest: (1, 1000) is invalid
+  EXPECT_EQ(decode_3601(1, 1000), std::nullopt);  // (1, 1000) is no decimal split
   EXPECT_EQ(decode_3601(-1, -1000), std::nullopt);
   EXPECT_EQ(decode_3601(1, 999), 1'999);
   EXPECT_EQ(decode_3601(-1, -999), -1'999);
 }
 
 TEST(Codec3601, TargetRangeEdgesRoundTrip) {
-  // Target range -8,388,608 ... 8,388,607 (digest 1 and 3.5).
+  // Target range -8,388,608 ... 8,388,607 (3601 manual ch. 5).
   EXPECT_EQ(encode_3601(8'388'607), (WP{8'388, 607}));
   EXPECT_EQ(encode_3601(-8'388'608), (WP{-8'388, -608}));
   EXPECT_EQ(decode_3601(8'388, 607), 8'388'607);
@@ -122,7 +123,7 @@ TEST(Codec3601, ExhaustiveRoundTripAroundThousands) {
     ASSERT_EQ(decode_3601(encode_3601(v).msw, encode_3601(v).lsw), v);
 }
 
-// ---- 3602 binary split (digest 2.2 table) ----
+// ---- 3602 binary split (3602 manual ch. 9) ----
 
 struct Row3602 {
   std::int32_t value;
@@ -131,7 +132,7 @@ struct Row3602 {
   std::int16_t lsw;
 };
 
-TEST(Codec3602, DigestTableBothDirections) {
+TEST(Codec3602, SplitTableBothDirections) {
   const Row3602 rows[] = {
       {999, 0x000003E7u, 0, 999},
       {50'800, 0x0000C670u, 0, -14'736},
@@ -170,7 +171,7 @@ TEST(Codec3602, RoundTripSweep) {
   }
 }
 
-// ---- 3202 native (digest 2.3) ----
+// ---- 3202 native (3202 manual ch. 5) ----
 
 TEST(Codec3202, NativeDint) {
   EXPECT_EQ(decode_3202(INT32_MIN), INT32_MIN);

@@ -1,4 +1,4 @@
-// The shared-memory image (INTERFACE.md 3): layout, creation rules, client checks, the seqlock
+// The shared-memory image (docs/interface.md 3): layout, creation rules, client checks, the seqlock
 // single-threaded behaviour, heartbeat and scan counter.
 #include <fcntl.h>
 #include <sys/file.h>

@@ -1,5 +1,5 @@
-// The Modbus register map (INTERFACE.md 6) on an image in ordinary memory: layout of the 16- and
-// 32-bit modules, the header registers, every exception, and writes as one seqlock write that
+// The Modbus register map (docs/interface.md 6) on an image in ordinary memory: layout of the 16-
+// and 32-bit modules, the header registers, every exception, and writes as one seqlock write that
 // bumps the PLC heartbeat.
 #include "ipc/modbus_map.hpp"
 

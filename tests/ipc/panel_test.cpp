@@ -1,4 +1,4 @@
-// The simulator panel (INTERFACE.md 4): header, publication, forcing.
+// The simulator panel (docs/interface.md 4): header, publication, forcing.
 #include "ipc/sim_panel.hpp"
 
 #include <sys/stat.h>

@@ -1,5 +1,5 @@
 // Seqlock under concurrency: a writer thread and reader threads on the same image; no snapshot
-// may ever mix two writes (INTERFACE.md 3.1). Labelled "threading" (runs under TSan too).
+// may ever mix two writes (docs/interface.md 3.1). Labelled "threading" (runs under TSan too).
 #include <unistd.h>
 
 #include <gtest/gtest.h>

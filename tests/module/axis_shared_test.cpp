@@ -1,7 +1,8 @@
 // The rules the three manuals share, tested once on the shared axis and run for each module
 // type's ModuleRules (3601, 3602, 3202): a module inherits them by using module/axis/. Test names
-// carry the 3601 checklist id of the rule (digest 6.1); the 3602 and 3202 lists state the same
-// rule under their own ids (their "Latch rules as on the 3601", 7.15, 7.16).
+// carry the 3601 checklist id of the rule; the 3602 and 3202 lists state the same rule under their
+// own ids (their "Latch rules as on the 3601"; mode changes and the command handshake: manuals
+// 3601/3202 ch. 3-4, 3602 ch. 8-9).
 #include <ostream>
 
 #include "registry/module_registry.hpp"
@@ -26,8 +27,8 @@ class AxisShared : public ::testing::TestWithParam<ModuleType> {
   AxisRig rig_;
 };
 
-// Digest 7.16: a command fires on its 0->1 edge, once; a relative move outputs exactly its steps
-// and ends with Move Complete (3601-MC-01).
+// Command handshake (manuals 3601/3202 ch. 4, 3602 ch. 9): a command fires on its 0->1 edge, once;
+// a relative move outputs exactly its steps and ends with Move Complete (3601-MC-01).
 TEST_P(AxisShared, MC_01_RelativeMoveOutputsExactlyItsStepsOnce) {
   rig_.configure();
   rig_.hold(CommandKind::kRelativeMove, {.target = 3'000});
@@ -129,8 +130,8 @@ TEST_P(AxisShared, CE_05_IP_03_HI_04_ReservedWordsNotZero) {
   EXPECT_EQ(rig_.motor(), 0);
 }
 
-// A whole blend profile at once (Axis::program_blend, the 3202's message, digest 5.8): the block
-// cycle's checks; stored only when valid, runs the sum of its lengths; refused with IP and
+// A whole blend profile at once (Axis::program_blend, the 3202's message, 3202 manual ch. 5): the
+// block cycle's checks; stored only when valid, runs the sum of its lengths; refused with IP and
 // nothing stored otherwise; refused before the axis is configured (3202-IP-15).
 TEST_P(AxisShared, BlendProgrammedAtOnceChecksStoresAndRuns) {
   ax::BlendFirstBlock first;
@@ -153,7 +154,8 @@ TEST_P(AxisShared, BlendProgrammedAtOnceChecksStoresAndRuns) {
   ASSERT_TRUE(rig_.wait_idle());
   EXPECT_EQ(rig_.motor(), 10'000);
   EXPECT_TRUE(rig_.status().move_complete);
-  // Same speed twice: refused, and the earlier profile is gone too (digest 7.10 rule 7).
+  // Same speed twice: refused, and the earlier profile is gone too (the manuals' blend
+  // rules: 3601/3202 ch. 4-5, 3602 ch. 9).
   segs[1].speed = 5'000;
   EXPECT_FALSE(rig_.axis().program_blend(first, segs));
   rig_.scans(1);
@@ -300,7 +302,7 @@ TEST_P(AxisShared, IE_01_EStopStopsTheMoveAndBlocksTheNext) {
   EXPECT_TRUE(rig_.status().input_error);
 }
 
-// ---- What differs, as data (digest 8.0) ------------------------------------------------------
+// ---- What differs between the manuals, as data -----------------------------------------------
 
 // Power-up: 3601/3602 report CfgE until configured; the 3202 does not (it powers up disabled).
 TEST_P(AxisShared, CFG_01_PowerUpConfigurationErrorPerModule) {
@@ -410,9 +412,9 @@ TEST_P(AxisShared, EN_01_DisabledAxisIgnoresCommandsPerModule) {
   EXPECT_EQ(rig_.motor(), 500);
 }
 
-// 3602 (digest 4.2, 3602-IE-01 / PI-03): a CW / CCW input configured as an E-stop stops a move
-// in either direction (IE, PI) and blocks the next; configured unused it does nothing. The 3601
-// and 3202 inputs are always end limits (their dialects leave the function at kLimit).
+// 3602 (3602 manual table 8.2, 3602-IE-01 / PI-03): a CW / CCW input configured as an E-stop stops
+// a move in either direction (IE, PI) and blocks the next; configured unused it does nothing. The
+// 3601 and 3202 inputs are always end limits (their dialects leave the function at kLimit).
 TEST_P(AxisShared, IE_01_CwInputConfiguredAsEStopPerModule) {
   if (!rules().cw_ccw_inputs_configurable) GTEST_SKIP() << "CW/CCW inputs are always limits";
   ax::AxisConfig cfg = full_axis_config();

@@ -1,5 +1,5 @@
 // 3202 blend profiles by message (3202 manual Ch.5 "Blend Move Programming", Ch.4 "Blend Move";
-// digest 5.8, 6.3 IP-11..17, CE-17..20): the 52-DINT message as the daemon hands it over from the
+// checklist items IP-11..17, CE-17..20): the 52-DINT message as the daemon hands it over from the
 // mailbox (Personality::on_message), checked, stored or refused with nothing stored, then run.
 #include <array>
 #include <vector>
@@ -19,7 +19,7 @@ struct Segment {
   std::int32_t rate;
 };
 
-// The 52 DINTs of a message (digest 5.8). `final_type` in bits 31-30 of DINT 3.
+// The 52 DINTs of a message (3202 manual ch. 5). `final_type` in bits 31-30 of DINT 3.
 std::array<std::int32_t, 52> message(std::int32_t channel, const std::vector<Segment>& segs,
                                      std::int32_t final_decel = 100'000,
                                      std::uint32_t final_type = 0, std::uint32_t pairs = 0,

@@ -1,6 +1,6 @@
 // 3601 blend moves in virtual time: the programming handshake (command LSW bits 8/9, status LSW
-// bit 9), the block checks (digest 6.1 IP-04..07, IP-19..21, A21, A22) and Run Blend (CE-20..24,
-// MC-01, STP-N1, IE-02, digest 7.10).
+// bit 9), the block checks (3601 checklist IP-04..07, IP-19..21, A21, A22) and Run Blend
+// (CE-20..24, MC-01, STP-N1, IE-02, 3601 manual ch. 4-5).
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -34,8 +34,8 @@ struct Seg {
   std::int16_t rate;  // steps/ms/s
 };
 
-// The digest 7.10 worked check (Vs = 1,000, rates 10 steps/ms/s = 10,000 steps/s^2): segment 1
-// needs 1,200 steps to reach 5,000, segment 2 needs 1,950 to reach 8,000 plus 3,150 of final
+// A worked blend (3601 manual ch. 4-5; Vs = 1,000, rates 10 steps/ms/s = 10,000 steps/s^2): segment
+// 1 needs 1,200 steps to reach 5,000, segment 2 needs 1,950 to reach 8,000 plus 3,150 of final
 // deceleration; 20,000 steps in all.
 const std::vector<Seg> kWorked = {{10'000, 5'000, 10}, {10'000, 8'000, 10}};
 constexpr std::int64_t kWorkedLength = 20'000;
@@ -353,7 +353,7 @@ TEST_F(Blend3601, IP_04_SegmentCountOutside2To16) {
 }
 
 TEST_F(Blend3601, IP_05_WorkedCheckSegmentTooShortToReachItsSpeed) {
-  // Digest 7.10: segment 1 shortened to 1,000 cannot reach 5,000 (it needs 1,200).
+  // 3601 manual ch. 4-5: segment 1 shortened to 1,000 cannot reach 5,000 (it needs 1,200).
   ASSERT_TRUE(first_block(2, final_word(kConstant, 10)));
   ASSERT_TRUE(segment_block({1'000, 5'000, 10}));
   EXPECT_TRUE(status(kInvalidProfile));  // reported with the segment's own block
@@ -409,7 +409,7 @@ TEST_F(Blend3601, IP_05_TypePairsOfSegments9To16InWord3) {
 }
 
 TEST_F(Blend3601, IP_06_ConsecutiveSegmentsWithTheSameSpeed) {
-  // Digest 7.10: segment 2's speed changed to 5,000 = segment 1's.
+  // 3601 manual ch. 4-5: segment 2's speed changed to 5,000 = segment 1's.
   ASSERT_TRUE(first_block(2, final_word(kConstant, 10)));
   ASSERT_TRUE(segment_block(kWorked[0]));
   EXPECT_FALSE(status(kInvalidProfile));

@@ -1,5 +1,5 @@
-// The 3602's interpolated-move geometry (3602 manual Ch.3 "Interpolated Move Profiles"; digest
-// 7.14 and its test vectors, A35, A36, A38): the circle methods, the integer-world check, the
+// The 3602's interpolated-move geometry (3602 manual Ch.3 "Interpolated Move Profiles"
+// and its test vectors, A35, A36, A38): the circle methods, the integer-world check, the
 // sweep and the PathSpec they hand the planner.
 #include <gtest/gtest.h>
 
@@ -58,7 +58,7 @@ TEST(Circle3602, RoundedLengthRoundsHalfUp) {
   EXPECT_EQ(rounded_length(std::int64_t{1} << 32, std::int64_t{1} << 32), 6'074'001'000);
 }
 
-// Digest 7.14 "Rounding, reject": radii 1,828.65 -> 1,829 and 1,828.21 -> 1,828.
+// 3602 manual ch. 3 "Rounding, reject": radii 1,828.65 -> 1,829 and 1,828.21 -> 1,828.
 TEST(Circle3602, CE_I7_CentreMethodRadiiDifferAfterRounding) {
   const PathGeometry g = path_geometry(centre(true, 1'562, 950, 0, 0), -1'000, 1'531);
   EXPECT_EQ(g.fault, GeometryFault::kRadiiDiffer);
@@ -136,7 +136,7 @@ TEST(Circle3602, CentreMethodQuarterCircleSenses) {
   EXPECT_NEAR(ccw.spec.sweep, 3 * kPi / 2, 1e-12);
 }
 
-// Radius method: E = (2000, 0), |R| = 2000: the four paths A..D of digest 7.14.
+// Radius method: E = (2000, 0), |R| = 2000: the four paths A..D (3602 manual ch. 3).
 TEST(Circle3602, RadiusMethodShortAndLongArcsInBothSenses) {
   const double h = std::sqrt(2000.0 * 2000.0 - 1000.0 * 1000.0);
   struct Case {

@@ -1,6 +1,6 @@
-// 3202 command mode per channel: digest 6.3 Command Error (3202-CE-01..24 but the blend message
-// items), Invalid Profile for moves, Position Invalid, Input Error, Stopped, Move Complete, Hold
-// (3202 manual Ch.4, Ch.6). The behaviour is the shared axis' with kRules3202; these tests fix
+// 3202 command mode per channel: the 3202 checklist's Command Error (3202-CE-01..24 but the blend
+// message items), Invalid Profile for moves, Position Invalid, Input Error, Stopped, Move Complete,
+// Hold (3202 manual Ch.4, Ch.6). The behaviour is the shared axis' with kRules3202; these tests fix
 // the 3202's words and bits around it, one channel acting, the other watched.
 #include "tests/module/plc_3202.hpp"
 
@@ -138,7 +138,7 @@ TEST_F(Commands3202, PI_C1_PresetPositionClearsItAndKeepsMoveComplete) {
   preset(0, -1'234);
   EXPECT_FALSE(status(0, sb::kPositionInvalid));
   EXPECT_EQ(position(0), -1'234);
-  EXPECT_TRUE(status(0, sb::kMoveComplete));  // digest 8.0: the 3202 does not clear MC
+  EXPECT_TRUE(status(0, sb::kMoveComplete));  // the manuals differ: the 3202 does not clear MC
   command(0, cb::kAbsoluteMove, {.target = -1'000});
   ASSERT_TRUE(wait_idle(0));
   EXPECT_EQ(motor(0), 100 + 234);
@@ -433,7 +433,8 @@ TEST_F(Commands3202, STP_N1_MC_01_MoveCompleteWithoutStopped) {
   EXPECT_FALSE(status(0, sb::kMoveComplete));
   ASSERT_TRUE(wait_idle(0));
   EXPECT_TRUE(status(0, sb::kMoveComplete));
-  // The deceleration starts on the count: an encoder move overshoots by its ramp (digest 7.12).
+  // The deceleration starts on the count: an encoder move overshoots by its ramp (3202 manual ch. 4
+  // "Encoder Move").
   EXPECT_GE(encoder(0), 2'000);
   EXPECT_EQ(encoder(0), motor(0));
 }
@@ -478,7 +479,8 @@ TEST_F(Commands3202, PI_08_PlcLeavesRunModeWhileMoving) {
   }
 }
 
-// Capture (digest 5.2 bit 0): the encoder count at the capture edge with the encoder configured.
+// Capture (3202 manual ch. 3 bit 0): the encoder count at the capture edge with the encoder
+// configured.
 TEST_F(Commands3202, CaptureTakesTheEncoderCount) {
   command(0, cb::kRelativeMove, {.target = 3'000});
   ASSERT_TRUE(wait_idle(0));
@@ -497,7 +499,7 @@ TEST_F(Commands3202, ProximityBitEchoed) {
   EXPECT_FALSE(status(0, sb::kProximityEcho));
 }
 
-// Digest 2.3: the registers are native DINTs.
+// The registers are native DINTs (3202 manual ch. 5, 6).
 TEST_F(Commands3202, NegativePositionIsANativeDint) {
   command(0, cb::kRelativeMove, {.target = -2'500});
   ASSERT_TRUE(wait_idle(0));

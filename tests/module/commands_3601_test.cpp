@@ -1,5 +1,5 @@
 // 3601 commands in virtual time: absolute/relative moves, hold/resume, immediate stop, preset,
-// reset errors, manual moves; the digest 6.1 items they implement are named in the test names.
+// reset errors, manual moves; the 3601 checklist items they implement are named in the test names.
 #include <cmath>
 
 #include "tests/module/plc_3601.hpp"

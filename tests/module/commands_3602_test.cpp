@@ -1,4 +1,4 @@
-// 3602 command mode through the module's words (digest 4.5-4.11, 6.2): both axes moving at once
+// 3602 command mode through the module's words (3602 manual ch. 9): both axes moving at once
 // with exact counts, targets in the binary split, the ranges, Move Complete, Axis Stopped, the
 // general-purpose output.
 #include "tests/module/rig_3602.hpp"
@@ -107,8 +107,8 @@ TEST_F(Commands3602, CE_02_MoreThanOneCommandBit) {
   EXPECT_EQ(motor(kAxis2), 0);
 }
 
-// Digest 4.7 / 3602-LSW-01: command LSW bit 7 is the general-purpose output, a level at any time
-// in command mode, on its own axis' line, echoed in status LSW bit 13.
+// 3602 manual table 9.4 / 3602-LSW-01: command LSW bit 7 is the general-purpose output, a level at
+// any time in command mode, on its own axis' line, echoed in status LSW bit 13.
 TEST_F(Commands3602, LSW_01_GeneralPurposeOutputFollowsLswBit7) {
   constexpr std::uint32_t kGpoLevel = 1u << static_cast<unsigned>(OutputLine::kGpo);
   word(kAxis2, m2::out_word::kLsw) = m2::cmd_lsw::kGpo;

@@ -1,6 +1,6 @@
-// 3202 configuration, per channel: digest 6.3 "Configuration Error" items 3202-CFG-01..13 (3202
-// manual Ch.3 "Invalid Configurations" #1..#11), 3202-DIS-01, 3202-MOK-01 and the configuration
-// image (digest 5.3).
+// 3202 configuration, per channel: the 3202 checklist's "Configuration Error" items 3202-CFG-01..13
+// (3202 manual Ch.3 "Invalid Configurations" #1..#11), 3202-DIS-01, 3202-MOK-01 and the
+// configuration image (3202 manual ch. 3).
 #include "tests/module/plc_3202.hpp"
 
 namespace stepmod::testing {
@@ -150,7 +150,7 @@ TEST_F(Config3202, MOK_01_ModuleOkInBothModes) {
   EXPECT_TRUE(status(0, sb::kModuleOk));
 }
 
-// Digest 5.3: the mirror of the accepted bits (A26) with the module's bits, and the speed.
+// 3202 manual ch. 3: the mirror of the accepted bits (A26) with the module's bits, and the speed.
 TEST_F(Config3202, ConfigurationImageMirrorsAcceptedWords) {
   write_config(0, kFull3202, 2'500);
   vm_.scans(3);
@@ -186,7 +186,7 @@ TEST_F(Config3202, ConfiguringOneChannelNeverDisturbsTheOtherWhileItMoves) {
   EXPECT_EQ(motor(1), 0);
 }
 
-// The homing option by bits 12 / 2 / 6 (digest 5.2): each variant is taken and homes.
+// The homing option by bits 12 / 2 / 6 (3202 manual ch. 3): each variant is taken and homes.
 TEST_F(Config3202, HomingVariantsSelectedByBits12And2And6) {
   const std::uint32_t base =
       kCwLimitUsed | kCcwLimitUsed | kStepDirOutput | kQuadratureEncoder | kActiveLevels;

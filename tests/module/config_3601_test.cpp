@@ -1,4 +1,4 @@
-// 3601 configuration: digest 6.1 "Configuration Error" items 3601-CFG-01..13 and N1..N3
+// 3601 configuration: the 3601 checklist's "Configuration Error" items 3601-CFG-01..13 and N1..N3
 // (3601 manual Ch.3 "Invalid Configurations" #1..#11).
 #include "tests/module/plc_3601.hpp"
 
@@ -118,7 +118,7 @@ TEST_F(Config3601, CFG_13_PI_01_ValidConfigurationClearsErrorAndInvalidatesPosit
   EXPECT_TRUE(status(kPositionInvalid));
 }
 
-// Issue 12 item 3 (digest 7.15/7.16): a command written in the same image that leaves
+// Issue 12 item 3 (3601 manual ch. 3, 4): a command written in the same image that leaves
 // configuration mode is a 0->1 edge of its bit (the configuration word is not a command word)
 // and acts, instead of being silently dropped.
 TEST_F(Config3601, CFG_13_CommandInTheImageThatLeavesConfigurationModeActs) {

@@ -1,7 +1,7 @@
-// 3602 configuration, per axis: digest 6.2 "Configuration Error" 3602-CFG-01..08, N1, N2 (3602
-// manual Ch.8 "Invalid Configurations" Tables 8.6/8.7, "Starting Speed", "Homing Timeout",
+// 3602 configuration, per axis: the 3602 checklist's "Configuration Error" 3602-CFG-01..08, N1, N2
+// (3602 manual Ch.8 "Invalid Configurations" Tables 8.6/8.7, "Starting Speed", "Homing Timeout",
 // "Reserved Words"), the echo of the last data written (A26), and the axes' independence
-// (digest 4: axis 1 configurable while axis 2 runs).
+// (3602 manual ch. 8: axis 1 configurable while axis 2 runs).
 #include "tests/module/rig_3602.hpp"
 
 namespace stepmod::testing {
@@ -168,7 +168,8 @@ TEST_F(Config3602, A26_ConfigurationModeEchoesTheLastDataWritten) {
   for (unsigned w = 5; w < 8; ++w) EXPECT_EQ(in_word(kAxis1, w), 0);
 }
 
-// Digest 4: the axes are independent; axis 1 is configured while axis 2 runs, and vice versa.
+// 3602 manual ch. 8: the axes are independent; axis 1 is configured while axis 2 runs, and vice
+// versa.
 TEST_F(Config3602, AxisConfiguredWhileTheOtherRuns) {
   configure(kAxis2);
   set_command(kAxis2, m2::cmd_msw::kRelativeMove, {.target = 30'000});

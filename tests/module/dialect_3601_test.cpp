@@ -31,7 +31,7 @@ ImageWords words(std::uint16_t msw, std::uint16_t lsw, std::int32_t w23 = 0, std
   return o;
 }
 
-// Digest 3.6: each command MSW bit 0..14 is one command kind of its own (14: A33's undefined
+// 3601 manual ch. 5: each command MSW bit 0..14 is one command kind of its own (14: A33's undefined
 // bit), bit 15 the mode bit.
 TEST(Dialect3601, EveryCommandBitIsOneCommandKind) {
   std::set<std::size_t> seen;
@@ -47,7 +47,7 @@ TEST(Dialect3601, EveryCommandBitIsOneCommandKind) {
   EXPECT_TRUE(cfg.commands.empty());
 }
 
-// Digest 3.5, 7.1: decimal split target/speed, steps/ms/s -> steps/s^2, S-curve bits.
+// 3601 manual ch. 5: decimal split target/speed, steps/ms/s -> steps/s^2, S-curve bits.
 TEST(Dialect3601, ParametersInTheSharedUnits) {
   const ax::AxisCommand c = m::command_from_words(
       words(m::cmd_msw::kRelativeMove, m::cmd_lsw::kSCurve | m::cmd_lsw::kTrapezoidalS, -12'345,
@@ -79,7 +79,7 @@ TEST(Dialect3601, CE_09_CE_15_CE_21_WordRulesOfTheCommandTable) {
       m::command_from_words(words(0, m::cmd_lsw::kStoreMinRegistration | 1, 100)).words_invalid);
 }
 
-// Digest 3.2 / 3.3: the configuration bits decoded; the homing option from bits 6 and 12.
+// 3601 manual ch. 3: the configuration bits decoded; the homing option from bits 6 and 12.
 TEST(Dialect3601, ConfigurationDecoded) {
   using namespace m::cfg_msw;
   m::Config3601 c;
@@ -98,7 +98,7 @@ TEST(Dialect3601, ConfigurationDecoded) {
   EXPECT_EQ(m::to_axis_config(c).homing, ax::HomingVariant::kSwitchWithBackplane);
 }
 
-// Digest 3.10 / 3.11: every named status flag lands on its own bit; registers in decimal split.
+// 3601 manual ch. 6: every named status flag lands on its own bit; registers in decimal split.
 TEST(Dialect3601, StatusFlagsOnTheirBits) {
   ax::AxisStatus s;
   s.move_complete = true;

@@ -1,6 +1,6 @@
-// The 3602 dialect alone: the binary split of every 32-bit value in both directions (digest 2.2,
-// the manual's examples re-tabulated there), the command words' decoding and the status words
-// (digest 4.5-4.11).
+// The 3602 dialect alone: the binary split of every 32-bit value in both directions (3602 manual
+// ch. 9 "Multi-Word Parameters" and its examples), the command words' decoding and the status words
+// (3602 manual ch. 9).
 #include <gtest/gtest.h>
 
 #include "module/m3602/dialect_3602.hpp"
@@ -20,7 +20,7 @@ ImageWords words(std::uint16_t msw, std::uint16_t lsw, std::int16_t w2, std::int
   return w;
 }
 
-// Digest 2.2 table: value, MSW, LSW as the PLC's INTs.
+// The binary split (3602 manual ch. 9): value, MSW, LSW as the PLC's INTs.
 struct Split {
   std::int32_t value;
   std::int16_t msw;
@@ -64,7 +64,7 @@ TEST(Dialect3602, BinarySplitPositionEncodesAsTheManualTabulates) {
   }
 }
 
-// Digest 4.9: the reported position is an int32 and rolls over at +-2^31.
+// 3602 manual ch. 9 table 9.27: the reported position is an int32 and rolls over at +-2^31.
 TEST(Dialect3602, ReportedPositionRollsOverAtTwoToThe31) {
   module::axis::AxisStatus st;
   ImageWords in;

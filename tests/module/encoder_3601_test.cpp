@@ -1,5 +1,5 @@
 // 3601 encoder functions in virtual time: preset encoder, encoder moves, diagnostic feedback and
-// the encoder follower (3601 manual Ch.4; digest 7.12); the digest 6.1 items are named in the test
+// the encoder follower (3601 manual Ch.4); the 3601 checklist items are named in the test
 // names.
 #include <cmath>
 
@@ -199,7 +199,8 @@ TEST_F(Encoder3601, ExternalInputStopsAnEncoderMoveWithoutHold) {
   EXPECT_TRUE(status(kCommandError));
 }
 
-// Digest 7.6 (inferred): External already active at the start → one step, then a stop (no Hold).
+// 3601 manual ch. 6 (inferred): External already active at the start → one step, then a stop (no
+// Hold).
 TEST_F(Encoder3601, ExternalActiveAtTheStartOfAnEncoderMoveGivesOneStep) {
   force(InputLine::kExternal, true);
   vm_.scans(2);
@@ -246,7 +247,8 @@ TEST_F(EncoderStall3601, EncoderMoveWithoutEncoderSignalStopsOnEStop) {
   EXPECT_TRUE(status(kStopped));
 }
 
-// Digest 7.12 #7: clearing only the MSW is harmless (command() clears word 0 only)...
+// 3601 manual ch. 4, encoder follower: clearing only the MSW is harmless (command() clears word 0
+// only)...
 TEST_F(Encoder3601, ClearingOnlyTheMswDuringAnEncoderMoveIsHarmless) {
   command(cmd::kRelativeMove, encoder_move(15'000));
   ASSERT_EQ(word(0), 0);
@@ -268,7 +270,7 @@ TEST_F(Encoder3601, ClearingMswAndLswDuringAnEncoderMoveMissesTheTarget) {
   EXPECT_FALSE(status(kMoveComplete));
 }
 
-// Digest 7.7: an encoder move stops at either end limit, like an absolute/relative move.
+// 3601 manual ch. 4: an encoder move stops at either end limit, like an absolute/relative move.
 TEST_F(Encoder3601, IE_02_EncoderMoveStopsAtEitherLimit) {
   command(cmd::kRelativeMove, encoder_move(50'000));
   vm_.run_for(500 * kMs);

@@ -1,6 +1,6 @@
 // 3202 features per channel beyond the error lists: manual moves (ramped, constant speed,
 // one-shot), S-curve moves by command bits 16/17, diagnostic feedback, capture of the position
-// without an encoder (firmware >= 3.1), Preset Encoder (3202 manual Ch.1, Ch.4; digest 5.2, 5.5).
+// without an encoder (firmware >= 3.1), Preset Encoder (3202 manual Ch.1, Ch.3-5).
 #include "tests/module/plc_3202.hpp"
 
 namespace stepmod::testing {
@@ -53,7 +53,7 @@ TEST_F(Features3202, SCurveMovesByBits16And17ReachTheirTargetExactly) {
   EXPECT_EQ(motor(1), 7'000);
   EXPECT_EQ(vm_.step_times(0).size(), 9'000u);
   EXPECT_EQ(vm_.step_times(1).size(), 7'000u);
-  // Triangular S takes longer than constant acceleration for the same move (digest 7.2).
+  // Triangular S takes longer than constant acceleration for the same move (3202 manual ch. 2).
   const Nanos s_time = vm_.step_times(0).back() - vm_.step_times(0).front();
   command(0, cb::kRelativeMove, {.target = 9'000});
   ASSERT_TRUE(wait_idle(0));

@@ -1,6 +1,6 @@
 // 3202 Find Home + / - per channel: the four homing options chosen by configuration bits 12 / 2
-// / 6 and the homing errors (3202 manual Ch.4 "Find Home", Ch.6; digest 6.3 HI-05/06, IE-04/05,
-// PI-05/06). The sequences themselves are the shared axis' (digest 7.11).
+// / 6 and the homing errors (3202 manual Ch.4 "Find Home", Ch.6; checklist items HI-05/06,
+// IE-04/05, PI-05/06). The sequences themselves are the shared axis' (3202 manual ch. 4).
 #include "tests/module/plc_3202.hpp"
 
 namespace stepmod::testing {

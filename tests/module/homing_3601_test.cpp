@@ -1,7 +1,7 @@
 // 3601 Find Home + / - in virtual time: the four homing options from both sides of the switch and
 // with the home (proximity) signal already active, the end-limit reversal, the start checks and
-// the homing errors (3601 manual Ch.3 item 10, Ch.4 "Find Home", Ch.6; digest 7.11 H-A .. H-D,
-// 6.1 HI/IE/PI/AH/STP items, 8 A8 A12 A15 A44 A49).
+// the homing errors (3601 manual Ch.3 item 10, Ch.4 "Find Home", Ch.6; the 3601 checklist's
+// HI/IE/PI/AH/STP items, A8 A12 A15 A44 A49).
 #include <functional>
 #include <optional>
 #include <utility>
@@ -38,7 +38,7 @@ VirtualMachineOptions machine(const Machine& mc) {
   return o;
 }
 
-// The four homing options (digest 3.2 table).
+// The four homing options (3601 manual ch. 3 table).
 constexpr std::uint16_t kSwitchOnly = kFullConfigMsw;
 constexpr std::uint16_t kSwitchBackplane = kFullConfigMsw | cfg::kBackplaneProximity;
 constexpr std::uint16_t kMarkerHome = kFullConfigMsw | cfg::kMarkerHoming;
@@ -448,7 +448,7 @@ struct RefusedHoming {
 };
 
 const RefusedHoming kRefusedHomings[] = {
-    // CE: 3601-CE-05; IP: 3601-IP-01 (digest 6.4).
+    // CE: 3601-CE-05; IP: 3601-IP-01 (the 3601 checklist).
     {.name = "HI_01_SpeedBelowStartingSpeed",
      .profile = {.target = 0, .speed = 999, .accel = 100, .decel = 100},
      .set = {kHomeInvalid, kCommandError, kInvalidProfile}},
@@ -524,7 +524,7 @@ TEST_F(Homing3601, CE_10_SCurveRefused) {
 }
 
 TEST_F(Homing3601, CE_04_ParameterOutOfRangeRaisesCeAndHi) {
-  // Digest 6.4: a homing's bad parameters give CE + HI (IP only for Vp < Vs).
+  // The 3601 checklist: a homing's bad parameters give CE + HI (IP only for Vp < Vs).
   const Move bad[] = {{.target = 0, .speed = 10'000, .accel = 0, .decel = 100},
                       {.target = 0, .speed = 10'000, .accel = 100, .decel = 2'001},
                       {.target = 0, .speed = 1'000'001, .accel = 100, .decel = 100}};
@@ -539,7 +539,7 @@ TEST_F(Homing3601, CE_04_ParameterOutOfRangeRaisesCeAndHi) {
   }
 }
 
-// ---- Homing errors (Ch.6 HI #4 #5, IE #4 #5, PI #5 #6; digest 7.11 H-C errors) -----------------
+// ---- Homing errors (Ch.6 HI #4 #5, IE #4 #5, PI #5 #6) ------------------------------------------
 
 TEST_F(Homing3601NoSwitch, HI_04_OtherLimitReachedAfterTheReversal) {
   home(cmd::kFindHomeCw);
@@ -681,7 +681,7 @@ TEST_F(Homing3601, CE_03_MoveDuringHomingIsRefused) {
   run_plc_for(300 * kNsPerMs);
   command(cmd::kRelativeMove, {.target = 1'000});
   EXPECT_TRUE(status(kCommandError));
-  // During a pause too: the homing is in progress (digest 7.16).
+  // During a pause too: the homing is in progress (3601 manual ch. 4 "Find Home").
   command(cmd::kResetErrors);
   run_plc([this] { return motor() > 5'100; }, 5 * kNsPerSec);
   run_plc([this] { return !moving(); }, 5 * kNsPerSec);

@@ -1,4 +1,4 @@
-// 3602 homing (3602 manual Ch.4 "Homing the 3602", Ch.8 "Homing Timeout"; digest 7.11, 6.2
+// 3602 homing (3602 manual Ch.4 "Homing the 3602", Ch.8 "Homing Timeout"; checklist items
 // Home Invalid and CE-12): the home input alone, the 2-s pause after each stop inside the
 // sequence, the homing timeout, the command checks.
 #include <vector>
@@ -50,7 +50,7 @@ TEST_F(Homing3602, AH_01_HomeInputAloneEndsAtHomeWithPositionZero) {
   EXPECT_GE(motor(kAxis1), 5'000);
   EXPECT_LE(motor(kAxis1), 5'001);
   // The 2-s pause after each decel-to-stop inside the sequence: after the stop past the home
-  // switch and after the stop of the reversal (digest 7.11 steps 3 and 6).
+  // switch and after the stop of the reversal (3602 manual ch. 4).
   EXPECT_EQ(gaps(kAxis1, 2 * kNsPerSec), 2u);
   EXPECT_EQ(gaps(kAxis1, 2 * kNsPerSec + 50 * kNsPerMs), 0u);  // and not much more
   // Passing the home switch later does not set At Home again once a move cleared it.
@@ -172,7 +172,7 @@ TEST_F(Homing3602, HI_06_LimitTogetherWithTheHomeInput) {
 }
 
 // 3602-CE-08, third clause: Hold during a Find Home -> CE; the homing goes on to At Home
-// (digest 7.11: "Hold -> CE, homing continues").
+// (3602 manual ch. 4: "Hold -> CE, homing continues").
 TEST_F(Homing3602, CE_08_HoldDuringFindHomeIsRefusedAndHomingContinues) {
   configure(kAxis1);
   command(kAxis1, cmd::kFindHomeCw, kHome);
@@ -189,7 +189,7 @@ TEST_F(Homing3602, CE_08_HoldDuringFindHomeIsRefusedAndHomingContinues) {
 }
 
 // ---- Homing option 2: the home input gated by the backplane proximity bit (config MSW bit 7,
-// command LSW bit 6; 3602 manual Ch.4 "Homing the 3602" Figure 4.2, digest 7.11 H-B) -----------
+// command LSW bit 6; 3602 manual Ch.4 "Homing the 3602" Figure 4.2) -------------------------------
 
 // H-B: the proximity bit's 0->1 edge slows the search to Vs; the next home input edge stops it
 // at once (no pause, no reversal): At Home, position 0 (AH-01), PI cleared (PI-C1).

@@ -1,5 +1,5 @@
 // 3601 discrete inputs in virtual time: E-stop, end limits, External, capture, encoder and the
-// input-state bits of the status LSW (digest 6.1 IE, PI, STP, HLD items; 7.6, 7.7, 7.13).
+// input-state bits of the status LSW (3601 checklist IE, PI, STP, HLD items; 3601 manual ch. 4, 6).
 #include "tests/module/plc_3601.hpp"
 
 namespace stepmod::testing {

@@ -1,6 +1,7 @@
-// The 3602's interpolated moves, what needs no motion (digest 4.7, 4.8, 6.2, 7.14; A17, A34-A37):
-// the block decoded from all sixteen words, the word rules, the acceptance rules, the geometry
-// check; every refusal is a Command Error on axis 1 only (3602-CE-I1) and starts nothing.
+// The 3602's interpolated moves, what needs no motion (3602 manual ch. 3, tables 9.4, 9.23-9.26;
+// A17, A34-A37): the block decoded from all sixteen words, the word rules, the acceptance rules,
+// the geometry check; every refusal is a Command Error on axis 1 only (3602-CE-I1) and starts
+// nothing.
 #include "module/m3602/dialect_3602.hpp"
 #include "tests/module/rig_interp_3602.hpp"
 
@@ -313,7 +314,7 @@ TEST_F(Interpolation3602Unconfigured, CE_I3_Axis2Disabled) {
   EXPECT_EQ(motor(kAxis1), 0);
 }
 
-// Digest 7.14 "Rounding, reject" through the words: no motion, CE + IP on axis 1 (A36).
+// 3602 manual ch. 3 "Rounding, reject" through the words: no motion, CE + IP on axis 1 (A36).
 TEST_F(Interpolation3602, CE_I7_CentreRadiiDifferAfterRoundingNoMotion) {
   preset(kAxis1, -1'000);
   preset(kAxis2, 1'531);

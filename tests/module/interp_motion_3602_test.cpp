@@ -1,4 +1,4 @@
-// The 3602's interpolated moves in motion (digest 7.14, 6.2; A17, A37, A39, A46): lines and
+// The 3602's interpolated moves in motion (3602 manual ch. 3; A17, A37, A39, A46): lines and
 // circles by every method to the exact end point on both axes, Move Complete on both, axis 1's
 // status LSW bit 11, Hold / External / Resume along the path, and the stops that take both axes.
 #include "tests/module/rig_interp_3602.hpp"
@@ -107,7 +107,7 @@ TEST_F(InterpMotion3602, CentreMethodQuarterCircleAbsolute) {
   expect_ends_at(0, 1'000);
 }
 
-// Digest 7.14 "Rounding, accept" runs, to its end point.
+// 3602 manual ch. 3 "Rounding, accept" runs, to its end point.
 TEST_F(InterpMotion3602, CentreMethodRoundingAcceptRuns) {
   home_both(-1'000, 1'531);
   path_command({.lsw = il::kCcwCircular | il::kAbsoluteCoordinates,
@@ -290,7 +290,7 @@ TEST_F(InterpMotion3602, PI_04_IE_02_LimitOnAxis2StopsBothAxes) {
   path_command({.end_x = 20'000, .end_y = 20'000});
   ASSERT_TRUE(wait_running());
   vm_.run_for(200 * kNsPerMs);
-  force(kAxis2, InputLine::kCcwLimit, true);  // either limit stops a path (digest 7.7)
+  force(kAxis2, InputLine::kCcwLimit, true);  // either limit stops a path (3602 manual ch. 2)
   ASSERT_TRUE(vm_.run_until_true([this] { return path_idle(); }, 20 * kNsPerMs));
   EXPECT_TRUE(status(kAxis2, kInputError));
   EXPECT_TRUE(status(kAxis1, kPositionInvalid));
@@ -312,7 +312,7 @@ TEST_F(InterpMotion3602, IE_02_CwLimitOnAxis1StopsBothAxes) {
   EXPECT_TRUE(status(kAxis2, kPositionInvalid));
 }
 
-// Digest 7.7: an E-stop on either axis cuts the path on both (3602-IE-01, PI-03).
+// 3602 manual ch. 2: an E-stop on either axis cuts the path on both (3602-IE-01, PI-03).
 TEST_F(InterpMotion3602, IE_01_EStopOnAxis2StopsBothAxes) {
   configure(kAxis2, static_cast<std::uint16_t>(
                         (kLimitsConfigMsw & ~m2::cfg_msw::kCwFunction) |

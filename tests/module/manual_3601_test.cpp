@@ -1,5 +1,5 @@
 // 3601 manual moves, registration moves and the minimum registration distance in virtual time
-// (3601 manual Ch.4 "Manual Move", "Registration Move"; digest 6.1, 7.8, 7.9). Each digest item
+// (3601 manual Ch.4 "Manual Move", "Registration Move"; the 3601 checklist). Each checklist item
 // is named in its test's name.
 #include <algorithm>
 #include <cmath>
@@ -264,7 +264,7 @@ TEST_F(Manual3601, STP_01_ExternalInputStopsControlledToStopped) {
 TEST_F(Manual3601, STP_01_ExternalActiveAtTheStartGivesOneStepThenStopped) {
   force(InputLine::kExternal, true);
   vm_.scans(2);
-  start(cmd::kManualCcw, kRamped);  // digest 7.6: one step, then stop
+  start(cmd::kManualCcw, kRamped);  // 3601 manual ch. 6: one step, then stop
   vm_.run_for(200 * kNsPerMs);
   EXPECT_EQ(motor(), -1);
   EXPECT_FALSE(moving());
@@ -408,7 +408,7 @@ TEST_F(Manual3601, CE_27_IP_12_RegistrationStartedWithExternalActive) {
 }
 
 TEST_F(Manual3601, CE_28_IP_13_RegistrationCountShorterThanTheDeceleration) {
-  // Digest 7.9 worked example: Vs 1,000, Vp 10,000, decel 10 -> 4,950 steps to stop.
+  // Registration (3601 manual ch. 4), worked: Vs 1,000, Vp 10,000, decel 10 -> 4,950 steps to stop.
   start(cmd::kManualCw, {.target = 4'949, .speed = 10'000, .accel = 10, .decel = 10});
   vm_.run_for(100 * kNsPerMs);
   EXPECT_TRUE(status(kCommandError));

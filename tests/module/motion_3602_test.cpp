@@ -1,6 +1,6 @@
-// 3602 command mode through the module's words, motion commands and their errors (digest 6.2
-// CE, IP, PI, IE, HLD; 7.4-7.10): moves, hold/resume, immediate stop, jog, registration and the
-// minimum registration distance, blend programming and run.
+// 3602 command mode through the module's words, motion commands and their errors (the 3602
+// checklist's CE, IP, PI, IE, HLD items; manual ch. 2, 9): moves, hold/resume, immediate stop, jog,
+// registration and the minimum registration distance, blend programming and run.
 #include <array>
 #include <vector>
 
@@ -41,8 +41,9 @@ class Motion3602 : public Rig3602 {
     vm_.sim().force(a, mask_[a], levels_[a], vm_.now());
     vm_.scans(2);
   }
-  // Blend programming (digest 4.5, Ch.9 "Programming Blend Move Profiles"): each block with LSW
-  // bits 4 and 5, wait for the acknowledge (status LSW bit 9), drop bit 5, wait for it to clear.
+  // Blend programming (3602 manual table 9.2, Ch.9 "Programming Blend Move Profiles"): each block
+  // with LSW bits 4 and 5, wait for the acknowledge (status LSW bit 9), drop bit 5, wait for it to
+  // clear.
   bool program_blend(unsigned a, const std::vector<std::array<std::int16_t, 6>>& blocks) {
     clear_words(a);
     for (const auto& b : blocks) {
@@ -269,7 +270,7 @@ TEST_F(Motion3602, JogOneShotAtVsWithSpeedZero) {
 }
 
 // Registration: a jog with a position offset; after the External edge it moves exactly the
-// offset, then stops (digest 7.9).
+// offset, then stops (3602 manual ch. 2).
 TEST_F(Motion3602, RegistrationMovesTheOffsetAfterTheExternalEdge) {
   set_command(kAxis1, cmd::kJogCw, {.target = 6'000, .speed = 10'000, .accel = 10, .decel = 10});
   vm_.run_for(700 * kNsPerMs);
@@ -287,7 +288,7 @@ TEST_F(Motion3602, RegistrationMovesTheOffsetAfterTheExternalEdge) {
 }
 
 TEST_F(Motion3602, CE_R4_IP_12_OffsetShorterThanTheStop) {
-  // Vs 1,000 -> Vp 10,000 at 10 steps/ms/s needs 4,950 steps to stop (digest 7.9).
+  // Vs 1,000 -> Vp 10,000 at 10 steps/ms/s needs 4,950 steps to stop (3602 manual ch. 2).
   command(kAxis1, cmd::kJogCw, {.target = 4'949, .speed = 10'000, .accel = 10, .decel = 10});
   EXPECT_TRUE(status(kAxis1, kCommandError));
   EXPECT_TRUE(status(kAxis1, kInvalidProfile));
@@ -301,7 +302,8 @@ TEST_F(Motion3602, CE_R4_IP_12_OffsetShorterThanTheStop) {
 }
 
 // LSW bit 2: program the minimum registration distance (words 2/3); status LSW bit 10 reports a
-// non-zero distance. With one set, a registration may start with External active (digest 8.0).
+// non-zero distance. With one set, a registration may start with External active (a difference
+// between the manuals).
 TEST_F(Motion3602, LSW_01_MinimumRegistrationDistanceSetAndUsed) {
   EXPECT_FALSE(lsw_status(kAxis1, m2::status_lsw::kMinRegistrationSet));
   set_command(

@@ -83,7 +83,7 @@ class Plc3601 : public ::testing::Test {
         [](const ImageWords& in) { return !plc::m3601::decode_status(in).moving(); },
         std::chrono::nanoseconds(limit));
   }
-  // Panel: force an input's electrical level (INTERFACE.md section 4 bit order).
+  // Panel: force an input's electrical level (docs/interface.md section 4 bit order).
   void force(InputLine l, bool level) {
     forced_mask_ |= 1u << static_cast<unsigned>(l);
     if (level) {

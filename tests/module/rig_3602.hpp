@@ -1,6 +1,6 @@
 #pragma once
 // A PLC program's view of a 3602 in virtual time: both axes' words written the way a PLC writes
-// them (binary split, digest 2.2), the module scanning, status read back per axis.
+// them (binary split, 3602 manual ch. 9), the module scanning, status read back per axis.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -86,7 +86,7 @@ class Rig3602 : public ::testing::Test {
   void clear_words(unsigned axis) {
     for (unsigned i = 0; i < 8; ++i) word(axis, i) = 0;
   }
-  // Configuration words of one axis, mode bit set (digest 4.1).
+  // Configuration words of one axis, mode bit set (3602 manual ch. 8 table 8.1).
   void write_config(unsigned axis, std::uint16_t msw, std::uint16_t lsw = kAllActiveHigh3602,
                     std::int32_t starting_speed = 1'000, std::int16_t homing_timeout = 0) {
     clear_words(axis);

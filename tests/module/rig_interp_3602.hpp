@@ -1,7 +1,7 @@
 #pragma once
-// A PLC program writing the 3602's interpolated moves (digest 4.7, 4.8): the block in all sixteen
-// output words, the data first with the command bits clear and the bits >= 10 ms later (the
-// manual's rule for the backplane's 8-word blocks), both axes configured.
+// A PLC program writing the 3602's interpolated moves (3602 manual tables 9.4, 9.23-9.26): the
+// block in all sixteen output words, the data first with the command bits clear and the bits >= 10
+// ms later (the manual's rule for the backplane's 8-word blocks), both axes configured.
 #include "tests/module/rig_3602.hpp"
 
 namespace stepmod::testing {

@@ -1,5 +1,5 @@
-// The interpolated path's speed: the manual's profile (digest 7.2) on the path length. The
-// reference is written here from the digest's formulas (ramp time k |V2 - V1| / A, distance
+// The interpolated path's speed: the manuals' profile (ch. 2) on the path length. The
+// reference is written here from the manuals' formulas (ramp time k |V2 - V1| / A, distance
 // T (V1 + V2) / 2, cruise the rest, peak Vpk^2 = Vs^2 + 2L / (ka/a + kd/d) for a triangle), for a
 // length that is not an integer, with planner_test_util.hpp's ramp shapes.
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 #pragma once
 // Shared helpers of the planner tests: a one-axis planner run in virtual time, and an independent
-// reference of the digest's profile shapes (written from the digest's v(t) formulas, not from
+// reference of the manuals' profile shapes (written from the ch. 2 v(t) formulas, not from
 // planner/profile.cpp) to check step times against.
 #include <cmath>
 #include <cstdint>
@@ -141,7 +141,7 @@ inline MoveSpec move(std::int64_t n, double vs, double vp, double a, double d,
   return m;
 }
 
-// --- Independent reference of one ramp V1 -> V2 (digest 7.2 "S-curve shapes"). ---
+// --- Independent reference of one ramp V1 -> V2 (the manuals' ch. 2, S-curve shapes). ---
 struct RefRamp {
   long double v1, v2, a, t;  // a signed (negative for a deceleration), t = ramp time
   AccelShape shape;
@@ -185,7 +185,7 @@ inline RefRamp ref_ramp(double v1, double v2, const Ramp& r) {
   return out;
 }
 
-// Whole move: accel ramp, cruise, decel ramp, from the digest's classification (recomputed here).
+// Whole move: accel ramp, cruise, decel ramp, from the manuals' classification (recomputed here).
 struct RefMove {
   RefRamp up, down;
   long double vpk, tp, n;

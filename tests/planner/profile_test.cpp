@@ -1,4 +1,5 @@
-// Profile math against the digest's worked values (MODULES.md 7.2) and the shapes' definitions.
+// Profile math against worked values of the manuals' profile equations (ch. 2) and the shapes'
+// definitions.
 #include "planner/profile.hpp"
 
 #include <gtest/gtest.h>
@@ -17,7 +18,7 @@ struct Worked {
 
 class ProfileWorkedValues : public ::testing::TestWithParam<Worked> {};
 
-TEST_P(ProfileWorkedValues, MatchDigestTable) {
+TEST_P(ProfileWorkedValues, MatchWorkedTable) {
   const Worked w = GetParam();
   const Ramp r{10'000, w.shape};
   EXPECT_NEAR(ramp_time(1'000, 10'000, r), w.t_ramp, 1e-12);
@@ -41,7 +42,7 @@ TEST_P(ProfileWorkedValues, MatchDigestTable) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    Digest72, ProfileWorkedValues,
+    ProfileEquations, ProfileWorkedValues,
     ::testing::Values(Worked{AccelShape::kConstant, 0.9, 4'950, 10'100, 2.81, 7'141.4, 1.228},
                       Worked{AccelShape::kTriangularS, 1.8, 9'900, 200, 3.62, 5'099.0, 1.640},
                       Worked{AccelShape::kTrapezoidalS, 1.2, 6'600, 6'800, 3.08, 6'204.8, 1.388}),
@@ -139,8 +140,9 @@ TEST(Profile, BuiltMoveEndsAtNAndTt) {
   }
 }
 
-TEST(Profile, BlendDigestWorkedExample) {
-  // Digest 7.10: (10000 steps, 5000/s, 10000/s^2), (10000, 8000, 10000), final decel 10000.
+TEST(Profile, BlendWorkedExample) {
+  // A blend (manuals 3601/3202 ch. 4-5, 3602 ch. 9): (10000 steps, 5000/s, 10000/s^2), (10000,
+  // 8000, 10000), final decel 10000.
   BlendSpec b;
   b.vs = 1'000;
   b.count = 2;

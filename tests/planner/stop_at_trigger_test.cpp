@@ -86,7 +86,7 @@ RunSpec cruise_run(double vs, double vp, double a, double d, AccelShape shape) {
   return r;
 }
 
-// The digest's ramp distance D = k (V1^2 - V2^2) / (2A), written here from 7.2 (not profile.cpp).
+// The manuals' ramp distance D = k (V1^2 - V2^2) / (2A), written here from ch. 2 (not profile.cpp).
 std::int64_t ramp_steps(double v1, double v2, double a, AccelShape shape) {
   const double k = shape == AccelShape::kTriangularS    ? 2.0
                    : shape == AccelShape::kTrapezoidalS ? 4.0 / 3.0

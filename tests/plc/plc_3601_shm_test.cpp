@@ -99,7 +99,7 @@ class FakeModule {
         msw_status &= ~(m::status_msw::kMovingCw | m::status_msw::kMovingCcw);
         if (w0 & m::cmd_msw::kManualCw) msw_status |= m::status_msw::kMovingCw;
         if (w0 & m::cmd_msw::kManualCcw) msw_status |= m::status_msw::kMovingCcw;
-        // Blend handshake (digest 7.10).
+        // Blend handshake (3601 manual ch. 4-5).
         if ((w1 & m::cmd_lsw::kProgramBlend) && (w1 & m::cmd_lsw::kBlendTransmit) &&
             !(p1 & m::cmd_lsw::kBlendTransmit)) {
           std::lock_guard<std::mutex> l(mu_);

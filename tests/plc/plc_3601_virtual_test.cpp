@@ -82,7 +82,7 @@ TEST_F(Plc3601Virtual, JogMovesWhileHeldAndStops) {
 
 TEST_F(Plc3601Virtual, BlendProgrammedWithTheHandshakeRunsItsLength) {
   plc::BlendProfile b;
-  b.segments = {{10'000, 5'000, 10}, {10'000, 8'000, 10}};  // digest 7.10 worked check
+  b.segments = {{10'000, 5'000, 10}, {10'000, 8'000, 10}};  // blend, 3601 manual ch. 4-5
   b.final_decel = 10;
   const plc::Outcome p = plc_.blend_program(b);
   ASSERT_TRUE(p.ok) << p.message;

@@ -138,7 +138,7 @@ TEST(WordTables, EveryTableNamesEachBitOnce) {
   expect_well_formed(m3::kStatusBits, 32, "3202 status");
 }
 
-// The positions where the three manuals differ (digest 5.7, 4.2, 4.6).
+// The positions where the three manuals differ (3202 manual ch. 6; 3602 manual tables 8.2, 9.3).
 TEST(WordTables, ThePositionsWhereTheModulesDiffer) {
   namespace m2 = words::m3602;
   namespace m3 = words::m3202;

@@ -1,6 +1,6 @@
 #pragma once
-// Reads a VCD file written by stepmodd (INTERFACE.md section 5) back into per-wire change lists,
-// the way an outside checker would: by wire name, with times in ns.
+// Reads a VCD file written by stepmodd (docs/interface.md section 5) back into per-wire change
+// lists, the way an outside checker would: by wire name, with times in ns.
 #include <cstdint>
 #include <map>
 #include <string>

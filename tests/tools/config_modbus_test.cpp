@@ -1,4 +1,4 @@
-// [modbus] (INTERFACE.md 6): defaults, a full valid table, and one test per error (file, key,
+// [modbus] (docs/interface.md 6): defaults, a full valid table, and one test per error (file, key,
 // line; exit status 2 comes from stepmodd's handling of every ConfigError).
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The configuration file (INTERFACE.md 2): defaults, a full valid file, and one test per error
+// The configuration file (docs/interface.md 2): defaults, a full valid file, and one test per error
 // (the message names the file, the key and the line).
 #include "tools/config.hpp"
 

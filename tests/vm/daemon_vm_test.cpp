@@ -693,7 +693,7 @@ std::string case_sigterm() {
 // homing: Find Home with the home switch and the limits driven through sysfs by a machine model
 // that follows the real outputs: it samples step/dir through sim_gpioN/value (1 ms pulses at a
 // few hundred steps/s cannot be missed), counts the steps, and pulls the home and limit inputs up
-// while the machine position is on the switch (digest 7.11, sequences H-A and H-C).
+// while the machine position is on the switch (manuals ch. 4: the home-input sequences).
 
 class Machine {
  public:

@@ -17,7 +17,7 @@ CFG=/sys/kernel/config/gpio-sim/board
 [ $# -ge 1 ] || { echo "board-setup: no config file" >&2; exit 1; }
 [ -d /sys/kernel/config/gpio-sim ] || { echo "board-setup: /sys/kernel/config/gpio-sim missing (configfs mounted? gpio-sim loaded?)" >&2; exit 1; }
 
-# The line keys of INTERFACE.md section 2, per [[axis]] table, in every config file.
+# The line keys of docs/interface.md section 2, per [[axis]] table, in every config file.
 # shellcheck disable=SC2016
 awk -v nlines="$NUM_LINES" '
   BEGIN { split("step dir capture external home estop cw_limit ccw_limit enc_a enc_b enc_z gpo", k, " ");
