@@ -1,8 +1,10 @@
 #pragma once
 // The one interface between stepmod and its GPIO lines. Two backends implement it:
 //   SimBackend   - the built-in simulated machine (docs/interface.md sections 2 [axis.sim], 4)
-//   GpiodBackend - a real chip through libgpiod 1.6, input events through io_uring
-// Outputs are written by the pulse thread; inputs are consumed by the control thread.
+//   GpiodBackend - a real chip through libgpiod (1.6 or >= 2, gpio/gpiod_backend.hpp), input
+//                  events through io_uring
+// Step and direction outputs are written by the pulse thread, the drive-enable outputs by the
+// control thread; inputs are consumed by the control thread.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -51,7 +53,8 @@ class Backend {
 
   // Control thread. Blocks until at least one input event is available or `deadline` passes;
   // returns the number of events stored in `out` (0 on timeout). Events of one line arrive in
-  // time order and none is lost; a lost event is reported by `lost_events()`.
+  // time order. An edge lost on the way (a line's kernel FIFO, or the sim's ring in its place,
+  // overflowed) is never delivered: `lost_events()` counts the ones the backend can detect.
   virtual std::size_t wait_events(std::span<InputEvent> out, Nanos deadline) = 0;
   virtual std::uint64_t lost_events() const noexcept = 0;
 

@@ -1,7 +1,8 @@
 #pragma once
 // What the control thread asks of an emulated module. One implementation per module type
-// (module/m3601/module_3601.hpp; later 3602 and 3202): the module's dialect around the shared
-// axis of module/axis/ (docs/ARCHITECTURE.md "The module layer").
+// (module/m3601/module_3601.hpp, module/m3602/module_3602.hpp, module/m3202/module_3202.hpp),
+// made by its registry row (registry/module_registry.hpp): the module's dialect around the
+// shared axis of module/axis/ (docs/ARCHITECTURE.md "The module layer").
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -10,14 +11,8 @@
 #include "core/module_shape.hpp"
 #include "gpio/backend.hpp"
 #include "module/axis/error_reason.hpp"
-#include "planner/motion_port.hpp"
 
 namespace stepmod::module {
-
-// What a personality may touch besides the image: one MotionPort per axis and the inputs.
-struct AxisIo {
-  planner::MotionPort* motion = nullptr;
-};
 
 class Personality {
  public:

@@ -20,6 +20,7 @@
 #include "ipc/client.hpp"
 #include "module/axis/rules.hpp"
 #include "module/personality.hpp"
+#include "planner/motion_port.hpp"
 #include "plc/port.hpp"
 #include "plc/profile.hpp"
 #include "tools/ctl_command.hpp"

@@ -15,9 +15,7 @@
 #include "gpio/sim_backend.hpp"
 #include "gpio/vcd_trace.hpp"
 #include "ipc/plc_supervisor.hpp"
-#ifdef STEPMOD_HAVE_MODBUS
 #include "ipc/modbus_server.hpp"
-#endif
 #include "ipc/shm_image.hpp"
 #include "ipc/sim_panel.hpp"
 #include "module/axis/error_items.hpp"
@@ -56,9 +54,7 @@ struct Daemon::Impl {
   std::unique_ptr<DriveEnable> drive_enable;  // the axes' enable outputs (extension)
   std::unique_ptr<ipc::ShmImage> image;
   std::unique_ptr<ipc::SimPanelServer> panel;
-#ifdef STEPMOD_HAVE_MODBUS
   std::unique_ptr<ipc::ModbusServer> modbus;  // [modbus] enabled; its own thread
-#endif
   systemd::Watchdog watchdog;  // WatchdogSec=: petted per scan while the pulse thread loops
   std::atomic<std::uint64_t> input_trace_dropped{0};  // control thread writes, trace reads
   rt::StepOutput* pulse = nullptr;                    // while run() runs
@@ -149,15 +145,9 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
     d.panel = std::make_unique<ipc::SimPanelServer>(config.name, d.stack->shape().axes);
   }
   if (config.modbus.enabled) {
-#ifdef STEPMOD_HAVE_MODBUS
     d.modbus = std::make_unique<ipc::ModbusServer>(config.name, config.modbus);
     spdlog::info("modbus: serving on {} (unit {}, writes {})", d.modbus->endpoint(),
                  config.modbus.unit_id, config.modbus.writes ? "accepted" : "refused");
-#else
-    throw std::runtime_error(
-        "[modbus] enabled = true, but this stepmodd was built without "
-        "libmodbus (STEPMOD_STATIC)");
-#endif
   }
   if (trace_path) {
     auto wires = gpio::trace_wires(*d.backend);
