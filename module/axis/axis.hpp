@@ -64,7 +64,7 @@ class Axis {
   // The status after the last scan (or input edge).
   AxisStatus status() const noexcept;
   bool in_configuration_mode() const noexcept { return config_mode_; }
-  // For a drive-enable output (tools/drive_enable.hpp): a configuration is in force, the axis is
+  // For a drive-enable output (daemon/drive_enable.hpp): a configuration is in force, the axis is
   // in configuration mode, an E-stop input is active.
   struct DriveState {
     bool configured = false;

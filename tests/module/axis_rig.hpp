@@ -11,7 +11,7 @@
 
 #include "gpio/sim_backend.hpp"
 #include "module/axis/axis.hpp"
-#include "tools/stack.hpp"
+#include "daemon/stack.hpp"
 
 namespace stepmod::testing {
 

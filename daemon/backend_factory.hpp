@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "gpio/backend.hpp"
-#include "tools/config.hpp"
+#include "config/config.hpp"
 
 namespace stepmod::tools {
 

@@ -1,4 +1,4 @@
-#include "tools/stack.hpp"
+#include "daemon/stack.hpp"
 
 #include <stdexcept>
 

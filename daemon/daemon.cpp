@@ -1,4 +1,4 @@
-#include "tools/daemon.hpp"
+#include "daemon/daemon.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -23,11 +23,11 @@
 #include "rt/step_output.hpp"
 #include "systemd/notify.hpp"
 #include "systemd/watchdog.hpp"
-#include "tools/backend_factory.hpp"
-#include "tools/drive_enable.hpp"
-#include "tools/lease_keeper.hpp"
-#include "tools/reason_publisher.hpp"
-#include "tools/stack.hpp"
+#include "daemon/backend_factory.hpp"
+#include "daemon/drive_enable.hpp"
+#include "daemon/lease_keeper.hpp"
+#include "daemon/reason_publisher.hpp"
+#include "daemon/stack.hpp"
 
 namespace stepmod::tools {
 

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "tools/config.hpp"
+#include "config/config.hpp"
 
 namespace stepmod::tools {
 

@@ -1,4 +1,4 @@
-#include "tools/backend_factory.hpp"
+#include "daemon/backend_factory.hpp"
 
 #include <vector>
 
