@@ -26,6 +26,7 @@
 #include "daemon/backend_factory.hpp"
 #include "daemon/drive_enable.hpp"
 #include "daemon/lease_keeper.hpp"
+#include "daemon/module_io.hpp"
 #include "daemon/reason_publisher.hpp"
 #include "daemon/stack.hpp"
 
@@ -321,7 +322,7 @@ void Daemon::Impl::control_loop(const std::atomic<bool>& stop) {
       const gpio::InputEvent& e = events[i];
       trace_input_record(
           {e.t, e.axis, static_cast<std::uint8_t>(e.line), static_cast<std::uint8_t>(e.level), 1});
-      personality.on_input(e);
+      personality.on_input(to_module_event(e));
     }
     const Nanos now = monotonic_now();
     check_lost_inputs(now);
