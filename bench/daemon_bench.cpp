@@ -171,7 +171,7 @@ double pct(std::vector<double> v, double q) {
 }
 
 int latency(int argc, char** argv) {
-  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
+  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/daemon/stepmodd");
   const unsigned scan_us = static_cast<unsigned>(std::atoi(arg(argc, argv, "--scan-us", "1000")));
   const int n = std::atoi(arg(argc, argv, "--commands", "1000"));
   Daemon d(exe, scan_us, true);
@@ -273,7 +273,7 @@ double measure_cpu(pid_t pid, double seconds, const char* what) {
 }
 
 int footprint(int argc, char** argv) {
-  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
+  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/daemon/stepmodd");
   const double seconds = std::atof(arg(argc, argv, "--seconds", "10"));
   Daemon d(exe, 1000, false);
   Plc plc(d.name());
@@ -310,7 +310,7 @@ int footprint(int argc, char** argv) {
 }
 
 int cpu(int argc, char** argv) {
-  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
+  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/daemon/stepmodd");
   const double seconds = std::atof(arg(argc, argv, "--seconds", "5"));
   const int rate = std::atoi(arg(argc, argv, "--rate", "1000"));
   Daemon d(exe, 1000, false);
@@ -359,7 +359,7 @@ long notice_speed(const std::string& log) {
 // VCD against the ideal grid t0 + k/rate, t0 the earliest (t_k - k/rate): how late each edge is
 // relative to where a perfect controller puts it. Beside it, run cyclictest at the same priority.
 int grid(int argc, char** argv) {
-  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
+  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/daemon/stepmodd");
   const int rate = std::atoi(arg(argc, argv, "--rate", "20000"));
   const auto steps = static_cast<std::int32_t>(std::atoi(arg(argc, argv, "--steps", "200000")));
   std::vector<Nanos> rising;
@@ -416,7 +416,7 @@ std::size_t densest(const std::vector<Nanos>& t, Nanos window) {
 // steps in any 1 ms of the VCD against the commanded rate (catching up within 1 ms of lateness may
 // double it).
 int guard(int argc, char** argv) {
-  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
+  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/daemon/stepmodd");
   const int rate = std::atoi(arg(argc, argv, "--rate", "50000"));
   const auto steps = static_cast<std::int32_t>(std::atoi(arg(argc, argv, "--steps", "150000")));
   const int runs = std::atoi(arg(argc, argv, "--runs", "10"));
@@ -548,7 +548,7 @@ void report_slip(const std::vector<SlipCase>& cases, const std::vector<planner::
 // is judged from the VCD against its plan: compressed intervals, pauses beyond the fault rule
 // that did not fault, the end within 2.5 x nominal + 3 s, exact counts, faults per speed.
 int slip(int argc, char** argv) {
-  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
+  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/daemon/stepmodd");
   const int runs = std::atoi(arg(argc, argv, "--runs", "2"));
   std::vector<SlipCase> cases;
   for (int r = 0; r < runs; ++r) {
@@ -601,7 +601,7 @@ int slip(int argc, char** argv) {
 // Issue 12: trace completeness at a step rate: a constant-speed move traced; the daemon's exit
 // status (3 = records lost) and the rising edges in the VCD against the steps.
 int trace(int argc, char** argv) {
-  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
+  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/daemon/stepmodd");
   const int rate = std::atoi(arg(argc, argv, "--rate", "1000000"));
   const auto steps = static_cast<std::int32_t>(std::atoi(arg(argc, argv, "--steps", "2000000")));
   std::size_t n = 0;

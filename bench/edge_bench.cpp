@@ -1,5 +1,5 @@
 // Benchmarks 1 and 2 of issue 5, in process: the real planner (its own thread), the real pulse
-// thread (SCHED_FIFO) and the simulated machine, wired as stepmodd wires them (tools/stack.cpp),
+// thread (SCHED_FIFO) and the simulated machine, wired as stepmodd wires them (daemon/stack.cpp),
 // with a checking backend in front of the sim that verifies every write.
 //
 //   edge_bench timing [--edges 200000] [--edge-hz 50000] [--priority 80] [--pulse-ns N]
@@ -81,7 +81,7 @@ class CheckingBackend final : public gpio::Backend {
   std::vector<AxisCheck> axes_;
 };
 
-// One machine: axes, rings, planner, step output, threads (tools/stack.cpp without the module).
+// One machine: axes, rings, planner, step output, threads (daemon/stack.cpp without the module).
 struct Rig {
   struct Axis {
     SpscRing<rt::Edge> edges{1u << 15};  // as tools::StackOptions::edge_ring

@@ -241,7 +241,7 @@ std::vector<PathCase> cases(int runs) {
 }  // namespace
 
 int path_slip(int argc, char** argv) {
-  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/tools/stepmodd");
+  const std::string exe = arg(argc, argv, "--stepmodd", "build/bench/daemon/stepmodd");
   const std::vector<PathCase> list = cases(std::atoi(arg(argc, argv, "--runs", "2")));
   std::vector<Run> runs;
   testing::DaemonProcess d(config_3602(), testing::DaemonOptions{.trace = true, .exe = exe});

@@ -1,6 +1,6 @@
 #pragma once
 // Which chip lines one axis uses: the `[[axis]]` line keys of docs/interface.md section 2, without
-// the rest of the configuration, so that gpio/ does not depend on tools/. The daemon copies
+// the rest of the configuration, so that gpio/ does not depend on config/. The daemon copies
 // tools::AxisConfig::out/in into this. An absent offset means "not wired".
 #include <optional>
 

@@ -30,7 +30,7 @@
 namespace stepmod::gpio {
 
 // The [axis.sim] table (same fields as tools::SimAxisConfig, kept here so gpio/ does not depend on
-// tools/; the daemon copies one into the other).
+// config/; the daemon copies one into the other).
 struct SimAxisParams {
   std::int64_t start_position = 0;
   std::optional<std::int64_t> cw_limit_at;  // absent: never actuated

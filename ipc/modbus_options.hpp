@@ -8,8 +8,8 @@
 
 namespace stepmod::ipc {
 
-// No defaults here: tools/config.cpp sets every field, a key the file leaves out to its default
-// in the configuration's key table (tools/config_keys.hpp), so that no default is stated twice.
+// No defaults here: config/config.cpp sets every field, a key the file leaves out to its default
+// in the configuration's key table (config/config_keys.hpp), so that no default is stated twice.
 struct ModbusOptions {
   bool enabled = false;
   std::string address;  // numeric IPv4 address to bind to

@@ -9,7 +9,7 @@
 #include <span>
 
 #include "core/module_shape.hpp"
-#include "gpio/backend.hpp"
+#include "module/axis/axis_io.hpp"
 #include "module/axis/error_reason.hpp"
 
 namespace stepmod::module {
@@ -22,7 +22,7 @@ class Personality {
 
   // An input edge (electrical level, own timestamp), delivered in time order as soon as the
   // control thread sees it, between scans.
-  virtual void on_input(const gpio::InputEvent& e) = 0;
+  virtual void on_input(const InputEvent& e) = 0;
 
   // One I/O scan: `plc_out` is a consistent snapshot of the PLC's output words; the personality
   // writes the whole input image into `plc_in`.

@@ -25,9 +25,9 @@ constexpr ModuleTypeRow kRow3601{
     .name = "3601",
     .shape = shape_of(ModuleType::k3601),
     .rules = &module::m3601::kRules3601,
-    .make_personality = [](gpio::Backend& b,
+    .make_personality = [](module::AxisIo& io,
                            std::span<MotionPort* const> a) -> std::unique_ptr<module::Personality> {
-      return std::make_unique<module::m3601::Module3601>(b, *a[0]);
+      return std::make_unique<module::m3601::Module3601>(io, *a[0]);
     },
     .run_command = [](const tools::ctl::Command& c, plc::Port& p, ipc::Client&,
                       milliseconds t) { return tools::ctl::run_3601(c, p, t); },
@@ -40,9 +40,9 @@ constexpr ModuleTypeRow kRow3602{
     .name = "3602",
     .shape = shape_of(ModuleType::k3602),
     .rules = &module::m3602::kRules3602,
-    .make_personality = [](gpio::Backend& b,
+    .make_personality = [](module::AxisIo& io,
                            std::span<MotionPort* const> a) -> std::unique_ptr<module::Personality> {
-      return std::make_unique<module::m3602::Module3602>(b, *a[0], *a[1]);
+      return std::make_unique<module::m3602::Module3602>(io, *a[0], *a[1]);
     },
     .run_command = [](const tools::ctl::Command& c, plc::Port& p, ipc::Client&,
                       milliseconds t) { return tools::ctl::run_3602(c, p, t); },
@@ -55,9 +55,9 @@ constexpr ModuleTypeRow kRow3202{
     .name = "3202",
     .shape = shape_of(ModuleType::k3202),
     .rules = &module::m3202::kRules3202,
-    .make_personality = [](gpio::Backend& b,
+    .make_personality = [](module::AxisIo& io,
                            std::span<MotionPort* const> a) -> std::unique_ptr<module::Personality> {
-      return std::make_unique<module::m3202::Module3202>(b, *a[0], *a[1]);
+      return std::make_unique<module::m3202::Module3202>(io, *a[0], *a[1]);
     },
     .run_command = tools::ctl::run_3202,
     .format_status = tools::ctl::format_status_3202,
@@ -96,13 +96,13 @@ const ModuleTypeRow& row_of(ModuleType type) {
   throw std::invalid_argument("unknown module type " + std::to_string(static_cast<unsigned>(type)));
 }
 
-std::unique_ptr<module::Personality> make_personality(ModuleType type, gpio::Backend& backend,
+std::unique_ptr<module::Personality> make_personality(ModuleType type, module::AxisIo& io,
                                                       std::span<MotionPort* const> axes) {
   const ModuleTypeRow& row = row_of(type);
   if (axes.size() != row.shape.axes) {
     throw std::invalid_argument("module needs one motion port per axis");
   }
-  return row.make_personality(backend, axes);
+  return row.make_personality(io, axes);
 }
 
 }  // namespace stepmod::registry

@@ -16,7 +16,6 @@
 #include <vector>
 
 #include "core/module_shape.hpp"
-#include "gpio/backend.hpp"
 #include "ipc/client.hpp"
 #include "module/axis/rules.hpp"
 #include "module/personality.hpp"
@@ -30,7 +29,7 @@ namespace stepmod::registry {
 
 // The personality over one motion port per axis (the row's shape.axes of them).
 using MakePersonality = std::unique_ptr<module::Personality>(
-    gpio::Backend& backend, std::span<planner::MotionPort* const> axes);
+    module::AxisIo& io, std::span<planner::MotionPort* const> axes);
 // stepmodctl's dialect: a parsed command -> the plc/ calls (messages travel through `client`).
 using RunCommand = plc::Outcome(const tools::ctl::Command& c, plc::Port& port, ipc::Client& client,
                                 std::chrono::milliseconds timeout);
@@ -59,7 +58,7 @@ const ModuleTypeRow& row_of(ModuleType type);
 
 // The personality for `type` over `axes` (one MotionPort per axis of the module); throws
 // std::invalid_argument when the count is not the module's.
-std::unique_ptr<module::Personality> make_personality(ModuleType type, gpio::Backend& backend,
+std::unique_ptr<module::Personality> make_personality(ModuleType type, module::AxisIo& io,
                                                       std::span<planner::MotionPort* const> axes);
 
 }  // namespace stepmod::registry

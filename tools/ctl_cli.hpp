@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/config_keys.hpp"
+#include "config/config_keys.hpp"
 #include "tools/ctl_command.hpp"
 
 namespace stepmod::tools::ctl {

@@ -3,7 +3,7 @@
 #include <ostream>
 #include <thread>
 
-#include "tools/config_keys.hpp"
+#include "config/config_keys.hpp"
 
 namespace stepmod::tools::ctl {
 

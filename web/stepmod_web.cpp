@@ -9,7 +9,7 @@
 #include <memory>
 
 #include "ipc/shm_object.hpp"
-#include "tools/config.hpp"
+#include "config/config.hpp"
 #include "web/auth.hpp"
 #include "web/commander.hpp"
 #include "web/image_json.hpp"

@@ -4,14 +4,14 @@
 
 namespace stepmod::module::axis {
 
-Axis::Axis(const ModuleRules& rules, gpio::Backend& backend, planner::MotionPort& motion)
-    : st_(rules, backend, motion),
+Axis::Axis(const ModuleRules& rules, AxisIo& io, planner::MotionPort& motion)
+    : st_(rules, io, motion),
       homing_(st_),
       manual_(st_),
       blend_(st_),
       encoder_(st_),
       follower_(st_) {
-  st_.inputs.init(backend, motion.axis());
+  st_.inputs.init(io, motion.axis());
   quadrature_.reset(st_.inputs.level(InputLine::kEncA), st_.inputs.level(InputLine::kEncB));
   // 3601-CFG-01: power-up in command mode with Configuration Error (the 3202: without).
   st_.status.configuration_error = rules.powers_up_with_configuration_error;
@@ -96,8 +96,7 @@ void Axis::enter_command_mode() {
   st_.configured = true;
   st_.inputs.configure(st_.cfg.inputs_used, st_.cfg.inputs_active_high);
   const bool step_dir = st_.cfg.step_dir_output;
-  st_.backend.set_pulse_format(st_.motion.axis(),
-                               step_dir ? gpio::PulseFormat::kStepDir : gpio::PulseFormat::kCwCcw);
+  st_.io.set_pulse_format(st_.motion.axis(), step_dir);
   st_.motion.set_pulse_format(step_dir);
   st_.set_position(0);
   // A18 (b): the encoder and capture registers are zeroed by a configuration too.

@@ -11,7 +11,6 @@
 #include <optional>
 #include <string_view>
 
-#include "gpio/backend.hpp"
 #include "module/axis/axis_command.hpp"
 #include "module/axis/axis_config.hpp"
 #include "module/axis/axis_state.hpp"
@@ -29,7 +28,7 @@ namespace stepmod::module::axis {
 
 class Axis {
  public:
-  Axis(const ModuleRules& rules, gpio::Backend& backend, planner::MotionPort& motion);
+  Axis(const ModuleRules& rules, AxisIo& io, planner::MotionPort& motion);
   Axis(const Axis&) = delete;
   Axis& operator=(const Axis&) = delete;
 
@@ -38,7 +37,7 @@ class Axis {
   // looked at only while the axis is in configuration mode.
   void scan(const AxisCommand& c, const std::optional<AxisConfig>& configuration, Nanos now);
   // An input edge (electrical level, own timestamp), between scans.
-  void on_input(const gpio::InputEvent& e);
+  void on_input(const InputEvent& e);
   // The PLC left Run mode (3601-PI-07), or shutdown: immediate stop of a motion under way.
   void plc_stopped(const Item& why = items::kPiPlcStopped);
   // The dialect's verdict on the configuration words of this scan, before scan(): the checklist
@@ -64,7 +63,7 @@ class Axis {
   // The status after the last scan (or input edge).
   AxisStatus status() const noexcept;
   bool in_configuration_mode() const noexcept { return config_mode_; }
-  // For a drive-enable output (tools/drive_enable.hpp): a configuration is in force, the axis is
+  // For a drive-enable output (daemon/drive_enable.hpp): a configuration is in force, the axis is
   // in configuration mode, an E-stop input is active.
   struct DriveState {
     bool configured = false;
@@ -140,7 +139,7 @@ class Axis {
   void command_immediate_stop();
   void command_preset_position(const AxisCommand& c);
   void command_reset_errors();
-  void input_edge(const gpio::InputEvent& e);  // on_input() without the reason check
+  void input_edge(const InputEvent& e);  // on_input() without the reason check
   // The pulse thread has ended the motion: its outcome in the status latches.
   void poll_motion_end();
   // Whether the motion runs, as this scan sees it (status()).

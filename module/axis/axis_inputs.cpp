@@ -5,12 +5,12 @@
 
 namespace stepmod::module::axis {
 
-void Axis::on_input(const gpio::InputEvent& e) {
+void Axis::on_input(const InputEvent& e) {
   input_edge(e);
   st_.explain_new_errors();  // an edge that set an error bit without a note
 }
 
-void Axis::input_edge(const gpio::InputEvent& e) {
+void Axis::input_edge(const InputEvent& e) {
   const bool was_active = st_.inputs.active(e.line);
   st_.inputs.set_level(e.line, e.level);
 

@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <optional>
 
-#include "gpio/backend.hpp"
 #include "module/axis/axis_command.hpp"
 #include "module/axis/axis_config.hpp"
+#include "module/axis/axis_io.hpp"
 #include "module/axis/error_items.hpp"
 #include "module/axis/error_reason.hpp"
 #include "module/axis/input_bank.hpp"
@@ -58,11 +58,11 @@ struct Profile {
 };
 
 struct AxisState {
-  AxisState(const ModuleRules& r, gpio::Backend& b, planner::MotionPort& m) noexcept
-      : rules(r), backend(b), motion(m) {}
+  AxisState(const ModuleRules& r, AxisIo& i, planner::MotionPort& m) noexcept
+      : rules(r), io(i), motion(m) {}
 
   const ModuleRules& rules;
-  gpio::Backend& backend;
+  AxisIo& io;
   planner::MotionPort& motion;
   InputBank inputs;
 

@@ -364,7 +364,7 @@ void Homing::timers(Nanos now) {
   }
 }
 
-void Homing::on_input(const gpio::InputEvent& e, bool was_active, bool now_active) {
+void Homing::on_input(const InputEvent& e, bool was_active, bool now_active) {
   // Stopping already (home reached, error, Immediate Stop): later edges change nothing.
   if (ax_.stop_cause != StopCause::kNone || h_.step == Step::kFinishing ||
       h_.step == Step::kTimedOut) {

@@ -20,7 +20,7 @@ class Homing {
   // The 2-s pauses; also called while a configuration request waits for the end (CE-01).
   void timers(Nanos now);
   // Every input edge while homing (home, limits, E-stop, marker); the generic rules are skipped.
-  void on_input(const gpio::InputEvent& e, bool was_active, bool now_active);
+  void on_input(const InputEvent& e, bool was_active, bool now_active);
   // A motion of the sequence has ended (the pulse thread finished or aborted it).
   void motion_ended(StopCause cause);
 

@@ -1,21 +1,21 @@
 #pragma once
 // The discrete inputs of one axis as the module sees them: the electrical level of every line
-// (from the backend at start-up, then from each InputEvent) and, per the configuration, which
+// (from the machine's I/O at start-up, then from each InputEvent) and, per the configuration, which
 // inputs are used and at which level they are active (decoded by each dialect into AxisConfig).
 #include <array>
 #include <cstdint>
 
-#include "gpio/backend.hpp"
+#include "module/axis/axis_io.hpp"
 
 namespace stepmod::module {
 
 class InputBank {
  public:
   // Electrical levels as read at start-up.
-  void init(gpio::Backend& backend, unsigned axis) {
+  void init(AxisIo& io, unsigned axis) {
     for (unsigned i = 0; i < kInputLinesPerAxis; ++i) {
       const auto line = static_cast<InputLine>(i);
-      level_[i] = backend.has_input(axis, line) && backend.read(axis, line);
+      level_[i] = io.has_input(axis, line) && io.read(axis, line);
     }
   }
   void set_level(InputLine l, bool level) noexcept { level_[idx(l)] = level; }

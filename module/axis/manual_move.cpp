@@ -339,7 +339,7 @@ void ManualMove::store_min_registration(const AxisCommand& c) {
 
 // Input edges during a manual move: a registration move takes the External input as its
 // trigger (digest 7.6); the limits and the E-stop keep the generic rules (axis_inputs.cpp).
-bool ManualMove::on_input(const gpio::InputEvent& e, bool now_active) {
+bool ManualMove::on_input(const InputEvent& e, bool now_active) {
   if (run_.kind != Kind::kRegistration || e.line != InputLine::kExternal) {
     return false;
   }

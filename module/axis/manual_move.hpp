@@ -24,7 +24,7 @@ class ManualMove {
   // The store-minimum-distance flag rising with no command set (digest 3.8).
   void store_min_registration(const AxisCommand& c);
   // An input edge during a manual/registration move; true if it was fully handled here.
-  bool on_input(const gpio::InputEvent& e, bool now_active);
+  bool on_input(const InputEvent& e, bool now_active);
 
   // 3601-DIR-01: the direction of a one-shot whose command is still held (`held`: this scan's
   // commands), shown as "moving" whether the pulse is out or not.

@@ -12,17 +12,17 @@ namespace {
 constexpr ModuleShape kShape = shape_of(ModuleType::k3202);
 }  // namespace
 
-Module3202::Channel::Channel(gpio::Backend& backend, planner::MotionPort& motion)
-    : axis(kRules3202, backend, motion) {}
+Module3202::Channel::Channel(AxisIo& io, planner::MotionPort& motion)
+    : axis(kRules3202, io, motion) {}
 
-Module3202::Module3202(gpio::Backend& backend, planner::MotionPort& ch1, planner::MotionPort& ch2)
-    : channels_{Channel(backend, ch1), Channel(backend, ch2)} {}
+Module3202::Module3202(AxisIo& io, planner::MotionPort& ch1, planner::MotionPort& ch2)
+    : channels_{Channel(io, ch1), Channel(io, ch2)} {}
 
 const ModuleShape& Module3202::shape() const noexcept {
   return kShape;
 }
 
-void Module3202::on_input(const gpio::InputEvent& e) {
+void Module3202::on_input(const InputEvent& e) {
   if (e.axis < kChannels) channels_[e.axis].axis.on_input(e);
 }
 

@@ -4,7 +4,6 @@
 // 3202's rules, and the 3202 dialect around them (config_3202, dialect_3202).
 #include <array>
 
-#include "gpio/backend.hpp"
 #include "module/axis/axis.hpp"
 #include "module/m3202/dialect_3202.hpp"
 #include "module/personality.hpp"
@@ -16,10 +15,10 @@ inline constexpr unsigned kChannels = 2;
 
 class Module3202 final : public Personality {
  public:
-  Module3202(gpio::Backend& backend, planner::MotionPort& ch1, planner::MotionPort& ch2);
+  Module3202(AxisIo& io, planner::MotionPort& ch1, planner::MotionPort& ch2);
 
   const ModuleShape& shape() const noexcept override;
-  void on_input(const gpio::InputEvent& e) override;
+  void on_input(const InputEvent& e) override;
   void scan(const ImageWords& out, ImageWords& in, Nanos now) override;
   void plc_stopped(Nanos now) override;
   void stop_every_axis(const axis::Item& why, Nanos now) override;
@@ -31,7 +30,7 @@ class Module3202 final : public Personality {
 
  private:
   struct Channel {
-    Channel(gpio::Backend& backend, planner::MotionPort& motion);
+    Channel(AxisIo& io, planner::MotionPort& motion);
     axis::Axis axis;
     ConfigMirror mirror{};  // A26: only accepted data
     // 3202-DIS-01: disabled from power-up until configured, and while configured with bit 28.

@@ -11,14 +11,14 @@ namespace {
 constexpr ModuleShape kShape = shape_of(ModuleType::k3601);
 }  // namespace
 
-Module3601::Module3601(gpio::Backend& backend, planner::MotionPort& motion)
-    : axis_(kRules3601, backend, motion) {}
+Module3601::Module3601(AxisIo& io, planner::MotionPort& motion)
+    : axis_(kRules3601, io, motion) {}
 
 const ModuleShape& Module3601::shape() const noexcept {
   return kShape;
 }
 
-void Module3601::on_input(const gpio::InputEvent& e) {
+void Module3601::on_input(const InputEvent& e) {
   axis_.on_input(e);
 }
 

@@ -22,8 +22,8 @@ void put_axis_words(const ImageWords& w, unsigned axis, ImageWords& image) noexc
 }
 }  // namespace
 
-Module3602::Channel::Channel(gpio::Backend& backend, planner::MotionPort& m)
-    : motion(m), axis(kRules3602, backend, m) {}
+Module3602::Channel::Channel(AxisIo& io, planner::MotionPort& m)
+    : motion(m), axis(kRules3602, io, m) {}
 
 void Module3602::Channel::set_gpo(bool level) {
   if (level == gpo) return;
@@ -67,16 +67,16 @@ void Module3602::Channel::publish(const ImageWords& out, bool interpolating, Ima
       s, StatusExtras{.axis_enabled = enabled, .interpolating = interpolating, .gpo = gpo}, in);
 }
 
-Module3602::Module3602(gpio::Backend& backend, planner::MotionPort& axis1,
+Module3602::Module3602(AxisIo& io, planner::MotionPort& axis1,
                        planner::MotionPort& axis2)
-    : axes_{Channel(backend, axis1), Channel(backend, axis2)},
+    : axes_{Channel(io, axis1), Channel(io, axis2)},
       interpolated_(axes_[0].axis, axis1, axes_[1].axis, axis2) {}
 
 const ModuleShape& Module3602::shape() const noexcept {
   return kShape;
 }
 
-void Module3602::on_input(const gpio::InputEvent& e) {
+void Module3602::on_input(const InputEvent& e) {
   if (e.axis >= axes_.size()) return;
   axes_[e.axis].axis.on_input(e);
   interpolated_.after_input();  // a limit on one axis of a path stops the other at once

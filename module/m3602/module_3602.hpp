@@ -7,7 +7,6 @@
 // both axes: the interpolated move (interpolated_move.hpp), whose block is all sixteen words.
 #include <array>
 
-#include "gpio/backend.hpp"
 #include "module/axis/axis.hpp"
 #include "module/m3602/interpolated_move.hpp"
 #include "module/personality.hpp"
@@ -17,10 +16,10 @@ namespace stepmod::module::m3602 {
 
 class Module3602 final : public Personality {
  public:
-  Module3602(gpio::Backend& backend, planner::MotionPort& axis1, planner::MotionPort& axis2);
+  Module3602(AxisIo& io, planner::MotionPort& axis1, planner::MotionPort& axis2);
 
   const ModuleShape& shape() const noexcept override;
-  void on_input(const gpio::InputEvent& e) override;
+  void on_input(const InputEvent& e) override;
   void scan(const ImageWords& out, ImageWords& in, Nanos now) override;
   void plc_stopped(Nanos now) override;
   void stop_every_axis(const axis::Item& why, Nanos now) override;
@@ -30,7 +29,7 @@ class Module3602 final : public Personality {
 
  private:
   struct Channel {
-    Channel(gpio::Backend& backend, planner::MotionPort& m);
+    Channel(AxisIo& io, planner::MotionPort& m);
     // The axis' scan with its decoded command, then its input words.
     void scan(const ImageWords& out, const axis::AxisCommand& c, Nanos now);
     void publish(const ImageWords& out, bool interpolating, ImageWords& in);

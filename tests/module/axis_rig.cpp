@@ -40,7 +40,8 @@ AxisRig::AxisRig(const ax::ModuleRules& rules)
   stack_ = std::make_unique<tools::Stack>(so, *sim_, nullptr);
   stack_->output().set_clock(&rig_clock);
   t_rig_now = now_;
-  axis_ = std::make_unique<ax::Axis>(rules, *sim_, stack_->motion(0));
+  io_ = std::make_unique<tools::BackendAxisIo>(*sim_);
+  axis_ = std::make_unique<ax::Axis>(rules, *io_, stack_->motion(0));
   status_ = axis_->status();
 }
 
@@ -90,7 +91,7 @@ void AxisRig::deliver_inputs() {
     if (n < events.size()) break;
   }
   while (!pending_inputs_.empty() && pending_inputs_.front().t + input_delay_ <= now_) {
-    axis_->on_input(pending_inputs_.front());
+    axis_->on_input(tools::to_module_event(pending_inputs_.front()));
     pending_inputs_.pop_front();
   }
 }

@@ -11,7 +11,8 @@
 
 #include "gpio/sim_backend.hpp"
 #include "module/axis/axis.hpp"
-#include "tools/stack.hpp"
+#include "daemon/module_io.hpp"
+#include "daemon/stack.hpp"
 
 namespace stepmod::testing {
 
@@ -73,6 +74,7 @@ class AxisRig {
 
   std::unique_ptr<gpio::SimBackend> sim_;
   std::unique_ptr<tools::Stack> stack_;
+  std::unique_ptr<tools::BackendAxisIo> io_;  // the axis' view of sim_, as the daemon's
   std::unique_ptr<ax::Axis> axis_;
   ax::AxisCommand image_;
   std::optional<ax::AxisConfig> config_words_;  // what the image means as configuration words

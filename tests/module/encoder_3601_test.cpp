@@ -336,7 +336,7 @@ class Follower3601 : public Encoder3601 {
     static constexpr bool kA[4] = {false, true, true, false};
     static constexpr bool kB[4] = {false, false, true, true};
     const unsigned next = (phase_ + (d > 0 ? 1u : 3u)) & 3u;
-    gpio::InputEvent e;
+    module::InputEvent e;
     e.t = vm_.now();
     e.axis = 0;
     e.line = kA[next] != kA[phase_] ? InputLine::kEncA : InputLine::kEncB;

@@ -1,7 +1,7 @@
 #pragma once
 // Error bits and reasons agree on every scan (docs/error-reasons.md): random command sequences
 // run on a module in virtual time, and after every scan each axis' (channel's) status bits are
-// compared with the reason the daemon would publish with them (tools/reason_publisher: after the
+// compared with the reason the daemon would publish with them (daemon/reason_publisher: after the
 // scan, with the input image). Three rules:
 //  * rise     - an error bit that rises comes with a new reason in the same scan;
 //  * shown    - a new reason names a list whose bit is set, and starts with its own item id;

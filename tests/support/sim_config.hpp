@@ -5,7 +5,7 @@
 #include <initializer_list>
 #include <string>
 
-#include "tools/config_keys.hpp"
+#include "config/config_keys.hpp"
 
 namespace stepmod::testing {
 
@@ -22,7 +22,7 @@ inline const std::string kDefaultLate = key_line(kLateLimit, kLateLimit.def);
 }  // namespace sim_config_detail
 
 // The late-edge guard's limits of the end-to-end tests that are not about it: the longest pause
-// and the largest lag the keys allow (tools/config_keys.hpp), no lag limit in practice. A test
+// and the largest lag the keys allow (config/config_keys.hpp), no lag limit in practice. A test
 // of the module's behaviour must not fail because this shared machine (a loaded two-core VM with
 // six developers' builds, the sanitizers, qemu) stalled the pulse thread, which the product's
 // guard rightly turns into a fault: above the starting speed, a pause of more than the default

@@ -57,7 +57,9 @@ void VirtualMachine::deliver_inputs() {
   for (;;) {
     // A deadline in the past: take what is there, never sleep.
     const std::size_t n = sim_->wait_events(events, 0);
-    for (std::size_t i = 0; i < n; ++i) stack_->personality().on_input(events[i]);
+    for (std::size_t i = 0; i < n; ++i) {
+      stack_->personality().on_input(tools::to_module_event(events[i]));
+    }
     if (n < events.size()) return;
   }
 }

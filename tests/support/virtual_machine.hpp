@@ -9,7 +9,7 @@
 
 #include "gpio/sim_backend.hpp"
 #include "module/personality.hpp"
-#include "tools/stack.hpp"
+#include "daemon/stack.hpp"
 
 namespace stepmod::testing {
 

@@ -1,6 +1,6 @@
 // The defaults, ranges, off values and choices that docs/interface.md's key table, the
 // stepmod.toml(5) man page and the examples' commented-out defaults state, against the key table
-// the parser takes them from (tools/config_keys.hpp): change a default or a range there without
+// the parser takes them from (config/config_keys.hpp): change a default or a range there without
 // the documents, and each failure names the document, the key, what it states and what the table
 // has.
 #include <gtest/gtest.h>
@@ -12,7 +12,7 @@
 #include <string>
 
 #include "tests/tools/config_doc_statements.hpp"
-#include "tools/config_keys.hpp"
+#include "config/config_keys.hpp"
 
 namespace stepmod::tools {
 namespace {
@@ -119,7 +119,7 @@ TEST(ConfigDefaultsDoc, InterfaceMdStatesTheTablesDefaultsAndRanges) {
   ASSERT_FALSE(docs.empty()) << "docs/interface.md: no key table between the config-keys markers";
   const std::string problems = check_all(docs, "docs/interface.md", false);
   EXPECT_TRUE(problems.empty()) << "docs/interface.md section 2 disagrees with "
-                                   "tools/config_keys.hpp:\n"
+                                   "config/config_keys.hpp:\n"
                                 << problems;
 }
 
@@ -128,7 +128,7 @@ TEST(ConfigDefaultsDoc, ManPageStatesTheTablesDefaultsAndRanges) {
   ASSERT_FALSE(docs.empty()) << "packaging/man/stepmod.toml.5: no KEYS section";
   const std::string problems = check_all(docs, "stepmod.toml(5)", true);
   EXPECT_TRUE(problems.empty()) << "packaging/man/stepmod.toml.5 disagrees with "
-                                   "tools/config_keys.hpp:\n"
+                                   "config/config_keys.hpp:\n"
                                 << problems;
 }
 
@@ -139,7 +139,7 @@ TEST(ConfigDefaultsDoc, InterfaceMdMeaningIsTheTablesDoc) {
     if (k.type == KeyType::kTable || it == docs.end()) continue;
     EXPECT_EQ(it->second.meaning, k.doc)
         << config_key_name(k) << ": docs/interface.md's meaning cell and the row's doc text "
-        << "(tools/config_keys.hpp) differ";
+        << "(config/config_keys.hpp) differ";
   }
 }
 
@@ -151,7 +151,7 @@ TEST(ConfigDefaultsDoc, ExamplesCommentedDefaultsAreTheTables) {
     if (k == nullptr) k = find_config_key("line", e.key);
     const std::string where = e.file + ":" + std::to_string(e.line) + ": " + e.key;
     if (k == nullptr) {
-      ADD_FAILURE() << where << ": not a key of [" << e.table << "] (tools/config_keys.hpp)";
+      ADD_FAILURE() << where << ": not a key of [" << e.table << "] (config/config_keys.hpp)";
       continue;
     }
     const auto want = expected_default(*k);

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <utility>
 
-#include "tools/config_keys.hpp"
+#include "config/config_keys.hpp"
 
 namespace stepmod::tools {
 namespace {

@@ -2,7 +2,7 @@
 // What the documents state about each configuration key, read from their text: the rows of
 // docs/interface.md's key table, the entries of the stepmod.toml(5) man page's KEYS section and
 // the examples' commented-out defaults. tests/tools/config_defaults_doc_test.cpp compares them
-// with the key table (tools/config_keys.hpp).
+// with the key table (config/config_keys.hpp).
 #include <cstdint>
 #include <map>
 #include <optional>

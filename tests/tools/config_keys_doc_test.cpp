@@ -1,5 +1,5 @@
 // The configuration keys as documented against the keys the parser accepts
-// (tools/config_keys.hpp): docs/interface.md's key table and the stepmod.toml(5) man page list
+// (config/config_keys.hpp): docs/interface.md's key table and the stepmod.toml(5) man page list
 // exactly those keys, so that a key added to the parser cannot go undocumented and a documented
 // key cannot be one the parser refuses. And every key of the table is accepted by the parser.
 #include <gtest/gtest.h>
@@ -12,8 +12,8 @@
 
 #include <toml++/toml.h>
 
-#include "tools/config.hpp"
-#include "tools/config_keys.hpp"
+#include "config/config.hpp"
+#include "config/config_keys.hpp"
 
 namespace stepmod::tools {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "tools/config.hpp"
+#include "config/config.hpp"
 
 namespace stepmod::tools {
 namespace {

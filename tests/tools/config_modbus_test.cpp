@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "tools/config.hpp"
+#include "config/config.hpp"
 
 namespace stepmod::tools {
 namespace {

@@ -1,4 +1,4 @@
-// The parser takes every default and range from the key table (tools/config_keys.hpp): a file
+// The parser takes every default and range from the key table (config/config_keys.hpp): a file
 // that leaves a key out gets the row's default, a value at either bound of the row's range is
 // accepted and read, one beyond it refused with the range in the message. Driven by the rows, so
 // a default or bound stated anywhere else in the parser fails here.
@@ -10,8 +10,8 @@
 #include <map>
 #include <string>
 
-#include "tools/config.hpp"
-#include "tools/config_keys.hpp"
+#include "config/config.hpp"
+#include "config/config_keys.hpp"
 
 namespace stepmod::tools {
 namespace {

@@ -1,6 +1,6 @@
 // The configuration file (docs/interface.md 2): defaults, a full valid file, and one test per error
 // (the message names the file, the key and the line).
-#include "tools/config.hpp"
+#include "config/config.hpp"
 
 #include <unistd.h>
 

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "gpio/line_options.hpp"
-#include "tools/config.hpp"
+#include "config/config.hpp"
 
 namespace stepmod::tools {
 namespace {

@@ -1,4 +1,4 @@
-#include "tools/reason_publisher.hpp"
+#include "daemon/reason_publisher.hpp"
 
 #include <spdlog/spdlog.h>
 

@@ -10,6 +10,7 @@
 
 #include "core/spsc_ring.hpp"
 #include "core/trace_record.hpp"
+#include "daemon/module_io.hpp"
 #include "gpio/backend.hpp"
 #include "module/personality.hpp"
 #include "planner/motion_port.hpp"
@@ -58,6 +59,7 @@ class Stack {
   };
 
   gpio::Backend& backend_;
+  BackendAxisIo module_io_;  // the module's view of backend_: start-up levels, pulse format
   ModuleShape shape_;
   std::vector<std::unique_ptr<Axis>> axes_;  // stable addresses: the threads hold pointers
   std::unique_ptr<planner::Planner> planner_;

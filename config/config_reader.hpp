@@ -1,6 +1,6 @@
 #pragma once
 // The configuration parser's value readers: one key of a TOML table, checked against its row of
-// the key table (tools/config_keys.hpp), which gives its default (a key left out, or a table
+// the key table (config/config_keys.hpp), which gives its default (a key left out, or a table
 // left out: `t` null) and its range. A bad value is a ConfigError naming the file, the line, the
 // key and what it must be.
 #include <toml++/toml.h>
@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "core/clock.hpp"
-#include "tools/config_keys.hpp"
+#include "config/config_keys.hpp"
 
 namespace stepmod::tools {
 

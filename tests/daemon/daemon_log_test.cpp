@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <string>
 
-#include "tools/daemon_log.hpp"
+#include "daemon/daemon_log.hpp"
 
 namespace stepmod::tools {
 namespace {

@@ -1,4 +1,4 @@
-#include "tools/lease_keeper.hpp"
+#include "daemon/lease_keeper.hpp"
 
 #include <spdlog/spdlog.h>
 

@@ -13,7 +13,7 @@
 #include "gpio/sim_machine.hpp"
 #include "ipc/modbus_options.hpp"
 #include "module/personality.hpp"
-#include "tools/config_keys.hpp"
+#include "config/config_keys.hpp"
 
 namespace stepmod::tools {
 
@@ -31,7 +31,7 @@ enum EnableRelease : std::uint8_t {
   kReleaseOnConfigMode = 8,  // the axis is in configuration mode
 };
 
-// The initial values are the keys' defaults (tools/config_keys.hpp), as the parser leaves them
+// The initial values are the keys' defaults (config/config_keys.hpp), as the parser leaves them
 // for a key the file leaves out.
 struct AxisConfig : gpio::AxisLines {
   Nanos step_pulse_ns = default_ns(config_key("axis", "step_pulse_ns"));

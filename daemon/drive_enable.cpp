@@ -1,10 +1,10 @@
-#include "tools/drive_enable.hpp"
+#include "daemon/drive_enable.hpp"
 
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 
-#include "tools/config.hpp"
+#include "config/config.hpp"
 
 namespace stepmod::tools {
 

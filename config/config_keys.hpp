@@ -1,6 +1,6 @@
 #pragma once
 // Every key the configuration file accepts, one row each: its type, default, range, unit, off
-// value and meaning. The one place these are stated: the parser (tools/config.cpp) takes every
+// value and meaning. The one place these are stated: the parser (config/config.cpp) takes every
 // default and range from here, and so do the Config structs' initial values; a test checks that
 // docs/interface.md's key table, the stepmod.toml(5) man page and the examples' commented-out
 // defaults state exactly these (tests/tools/config_defaults_doc_test.cpp), and that those two
@@ -228,7 +228,7 @@ inline constexpr ConfigKey kConfigKeys[] = {
 // clang-format on
 
 // The options of a line table (`home = { offset = 13, bias = "pull-up" }`), for inputs and
-// outputs alike (tools/config.cpp lists which direction takes which; docs/gpio-boards.md).
+// outputs alike (config/config.cpp lists which direction takes which; docs/gpio-boards.md).
 // clang-format off
 inline constexpr ConfigKey kLineOptionKeys[] = {
     {.table = "line", .key = "offset", .type = kInt, .absent = kRequired, .min = 0,
@@ -272,7 +272,7 @@ consteval const ConfigKey& config_key(const char* table, const char* key) {
   for (std::size_t i = 0; i < std::size(kLineOptionKeys); ++i) {
     if (kLineOptionKeys[i].table == t && kLineOptionKeys[i].key == k) return kLineOptionKeys[i];
   }
-  throw "tools/config_keys.hpp has no such key";
+  throw "config/config_keys.hpp has no such key";
 }
 
 constexpr Nanos unit_ns(Unit u) {

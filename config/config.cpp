@@ -1,7 +1,7 @@
 // The configuration file of docs/interface.md section 2. Strict by design: an unknown key is an
 // error, because a misspelt key would otherwise silently fall back to its default and the daemon
 // would drive the machine with a setting the user did not write.
-#include "tools/config.hpp"
+#include "config/config.hpp"
 
 #include <arpa/inet.h>
 #include <toml++/toml.h>
@@ -14,15 +14,15 @@
 #include <string_view>
 
 #include "gpio/sim_machine.hpp"
-#include "tools/config_keys.hpp"
-#include "tools/config_reader.hpp"
+#include "config/config_keys.hpp"
+#include "config/config_reader.hpp"
 
 namespace stepmod::tools {
 namespace {
 
 using std::int64_t;
 
-// Every key's default and range: its row in tools/config_keys.hpp (config_key, found at compile
+// Every key's default and range: its row in config/config_keys.hpp (config_key, found at compile
 // time), read through ConfigReader; this file states none of them.
 constexpr std::string_view kOutputKeys[kOutputLinesPerAxis] = {"step", "dir", "gpo"};
 constexpr std::string_view kInputKeys[kInputLinesPerAxis] = {

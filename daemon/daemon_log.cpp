@@ -1,4 +1,4 @@
-#include "tools/daemon_log.hpp"
+#include "daemon/daemon_log.hpp"
 
 #include <spdlog/pattern_formatter.h>
 #include <spdlog/sinks/stdout_color_sinks.h>

@@ -1,13 +1,13 @@
-// The drive-enable outputs' rules (tools/drive_enable.hpp) on the simulated backend, whose panel
+// The drive-enable outputs' rules (daemon/drive_enable.hpp) on the simulated backend, whose panel
 // output levels show the enable line's wire level in bit 3.
-#include "tools/drive_enable.hpp"
+#include "daemon/drive_enable.hpp"
 
 #include <gtest/gtest.h>
 
 #include <vector>
 
 #include "gpio/sim_backend.hpp"
-#include "tools/config.hpp"
+#include "config/config.hpp"
 
 namespace stepmod::tools {
 namespace {

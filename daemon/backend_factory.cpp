@@ -1,4 +1,4 @@
-#include "tools/backend_factory.hpp"
+#include "daemon/backend_factory.hpp"
 
 #include <vector>
 
@@ -7,14 +7,16 @@
 
 namespace stepmod::tools {
 
-std::unique_ptr<gpio::Backend> make_backend(const Config& config) {
+BuiltBackend make_backend(const Config& config) {
   if (config.backend == Config::Backend::kGpiod) {
     std::vector<gpio::AxisLines> lines(config.axes.begin(), config.axes.end());
-    return std::make_unique<gpio::GpiodBackend>(config.chip, lines);
+    return {std::make_unique<gpio::GpiodBackend>(config.chip, lines), nullptr};
   }
   std::vector<gpio::SimAxisSetup> axes;
   for (const AxisConfig& a : config.axes) axes.push_back({a, a.sim});
-  return std::make_unique<gpio::SimBackend>(axes);
+  auto sim = std::make_unique<gpio::SimBackend>(axes);
+  gpio::SimBackend* panel_side = sim.get();
+  return {std::move(sim), panel_side};
 }
 
 }  // namespace stepmod::tools

@@ -18,9 +18,9 @@
 #include <thread>
 
 #include "core/version.hpp"
-#include "tools/config.hpp"
-#include "tools/daemon.hpp"
-#include "tools/daemon_log.hpp"
+#include "config/config.hpp"
+#include "daemon/daemon.hpp"
+#include "daemon/daemon_log.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "tools/stack.hpp"
+#include "daemon/stack.hpp"
 
 #include <stdexcept>
 
@@ -7,7 +7,7 @@
 namespace stepmod::tools {
 
 Stack::Stack(const StackOptions& options, gpio::Backend& backend, SpscRing<TraceRecord>* trace)
-    : backend_(backend), shape_(shape_of(options.type)) {
+    : backend_(backend), module_io_(backend), shape_(shape_of(options.type)) {
   if (options.timing.size() != shape_.axes || backend.axes() != shape_.axes) {
     throw std::invalid_argument("the module, its timing and its backend disagree on the axes");
   }
@@ -30,7 +30,7 @@ Stack::Stack(const StackOptions& options, gpio::Backend& backend, SpscRing<Trace
     a.port = std::make_unique<planner::MotionPort>(i, *planner_, a.feedback, a.control, a.history);
     ports.push_back(a.port.get());
   }
-  personality_ = registry::make_personality(options.type, backend_, ports);
+  personality_ = registry::make_personality(options.type, module_io_, ports);
 }
 
 Stack::~Stack() = default;

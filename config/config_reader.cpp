@@ -1,10 +1,10 @@
 // The value readers of the configuration parser: every default and range comes from the key's
-// row (tools/config_keys.hpp), so that the parser states none of its own.
-#include "tools/config_reader.hpp"
+// row (config/config_keys.hpp), so that the parser states none of its own.
+#include "config/config_reader.hpp"
 
 #include <cmath>
 
-#include "tools/config.hpp"
+#include "config/config.hpp"
 
 namespace stepmod::tools {
 

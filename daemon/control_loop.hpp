@@ -1,0 +1,79 @@
+#pragma once
+// The control thread's loop (the thread that runs Daemon::run, real-time below the pulse thread
+// on real lines): input events as they come, the PLC image once per scan. Each scan: the PLC
+// supervision and the lease decide which words the module gets, the module scans them, and its
+// followers run in order (drive enables, the pulse thread's doorbell, the CPU notice, reasons,
+// panel), before the input image and health words are published.
+#include <array>
+#include <atomic>
+#include <optional>
+
+#include "config/config.hpp"
+#include "daemon/cpu_notice.hpp"
+#include "daemon/drive_enable_feed.hpp"
+#include "daemon/health_words.hpp"
+#include "daemon/lease_keeper.hpp"
+#include "daemon/lost_input_watch.hpp"
+#include "daemon/pulse_doorbell.hpp"
+#include "daemon/reason_publisher.hpp"
+#include "gpio/backend.hpp"
+#include "ipc/plc_supervisor.hpp"
+#include "ipc/shm_image.hpp"
+#include "systemd/watchdog.hpp"
+
+namespace stepmod::tools {
+
+class DaemonTrace;
+class SimPanelLink;
+class Stack;
+
+class ControlLoop {
+ public:
+  // What the loop works on; all of it outlives the loop. `trace` and `panel` may be null.
+  struct Parts {
+    const Config& config;
+    Stack& stack;
+    ipc::ShmImage& image;
+    DaemonTrace* trace;
+    SimPanelLink* panel;
+  };
+  explicit ControlLoop(const Parts& parts);
+
+  // Until `stop`: input events as they come, a scan every [module] scan_us.
+  void run(const std::atomic<bool>& stop);
+  // After run(): immediate stop of every axis, and a bounded wait until the pulse thread has
+  // acknowledged it.
+  void stop_motion();
+  // After the pulse thread has stopped, as the daemon idles every output.
+  void trace_enable_release(Nanos now) noexcept { enables_.trace_release(now); }
+  // The longest time between two published scans (a PLC saw nothing new for that long); 0: none.
+  Nanos longest_scan_gap() const noexcept { return longest_gap_; }
+
+ private:
+  // Blocks until an input edge or the next scan; hands the edges to the module. Returns the time.
+  Nanos take_events();
+  void scan(Nanos now);
+  // The words the module scans: the supervisor's verdict on the PLC's snapshot, or while a drive
+  // gets ready, the words it scanned last.
+  const ImageWords& words_for_module(Nanos now);
+  void note_scan_published() noexcept;
+
+  Parts parts_;
+  std::array<gpio::InputEvent, 64> events_{};
+  ImageWords in_{};
+  ImageWords given_{};  // the output words the module last scanned (held while a drive gets ready)
+  Nanos next_scan_ = 0;
+  ipc::PlcSupervisor supervisor_;
+  LeaseKeeper lease_;         // docs/interface.md 3.5
+  ReasonPublisher reasons_;   // docs/interface.md 3.4
+  LostInputWatch lost_inputs_;
+  DriveEnableFeed enables_;
+  HealthWords health_;
+  CpuNotice cpu_notice_;
+  PulseDoorbell doorbell_;
+  systemd::Watchdog watchdog_;  // WatchdogSec=: petted per scan while the pulse thread loops
+  Nanos longest_gap_ = 0;
+  Nanos last_publish_ = 0;
+};
+
+}  // namespace stepmod::tools

@@ -1,0 +1,36 @@
+#pragma once
+// The drive-enable outputs (drive_enable.hpp) fed from the module and the motion after each
+// scan: each axis' configuration, E-stop, faults (a late-edge fault, lost inputs) and the PLC's
+// loss; every change of an enable line goes into the trace as the VCD's axis<N>.enable wire.
+// Control thread.
+#include "config/config.hpp"
+#include "core/clock.hpp"
+#include "daemon/drive_enable.hpp"
+
+namespace stepmod::tools {
+
+class DaemonTrace;
+class LostInputWatch;
+class Stack;
+
+class DriveEnableFeed {
+ public:
+  // `trace` may be null (no --trace).
+  DriveEnableFeed(Stack& stack, const Config& config, const LostInputWatch& lost_inputs,
+                  DaemonTrace* trace);
+
+  // Whether a drive enabled a moment ago is not ready yet (the module keeps its previous words).
+  bool holding(Nanos now) const noexcept { return enable_.holding(now); }
+  // After each module scan.
+  void scan(bool plc_lost, Nanos now);
+  // After the control loop, as the daemon idles every output: the asserted enables' release.
+  void trace_release(Nanos now) noexcept;
+
+ private:
+  Stack& stack_;
+  const LostInputWatch& lost_inputs_;
+  DaemonTrace* trace_;
+  DriveEnable enable_;
+};
+
+}  // namespace stepmod::tools
