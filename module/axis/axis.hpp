@@ -56,7 +56,7 @@ class Axis {
   bool program_blend(const BlendFirstBlock& first, std::span<const BlendSegmentBlock> segments);
   // A blend message that names no channel (3202-IP-11, A23): Invalid Profile on every channel.
   void set_invalid_profile(const Item& why = items::kBlendNoChannel) noexcept {
-    st_.status.invalid_profile = true;
+    st_.fire(AxisEvent::kProfileInvalid);
     st_.note(why);
     st_.explain_new_errors();
   }
@@ -94,7 +94,7 @@ class Axis {
   // outcome is cleared (MC, Hold, IE), the axis is moving until end_coordinated.
   void begin_coordinated(planner::Ramp decel);
   // Why the coordinated motion is stopping early (kNone: it runs to its end).
-  StopCause stop_cause() const noexcept { return st_.stop_cause; }
+  StopCause stop_cause() const noexcept { return st_.stop_cause(); }
   // The coordinator stops this axis' part: kImmediate / kFault cut it at once (PI); kHold /
   // kExternal mark the controlled stop another axis asked the path for.
   void stop_coordinated(StopCause cause);
@@ -141,8 +141,14 @@ class Axis {
   void command_preset_position(const AxisCommand& c);
   void command_reset_errors();
   void input_edge(const gpio::InputEvent& e);  // on_input() without the reason check
+  void count_encoder_edge(Nanos t);  // an A / B edge: X4 decoding, the encoder register
+  void capture_at(Nanos t);          // the capture input's active edge
+  void input_during_motion(InputLine line, Nanos t);  // an input that became active
+  void limit_during_motion(bool cw_limit);
   // The pulse thread has ended the motion: its outcome in the status latches.
   void poll_motion_end();
+  void cut_late_motion();           // the pulse thread's late-edge fault: an immediate stop
+  void follow_coordinated_steps();  // the direction bits of a coordinated motion
   // Whether the motion runs, as this scan sees it (status()).
   bool busy_this_scan() const noexcept;
   // An encoder count changed at `t` (X4 decoding).

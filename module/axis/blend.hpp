@@ -25,19 +25,20 @@ class Blend {
   void run(planner::Direction dir);
   // Hold while a blend runs (3601-CE-23): CE now, cleared by itself when the blend ends.
   void hold();
-  // The blend motion has ended (instead of the generic outcome).
-  void motion_ended(StopCause cause);
+  // The blend motion has ended (its outcome is the table's).
+  void motion_ended();
   // A configuration erases the stored profile and any programming cycle (3601-CE-20).
   void erase();
 
   // Running for the whole blend (its deceleration included); the acknowledge (3601-LSW-01).
-  bool running() const noexcept { return ax_.activity == Activity::kBlend; }
+  bool running() const noexcept { return ax_.activity() == Activity::kBlend; }
   bool acknowledge() const noexcept { return ack_; }
 
  private:
   // One programming block, read on a transmit rising edge; false if it holds an error.
   bool first_block(const BlendFirstBlock& b);
   bool segment_block(const BlendSegmentBlock& b);
+  void bring_down();  // CE-22: programming while the blend runs
 
   AxisState& ax_;
   planner::BlendSpec profile_{};  // stored profile (dir and vs are set by Run Blend)

@@ -35,6 +35,10 @@ class ManualMove {
 
  private:
   bool owns_release() const noexcept;
+  void begin_run(const AxisCommand& c, planner::Direction dir, const Profile& p, Nanos now);
+  std::uint32_t start_motion(planner::Direction dir, const Profile& p, bool external);
+  void registration_scan(const AxisCommand& c, const CommandSet& rising, bool held, Nanos now);
+  bool hold_before_trigger(const CommandSet& rising);
   bool registration_start_allowed(std::int32_t count, double vp, const planner::Ramp& decel);
   void runtime_checks(const AxisCommand& c);
   void error_stop(const Item& why);
