@@ -40,15 +40,7 @@ void Blend::programming_scan(const AxisCommand& c, const AxisCommand& prev) {
   if (!transmit) ack_ = false;
 
   if (!program) {
-    if (cycle_) {
-      // Routine step 6: the cycle ends. A21c: fewer segment blocks than declared = not
-      // programmed (Run Blend then raises CE-20); a block too many was already an IP error.
-      cycle_ = false;
-      if (!spoiled_ && blocks_ > 0 && blocks_ == 1u + static_cast<unsigned>(pending_.count)) {
-        profile_ = pending_;
-        stored_ = true;
-      }
-    }
+    if (cycle_) end_cycle();
     return;
   }
   if (!cycle_) {
@@ -58,8 +50,21 @@ void Blend::programming_scan(const AxisCommand& c, const AxisCommand& prev) {
     total_ = 0;
     pending_ = planner::BlendSpec{};
   }
-  if (!transmit_rose) return;
+  if (transmit_rose) read_block(c);
+}
 
+// Routine step 6: the cycle ends. A21c: fewer segment blocks than declared = not programmed (Run
+// Blend then raises CE-20); a block too many was already an IP error.
+void Blend::end_cycle() {
+  cycle_ = false;
+  if (!spoiled_ && blocks_ > 0 && blocks_ == 1u + static_cast<unsigned>(pending_.count)) {
+    profile_ = pending_;
+    stored_ = true;
+  }
+}
+
+// One block, on a transmit rising edge.
+void Blend::read_block(const AxisCommand& c) {
   // Routine step 2: every block is acknowledged, a rejected one too (A21d, 3601-IP-21), so that
   // the PLC's handshake never waits forever; the error bits tell it the block was refused.
   ack_ = true;

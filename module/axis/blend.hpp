@@ -38,6 +38,8 @@ class Blend {
   // One programming block, read on a transmit rising edge; false if it holds an error.
   bool first_block(const BlendFirstBlock& b);
   bool segment_block(const BlendSegmentBlock& b);
+  void read_block(const AxisCommand& c);  // one block of the programming cycle
+  void end_cycle();                       // the program flag cleared: store or not
   void bring_down();  // CE-22: programming while the blend runs
 
   AxisState& ax_;
