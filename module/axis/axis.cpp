@@ -25,7 +25,8 @@ void Axis::scan(const AxisCommand& c, const std::optional<AxisConfig>& configura
     if (c.configuration_mode) {
       take_configuration(configuration);
     } else {
-      // Issue 12 item 3, digest 7.15/7.16: the image that leaves configuration mode is already a
+      // Issue 12 item 3; 3601 Ch.3 "Configuration Mode", Ch.4 general note 3 (commands act on a
+      // 0->1 transition of their bit): the image that leaves configuration mode is already a
       // command image. Commands fire on a 0->1 edge, and the configuration words of the previous
       // scans are not command words: the previous command set is empty (enter_command_mode), so
       // a command written together with the mode bit's clearing is an edge and acts now (or gets
@@ -77,11 +78,11 @@ void Axis::take_configuration(const std::optional<AxisConfig>& configuration) {
   }
 }
 
-// Leaving configuration mode (digest 7.15, 3601-CFG-13, 3601-PI-01).
+// Leaving configuration mode (3601 Ch.3, 3601-CFG-13, 3601-PI-01).
 void Axis::enter_command_mode() {
   config_mode_ = false;
   // Edges are detected against command images from here on, not the configuration words: the
-  // previous command set is empty (digest 7.16; see scan()).
+  // previous command set is empty (3601 Ch.4 general note 3; see scan()).
   prev_ = AxisCommand{};
   // 3601 Ch.4 "Registration Move": the minimum registration distance is reset by every
   // configuration (3601-LSW-01 then reads 0).

@@ -1,6 +1,7 @@
-// Command mode: the scan's order, the command edges (digest 7.16) and the plain commands of the
+// Command mode: the scan's order, the command edges (3601 Ch.4 general note 3) and the plain
+// commands of the
 // 3601 manual Ch.4 (absolute/relative move, Hold, Resume, Immediate Stop, Preset Position, Reset
-// Errors). Every rejection names the checklist item of digest 6.1 it implements.
+// Errors). Every rejection names the checklist item (the manual's Ch.6 lists) it implements.
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -44,7 +45,8 @@ void Axis::command_mode_scan(const AxisCommand& c, Nanos now) {
     command_edge(c, rising, now);
   } else if (c.commands.empty() && c.store_min_registration && !prev_.store_min_registration &&
              !st_.latches().command_error) {
-    manual_.store_min_registration(c);  // no command set, the store flag rising (digest 3.8)
+    manual_.store_min_registration(
+        c);  // no command set, the store flag rising (3601 Ch.4 "New Command Bit")
   }
 }
 
@@ -282,7 +284,8 @@ void Axis::command_preset_position(const AxisCommand& c) {
   st_.set_position(*c.target);
   // 3601-PI-C1; 3601-MC-03: MC is left as it is, the 3602 clears it (3602-MC-02).
   st_.fire(AxisEvent::kPositionPreset);
-  // Digest 7.12: with diagnostic feedback the encoder register (own pulse count) is preset too.
+  // 3601 Ch.4 "Diagnostic Feedback": with diagnostic feedback the encoder register (own pulse
+  // count) is preset too.
   if (st_.cfg.diagnostic_feedback) st_.write_encoder(*c.target);
 }
 

@@ -1,4 +1,5 @@
-// The rules every motion of an axis shares (digest 7.1, 7.5, 7.7; A15).
+// The rules every motion of an axis shares (3601 Ch.2 "Starting Speed", Ch.4 "Hold Move", Ch.6
+// "Emergency Stop Input"; A15).
 #include "module/axis/axis_state.hpp"
 
 namespace stepmod::module::axis {
@@ -102,7 +103,8 @@ void AxisState::note_position_lost(const Item& item) noexcept {
 }
 
 void AxisState::fault_stop(const Item& item, const char* input) {
-  // Digest 7.7: limit / E-stop trip during a move: immediate stop, IE, PI, Stopped.
+  // 3601-IE-01/02, PI-03/04, STP-02/04: limit / E-stop trip during a move: immediate stop, IE,
+  // PI, Stopped.
   motion.immediate_stop();
   fire(AxisEvent::kInputFault);
   note_position_lost(items::kPiFault);

@@ -1,8 +1,10 @@
 #pragma once
-// What every feature of one axis reads and writes: the decoded configuration, the status latches,
-// the motion under way and the registers, with the helpers the manuals' rules share (starting a
-// move, the start checks, the stops). Each feature (homing.hpp, manual_move.hpp, blend.hpp,
-// encoder.hpp, follower.hpp) owns its own state and gets this one by reference.
+// What every feature of one axis shares: the decoded configuration, the motion under way and the
+// registers, with the helpers the manuals' rules share (starting a move, the start checks, the
+// stops). The activity, the stop cause and the status latches are read here and changed only by
+// reporting an event to the table of transitions (axis_transitions.hpp). Each feature
+// (homing.hpp, manual_move.hpp, blend.hpp, encoder.hpp, follower.hpp) owns its own state and gets
+// this one by reference.
 #include <algorithm>
 #include <cstdarg>
 #include <cstdint>
@@ -79,9 +81,9 @@ struct AxisState {
   void note(const Item& item, const char* fmt = nullptr, ...) noexcept
       __attribute__((format(printf, 3, 4)));
 
-  // Reasons (the image's block, INTERFACE 3.4): the last one recorded. An error bit that rises
-  // without a note gets its list's general reason at the next explain_new_errors() (every error
-  // bit has a reason, even from a path that names no item).
+  // Reasons (the image's block, docs/interface.md 3.4): the last one recorded. An error bit that
+  // rises without a note gets its list's general reason at the next explain_new_errors() (every
+  // error bit has a reason, even from a path that names no item).
   ErrorReason reason;
   void explain_new_errors() noexcept;
 
@@ -118,7 +120,7 @@ struct AxisState {
   // A new move clears the previous move's outcome (3601-MC-03, HLD-C1, IE-C1, STP-C1, AH-01).
   void clear_move_outcome() noexcept;
   void immediate_stop(StopCause cause);
-  // Limit / E-stop: immediate stop, IE, PI (digest 7.7); `item` and the input's name ("E-stop")
+  // Limit / E-stop: immediate stop, IE, PI (3601-IE-01/02); `item` and the input's name ("E-stop")
   // for the reason.
   void fault_stop(const Item& item, const char* input);
 

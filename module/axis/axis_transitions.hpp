@@ -30,7 +30,15 @@ enum class Activity : std::uint8_t {
 };
 
 // Why a motion is ending early; decides the status bits when it has ended.
-enum class StopCause : std::uint8_t { kNone, kHold, kExternal, kRelease, kImmediate, kFault, kCount };
+enum class StopCause : std::uint8_t {
+  kNone,
+  kHold,
+  kExternal,
+  kRelease,
+  kImmediate,
+  kFault,
+  kCount
+};
 
 // Status and error latches, named as in the manuals.
 struct Latches {
@@ -64,12 +72,12 @@ enum class AxisEvent : std::uint8_t {
   kExternalStop,
   kReleaseStop,
   kImmediateStop,
-  kPathFault,        // a coordinated motion cut because of the other axis' fault
-  kInputFault,       // an E-stop or an end limit during a motion
-  kInvalidChange,    // an invalid runtime change of a manual move
+  kPathFault,      // a coordinated motion cut because of the other axis' fault
+  kInputFault,     // an E-stop or an end limit during a motion
+  kInvalidChange,  // an invalid runtime change of a manual move
   // A motion or sequence has ended.
-  kMotionEnded,      // the pulse thread finished the motion
-  kHomingStalled,    // the planner took no motion of the sequence
+  kMotionEnded,    // the pulse thread finished the motion
+  kHomingStalled,  // the planner took no motion of the sequence
   kHomingEndedEarly,
   kHomingCompleted,
   kHomingTimedOut,

@@ -1,12 +1,12 @@
 // Blend moves: the block-by-block programming handshake and Run Blend (3601 manual Ch.4 "Blend
-// Move", Ch.5 "Blend Move Programming"; digest 3.8, 7.10).
+// Move", Ch.5 "Blend Move Programming").
 //
-// Programming (digest 7.10 handshake, the flags decoded by the dialect): with no command set
-// the PLC holds the program flag for the whole cycle and raises the transmit flag once per block.
-// Each transmit rising edge reads one block (decoded by the dialect), checks it and sets the
-// acknowledge; the acknowledge follows transmit back to 0. Every check is made on the block that
-// brings its data, so an error is reported with that block's acknowledge. Clearing the program bit
-// ends the cycle: the profile is stored only if the cycle had no error and brought exactly the
+// Programming (3601 Ch.5 "Blend Move Programming", the flags decoded by the dialect): with no
+// command set the PLC holds the program flag for the whole cycle and raises the transmit flag once
+// per block. Each transmit rising edge reads one block (decoded by the dialect), checks it and sets
+// the acknowledge; the acknowledge follows transmit back to 0. Every check is made on the block
+// that brings its data, so an error is reported with that block's acknowledge. Clearing the program
+// bit ends the cycle: the profile is stored only if the cycle had no error and brought exactly the
 // declared number of segment blocks (A21c).
 #include <cmath>
 
@@ -89,7 +89,7 @@ void Blend::read_block(const AxisCommand& c) {
     return;
   }
   if (first) {
-    // A new profile replaces the stored one from its first block on (digest 7.10 rule 7).
+    // A new profile replaces the stored one from its first block on (3601 Ch.4 "Blend Move").
     stored_ = false;
   }
   // No command may be set in a block (3601 Ch.5 "Blend Move Programming").
@@ -135,7 +135,7 @@ bool Blend::first_block(const BlendFirstBlock& b) {
   } else {
     pending_.final_decel.rate = static_cast<double>(value);
   }
-  // The words the first block leaves empty are 0 (digest 3.8).
+  // The words the first block leaves empty are 0 (3601 Ch.5 "Blend Move Programming").
   if (!b.unused_words_zero) ok = false;
   return ok;
 }
@@ -164,7 +164,7 @@ bool Blend::segment_block(const BlendSegmentBlock& b) {
     ok = false;
   } else if (*speed < ax_.cfg.starting_speed) {
     ax_.reject(items::kVpBelowVs, "blend segment speed %d is below Vs %d", static_cast<int>(*speed),
-             static_cast<int>(ax_.cfg.starting_speed));
+               static_cast<int>(ax_.cfg.starting_speed));
     reason_noted_ = true;
     ok = false;
   } else {
@@ -176,11 +176,11 @@ bool Blend::segment_block(const BlendSegmentBlock& b) {
   } else {
     seg.ramp.rate = static_cast<double>(b.rate);
   }
-  if (!b.unused_words_zero) ok = false;  // digest 3.8
+  if (!b.unused_words_zero) ok = false;  // 3601 Ch.5 "Blend Move Programming"
   if (!ok) return false;
 
-  // Digest 7.10 rules 3-5, checked as soon as the segment's data is here: segment 1 starts at
-  // Vs, segment i at V(i-1).
+  // 3601 Ch.5 "Segment Length Restrictions", checked as soon as the segment's data is here: segment
+  // 1 starts at Vs, segment i at V(i-1).
   const double vs = ax_.cfg.starting_speed;
   const double v_prev = n == 1 ? vs : pending_.segments[static_cast<std::size_t>(n - 2)].speed;
   // 3601-IP-06: two consecutive segments with the same speed.
@@ -200,7 +200,7 @@ bool Blend::program(const BlendFirstBlock& first, std::span<const BlendSegmentBl
     bring_down();  // 3202-CE-19 (as 3601-CE-22): the stored profile of the running blend is kept
     return false;
   }
-  // A new profile replaces the stored one (digest 7.10 rule 7): a refused one leaves none.
+  // A new profile replaces the stored one (3601 Ch.4 "Blend Move"): a refused one leaves none.
   stored_ = false;
   cycle_ = false;
   pending_ = planner::BlendSpec{};
@@ -239,7 +239,7 @@ void Blend::run(planner::Direction dir) {
   }
   if (ax_.inputs_block_start(dir)) return;  // A15
   planner::BlendSpec spec = profile_;
-  spec.dir = dir;  // + = CW, - = CCW; a profile never reverses (digest 7.10 rule 6)
+  spec.dir = dir;  // + = CW, - = CCW; a profile never reverses (3601 Ch.4)
   spec.vs = ax_.cfg.starting_speed;
   if (ax_.motion.start_blend(spec) == 0) {
     ax_.reject(
@@ -247,7 +247,7 @@ void Blend::run(planner::Direction dir) {
     return;
   }
   // A new move clears the previous move's outcome (3601-MC-03, HLD-C1, IE-C1, STP-C1). The
-  // position need not be valid: PI is left as it is (digest 7.10 rule 6).
+  // position need not be valid: PI is left as it is (3601 Ch.4 "Blend Move").
   ax_.clear_move_outcome();
   ax_.fire(AxisEvent::kBlendStarted);
   ax_.dir = dir;
@@ -283,7 +283,7 @@ void Blend::bring_down() {
 }
 
 void Blend::erase() {
-  // Digest 7.10 rule 7: a configuration erases the profile (3601-CE-20) and ends any cycle.
+  // 3601-CE-20: a configuration erases the profile and ends any cycle.
   stored_ = false;
   cycle_ = false;
   spoiled_ = false;

@@ -1,7 +1,7 @@
 #pragma once
-// Blend moves of one axis (digest 7.10): the block-by-block programming cycle that builds and
-// checks a profile from decoded blocks, the stored profile, and the running blend's Hold and
-// end rules. It owns the profile and the cycle's state.
+// Blend moves of one axis (3601 Ch.4 "Blend Move", Ch.5): the block-by-block programming cycle that
+// builds and checks a profile from decoded blocks, the stored profile, and the running blend's Hold
+// and end rules. It owns the profile and the cycle's state.
 #include <cstdint>
 #include <span>
 
@@ -16,7 +16,7 @@ class Blend {
   // Every command-mode scan of a configured axis: the programming handshake (`prev`: the
   // previous scan's command image, for the transmit edge).
   void programming_scan(const AxisCommand& c, const AxisCommand& prev);
-  // A whole profile at once (the 3202's blend message, digest 5.8): the block cycle's checks on
+  // A whole profile at once (the 3202's blend message, 3202 Ch.5): the block cycle's checks on
   // the first block and the declared segments; stored only if every check passes. While a blend
   // runs: CE and the blend is brought down with its final deceleration (3202-CE-19). Returns
   // whether it was stored.
@@ -40,7 +40,7 @@ class Blend {
   bool segment_block(const BlendSegmentBlock& b);
   void read_block(const AxisCommand& c);  // one block of the programming cycle
   void end_cycle();                       // the program flag cleared: store or not
-  void bring_down();  // CE-22: programming while the blend runs
+  void bring_down();                      // CE-22: programming while the blend runs
 
   AxisState& ax_;
   planner::BlendSpec profile_{};  // stored profile (dir and vs are set by Run Blend)

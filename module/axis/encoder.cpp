@@ -1,5 +1,5 @@
 // Encoder functions of one axis: the encoder move, Preset Encoder and diagnostic feedback (3601
-// manual Ch.4 "Encoder Move", "Preset Encoder Position", "Diagnostic Feedback"; digest 7.12).
+// manual Ch.4 "Encoder Move", "Preset Encoder Position", "Diagnostic Feedback").
 // The encoder register itself is AxisState::encoder (homing, configuration and capture use it).
 #include "module/axis/encoder.hpp"
 
@@ -29,7 +29,8 @@ void Encoder::move(const AxisCommand& c, bool absolute) {
     return;
   }
   if (ax_.inputs.active(InputLine::kExternal)) {
-    // Digest 7.6 (inferred): External already active → one step, then a stop without Hold.
+    // 3601 Ch.6 "External Input" (inferred for encoder moves): External already active → one step,
+    // then a stop without Hold.
     if (ax_.start_move_steps(dir == planner::Direction::kCw ? 1 : -1, *profile,
                              AxisEvent::kEncoderMoveStarted)) {
       ax_.fire(AxisEvent::kExternalStop);
@@ -62,8 +63,8 @@ void Encoder::watch(const AxisCommand& c, Nanos t) {
       ax_.dir == planner::Direction::kCw ? ax_.encoder >= target_ : ax_.encoder <= target_;
   if (!reached) return;
   watch_ = false;
-  // Digest 7.12 #7: the count is compared only while the encoder-move flag is still set; a PLC
-  // that cleared it makes the move miss its count and keep going (only E-stop, External or
+  // 3601 Ch.4 "Encoder Move": the count is compared only while the encoder-move flag is still set;
+  // a PLC that cleared it makes the move miss its count and keep going (only E-stop, External or
   // Immediate Stop end it then). Clearing only the command is harmless.
   if (!c.encoder_move) return;
   // Reaching the count is the move's normal end (StopCause::kNone → Move Complete, 3601-MC-01).
@@ -103,7 +104,8 @@ void Encoder::scan() {
   if (ax_.cfg.diagnostic_feedback) ax_.encoder += steps - diag_steps_;
   diag_steps_ = steps;
 
-  if (ax_.activity() == Activity::kEncoderMove && stop_pending_ && ax_.motion.stop(ax_.move_decel)) {
+  if (ax_.activity() == Activity::kEncoderMove && stop_pending_ &&
+      ax_.motion.stop(ax_.move_decel)) {
     stop_pending_ = false;
   }
 }

@@ -1,4 +1,4 @@
-// The encoder follower (3601 manual Ch.4 "Encoder Follower", firmware 4.1; digest 7.12).
+// The encoder follower (3601 manual Ch.4 "Encoder Follower", firmware 4.1).
 #include <algorithm>
 
 #include "module/axis/follower.hpp"
@@ -83,7 +83,7 @@ bool Follower::enter(const AxisCommand& c) {
     return false;
   }
   // 3601-CE-42 / A24: "cannot be started when either of the end limit switches are active";
-  // the manual names no error, the digest recommends CE.
+  // the manual names no error; CE, as for the other follower refusals.
   if (ax_.inputs.active(InputLine::kCwLimit) || ax_.inputs.active(InputLine::kCcwLimit)) {
     ax_.reject(items::kFollowerLimit);
     return false;

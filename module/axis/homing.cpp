@@ -1,8 +1,8 @@
 // Find Home + / - (3601 manual Ch.3 item 10, Ch.4 "Find Home" and its notes, Ch.6 HI/IE/PI lists;
-// digest 3.2, 7.11 sequences H-A .. H-D, 8 A8 A12 A15 A44 A49). The 3202 has the same four
+// sequences H-A .. H-D: the step tables below; A8 A12 A15 A44 A49). The 3202 has the same four
 // options; the 3602 the first two (rules.hpp).
 //
-// The four homing options are step tables (A12: the 3601's figures did not survive, the digest's
+// The four homing options are step tables (A12: the 3601's figures did not survive, the manual's
 // written step lists are used and must stay replaceable): a table row says "in step S, on event E,
 // do A and go to step T". What is common to every option (end limits, H-C; E-stop; the start) is
 // code below the tables.
@@ -45,7 +45,7 @@ struct HomingTable {
     Step to;
   };
 
-  // Option 1, H-A: home limit switch only (digest 7.11 H-A steps 1..7).
+  // Option 1, H-A: home limit switch only (3601 Ch.4 "Find Home", steps 1..7).
   static constexpr Row kSwitchOnly[] = {
       {Step::kSearch, Event::kHomeRise, Action::kStopRamp, Step::kFoundStop},     // 2-3
       {Step::kFoundStop, Event::kMotionEnd, Action::kPause, Step::kPause1},       // 3
@@ -55,7 +55,7 @@ struct HomingTable {
 
   // Option 2, H-B: home switch gated by the backplane proximity bit. The home input is ignored
   // until the bit rises; the move-off and the H-C reversal watch the bit, not the home input
-  // ([01] Ch.4 Note 2 under "Home Limit Switch Active..."; A12).
+  // (3601 manual Ch.4 Note 2 under "Home Limit Switch Active..."; A12).
   static constexpr Row kSwitchWithBackplane[] = {
       {Step::kSearch, Event::kProxRise, Action::kSlowToVs, Step::kApproach},
       {Step::kApproach, Event::kHomeRise, Action::kStopAtHome, Step::kFinishing},
@@ -88,7 +88,7 @@ struct HomingTable {
       {Step::kFinishing, Event::kMotionEnd, Action::kComplete, Step::kFinishing},
   };
 
-  // The row for `ev` in `step` of homing option variant + 1 (digest 3.2 table), or nullptr.
+  // The row for `ev` in `step` of homing option variant + 1 (3601 Ch.3), or nullptr.
   static const Row* find(std::uint8_t variant, Step step, Event ev) {
     static constexpr std::span<const Row> kTables[] = {kSwitchOnly, kSwitchWithBackplane,
                                                        kMarkerWithHome, kMarkerWithBackplane};
@@ -117,11 +117,12 @@ bool Homing::admitted(const AxisCommand& c, planner::Direction dir) {
   // 3601-CE-10: "S-Curve acceleration profiles are not allowed during a homing operation."
   if (c.s_curve()) {
     ax_.reject(items::kHomeSCurve, "Find Home with an S-curve selected");
-    if (ax_.rules.homing_s_curve_sets_home_invalid) ax_.fire(AxisEvent::kHomeInvalid);  // 3602-HI-02
+    if (ax_.rules.homing_s_curve_sets_home_invalid)
+      ax_.fire(AxisEvent::kHomeInvalid);  // 3602-HI-02
     return false;
   }
   // 3601-CE-13 / HI-03: Find Home + needs a configured CW limit, Find Home - a CCW limit (not on
-  // the 3602, digest 8.0).
+  // the 3602, 3602 Ch.4 "Homing the 3602").
   if (ax_.rules.homing_needs_limit_ahead && !ax_.cfg.used(limit_toward(dir))) {
     ax_.reject(items::kHomeNoLimit, "Find Home %s: no %s limit configured",
                dir == Direction::kCw ? "+" : "-", dir == Direction::kCw ? "CW" : "CCW");
@@ -144,7 +145,8 @@ bool Homing::admitted(const AxisCommand& c, planner::Direction dir) {
     ax_.fire(AxisEvent::kHomeInvalid);
     return false;
   }
-  // Digest 6.4 row 2: a homing's out-of-range speed, accel or decel raises CE + HI.
+  // 3601-CE-04 with the Home Invalid list: a homing's out-of-range speed, accel or decel raises
+  // CE + HI.
   if (!ax_.speed_in_range(c.speed) || !ax_.rate_in_range(c.accel) || !ax_.rate_in_range(c.decel)) {
     ax_.reject(items::kOutOfRange, "Find Home: speed, accel or decel out of range");
     ax_.fire(AxisEvent::kHomeInvalid);
@@ -172,19 +174,19 @@ void Homing::start(const AxisCommand& c, planner::Direction dir) {
   h_.dir = dir;
   h_.variant = static_cast<std::uint8_t>(ax_.cfg.homing);
   h_.vp = *c.speed;
-  // Constant acceleration only (digest 7.11; S-curve was refused above).
+  // Constant acceleration only (3601-CE-10; S-curve was refused above).
   h_.accel = {static_cast<double>(c.accel), planner::AccelShape::kConstant};
   h_.decel = {static_cast<double>(c.decel), planner::AccelShape::kConstant};
   // A44: the proximity bit acts only when configured. Its transitions count from now on.
   h_.prox = ax_.cfg.backplane_proximity && c.backplane_proximity;
   // "Home input active at the start": the home input, except for option 4 where the backplane
-  // bit stands for it ([01] figure notes: "The Home Input shown above can be either the Home
+  // bit stands for it (3601 manual figure notes: "The Home Input shown above can be either the Home
   // Limit Switch or the Backplane Proximity bit").
   const bool home_active = ax_.cfg.homing == HomingVariant::kMarkerWithBackplane
                                ? h_.prox
                                : ax_.inputs.active(InputLine::kHome);
-  // [01] Ch.4 Note 2 under "End Limit Switch Active...": the limit ahead already active -> begin
-  // at the reversal, no wait (H-C step 4). The opposite limit active: home normally.
+  // 3601 manual Ch.4 Note 2 under "End Limit Switch Active...": the limit ahead already active ->
+  // begin at the reversal, no wait (H-C step 4). The opposite limit active: home normally.
   const bool limit_ahead = ax_.limit_active(dir);
   const bool reverse_first = limit_ahead || home_active;
   const Direction first = reverse_first ? planner::opposite(dir) : dir;
@@ -204,7 +206,8 @@ void Homing::start(const AxisCommand& c, planner::Direction dir) {
   run(first, false);
 }
 
-// Starts one motion of the sequence: Vp with ramps, or the creep at Vs without (digest 7.11).
+// Starts one motion of the sequence: Vp with ramps, or the creep at Vs without (3601 Ch.4
+// "Find Home").
 bool Homing::run(planner::Direction d, bool creep) {
   planner::RunSpec spec;
   spec.dir = d;
@@ -247,7 +250,7 @@ void Homing::event(Event ev) {
       ax_.motion.stop(h_.decel);
       break;
     case Action::kSlowToVs:
-      // Never below Vs; keep running at Vs if reached (digest 7.11 H-B step 3).
+      // Never below Vs; keep running at Vs if reached (3601 Ch.4 "Find Home", H-B step 3).
       if (h_.vp > ax_.cfg.starting_speed) {
         ax_.motion.change_speed(ax_.cfg.starting_speed, h_.accel, h_.decel);
       }
@@ -267,8 +270,8 @@ void Homing::event(Event ev) {
       run(h_.dir, true);
       break;
     case Action::kComplete:
-      // [01] Ch.4 "Find Home": "the 3601 will set the At Home input bit, and then reset both the
-      // current position and the encoder position to zero. If the capture value is present, it
+      // 3601 manual Ch.4 "Find Home": "the 3601 will set the At Home input bit, and then reset both
+      // the current position and the encoder position to zero. If the capture value is present, it
       // too will be reset to zero." Done once the motion has ended, so the step count is final.
       ax_.set_position(0);
       ax_.write_encoder(0);
@@ -278,7 +281,7 @@ void Homing::event(Event ev) {
   }
 }
 
-// An end limit became active during the homing ([01] Ch.4 "Find Home"; digest 7.11 H-C).
+// An end limit became active during the homing (3601 Ch.4 "Find Home", H-C).
 void Homing::limit(bool ahead) {
   if (ahead && h_.limit_reversed && (h_.step == Step::kLimitStop || h_.step == Step::kPause1)) {
     return;  // the same limit again before the reversal has begun (contact bounce): nothing new
@@ -302,7 +305,7 @@ void Homing::limit(bool ahead) {
   }
 }
 
-// Digest 6.4 "Homing overtravel error": HI + IE + PI, immediate stop. 3601-STP-04: Stopped is
+// 3601-HI-04/05, IE-04/05, PI-05/06: HI + IE + PI, immediate stop. 3601-STP-04: Stopped is
 // not set for a limit met during homing.
 void Homing::fail() {
   h_.limit_error = true;
@@ -375,7 +378,7 @@ void Homing::on_input(const gpio::InputEvent& e, bool was_active, bool now_activ
   switch (ax_.role_of(e.line)) {
     case InputLine::kEStop:
       // 3601-IE-01 / PI-03 / STP-02; A49: IE + PI, no HI. The homing is a motion in progress
-      // for its whole sequence, pauses included (digest 7.16).
+      // for its whole sequence, pauses included (docs/axis-states.md "States").
       if (now_active && !was_active) ax_.fault_stop(items::kEStop, "E-stop (homing)");
       return;
     case InputLine::kCwLimit:
@@ -392,7 +395,7 @@ void Homing::on_input(const gpio::InputEvent& e, bool was_active, bool now_activ
       if (e.level) event(Event::kMarker);
       return;
     default:
-      return;  // digest 7.11: the External input has no effect; capture is handled generically
+      return;  // 3601 Ch.4 "Find Home": the External input has no effect; capture: generic
   }
 }
 

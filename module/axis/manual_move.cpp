@@ -1,5 +1,5 @@
 // Manual (jog) moves and registration moves (3601 manual Ch.4 "Manual Move", "Registration
-// Move"; digest 7.8, 7.9) and the minimum registration distance.
+// Move") and the minimum registration distance.
 #include <algorithm>
 #include <cstdlib>
 
@@ -76,8 +76,7 @@ void ManualMove::begin_run(const AxisCommand& c, planner::Direction dir, const P
 
 // The planner's motion: a single pulse for a one-shot (Vp = 0; 3601-STP-N1: no Stopped on
 // release) or with the External input active, else a run. The motion's epoch; 0: refused.
-std::uint32_t ManualMove::start_motion(planner::Direction dir, const Profile& p,
-                                       bool external) {
+std::uint32_t ManualMove::start_motion(planner::Direction dir, const Profile& p, bool external) {
   if (p.vp == 0 || external) {
     planner::MoveSpec one;
     one.steps = 1;
@@ -125,14 +124,14 @@ bool ManualMove::registration_start_allowed(std::int32_t count, double vp,
     return false;
   }
   // 3601-CE-27 / IP-12: started with the External input active, whatever the minimum distance
-  // (the 3602 only with a minimum distance of 0, digest 8.0).
+  // (the 3602 only with a minimum distance of 0, 3602 Ch.2 "Registration Move").
   if (ax_.inputs.active(InputLine::kExternal) &&
       (ax_.rules.registration_external_always_error || min_registration_ == 0)) {
     ax_.reject_profile(items::kRegExternal);
     return false;
   }
   // 3601-CE-28 / IP-13: fewer steps than the deceleration from Vp to Vs needs at the programmed
-  // decel and type (digest 7.9 worked example: 4,950 for Vs 1,000, Vp 10,000, decel 10). The
+  // decel and type (3601 Ch.4 "Registration Move": 4,950 for Vs 1,000, Vp 10,000, decel 10). The
   // small tolerance only absorbs floating-point rounding of an exact integer distance.
   if (vp > ax_.cfg.starting_speed) {
     const double need = planner::ramp_distance(vp, ax_.cfg.starting_speed, decel);
@@ -263,7 +262,8 @@ void ManualMove::runtime_checks(const AxisCommand& c) {
   }
   const planner::Ramp up{static_cast<double>(c.accel), c.shape};
   const planner::Ramp down{static_cast<double>(c.decel), c.shape};
-  // The new speed may be below Vs (digest 7.8); the planner ramps to it with accel or decel.
+  // The new speed may be below Vs (3601 Ch.4 "Manual Move"); the planner ramps to it with accel or
+  // decel.
   ax_.motion.change_speed(static_cast<double>(*speed), up, down);
   ax_.move_decel = down;  // a later release stops with the new decel
   run_.vp = *speed;
@@ -289,11 +289,11 @@ std::int64_t ManualMove::registration_steps_at(Nanos t) const noexcept {
   return std::llabs(s - run_.start_steps);
 }
 
-// The registration condition has been present since `present_since` (level-triggered, digest
-// 7.9 step 3). It counts once the move has output more than Dmin steps (A42: 3601 steps > Dmin;
-// Dmin = 0 disables the rule). If it was already present when the (Dmin+1)-th step went out,
-// the registration starts at that step's own time, found in the step history: the count after
-// the trigger is then exact (R steps after step Dmin+1), independent of the scan period, as
+// The registration condition has been present since `present_since` (level-triggered, 3601 Ch.4
+// "Registration Move" step 3). It counts once the move has output more than Dmin steps (A42: 3601
+// steps > Dmin; Dmin = 0 disables the rule). If it was already present when the (Dmin+1)-th step
+// went out, the registration starts at that step's own time, found in the step history: the count
+// after the trigger is then exact (R steps after step Dmin+1), independent of the scan period, as
 // the firmware's step-counting would make it. Otherwise it starts at the time the condition
 // appeared (the External edge's timestamp, or the scan that saw the bit reset).
 void ManualMove::registration_check(Nanos now, Nanos present_since, StopCause cause) {
@@ -330,12 +330,12 @@ void ManualMove::registration_check(Nanos now, Nanos present_since, StopCause ca
   run_.triggered = true;
   // Stopped when the count has been output (3601-STP-01).
   ax_.fire(cause == StopCause::kRelease ? AxisEvent::kReleaseStop : AxisEvent::kExternalStop);
-  // Exactly R further steps, the deceleration included (digest 7.9 step 4, planner).
+  // Exactly R further steps, the deceleration included (3601 Ch.4 "Registration Move", planner).
   ax_.motion.stop_after(t, run_.count, registration_steps_at(t));
 }
 
 // The store bit rising with no command bit set: Program Minimum Registration Move Distance (3601
-// manual Ch.4 "New Command Bit"; digest 3.8).
+// manual Ch.4 "New Command Bit").
 void ManualMove::store_min_registration(const AxisCommand& c) {
   // The dialect's word rules (words that must be 0 with the store flag).
   if (c.words_invalid) {
@@ -352,7 +352,8 @@ void ManualMove::store_min_registration(const AxisCommand& c) {
 }
 
 // Input edges during a manual move: a registration move takes the External input as its
-// trigger (digest 7.6); the limits and the E-stop keep the generic rules (axis_inputs.cpp).
+// trigger (3601 Ch.6 "External Input"); the limits and the E-stop keep the generic rules
+// (axis_inputs.cpp).
 bool ManualMove::on_input(const gpio::InputEvent& e, bool now_active) {
   if (run_.kind != Kind::kRegistration || e.line != InputLine::kExternal) {
     return false;
