@@ -223,7 +223,7 @@ bool Axis::busy_this_scan() const noexcept {
 
 AxisStatus Axis::status() const noexcept {
   AxisStatus s;
-  const Latches& l = st_.latches();
+  const Latches l = st_.latches();
   s.configuration_mode = config_mode_;
   const bool pulsing = st_.activity() != Activity::kCoordinated || coordinated_stepped_;
   if (st_.moving() && busy_this_scan() && pulsing) {

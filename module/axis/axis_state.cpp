@@ -4,6 +4,20 @@
 
 namespace stepmod::module::axis {
 
+Latches AxisState::latches() const noexcept {
+  const auto on = [this](Latch l) { return machine_.latched(l); };
+  return {.hold = on(Latch::kHold),
+          .stopped = on(Latch::kStopped),
+          .at_home = on(Latch::kAtHome),
+          .move_complete = on(Latch::kMoveComplete),
+          .home_invalid = on(Latch::kHomeInvalid),
+          .invalid_profile = on(Latch::kInvalidProfile),
+          .position_invalid = on(Latch::kPositionInvalid),
+          .input_error = on(Latch::kInputError),
+          .command_error = on(Latch::kCommandError),
+          .configuration_error = on(Latch::kConfigurationError)};
+}
+
 std::optional<Profile> AxisState::read_profile(const AxisCommand& c, bool ramped) {
   // 3601-CE-04 / IP-02: speed, accel or decel outside its range.
   if (!speed_in_range(c.speed)) {

@@ -22,6 +22,20 @@
 
 namespace stepmod::module::axis {
 
+// Status and error latches, named as in the manuals (written by the table of transitions only).
+struct Latches {
+  bool hold = false;
+  bool stopped = false;
+  bool at_home = false;
+  bool move_complete = false;
+  bool home_invalid = false;
+  bool invalid_profile = false;
+  bool position_invalid = false;
+  bool input_error = false;
+  bool command_error = false;
+  bool configuration_error = false;
+};
+
 // A programmed speed with its two ramps, read from a command.
 struct Profile {
   double vp = 0;
@@ -47,8 +61,9 @@ struct AxisState {
   // to the table of transitions (axis_transitions.hpp, docs/axis-states.md).
   Activity activity() const noexcept { return machine_.activity(); }
   StopCause stop_cause() const noexcept { return machine_.stop_cause(); }
-  const Latches& latches() const noexcept { return machine_.latches(); }
-  bool hold_coordinated() const noexcept { return machine_.hold_coordinated(); }
+  Latches latches() const noexcept;
+  // The Hold state belongs to a coordinated motion: its coordinator resumes it (Axis).
+  bool hold_coordinated() const noexcept { return machine_.latched(Latch::kHoldCoordinated); }
   // True when the table has a row for `ev` in the present state (and it has been applied).
   bool fire(AxisEvent ev) noexcept { return machine_.fire(ev); }
 

@@ -40,19 +40,32 @@ enum class StopCause : std::uint8_t {
   kCount
 };
 
-// Status and error latches, named as in the manuals.
-struct Latches {
-  bool hold = false;
-  bool stopped = false;
-  bool at_home = false;
-  bool move_complete = false;
-  bool home_invalid = false;
-  bool invalid_profile = false;
-  bool position_invalid = false;
-  bool input_error = false;
-  bool command_error = false;
-  bool configuration_error = false;
+// The status and error latches, named as in the manuals (AxisState::latches() reads them as a
+// struct), and HoldCoordinated: the Hold state belongs to a coordinated motion, whose
+// coordinator resumes it.
+enum class Latch : std::uint8_t {
+  kMoveComplete,
+  kHold,
+  kHoldCoordinated,
+  kStopped,
+  kAtHome,
+  kHomeInvalid,
+  kInvalidProfile,
+  kPositionInvalid,
+  kInputError,
+  kCommandError,
+  kConfigurationError,
+  kCount
 };
+using LatchSet = std::uint16_t;
+constexpr LatchSet bit(Latch l) noexcept {
+  return static_cast<LatchSet>(1u << static_cast<unsigned>(l));
+}
+template <typename... L>
+constexpr LatchSet latch_set(L... l) noexcept {
+  return static_cast<LatchSet>((LatchSet{0} | ... | bit(l)));
+}
+inline constexpr LatchSet kAllLatches = (1u << static_cast<unsigned>(Latch::kCount)) - 1;
 
 // What happened to the axis, as the feature that saw it reports it (docs/axis-states.md
 // "Events"). Each is a row (or a few, by state) of the table.
@@ -107,38 +120,6 @@ enum class AxisEvent : std::uint8_t {
   kCount
 };
 
-// What a row does to the latches, as bits; several at once. Cleared first, then set.
-namespace action {
-using Set = std::uint32_t;
-inline constexpr Set kNone = 0;
-inline constexpr Set kSetMoveComplete = 1u << 0;
-inline constexpr Set kClearMoveComplete = 1u << 1;
-inline constexpr Set kClearMoveCompleteOnPreset = 1u << 2;  // ModuleRules says so
-inline constexpr Set kSetHold = 1u << 3;
-inline constexpr Set kClearHold = 1u << 4;
-inline constexpr Set kSetHoldCoordinated = 1u << 5;
-inline constexpr Set kClearHoldCoordinated = 1u << 6;
-inline constexpr Set kSetStopped = 1u << 7;
-inline constexpr Set kClearStopped = 1u << 8;
-inline constexpr Set kSetAtHome = 1u << 9;
-inline constexpr Set kClearAtHome = 1u << 10;
-inline constexpr Set kSetHomeInvalid = 1u << 11;
-inline constexpr Set kClearHomeInvalid = 1u << 12;
-inline constexpr Set kSetInvalidProfile = 1u << 13;
-inline constexpr Set kClearInvalidProfile = 1u << 14;
-inline constexpr Set kSetPositionInvalid = 1u << 15;
-inline constexpr Set kClearPositionInvalid = 1u << 16;
-inline constexpr Set kSetInputError = 1u << 17;
-inline constexpr Set kClearInputError = 1u << 18;
-inline constexpr Set kClearInputErrorUnlessKept = 1u << 19;  // ModuleRules says so
-inline constexpr Set kSetCommandError = 1u << 20;
-inline constexpr Set kClearCommandError = 1u << 21;
-inline constexpr Set kSetConfigurationError = 1u << 22;
-inline constexpr Set kClearConfigurationError = 1u << 23;
-inline constexpr Set kClearAllLatches = 1u << 24;
-inline constexpr unsigned kCount = 25;
-}  // namespace action
-
 // Sets of states, as bits of Activity / StopCause.
 using ActivitySet = std::uint16_t;
 using CauseSet = std::uint8_t;
@@ -153,15 +134,19 @@ inline constexpr ActivitySet kMoving = kAnyActivity & ~in(Activity::kIdle);
 inline constexpr CauseSet kAnyCause = (1u << static_cast<unsigned>(StopCause::kCount)) - 1;
 
 // A row: in an activity of `from`, stopping for a cause of `cause_in`, `on` leads to `to` (nullopt:
-// unchanged) with the stop cause `cause_to` (nullopt: unchanged) and `actions` on the latches.
-// `item`: the manuals' checklist items (or our docs) the row implements.
+// unchanged) with the stop cause `cause_to` (nullopt: unchanged); the latches of `clear` are
+// cleared, those of `clear_per_module` where the module's rules say so (Move Complete at a preset,
+// 3602-MC-02; Input Error at a new move, 3602-IE-C1), then those of `set` are set. `item`: the
+// manuals' checklist items the row implements.
 struct Transition {
   ActivitySet from;
   CauseSet cause_in;
   AxisEvent on;
   std::optional<Activity> to;
   std::optional<StopCause> cause_to;
-  action::Set actions;
+  LatchSet set;
+  LatchSet clear;
+  LatchSet clear_per_module;
   const char* item;
 };
 
@@ -172,8 +157,7 @@ std::span<const Transition> transitions() noexcept;
 std::string_view name_of(Activity a) noexcept;
 std::string_view name_of(StopCause c) noexcept;
 std::string_view name_of(AxisEvent e) noexcept;
-// "+MC" / "-PI" ...: the short name of one action bit.
-std::string_view name_of_action(unsigned bit) noexcept;
+std::string_view name_of(Latch l) noexcept;  // short: "MC", "PI", ...
 
 // The present state and the only code that changes it (fire()).
 class AxisStateMachine {
@@ -183,22 +167,19 @@ class AxisStateMachine {
 
   Activity activity() const noexcept { return activity_; }
   StopCause stop_cause() const noexcept { return cause_; }
-  const Latches& latches() const noexcept { return latches_; }
-  // The Hold state belongs to a coordinated motion: its coordinator resumes it (Axis).
-  bool hold_coordinated() const noexcept { return hold_coordinated_; }
+  bool latched(Latch l) const noexcept { return (latches_ & bit(l)) != 0; }
 
   // Applies the table's row for `ev` in the present state; false (nothing changed) when it has
   // none, e.g. a stop asked for while the motion is stopping already.
   bool fire(AxisEvent ev) noexcept;
 
  private:
-  void apply(action::Set a) noexcept;
+  bool module_clears(Latch l) const noexcept;  // Transition::clear_per_module
 
   const ModuleRules& rules_;
   Activity activity_ = Activity::kIdle;
   StopCause cause_ = StopCause::kNone;
-  Latches latches_;
-  bool hold_coordinated_ = false;
+  LatchSet latches_ = 0;
 };
 
 }  // namespace stepmod::module::axis

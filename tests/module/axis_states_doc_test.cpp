@@ -47,8 +47,15 @@ std::string label(const Transition& t) {
   }
   std::ostringstream effects;
   if (t.cause_to) effects << " cause:=" << name_of(*t.cause_to);
-  for (unsigned bit = 0; bit < action::kCount; ++bit) {
-    if ((t.actions & (1u << bit)) != 0) effects << ' ' << name_of_action(bit);
+  if (t.clear == kAllLatches) effects << " -all";
+  for (unsigned l = 0; l < static_cast<unsigned>(Latch::kCount); ++l) {
+    const Latch latch = static_cast<Latch>(l);
+    if (t.clear != kAllLatches && (t.clear & bit(latch)) != 0) effects << " -" << name_of(latch);
+    if ((t.clear_per_module & bit(latch)) != 0) effects << " -" << name_of(latch) << "(module)";
+  }
+  for (unsigned l = 0; l < static_cast<unsigned>(Latch::kCount); ++l) {
+    const Latch latch = static_cast<Latch>(l);
+    if ((t.set & bit(latch)) != 0) effects << " +" << name_of(latch);
   }
   if (!effects.str().empty()) s.append(" /").append(effects.str());
   return s;
