@@ -14,8 +14,7 @@ Axis::Axis(const ModuleRules& rules, AxisIo& io, planner::MotionPort& motion)
   st_.inputs.init(io, motion.axis());
   quadrature_.reset(st_.inputs.level(InputLine::kEncA), st_.inputs.level(InputLine::kEncB));
   // 3601-CFG-01: power-up in command mode with Configuration Error (the 3202: without).
-  st_.status.configuration_error = rules.powers_up_with_configuration_error;
-  if (st_.status.configuration_error) st_.note(items::kPowerUp);
+  if (st_.latches().configuration_error) st_.note(items::kPowerUp);
   st_.explain_new_errors();
 }
 
@@ -26,7 +25,8 @@ void Axis::scan(const AxisCommand& c, const std::optional<AxisConfig>& configura
     if (c.configuration_mode) {
       take_configuration(configuration);
     } else {
-      // Issue 12 item 3, digest 7.15/7.16: the image that leaves configuration mode is already a
+      // Issue 12 item 3; 3601 Ch.3 "Configuration Mode", Ch.4 general note 3 (commands act on a
+      // 0->1 transition of their bit): the image that leaves configuration mode is already a
       // command image. Commands fire on a 0->1 edge, and the configuration words of the previous
       // scans are not command words: the previous command set is empty (enter_command_mode), so
       // a command written together with the mode bit's clearing is an edge and acts now (or gets
@@ -42,9 +42,9 @@ void Axis::scan(const AxisCommand& c, const std::optional<AxisConfig>& configura
     if (st_.moving()) {
       if (!config_after_motion_) st_.reject(items::kConfigWhileMoving);
       config_after_motion_ = true;
-      if (st_.activity == Activity::kHoming) homing_.timers(now);  // its pauses go on meanwhile
+      if (st_.activity() == Activity::kHoming) homing_.timers(now);  // its pauses go on meanwhile
     } else {
-      if (config_after_motion_) st_.status.command_error = false;
+      if (config_after_motion_) st_.fire(AxisEvent::kCommandErrorCleared);
       config_after_motion_ = false;
       config_mode_ = true;
       take_configuration(configuration);
@@ -61,7 +61,7 @@ void Axis::scan(const AxisCommand& c, const std::optional<AxisConfig>& configura
 // the same): valid -> stored for the return to command mode and CfgE = 0; invalid -> CfgE = 1.
 void Axis::take_configuration(const std::optional<AxisConfig>& configuration) {
   pending_ = configuration;
-  st_.status.configuration_error = !configuration.has_value();
+  st_.fire(configuration ? AxisEvent::kConfigurationAccepted : AxisEvent::kConfigurationRefused);
   if (configuration) {
     cfg_fault_noted_ = 0;
   } else if (cfg_fault_noted_ != cfg_fault_number_ || cfg_fault_number_ == 0) {
@@ -78,11 +78,11 @@ void Axis::take_configuration(const std::optional<AxisConfig>& configuration) {
   }
 }
 
-// Leaving configuration mode (digest 7.15, 3601-CFG-13, 3601-PI-01).
+// Leaving configuration mode (3601 Ch.3, 3601-CFG-13, 3601-PI-01).
 void Axis::enter_command_mode() {
   config_mode_ = false;
   // Edges are detected against command images from here on, not the configuration words: the
-  // previous command set is empty (digest 7.16; see scan()).
+  // previous command set is empty (3601 Ch.4 general note 3; see scan()).
   prev_ = AxisCommand{};
   // 3601 Ch.4 "Registration Move": the minimum registration distance is reset by every
   // configuration (3601-LSW-01 then reads 0).
@@ -102,128 +102,99 @@ void Axis::enter_command_mode() {
   // A18 (b): the encoder and capture registers are zeroed by a configuration too.
   st_.write_encoder(0);
   st_.capture = 0;
-  st_.status = Latches{};
-  st_.status.position_invalid = true;
+  st_.fire(AxisEvent::kConfigured);
   st_.note(items::kPiConfigured);
-  st_.hold_coordinated = false;
   held_target_ = 0;
 }
 
 void Axis::poll_motion_end() {
   busy_at_poll_ = st_.motion.busy();
   epoch_at_poll_ = st_.motion.epoch();
-  // Late-edge guard (issue 12; rt::PulseEngine::set_late_limit): the pulse thread cut the motion
-  // rather than burst its late steps out. The PLC sees what an Immediate Stop gives (3601-STP-03,
-  // PI-02: Stopped, Position Invalid), so its program re-homes; immediate_stop() also ends the
-  // planner's side of the motion. Once: afterwards the cause is kImmediate or the axis is idle.
-  if (st_.moving() && st_.stop_cause != StopCause::kImmediate &&
-      st_.stop_cause != StopCause::kFault && st_.motion.late_faulted()) {
+  cut_late_motion();
+  const Activity ended = st_.activity();
+  if (ended == Activity::kCoordinated) {
+    follow_coordinated_steps();  // its coordinator ends it (end_coordinated)
+    return;
+  }
+  if (ended == Activity::kIdle || ended == Activity::kFollower || busy_at_poll_) return;
+  // The outcome (Move Complete, Hold, Stopped) by activity and stop cause: the table's rows for
+  // MotionEnded (docs/axis-states.md). A homing sequence is several motions and pauses: it goes
+  // on, and ends when Homing says.
+  const StopCause cause = st_.stop_cause();
+  st_.fire(AxisEvent::kMotionEnded);
+  if (ended == Activity::kHoming) {
+    homing_.motion_ended(cause);
+  } else if (ended == Activity::kBlend) {
+    blend_.motion_ended();  // CE-23's self-clear (blend.cpp)
+  } else if (ended == Activity::kMove &&
+             (cause == StopCause::kHold || cause == StopCause::kExternal)) {
+    held_target_ = move_target_;  // 3601-HLD-01/02/03: a held move keeps its target for Resume
+  }
+}
+
+// Late-edge guard (issue 12; rt::PulseEngine::set_late_limit): the pulse thread cut the motion
+// rather than burst its late steps out. The PLC sees what an Immediate Stop gives (3601-STP-03,
+// PI-02: Stopped, Position Invalid), so its program re-homes; immediate_stop() also ends the
+// planner's side of the motion. Once: afterwards the cause is kImmediate or the axis is idle.
+void Axis::cut_late_motion() {
+  const StopCause cause = st_.stop_cause();
+  if (st_.moving() && cause != StopCause::kImmediate && cause != StopCause::kFault &&
+      st_.motion.late_faulted()) {
     st_.immediate_stop(StopCause::kImmediate);
     st_.note(items::kPiLateEdge, "late-edge fault at step %lld: re-home",
              static_cast<long long>(st_.position()));
   }
-  if (st_.activity == Activity::kCoordinated) {
-    // Its coordinator ends it (end_coordinated). The direction bits follow the axis' own steps:
-    // on a path an axis reverses (arcs) or never steps at all (a line along the other axis).
-    const std::int64_t steps = st_.motion.steps();
-    if (steps != coordinated_steps_) {
-      st_.dir = steps > coordinated_steps_ ? planner::Direction::kCw : planner::Direction::kCcw;
-      coordinated_stepped_ = true;
-      coordinated_steps_ = steps;
-    }
-    return;
-  }
-  if (st_.activity == Activity::kIdle || st_.activity == Activity::kFollower || busy_at_poll_) {
-    return;
-  }
-  if (st_.activity == Activity::kHoming) {
-    // A homing sequence is several motions and pauses; it ends when Homing says.
-    const StopCause cause = st_.stop_cause;
-    st_.stop_cause = StopCause::kNone;
-    homing_.motion_ended(cause);
-    return;
-  }
-  const Activity ended = st_.activity;
-  st_.activity = Activity::kIdle;
-  const StopCause cause = st_.stop_cause;
-  st_.stop_cause = StopCause::kNone;
-  if (ended == Activity::kBlend) {
-    blend_.motion_ended(cause);  // MC / Stopped / CE-23 self-clear (blend.cpp)
-    return;
-  }
-  switch (cause) {
-    case StopCause::kNone:
-      // 3601-MC-01: an absolute/relative or encoder move that reached its target.
-      if (ended == Activity::kMove || ended == Activity::kEncoderMove) {
-        st_.status.move_complete = true;
-      }
-      // 3601-STP-N1: a one-shot manual move ends without Stopped.
-      break;
-    case StopCause::kHold:
-    case StopCause::kExternal:
-      if (ended == Activity::kMove) {
-        // 3601-HLD-01/02/03: a held move keeps its target for Resume.
-        st_.status.hold = true;
-        held_target_ = move_target_;
-      } else {
-        st_.status.stopped = true;  // 3601-STP-01: manual move stopped by the External input
-      }
-      break;
-    case StopCause::kRelease:    // 3601-STP-01
-    case StopCause::kImmediate:  // 3601-STP-03
-    case StopCause::kFault:      // 3601-STP-02/04
-      st_.status.stopped = true;
-      break;
+}
+
+// The direction bits of a coordinated motion follow the axis' own steps: on a path an axis
+// reverses (arcs) or never steps at all (a line along the other axis).
+void Axis::follow_coordinated_steps() {
+  const std::int64_t steps = st_.motion.steps();
+  if (steps != coordinated_steps_) {
+    st_.dir = steps > coordinated_steps_ ? planner::Direction::kCw : planner::Direction::kCcw;
+    coordinated_stepped_ = true;
+    coordinated_steps_ = steps;
   }
 }
 
 bool Axis::inputs_block_start(std::optional<planner::Direction> dir) {
   if (dir) return st_.inputs_block_start(*dir);
   if (!st_.estop_active()) return false;
-  st_.status.input_error = true;
+  st_.fire(AxisEvent::kStartBlocked);
   st_.note(items::kStartTowardLimit, "E-stop active: the path does not start");
   return true;
 }
 
 void Axis::begin_coordinated(planner::Ramp decel) {
   st_.clear_move_outcome();
-  st_.activity = Activity::kCoordinated;
-  st_.stop_cause = StopCause::kNone;
+  st_.fire(AxisEvent::kCoordinatedBegun);
   st_.move_decel = decel;
   coordinated_steps_ = st_.motion.steps();
   coordinated_stepped_ = false;
 }
 
 void Axis::stop_coordinated(StopCause cause) {
-  if (st_.activity != Activity::kCoordinated) return;
+  if (st_.activity() != Activity::kCoordinated) return;
   if (cause == StopCause::kImmediate || cause == StopCause::kFault) {
     st_.immediate_stop(cause);  // 3602-PI-04 / PI-07: both axes' positions invalid
-  } else if (st_.stop_cause == StopCause::kNone) {
-    st_.stop_cause = cause;
+  } else if (cause == StopCause::kHold) {
+    st_.fire(AxisEvent::kHoldRequested);  // only while it is not stopping already
+  } else if (cause == StopCause::kExternal) {
+    st_.fire(AxisEvent::kExternalStop);
   }
 }
 
 void Axis::end_coordinated(CoordinatedEnd end) {
-  if (st_.activity != Activity::kCoordinated) return;
-  st_.activity = Activity::kIdle;
-  st_.stop_cause = StopCause::kNone;
-  switch (end) {
-    case CoordinatedEnd::kComplete:
-      st_.status.move_complete = true;  // 3602-MC-01: on every axis of the path
-      break;
-    case CoordinatedEnd::kHeld:
-      st_.status.hold = true;  // 3602-HLD-01
-      st_.hold_coordinated = true;
-      break;
-    case CoordinatedEnd::kStopped:
-      break;
-  }
+  // 3602-MC-01: Move Complete on every axis of the path; 3602-HLD-01: Hold on the first.
+  st_.fire(end == CoordinatedEnd::kComplete ? AxisEvent::kCoordinatedCompleted
+           : end == CoordinatedEnd::kHeld   ? AxisEvent::kCoordinatedHeld
+                                            : AxisEvent::kCoordinatedStopped);
 }
 
 bool Axis::program_blend(const BlendFirstBlock& first,
                          std::span<const BlendSegmentBlock> segments) {
   if (config_mode_ || !st_.configured) {
-    st_.status.invalid_profile = true;  // 3202-IP-15
+    st_.fire(AxisEvent::kProfileInvalid);  // 3202-IP-15
     st_.note(items::kBlendNotConfigured);
     st_.explain_new_errors();
     return false;
@@ -251,9 +222,9 @@ bool Axis::busy_this_scan() const noexcept {
 
 AxisStatus Axis::status() const noexcept {
   AxisStatus s;
-  const Latches& l = st_.status;
+  const Latches l = st_.latches();
   s.configuration_mode = config_mode_;
-  const bool pulsing = st_.activity != Activity::kCoordinated || coordinated_stepped_;
+  const bool pulsing = st_.activity() != Activity::kCoordinated || coordinated_stepped_;
   if (st_.moving() && busy_this_scan() && pulsing) {
     // 3601-DIR-01: direction of the pulses being output.
     s.moving_cw = st_.dir == planner::Direction::kCw;
@@ -292,7 +263,7 @@ AxisStatus Axis::status() const noexcept {
   s.proximity_echo = prev_.backplane_proximity;
   s.blend_running = blend_.running();
   s.blend_acknowledge = blend_.acknowledge();
-  s.follower_mode = st_.activity == Activity::kFollower;
+  s.follower_mode = st_.activity() == Activity::kFollower;
   s.min_registration_set = manual_.min_registration_set();
   s.position = st_.position();
   s.encoder = st_.encoder;

@@ -4,7 +4,8 @@
 // producing a decoded status (axis_status.hpp). What differs between the modules comes from its
 // ModuleRules (rules.hpp); which word and bit carries what is the dialects' business
 // (module/m3601/...). The features are objects that own their state: Homing, ManualMove, Blend,
-// Encoder, Follower; they share the axis' AxisState.
+// Encoder, Follower; they share the axis' AxisState, whose activity, stop cause and latches
+// change only through the table of transitions (axis_transitions.hpp, docs/axis-states.md).
 //
 // Files: axis.cpp (modes, the scan, the end of a motion, the status), axis_commands.cpp (command
 // edges and the plain commands), axis_inputs.cpp (input edges, capture).
@@ -50,12 +51,12 @@ class Axis {
   // The last reason recorded for an error bit (docs/error-reasons.md).
   const ErrorReason& reason() const noexcept { return st_.reason; }
 
-  // The 3202's blend message for this channel (digest 5.8): 3202-IP-15 before the channel is
-  // configured, else Blend::program. Returns whether the profile was stored.
+  // The 3202's blend message for this channel (3202 Ch.5 "Blend Move Programming"): 3202-IP-15
+  // before the channel is configured, else Blend::program. Returns whether the profile was stored.
   bool program_blend(const BlendFirstBlock& first, std::span<const BlendSegmentBlock> segments);
   // A blend message that names no channel (3202-IP-11, A23): Invalid Profile on every channel.
   void set_invalid_profile(const Item& why = items::kBlendNoChannel) noexcept {
-    st_.status.invalid_profile = true;
+    st_.fire(AxisEvent::kProfileInvalid);
     st_.note(why);
     st_.explain_new_errors();
   }
@@ -84,7 +85,7 @@ class Axis {
   // Configured, enabled and in command mode: the axis can take part in a coordinated motion.
   bool commandable() const noexcept { return st_.configured && !st_.cfg.disabled && !config_mode_; }
   const AxisConfig& config() const noexcept { return st_.cfg; }
-  // A motion is in progress (digest 7.16), coordinated or not.
+  // A motion is in progress (docs/axis-states.md "States"), coordinated or not.
   bool moving() const noexcept { return st_.moving(); }
   // A15 at a coordinated start heading `dir` on this axis (nullopt: not moving): an active
   // E-stop, or the end limit toward `dir` -> Input Error, true (the motion must not start).
@@ -93,7 +94,7 @@ class Axis {
   // outcome is cleared (MC, Hold, IE), the axis is moving until end_coordinated.
   void begin_coordinated(planner::Ramp decel);
   // Why the coordinated motion is stopping early (kNone: it runs to its end).
-  StopCause stop_cause() const noexcept { return st_.stop_cause; }
+  StopCause stop_cause() const noexcept { return st_.stop_cause(); }
   // The coordinator stops this axis' part: kImmediate / kFault cut it at once (PI); kHold /
   // kExternal mark the controlled stop another axis asked the path for.
   void stop_coordinated(StopCause cause);
@@ -122,7 +123,7 @@ class Axis {
   }
 
  private:
-  // Modes (digest 7.15).
+  // Modes (3601 Ch.3, 3602 Ch.8, 3202 Ch.3).
   void take_configuration(const std::optional<AxisConfig>& configuration);
   void enter_command_mode();
   // Command mode (axis_commands.cpp).
@@ -139,9 +140,15 @@ class Axis {
   void command_immediate_stop();
   void command_preset_position(const AxisCommand& c);
   void command_reset_errors();
-  void input_edge(const InputEvent& e);  // on_input() without the reason check
+  void input_edge(const InputEvent& e);        // on_input() without the reason check
+  void count_encoder_edge(Nanos t);            // an A / B edge: X4 decoding, the encoder register
+  void capture_at(Nanos t);                    // the capture input's active edge
+  void input_during_motion(InputLine line, Nanos t);  // an input that became active
+  void limit_during_motion(bool cw_limit);
   // The pulse thread has ended the motion: its outcome in the status latches.
   void poll_motion_end();
+  void cut_late_motion();           // the pulse thread's late-edge fault: an immediate stop
+  void follow_coordinated_steps();  // the direction bits of a coordinated motion
   // Whether the motion runs, as this scan sees it (status()).
   bool busy_this_scan() const noexcept;
   // An encoder count changed at `t` (X4 decoding).
@@ -170,7 +177,8 @@ class Axis {
   std::int64_t coordinated_steps_ = 0;
   bool coordinated_stepped_ = false;
   std::optional<Profile> coordinated_resume_;
-  // The previous scan's command image: edges are found against it (digest 7.16). After the scan
+  // The previous scan's command image: edges are found against it (3601 Ch.4 general note 3).
+  // After the scan
   // it is this scan's image, which the status reads.
   AxisCommand prev_;
   unsigned cfg_fault_number_ = 0;  // set_configuration_fault()

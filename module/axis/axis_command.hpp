@@ -2,7 +2,8 @@
 // The decoded command image of one axis/channel for one scan: which commands are asked for, the
 // level bits, and the parameters as numbers in the shared code's units (steps, steps/s,
 // steps/s^2). A dialect (module/m3601/...) builds it from its command words, word-level rules
-// included; the shared axis code finds the 0->1 edges itself, on command kinds (digest 7.16).
+// included; the shared axis code finds the 0->1 edges itself, on command kinds (3601 Ch.4 general
+// note 3).
 #include <array>
 #include <bitset>
 #include <cstdint>
@@ -85,7 +86,7 @@ class CommandSet {
   std::bitset<static_cast<std::size_t>(CommandKind::kCount)> bits_;
 };
 
-// The first block of a blend programming cycle (digest 3.8, 7.10).
+// The first block of a blend programming cycle (3601 Ch.5 "Blend Move Programming").
 struct BlendFirstBlock {
   std::int32_t segments = 0;                       // declared count (valid: 2..16)
   std::array<planner::AccelShape, 16> shapes{};    // acceleration type of segment 1..16
@@ -94,7 +95,8 @@ struct BlendFirstBlock {
   bool unused_words_zero = true;                   // the words the block leaves empty are 0
 };
 
-// A segment block: length, speed, the rate that reaches the speed (digest 3.8).
+// A segment block: length, speed, the rate that reaches the speed (3601 Ch.5 "Blend Move
+// Programming").
 struct BlendSegmentBlock {
   std::optional<std::int32_t> length;  // nullopt: not encodable
   std::optional<std::int32_t> speed;   // steps/s

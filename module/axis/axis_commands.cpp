@@ -1,6 +1,7 @@
-// Command mode: the scan's order, the command edges (digest 7.16) and the plain commands of the
+// Command mode: the scan's order, the command edges (3601 Ch.4 general note 3) and the plain
+// commands of the
 // 3601 manual Ch.4 (absolute/relative move, Hold, Resume, Immediate Stop, Preset Position, Reset
-// Errors). Every rejection names the checklist item of digest 6.1 it implements.
+// Errors). Every rejection names the checklist item (the manual's Ch.6 lists) it implements.
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -38,13 +39,14 @@ void Axis::command_mode_scan(const AxisCommand& c, Nanos now) {
   manual_.scan(c, rising, now);
   encoder_.scan();
   follower_.scan(c, prev_);
-  if (st_.activity == Activity::kHoming) homing_.scan(c, now);
+  if (st_.activity() == Activity::kHoming) homing_.scan(c, now);
   blend_.programming_scan(c, prev_);
   if (!rising.empty()) {
     command_edge(c, rising, now);
   } else if (c.commands.empty() && c.store_min_registration && !prev_.store_min_registration &&
-             !st_.status.command_error) {
-    manual_.store_min_registration(c);  // no command set, the store flag rising (digest 3.8)
+             !st_.latches().command_error) {
+    manual_.store_min_registration(
+        c);  // no command set, the store flag rising (3601 Ch.4 "New Command Bit")
   }
 }
 
@@ -56,7 +58,7 @@ void Axis::command_edge(const AxisCommand& c, const CommandSet& rising, Nanos no
 
 std::optional<CommandKind> Axis::admitted_command(const AxisCommand& c, const CommandSet& rising) {
   // 3601-CE-L1: while CE is set, only Reset Errors is looked at (Immediate Stop included).
-  if (st_.status.command_error && !rising.has(CommandKind::kResetErrors)) return {};
+  if (st_.latches().command_error && !rising.has(CommandKind::kResetErrors)) return {};
   // 3601-CE-02 / CE-12: more than one command at a time. A33: an undefined command bit counts as
   // a command.
   if (c.commands.count() > 1) {
@@ -89,7 +91,7 @@ std::optional<CommandKind> Axis::admitted_command(const AxisCommand& c, const Co
   if (c.reserved_words_nonzero) {
     st_.reject_profile(items::kReservedWords, "reserved command words are not 0");
     if (*kind == CommandKind::kFindHomeCw || *kind == CommandKind::kFindHomeCcw) {
-      st_.status.home_invalid = true;
+      st_.fire(AxisEvent::kHomeInvalid);
     }
     return {};
   }
@@ -177,7 +179,7 @@ void Axis::command_move(const AxisCommand& c, bool absolute) {
     return;
   }
   // 3601-CE-06: an absolute move needs a valid position.
-  if (absolute && st_.status.position_invalid) {
+  if (absolute && st_.latches().position_invalid) {
     st_.reject(items::kAbsoluteWithPi, "absolute move while the position is invalid");
     return;
   }
@@ -196,7 +198,7 @@ void Axis::command_move(const AxisCommand& c, bool absolute) {
   st_.clear_move_outcome();
   move_target_ = end;
   if (steps == 0) {
-    st_.status.move_complete = true;  // already at the target: nothing to output
+    st_.fire(AxisEvent::kAtTarget);  // already at the target: nothing to output
     return;
   }
   st_.start_abs_rel(steps, *profile);
@@ -204,37 +206,32 @@ void Axis::command_move(const AxisCommand& c, bool absolute) {
 
 // Hold: 3601 manual Ch.4 "Hold Move".
 void Axis::command_hold(Nanos now) {
-  if (st_.activity == Activity::kEncoderMove) return;  // A4: ignored, no CE (encoder.cpp)
-  if (st_.activity == Activity::kMove) {
+  const Activity running = st_.activity();
+  if (running == Activity::kEncoderMove) return;  // A4: ignored, no CE (encoder.cpp)
+  if (running == Activity::kMove) {
     // 3202-CE-07: "because the module is already decelerating" (rules.hpp).
     if (st_.rules.hold_ignored_while_decelerating &&
         st_.motion.phase() == planner::MotionPort::Phase::kDecelerating) {
       return;
     }
-    // A hold already under way (or the External input's) needs nothing more.
-    if (st_.stop_cause == StopCause::kNone) {
-      st_.stop_cause = StopCause::kHold;  // 3601-HLD-01
-      st_.motion.stop(st_.move_decel, now);
-    }
+    // 3601-HLD-01. A hold already under way (or the External input's) needs nothing more: the
+    // table has no row for it.
+    if (st_.fire(AxisEvent::kHoldRequested)) st_.motion.stop(st_.move_decel, now);
     return;
   }
-  if (st_.activity == Activity::kCoordinated) {
-    // A coordinated motion stops along its path, all of its axes (3602-HLD-01, digest 7.14).
-    if (st_.stop_cause == StopCause::kNone) {
-      st_.stop_cause = StopCause::kHold;
-      st_.motion.hold_path(st_.move_decel);
-    }
+  if (running == Activity::kCoordinated) {
+    // A coordinated motion stops along its path, all of its axes (3602-HLD-01).
+    if (st_.fire(AxisEvent::kHoldRequested)) st_.motion.hold_path(st_.move_decel);
     return;
   }
-  if (st_.activity == Activity::kBlend) {
+  if (running == Activity::kBlend) {
     blend_.hold();  // 3601-CE-23: CE, the blend continues, CE clears at its end
     return;
   }
   // 3601-CE-07: Hold while no absolute/relative move is in progress. During a manual move the
   // motion also stops, controlled (A43).
   st_.reject(items::kHoldNotHoldable, "Hold without an absolute/relative move");
-  if (st_.activity == Activity::kManual && st_.stop_cause == StopCause::kNone) {
-    st_.stop_cause = StopCause::kRelease;
+  if (running == Activity::kManual && st_.fire(AxisEvent::kReleaseStop)) {
     st_.motion.stop(st_.move_decel, now);
   }
 }
@@ -243,24 +240,23 @@ void Axis::command_hold(Nanos now) {
 // S-curve selection given now (3601 manual Ch.4 "Resume Move").
 void Axis::command_resume(const AxisCommand& c) {
   // 3601-CE-08: Resume when not in the Hold state.
-  if (!st_.status.hold || st_.moving()) {
+  if (!st_.latches().hold || st_.moving()) {
     st_.reject(items::kResumeNotHeld, "Resume while not in Hold");
     return;
   }
   const auto profile = st_.read_profile(c, true);
   if (!profile) return;
-  if (st_.hold_coordinated) {
+  if (st_.hold_coordinated()) {
     coordinated_resume_ = profile;  // its coordinator continues the path (A39)
     return;
   }
   const std::int64_t remaining = held_target_ - st_.position();
   const planner::Direction dir = remaining < 0 ? planner::Direction::kCcw : planner::Direction::kCw;
   if (st_.inputs_block_start(dir)) return;
-  st_.status.hold = false;
-  st_.status.input_error = false;
+  st_.fire(AxisEvent::kResumed);
   move_target_ = held_target_;
   if (remaining == 0) {
-    st_.status.move_complete = true;
+    st_.fire(AxisEvent::kAtTarget);
     return;
   }
   // 7.5: if the External input is still active the move again yields one step and holds.
@@ -286,20 +282,17 @@ void Axis::command_preset_position(const AxisCommand& c) {
     return;
   }
   st_.set_position(*c.target);
-  st_.status.position_invalid = false;  // 3601-PI-C1
-  // 3601-MC-03: MC is left as it is; the 3602 clears it (3602-MC-02, digest 8.0).
-  if (st_.rules.preset_clears_move_complete) st_.status.move_complete = false;
-  // Digest 7.12: with diagnostic feedback the encoder register (own pulse count) is preset too.
+  // 3601-PI-C1; 3601-MC-03: MC is left as it is, the 3602 clears it (3602-MC-02).
+  st_.fire(AxisEvent::kPositionPreset);
+  // 3601 Ch.4 "Diagnostic Feedback": with diagnostic feedback the encoder register (own pulse
+  // count) is preset too.
   if (st_.cfg.diagnostic_feedback) st_.write_encoder(*c.target);
 }
 
 // Reset Errors: clears CE, IE, HI and IP, never PI or CfgE (A7). The dialect's word rule
 // (3601-CE-15: command LSW 0) was checked at dispatch.
 void Axis::command_reset_errors() {
-  st_.status.command_error = false;  // 3601-CE-L2
-  st_.status.input_error = false;    // 3601-IE-C1
-  st_.status.home_invalid = false;   // 3601-HI-C1
-  st_.status.invalid_profile = false;
+  st_.fire(AxisEvent::kErrorsReset);  // 3601-CE-L2, IE-C1, HI-C1
 }
 
 }  // namespace stepmod::module::axis

@@ -9,8 +9,8 @@
 
 namespace stepmod::module::axis {
 
-// The four homing options (digest 3.2 table, 7.11): which signal finds home and which signal is
-// the proximity that slows down before it.
+// The four homing options (3601 Ch.3 "Configuration Bits MSW", Ch.4 "Find Home"): which signal
+// finds home and which signal is the proximity that slows down before it.
 enum class HomingVariant : std::uint8_t {
   kSwitch = 0,               // (1) home limit switch only (H-A)
   kSwitchWithBackplane = 1,  // (2) home switch gated by the backplane proximity bit (H-B)

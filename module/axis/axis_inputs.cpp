@@ -15,20 +15,12 @@ void Axis::input_edge(const InputEvent& e) {
   st_.inputs.set_level(e.line, e.level);
 
   if (e.line == InputLine::kEncA || e.line == InputLine::kEncB) {
-    // X4 decoding runs on every edge so the decoder never loses the phase; the register counts
-    // only while the quadrature encoder is configured (moving or not, digest 7.12), and only the
-    // edges after its last write (AxisState::write_encoder).
-    const int d =
-        quadrature_.update(st_.inputs.level(InputLine::kEncA), st_.inputs.level(InputLine::kEncB));
-    if (d != 0 && st_.configured && st_.cfg.quadrature_encoder && st_.counts_encoder_edge(e.t)) {
-      st_.encoder += d;
-      encoder_changed(e.t);
-    }
+    count_encoder_edge(e.t);
     return;
   }
   if (!st_.configured || config_mode_) return;
   const bool now_active = st_.inputs.active(e.line);
-  if (st_.activity == Activity::kHoming) {
+  if (st_.activity() == Activity::kHoming) {
     // Homing has its own rules for the home input, the marker, the limits and the E-stop.
     homing_.on_input(e, was_active, now_active);
     if (e.line != InputLine::kCapture) return;
@@ -36,61 +28,79 @@ void Axis::input_edge(const InputEvent& e) {
   if (now_active == was_active) return;
 
   if (now_active && e.line == InputLine::kCapture) {
-    // Capture: the encoder count if the quadrature encoder is configured, otherwise the motor
-    // position, latched at the edge's own time (digest 7.13).
-    if (st_.cfg.quadrature_encoder) {
-      st_.capture = st_.encoder;
-    } else {
-      std::int64_t steps_then = 0;
-      st_.capture =
-          (st_.motion.steps_at(e.t, steps_then) ? steps_then : st_.motion.steps()) - st_.origin;
-    }
+    capture_at(e.t);
     return;
   }
-  if (!st_.moving() || st_.stop_cause == StopCause::kImmediate ||
-      st_.stop_cause == StopCause::kFault) {
-    return;
-  }
-  if (st_.activity == Activity::kManual && manual_.on_input(e, now_active)) return;
+  const StopCause cause = st_.stop_cause();
+  if (!st_.moving() || cause == StopCause::kImmediate || cause == StopCause::kFault) return;
+  if (st_.activity() == Activity::kManual && manual_.on_input(e, now_active)) return;
+  if (now_active) input_during_motion(e.line, e.t);
+}
 
+// X4 decoding runs on every edge so the decoder never loses the phase; the register counts only
+// while the quadrature encoder is configured (moving or not, 3601 Ch.4 "Encoder Move"), and only
+// the edges after its last write (AxisState::write_encoder).
+void Axis::count_encoder_edge(Nanos t) {
+  const int d =
+      quadrature_.update(st_.inputs.level(InputLine::kEncA), st_.inputs.level(InputLine::kEncB));
+  if (d != 0 && st_.configured && st_.cfg.quadrature_encoder && st_.counts_encoder_edge(t)) {
+    st_.encoder += d;
+    encoder_changed(t);
+  }
+}
+
+// Capture: the encoder count if the quadrature encoder is configured, otherwise the motor
+// position, latched at the edge's own time (3601 Ch.6 "Capture Input").
+void Axis::capture_at(Nanos t) {
+  if (st_.cfg.quadrature_encoder) {
+    st_.capture = st_.encoder;
+    return;
+  }
+  std::int64_t steps_then = 0;
+  st_.capture = (st_.motion.steps_at(t, steps_then) ? steps_then : st_.motion.steps()) - st_.origin;
+}
+
+// An input that became active during a motion: the E-stop, an end limit, the External input.
+void Axis::input_during_motion(InputLine line, Nanos t) {
   // A 3602 CW / CCW input acts as configured: an end limit, an E-stop, or nothing.
-  const InputLine role = st_.role_of(e.line);
-  if (now_active && role == InputLine::kEStop) {
-    st_.fault_stop(items::kEStop, e.line == InputLine::kEStop     ? "E-stop"
-                                  : e.line == InputLine::kCwLimit ? "CW input (E-stop)"
-                                                                  : "CCW input (E-stop)");
+  const InputLine role = st_.role_of(line);
+  if (role == InputLine::kEStop) {
     // 3601-IE-01, PI-03, STP-02; 3602-IE-01, PI-03
+    st_.fault_stop(items::kEStop, line == InputLine::kEStop     ? "E-stop"
+                                  : line == InputLine::kCwLimit ? "CW input (E-stop)"
+                                                                : "CCW input (E-stop)");
     return;
   }
-  if (now_active && (role == InputLine::kCwLimit || role == InputLine::kCcwLimit)) {
-    const bool cw_limit = e.line == InputLine::kCwLimit;
-    // 3601-IE-02 / PI-04 / STP-04: absolute and relative moves stop at either limit; a manual
-    // move only at the limit in its direction of travel, so that it can be driven off a limit.
-    const bool in_travel_direction = cw_limit == (st_.dir == planner::Direction::kCw);
-    const bool either_limit = st_.activity == Activity::kMove || st_.activity == Activity::kBlend ||
-                              st_.activity == Activity::kEncoderMove ||
-                              st_.activity == Activity::kCoordinated;  // digest 7.7
-    if (either_limit || in_travel_direction) {                         // blends too (3601-IE-02)
-      st_.fault_stop(items::kLimitInMove, cw_limit ? "CW limit" : "CCW limit");
-    }
+  if (role == InputLine::kCwLimit || role == InputLine::kCcwLimit) {
+    limit_during_motion(line == InputLine::kCwLimit);
     return;
   }
-  // Digest 7.10 rule 8: blends ignore the External input.
-  if (now_active && e.line == InputLine::kExternal && st_.stop_cause == StopCause::kNone &&
-      st_.activity != Activity::kBlend && st_.activity != Activity::kFollower) {  // 7.6
-    // 3601-HLD-02: a controlled stop to the Hold state for absolute/relative moves; a
-    // controlled stop (Stopped) for manual moves (digest 7.6).
-    st_.stop_cause = StopCause::kExternal;
-    if (st_.activity == Activity::kCoordinated) {
-      st_.motion.hold_path(st_.move_decel);  // the whole path stops along it (digest 7.6)
-    } else {
-      st_.motion.stop(st_.move_decel, e.t);  // the ramp starts at the edge (issue 12 item 9)
-    }
+  // 3601-HLD-02: a controlled stop to the Hold state for absolute/relative moves; a controlled
+  // stop (Stopped) for manual moves (3601 Ch.6 "External Input"). Blends and the follower
+  // ignore the input, and a motion stopping already takes no second stop: the table has no row.
+  if (line != InputLine::kExternal || !st_.fire(AxisEvent::kExternalStop)) return;
+  if (st_.activity() == Activity::kCoordinated) {
+    st_.motion.hold_path(st_.move_decel);  // the whole path stops along it (3602-HLD-02)
+  } else {
+    st_.motion.stop(st_.move_decel, t);  // the ramp starts at the edge (issue 12 item 9)
+  }
+}
+
+// 3601-IE-02 / PI-04 / STP-04: absolute and relative moves, blends and coordinated motions stop
+// at either limit; a manual move only at the limit in its direction of travel, so that it can be
+// driven off a limit.
+void Axis::limit_during_motion(bool cw_limit) {
+  const Activity a = st_.activity();
+  const bool in_travel_direction = cw_limit == (st_.dir == planner::Direction::kCw);
+  const bool either_limit = a == Activity::kMove || a == Activity::kBlend ||
+                            a == Activity::kEncoderMove || a == Activity::kCoordinated;
+  if (either_limit || in_travel_direction) {
+    st_.fault_stop(items::kLimitInMove, cw_limit ? "CW limit" : "CCW limit");
   }
 }
 
 void Axis::encoder_changed(Nanos t) {
-  if (st_.activity == Activity::kEncoderMove) {
+  if (st_.activity() == Activity::kEncoderMove) {
     encoder_.watch(prev_, t);  // prev_: the command image in force (the last scan's)
     return;
   }

@@ -57,7 +57,7 @@ void AxisState::note(const Item& item, const char* fmt, ...) noexcept {
 }
 
 void AxisState::reject(const Item& item, const char* fmt, ...) noexcept {
-  status.command_error = true;
+  fire(AxisEvent::kCommandRefused);
   va_list args;
   va_start(args, fmt);
   vnote(item, fmt, args);
@@ -65,8 +65,7 @@ void AxisState::reject(const Item& item, const char* fmt, ...) noexcept {
 }
 
 void AxisState::reject_profile(const Item& item, const char* fmt, ...) noexcept {
-  status.command_error = true;
-  status.invalid_profile = true;
+  fire(AxisEvent::kProfileRefused);
   va_list args;
   va_start(args, fmt);
   vnote(item, fmt, args);
@@ -76,13 +75,13 @@ void AxisState::reject_profile(const Item& item, const char* fmt, ...) noexcept 
 void AxisState::explain_new_errors() noexcept {
   if (!noted_since_) {
     for (const LatchBit& b : kErrorBits) {
-      if (status.*(b.bit) && !(explained_.*(b.bit))) {
+      if (latches().*(b.bit) && !(explained_.*(b.bit))) {
         record(b.list, 0, b.name);  // the first new bit names the list; no item is known
         break;
       }
     }
   }
-  explained_ = status;
+  explained_ = latches();
   noted_since_ = false;
 }
 

@@ -1,7 +1,22 @@
-// The rules every motion of an axis shares (digest 7.1, 7.5, 7.7; A15).
+// The rules every motion of an axis shares (3601 Ch.2 "Starting Speed", Ch.4 "Hold Move", Ch.6
+// "Emergency Stop Input"; A15).
 #include "module/axis/axis_state.hpp"
 
 namespace stepmod::module::axis {
+
+Latches AxisState::latches() const noexcept {
+  const auto on = [this](Latch l) { return machine_.latched(l); };
+  return {.hold = on(Latch::kHold),
+          .stopped = on(Latch::kStopped),
+          .at_home = on(Latch::kAtHome),
+          .move_complete = on(Latch::kMoveComplete),
+          .home_invalid = on(Latch::kHomeInvalid),
+          .invalid_profile = on(Latch::kInvalidProfile),
+          .position_invalid = on(Latch::kPositionInvalid),
+          .input_error = on(Latch::kInputError),
+          .command_error = on(Latch::kCommandError),
+          .configuration_error = on(Latch::kConfigurationError)};
+}
 
 std::optional<Profile> AxisState::read_profile(const AxisCommand& c, bool ramped) {
   // 3601-CE-04 / IP-02: speed, accel or decel outside its range.
@@ -28,13 +43,13 @@ std::optional<Profile> AxisState::read_profile(const AxisCommand& c, bool ramped
 
 void AxisState::start_abs_rel(std::int64_t steps, const Profile& p) {
   if (inputs.active(InputLine::kExternal)) {
-    if (start_move_steps(steps < 0 ? -1 : 1, p)) stop_cause = StopCause::kExternal;
+    if (start_move_steps(steps < 0 ? -1 : 1, p)) fire(AxisEvent::kExternalStop);
     return;
   }
   start_move_steps(steps, p);
 }
 
-bool AxisState::start_move_steps(std::int64_t steps, const Profile& p) {
+bool AxisState::start_move_steps(std::int64_t steps, const Profile& p, AxisEvent started) {
   planner::MoveSpec spec;
   spec.steps = steps < 0 ? -steps : steps;
   spec.dir = steps < 0 ? planner::Direction::kCcw : planner::Direction::kCw;
@@ -46,10 +61,9 @@ bool AxisState::start_move_steps(std::int64_t steps, const Profile& p) {
     reject(items::kPlannerFull);  // refuse rather than lose the command
     return false;
   }
-  activity = Activity::kMove;
+  fire(started);
   dir = spec.dir;
   move_decel = p.decel;
-  stop_cause = StopCause::kNone;
   return true;
 }
 
@@ -76,7 +90,7 @@ bool AxisState::limit_active(planner::Direction d) const noexcept {
 
 bool AxisState::inputs_block_start(planner::Direction d) {
   if (!estop_active() && !limit_active(d)) return false;
-  status.input_error = true;
+  fire(AxisEvent::kStartBlocked);
   note(items::kStartTowardLimit, "%s active: the move does not start",
        estop_active()                 ? "E-stop"
        : d == planner::Direction::kCw ? "CW limit"
@@ -85,30 +99,29 @@ bool AxisState::inputs_block_start(planner::Direction d) {
 }
 
 void AxisState::clear_move_outcome() noexcept {
-  status.move_complete = false;
-  status.hold = false;
-  hold_coordinated = false;
-  status.stopped = false;
-  status.at_home = false;
   // 3602-IE-C1: "if none of the inputs are active when the command is issued".
   const bool inputs_active = estop_active() || limit_active(planner::Direction::kCw) ||
                              limit_active(planner::Direction::kCcw);
-  if (!rules.input_error_kept_while_inputs_active || !inputs_active) status.input_error = false;
+  fire(inputs_active ? AxisEvent::kNewMoveInputsActive : AxisEvent::kNewMove);
 }
 
 void AxisState::immediate_stop(StopCause cause) {
   motion.immediate_stop();
-  stop_cause = cause;
-  status.position_invalid = true;
-  note(cause == StopCause::kImmediate ? items::kPiImmediateStop : items::kPiFault,
-       "stopped at %lld: the position is invalid", static_cast<long long>(position()));
-  status.move_complete = false;
+  const bool commanded = cause == StopCause::kImmediate;
+  fire(commanded ? AxisEvent::kImmediateStop : AxisEvent::kPathFault);
+  note_position_lost(commanded ? items::kPiImmediateStop : items::kPiFault);
+}
+
+void AxisState::note_position_lost(const Item& item) noexcept {
+  note(item, "stopped at %lld: the position is invalid", static_cast<long long>(position()));
 }
 
 void AxisState::fault_stop(const Item& item, const char* input) {
-  // Digest 7.7: limit / E-stop trip during a move: immediate stop, IE, PI, Stopped.
-  immediate_stop(StopCause::kFault);
-  status.input_error = true;
+  // 3601-IE-01/02, PI-03/04, STP-02/04: limit / E-stop trip during a move: immediate stop, IE,
+  // PI, Stopped.
+  motion.immediate_stop();
+  fire(AxisEvent::kInputFault);
+  note_position_lost(items::kPiFault);
   note(item, "%s active: stopped at %lld", input, static_cast<long long>(position()));
 }
 

@@ -1,8 +1,10 @@
 #pragma once
-// What every feature of one axis reads and writes: the decoded configuration, the status latches,
-// the motion under way and the registers, with the helpers the manuals' rules share (starting a
-// move, the start checks, the stops). Each feature (homing.hpp, manual_move.hpp, blend.hpp,
-// encoder.hpp, follower.hpp) owns its own state and gets this one by reference.
+// What every feature of one axis shares: the decoded configuration, the motion under way and the
+// registers, with the helpers the manuals' rules share (starting a move, the start checks, the
+// stops). The activity, the stop cause and the status latches are read here and changed only by
+// reporting an event to the table of transitions (axis_transitions.hpp). Each feature
+// (homing.hpp, manual_move.hpp, blend.hpp, encoder.hpp, follower.hpp) owns its own state and gets
+// this one by reference.
 #include <algorithm>
 #include <cstdarg>
 #include <cstdint>
@@ -11,6 +13,7 @@
 #include "module/axis/axis_command.hpp"
 #include "module/axis/axis_config.hpp"
 #include "module/axis/axis_io.hpp"
+#include "module/axis/axis_transitions.hpp"
 #include "module/axis/error_items.hpp"
 #include "module/axis/error_reason.hpp"
 #include "module/axis/input_bank.hpp"
@@ -19,24 +22,7 @@
 
 namespace stepmod::module::axis {
 
-// What the axis is doing; a motion is in progress from acceptance until the pulse thread reports
-// its end (digest 7.16).
-enum class Activity : std::uint8_t {
-  kIdle,
-  kMove,         // absolute / relative move (axis_commands.cpp)
-  kEncoderMove,  // absolute / relative move to an encoder count (encoder.cpp)
-  kManual,       // manual move, and registration move (manual_move.cpp)
-  kHoming,       // Find Home + / - (homing.cpp)
-  kBlend,        // blend move (blend.cpp)
-  kFollower,     // encoder follower (follower.cpp)
-  kCoordinated,  // one axis of a coordinated motion (the 3602's interpolated moves): started and
-                 // ended by its coordinator (Axis, "Coordinated motion")
-};
-
-// Why a motion is ending early; decides the status bits when it has ended.
-enum class StopCause : std::uint8_t { kNone, kHold, kExternal, kRelease, kImmediate, kFault };
-
-// Status and error latches, named as in the manuals.
+// Status and error latches, named as in the manuals (written by the table of transitions only).
 struct Latches {
   bool hold = false;
   bool stopped = false;
@@ -68,13 +54,18 @@ struct AxisState {
 
   AxisConfig cfg;
   bool configured = false;  // a valid configuration is in force
-  Latches status;
-  Activity activity = Activity::kIdle;
-  StopCause stop_cause = StopCause::kNone;
   planner::Direction dir = planner::Direction::kCw;
   planner::Ramp move_decel;  // the running motion's decel (controlled stops)
+
+  // The activity, the stop cause and the latches: read here, changed only by reporting an event
+  // to the table of transitions (axis_transitions.hpp, docs/axis-states.md).
+  Activity activity() const noexcept { return machine_.activity(); }
+  StopCause stop_cause() const noexcept { return machine_.stop_cause(); }
+  Latches latches() const noexcept;
   // The Hold state belongs to a coordinated motion: its coordinator resumes it (Axis).
-  bool hold_coordinated = false;
+  bool hold_coordinated() const noexcept { return machine_.latched(Latch::kHoldCoordinated); }
+  // True when the table has a row for `ev` in the present state (and it has been applied).
+  bool fire(AxisEvent ev) noexcept { return machine_.fire(ev); }
 
   std::int64_t origin = 0;   // pulse count at which the reported position is 0
   std::int64_t encoder = 0;  // encoder register (X4 counts, or own steps with diagnostic feedback)
@@ -91,7 +82,7 @@ struct AxisState {
   Nanos scan_now = 0;            // the running scan's time (Axis::scan)
   Nanos encoder_written_at = 0;  // see write_encoder()
 
-  bool moving() const noexcept { return activity != Activity::kIdle; }
+  bool moving() const noexcept { return activity() != Activity::kIdle; }
   std::int64_t position() const noexcept { return motion.steps() - origin; }
   void set_position(std::int64_t p) noexcept { origin = motion.steps() - p; }
   // A refusal (docs/error-reasons.md): Command Error (and Invalid Profile) set here, the item and
@@ -105,9 +96,9 @@ struct AxisState {
   void note(const Item& item, const char* fmt = nullptr, ...) noexcept
       __attribute__((format(printf, 3, 4)));
 
-  // Reasons (the image's block, INTERFACE 3.4): the last one recorded. An error bit that rises
-  // without a note gets its list's general reason at the next explain_new_errors() (every error
-  // bit has a reason, even from a path that names no item).
+  // Reasons (the image's block, docs/interface.md 3.4): the last one recorded. An error bit that
+  // rises without a note gets its list's general reason at the next explain_new_errors() (every
+  // error bit has a reason, even from a path that names no item).
   ErrorReason reason;
   void explain_new_errors() noexcept;
 
@@ -125,8 +116,10 @@ struct AxisState {
   // Speed, accel, decel and the S-curve selection of a command; nullopt after raising CE + IP for
   // an out-of-range value (3601-CE-04 / IP-02) or, when `ramped`, Vp < Vs (3601-CE-05 / IP-01).
   std::optional<Profile> read_profile(const AxisCommand& c, bool ramped);
-  // Starts an absolute/relative move of `steps` (signed); false (with CE) if the planner refused.
-  bool start_move_steps(std::int64_t steps, const Profile& p);
+  // Starts an absolute/relative move of `steps` (signed), reported as `started`; false (with CE)
+  // if the planner refused.
+  bool start_move_steps(std::int64_t steps, const Profile& p,
+                        AxisEvent started = AxisEvent::kMoveStarted);
   // 3601-HLD-03: with the External input active a move outputs one step, then holds.
   void start_abs_rel(std::int64_t steps, const Profile& p);
   // What an input line does on this axis: the 3602's CW / CCW inputs are end limits, E-stops or
@@ -142,11 +135,14 @@ struct AxisState {
   // A new move clears the previous move's outcome (3601-MC-03, HLD-C1, IE-C1, STP-C1, AH-01).
   void clear_move_outcome() noexcept;
   void immediate_stop(StopCause cause);
-  // Limit / E-stop: immediate stop, IE, PI (digest 7.7); `item` and the input's name ("E-stop")
+  // Limit / E-stop: immediate stop, IE, PI (3601-IE-01/02); `item` and the input's name ("E-stop")
   // for the reason.
   void fault_stop(const Item& item, const char* input);
 
  private:
+  void note_position_lost(const Item& item) noexcept;  // Position Invalid's reason at a cut
+
+  AxisStateMachine machine_{rules};
   void vnote(const Item& item, const char* fmt, va_list args) noexcept;
   void record(ErrorList list, unsigned number, const char* text) noexcept;
   Latches explained_;         // the error bits as of the last explain_new_errors()

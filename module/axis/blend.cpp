@@ -1,12 +1,12 @@
 // Blend moves: the block-by-block programming handshake and Run Blend (3601 manual Ch.4 "Blend
-// Move", Ch.5 "Blend Move Programming"; digest 3.8, 7.10).
+// Move", Ch.5 "Blend Move Programming").
 //
-// Programming (digest 7.10 handshake, the flags decoded by the dialect): with no command set
-// the PLC holds the program flag for the whole cycle and raises the transmit flag once per block.
-// Each transmit rising edge reads one block (decoded by the dialect), checks it and sets the
-// acknowledge; the acknowledge follows transmit back to 0. Every check is made on the block that
-// brings its data, so an error is reported with that block's acknowledge. Clearing the program bit
-// ends the cycle: the profile is stored only if the cycle had no error and brought exactly the
+// Programming (3601 Ch.5 "Blend Move Programming", the flags decoded by the dialect): with no
+// command set the PLC holds the program flag for the whole cycle and raises the transmit flag once
+// per block. Each transmit rising edge reads one block (decoded by the dialect), checks it and sets
+// the acknowledge; the acknowledge follows transmit back to 0. Every check is made on the block
+// that brings its data, so an error is reported with that block's acknowledge. Clearing the program
+// bit ends the cycle: the profile is stored only if the cycle had no error and brought exactly the
 // declared number of segment blocks (A21c).
 #include <cmath>
 
@@ -31,7 +31,7 @@ bool fits(double needed, double length) {
 void Blend::programming_scan(const AxisCommand& c, const AxisCommand& prev) {
   // The Hold's CE (3601-CE-23) was cleared by Reset Errors: a CE raised later has another reason
   // and must not clear itself at the blend's end.
-  if (!ax_.status.command_error) hold_error_ = false;
+  if (!ax_.latches().command_error) hold_error_ = false;
 
   const bool program = c.blend_program;
   const bool transmit = c.blend_transmit;
@@ -40,15 +40,7 @@ void Blend::programming_scan(const AxisCommand& c, const AxisCommand& prev) {
   if (!transmit) ack_ = false;
 
   if (!program) {
-    if (cycle_) {
-      // Routine step 6: the cycle ends. A21c: fewer segment blocks than declared = not
-      // programmed (Run Blend then raises CE-20); a block too many was already an IP error.
-      cycle_ = false;
-      if (!spoiled_ && blocks_ > 0 && blocks_ == 1u + static_cast<unsigned>(pending_.count)) {
-        profile_ = pending_;
-        stored_ = true;
-      }
-    }
+    if (cycle_) end_cycle();
     return;
   }
   if (!cycle_) {
@@ -58,8 +50,21 @@ void Blend::programming_scan(const AxisCommand& c, const AxisCommand& prev) {
     total_ = 0;
     pending_ = planner::BlendSpec{};
   }
-  if (!transmit_rose) return;
+  if (transmit_rose) read_block(c);
+}
 
+// Routine step 6: the cycle ends. A21c: fewer segment blocks than declared = not programmed (Run
+// Blend then raises CE-20); a block too many was already an IP error.
+void Blend::end_cycle() {
+  cycle_ = false;
+  if (!spoiled_ && blocks_ > 0 && blocks_ == 1u + static_cast<unsigned>(pending_.count)) {
+    profile_ = pending_;
+    stored_ = true;
+  }
+}
+
+// One block, on a transmit rising edge.
+void Blend::read_block(const AxisCommand& c) {
   // Routine step 2: every block is acknowledged, a rejected one too (A21d, 3601-IP-21), so that
   // the PLC's handshake never waits forever; the error bits tell it the block was refused.
   ack_ = true;
@@ -67,37 +72,32 @@ void Blend::programming_scan(const AxisCommand& c, const AxisCommand& prev) {
   ++blocks_;
   if (spoiled_) return;  // the cycle already failed: the rest is read and ignored
 
-  if (first && ax_.activity == Activity::kBlend) {
+  if (first && ax_.activity() == Activity::kBlend) {
     // 3601-CE-22: programming started while a blend runs. The cycle is refused (the stored
     // profile, which the running blend came from, is kept) and the blend is brought down with
     // its final-segment deceleration.
     spoiled_ = true;
-    ax_.reject(items::kBlendWhileBlending);
-    hold_error_ = false;  // this CE does not clear itself
-    if (ax_.stop_cause == StopCause::kNone) {
-      ax_.stop_cause = StopCause::kHold;  // a controlled stop; motion_ended gives its outcome
-      ax_.motion.stop(ax_.move_decel);
-    }
+    bring_down();
     return;
   }
-  if (ax_.status.command_error) {
+  if (ax_.latches().command_error) {
     // 3601-CE-L1: while CE is set the module takes no new operation; a block is not stored and
     // the profile is reported invalid (3601-IP-21) so that a PLC checking only IP sees it too.
     spoiled_ = true;
-    ax_.status.invalid_profile = true;
+    ax_.fire(AxisEvent::kProfileInvalid);
     ax_.note(items::kBlendBlockError, "blend block refused: Command Error is set");
     return;
   }
   if (first) {
-    // A new profile replaces the stored one from its first block on (digest 7.10 rule 7).
+    // A new profile replaces the stored one from its first block on (3601 Ch.4 "Blend Move").
     stored_ = false;
   }
-  // No command may be set in a block (digest 3.8).
-  const bool msw_ok = c.commands.empty();
+  // No command may be set in a block (3601 Ch.5 "Blend Move Programming").
+  const bool no_command = c.commands.empty();
   const bool ok = first ? first_block(c.blend_first) : segment_block(c.blend_segment);
-  if (!ok || !msw_ok) {
+  if (!ok || !no_command) {
     spoiled_ = true;
-    ax_.status.invalid_profile = true;  // 3601-IP-21: any error in a block
+    ax_.fire(AxisEvent::kProfileInvalid);  // 3601-IP-21: any error in a block
     if (!reason_noted_) ax_.note(items::kBlendBlockError, "blend block %u refused", blocks_);
   }
   reason_noted_ = false;
@@ -127,8 +127,7 @@ bool Blend::first_block(const BlendFirstBlock& b) {
   const std::int64_t value = b.final_decel;
   if (value == 0) {
     // 3601-CE-24 / IP-07, A21a: no final deceleration value -> CE (Ch.5) and IP (Ch.6 #7).
-    ax_.status.command_error = true;
-    ax_.note(items::kBlendNoFinalDecel, "blend profile without a final deceleration");
+    ax_.reject(items::kBlendNoFinalDecel, "blend profile without a final deceleration");
     reason_noted_ = true;
     ok = false;
   } else if (!ax_.rate_in_range(value)) {
@@ -136,7 +135,7 @@ bool Blend::first_block(const BlendFirstBlock& b) {
   } else {
     pending_.final_decel.rate = static_cast<double>(value);
   }
-  // The words the first block leaves empty are 0 (digest 3.8).
+  // The words the first block leaves empty are 0 (3601 Ch.5 "Blend Move Programming").
   if (!b.unused_words_zero) ok = false;
   return ok;
 }
@@ -164,9 +163,8 @@ bool Blend::segment_block(const BlendSegmentBlock& b) {
   if (!ax_.speed_in_range(speed)) {
     ok = false;
   } else if (*speed < ax_.cfg.starting_speed) {
-    ax_.status.command_error = true;
-    ax_.note(items::kVpBelowVs, "blend segment speed %d is below Vs %d", static_cast<int>(*speed),
-             static_cast<int>(ax_.cfg.starting_speed));
+    ax_.reject(items::kVpBelowVs, "blend segment speed %d is below Vs %d", static_cast<int>(*speed),
+               static_cast<int>(ax_.cfg.starting_speed));
     reason_noted_ = true;
     ok = false;
   } else {
@@ -178,11 +176,11 @@ bool Blend::segment_block(const BlendSegmentBlock& b) {
   } else {
     seg.ramp.rate = static_cast<double>(b.rate);
   }
-  if (!b.unused_words_zero) ok = false;  // digest 3.8
+  if (!b.unused_words_zero) ok = false;  // 3601 Ch.5 "Blend Move Programming"
   if (!ok) return false;
 
-  // Digest 7.10 rules 3-5, checked as soon as the segment's data is here: segment 1 starts at
-  // Vs, segment i at V(i-1).
+  // 3601 Ch.5 "Segment Length Restrictions", checked as soon as the segment's data is here: segment
+  // 1 starts at Vs, segment i at V(i-1).
   const double vs = ax_.cfg.starting_speed;
   const double v_prev = n == 1 ? vs : pending_.segments[static_cast<std::size_t>(n - 2)].speed;
   // 3601-IP-06: two consecutive segments with the same speed.
@@ -198,17 +196,11 @@ bool Blend::segment_block(const BlendSegmentBlock& b) {
 }
 
 bool Blend::program(const BlendFirstBlock& first, std::span<const BlendSegmentBlock> segments) {
-  if (ax_.activity == Activity::kBlend) {
-    // 3202-CE-19 (as 3601-CE-22): the stored profile of the running blend is kept.
-    ax_.reject(items::kBlendWhileBlending);
-    hold_error_ = false;  // this CE does not clear itself
-    if (ax_.stop_cause == StopCause::kNone) {
-      ax_.stop_cause = StopCause::kHold;  // a controlled stop; motion_ended gives its outcome
-      ax_.motion.stop(ax_.move_decel);
-    }
+  if (ax_.activity() == Activity::kBlend) {
+    bring_down();  // 3202-CE-19 (as 3601-CE-22): the stored profile of the running blend is kept
     return false;
   }
-  // A new profile replaces the stored one (digest 7.10 rule 7): a refused one leaves none.
+  // A new profile replaces the stored one (3601 Ch.4 "Blend Move"): a refused one leaves none.
   stored_ = false;
   cycle_ = false;
   pending_ = planner::BlendSpec{};
@@ -221,7 +213,7 @@ bool Blend::program(const BlendFirstBlock& first, std::span<const BlendSegmentBl
   }
   blocks_ = 0;
   if (!ok) {
-    ax_.status.invalid_profile = true;
+    ax_.fire(AxisEvent::kProfileInvalid);
     if (!reason_noted_) ax_.note(items::kBlendBlockError, "blend profile refused");
     reason_noted_ = false;
     return false;
@@ -247,7 +239,7 @@ void Blend::run(planner::Direction dir) {
   }
   if (ax_.inputs_block_start(dir)) return;  // A15
   planner::BlendSpec spec = profile_;
-  spec.dir = dir;  // + = CW, - = CCW; a profile never reverses (digest 7.10 rule 6)
+  spec.dir = dir;  // + = CW, - = CCW; a profile never reverses (3601 Ch.4)
   spec.vs = ax_.cfg.starting_speed;
   if (ax_.motion.start_blend(spec) == 0) {
     ax_.reject(
@@ -255,12 +247,11 @@ void Blend::run(planner::Direction dir) {
     return;
   }
   // A new move clears the previous move's outcome (3601-MC-03, HLD-C1, IE-C1, STP-C1). The
-  // position need not be valid: PI is left as it is (digest 7.10 rule 6).
+  // position need not be valid: PI is left as it is (3601 Ch.4 "Blend Move").
   ax_.clear_move_outcome();
-  ax_.activity = Activity::kBlend;
+  ax_.fire(AxisEvent::kBlendStarted);
   ax_.dir = dir;
   ax_.move_decel = spec.final_decel;  // CE-22 brings the blend down with it
-  ax_.stop_cause = StopCause::kNone;
   hold_error_ = false;
 }
 
@@ -273,29 +264,26 @@ void Blend::hold() {
   hold_error_ = true;
 }
 
-void Blend::motion_ended(StopCause cause) {
-  switch (cause) {
-    case StopCause::kNone:
-      ax_.status.move_complete = true;  // 3601-MC-01
-      break;
-    case StopCause::kImmediate:
-    case StopCause::kFault:
-      ax_.status.stopped = true;  // 3601-STP-02/03/04: E-stop, Immediate Stop, limit
-      break;
-    default:
-      // Brought down by programming (3601-CE-22): neither MC (the move did not complete,
-      // 3601-MC-02) nor Stopped (3601-STP-N1: not after blends); CE says why.
-      break;
-  }
+// The outcome (MC, Stopped, or neither after CE-22) is the table's (docs/axis-states.md).
+void Blend::motion_ended() {
   // 3601-CE-23 / CE-L3: the Hold's CE clears when the blend ends. Decision: at any end of the
   // blend (completed, or stopped by a limit or the E-stop, which report through IE), since the
   // error concerned only this blend; a CE raised for another reason is left set.
-  if (hold_error_) ax_.status.command_error = false;
+  if (hold_error_) ax_.fire(AxisEvent::kCommandErrorCleared);
   hold_error_ = false;
 }
 
+// Programming while the blend runs (3601-CE-22, 3202-CE-19): CE, and the blend is brought down
+// with its final deceleration; neither MC (the move did not complete, 3601-MC-02) nor Stopped
+// (3601-STP-N1: not after blends) follows, CE says why.
+void Blend::bring_down() {
+  ax_.reject(items::kBlendWhileBlending);
+  hold_error_ = false;  // this CE does not clear itself
+  if (ax_.fire(AxisEvent::kBlendBroughtDown)) ax_.motion.stop(ax_.move_decel);
+}
+
 void Blend::erase() {
-  // Digest 7.10 rule 7: a configuration erases the profile (3601-CE-20) and ends any cycle.
+  // 3601-CE-20: a configuration erases the profile and ends any cycle.
   stored_ = false;
   cycle_ = false;
   spoiled_ = false;

@@ -1,5 +1,5 @@
 // Encoder functions of one axis: the encoder move, Preset Encoder and diagnostic feedback (3601
-// manual Ch.4 "Encoder Move", "Preset Encoder Position", "Diagnostic Feedback"; digest 7.12).
+// manual Ch.4 "Encoder Move", "Preset Encoder Position", "Diagnostic Feedback").
 // The encoder register itself is AxisState::encoder (homing, configuration and capture use it).
 #include "module/axis/encoder.hpp"
 
@@ -25,14 +25,15 @@ void Encoder::move(const AxisCommand& c, bool absolute) {
   // A new move clears the previous move's outcome (3601-MC-03, HLD-C1, IE-C1, STP-C1).
   ax_.clear_move_outcome();
   if (counts == 0) {
-    ax_.status.move_complete = true;  // already on the count: nothing to output
+    ax_.fire(AxisEvent::kAtTarget);  // already on the count: nothing to output
     return;
   }
   if (ax_.inputs.active(InputLine::kExternal)) {
-    // Digest 7.6 (inferred): External already active → one step, then a stop without Hold.
-    if (ax_.start_move_steps(dir == planner::Direction::kCw ? 1 : -1, *profile)) {
-      ax_.activity = Activity::kEncoderMove;
-      ax_.stop_cause = StopCause::kExternal;
+    // 3601 Ch.6 "External Input" (inferred for encoder moves): External already active → one step,
+    // then a stop without Hold.
+    if (ax_.start_move_steps(dir == planner::Direction::kCw ? 1 : -1, *profile,
+                             AxisEvent::kEncoderMoveStarted)) {
+      ax_.fire(AxisEvent::kExternalStop);
       watch_ = false;
     }
     return;
@@ -48,23 +49,22 @@ void Encoder::move(const AxisCommand& c, bool absolute) {
         items::kPlannerFull);  // the planner queue is full: refuse rather than lose the command
     return;
   }
-  ax_.activity = Activity::kEncoderMove;
+  ax_.fire(AxisEvent::kEncoderMoveStarted);
   ax_.dir = dir;
   ax_.move_decel = profile->decel;
-  ax_.stop_cause = StopCause::kNone;
   target_ = goal;
   watch_ = true;
   stop_pending_ = false;
 }
 
 void Encoder::watch(const AxisCommand& c, Nanos t) {
-  if (!watch_ || ax_.stop_cause != StopCause::kNone) return;
+  if (!watch_ || ax_.stop_cause() != StopCause::kNone) return;
   const bool reached =
       ax_.dir == planner::Direction::kCw ? ax_.encoder >= target_ : ax_.encoder <= target_;
   if (!reached) return;
   watch_ = false;
-  // Digest 7.12 #7: the count is compared only while the encoder-move flag is still set; a PLC
-  // that cleared it makes the move miss its count and keep going (only E-stop, External or
+  // 3601 Ch.4 "Encoder Move": the count is compared only while the encoder-move flag is still set;
+  // a PLC that cleared it makes the move miss its count and keep going (only E-stop, External or
   // Immediate Stop end it then). Clearing only the command is harmless.
   if (!c.encoder_move) return;
   // Reaching the count is the move's normal end (StopCause::kNone → Move Complete, 3601-MC-01).
@@ -87,7 +87,7 @@ void Encoder::preset(const AxisCommand& c) {
   }
   // Not under a motion that steers by the count (the manual does not say; an encoder move's
   // target would silently move). The follower cannot get here (CE-39 / CE-15).
-  if (ax_.activity == Activity::kEncoderMove) {
+  if (ax_.activity() == Activity::kEncoderMove) {
     ax_.reject(items::kMoveWhileMoving, "Preset Encoder while an encoder move runs");
     return;
   }
@@ -104,7 +104,8 @@ void Encoder::scan() {
   if (ax_.cfg.diagnostic_feedback) ax_.encoder += steps - diag_steps_;
   diag_steps_ = steps;
 
-  if (ax_.activity == Activity::kEncoderMove && stop_pending_ && ax_.motion.stop(ax_.move_decel)) {
+  if (ax_.activity() == Activity::kEncoderMove && stop_pending_ &&
+      ax_.motion.stop(ax_.move_decel)) {
     stop_pending_ = false;
   }
 }

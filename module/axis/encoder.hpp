@@ -1,7 +1,7 @@
 #pragma once
 // The encoder functions of one axis that steer by the count: the encoder move (a run whose
 // deceleration starts when the encoder reaches the target), Preset Encoder, and diagnostic
-// feedback (the register counts the axis' own steps). Digest 7.12.
+// feedback (the register counts the axis' own steps). 3601 Ch.4.
 #include <cstdint>
 
 #include "module/axis/axis_state.hpp"

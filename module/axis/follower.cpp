@@ -1,4 +1,4 @@
-// The encoder follower (3601 manual Ch.4 "Encoder Follower", firmware 4.1; digest 7.12).
+// The encoder follower (3601 manual Ch.4 "Encoder Follower", firmware 4.1).
 #include <algorithm>
 
 #include "module/axis/follower.hpp"
@@ -21,7 +21,7 @@ std::int64_t floor_div(std::int64_t a, std::int64_t b) noexcept {
 }  // namespace
 
 void Follower::counted(Nanos t) {
-  if (ax_.activity != Activity::kFollower) return;
+  if (ax_.activity() != Activity::kFollower) return;
   const std::int64_t d = ax_.encoder - f_.last_encoder;
   f_.last_encoder = ax_.encoder;
   // No direction bit: no output, and the counts are not owed later either.
@@ -51,7 +51,7 @@ void Follower::counted(Nanos t) {
 // closes the gap as fast as accel/decel allow (0 = at the master's own rate).
 
 void Follower::command(const AxisCommand& c, planner::Direction dir) {
-  if (ax_.activity != Activity::kFollower && !enter(c)) return;
+  if (ax_.activity() != Activity::kFollower && !enter(c)) return;
   if (f_.key) return;  // scan() has seen the other direction (CE-38)
   if (!params(c)) {
     cut();
@@ -66,7 +66,7 @@ void Follower::command(const AxisCommand& c, planner::Direction dir) {
 }
 
 bool Follower::enter(const AxisCommand& c) {
-  if (ax_.status.command_error) return false;  // 3601-CE-L1
+  if (ax_.latches().command_error) return false;  // 3601-CE-L1
   // 3601-CE-34: no quadrature encoder configured.
   if (!ax_.cfg.quadrature_encoder) {
     ax_.reject(items::kFollowerNoEncoder);
@@ -83,7 +83,7 @@ bool Follower::enter(const AxisCommand& c) {
     return false;
   }
   // 3601-CE-42 / A24: "cannot be started when either of the end limit switches are active";
-  // the manual names no error, the digest recommends CE.
+  // the manual names no error; CE, as for the other follower refusals.
   if (ax_.inputs.active(InputLine::kCwLimit) || ax_.inputs.active(InputLine::kCcwLimit)) {
     ax_.reject(items::kFollowerLimit);
     return false;
@@ -91,8 +91,7 @@ bool Follower::enter(const AxisCommand& c) {
   // Entering is the start of a move operation: the previous outcome is cleared (3601-MC-03,
   // HLD-C1, IE-C1, STP-C1).
   ax_.clear_move_outcome();
-  ax_.activity = Activity::kFollower;
-  ax_.stop_cause = StopCause::kNone;
+  ax_.fire(AxisEvent::kFollowerEntered);
   ax_.dir = planner::Direction::kCw;
   f_ = Session{};
   f_.last_encoder = ax_.encoder;
@@ -183,24 +182,22 @@ void Follower::cut() {
 }
 
 void Follower::exit() {
-  ax_.activity = Activity::kIdle;
-  ax_.stop_cause = StopCause::kNone;
-  ax_.status.stopped = true;  // 3601-STP-05: set after leaving encoder-follower mode
+  ax_.fire(AxisEvent::kFollowerLeft);  // 3601-STP-05: Stopped after leaving follower mode
   f_ = Session{};
 }
 
 void Follower::scan(const AxisCommand& c, const AxisCommand& prev) {
-  const bool lsw7 = c.follower;
+  const bool follower_flag = c.follower;
   const CommandSet rising = c.commands.rising_since(prev.commands);
   // 3601-CE-39: any command but Manual + / - (Hold included) while the follower flag is set.
   // Raised before the command is dispatched, which then ignores it (CE-L1).
-  if (lsw7 && !rising.without(CommandKind::kManualCw, CommandKind::kManualCcw).empty()) {
+  if (follower_flag && !rising.without(CommandKind::kManualCw, CommandKind::kManualCcw).empty()) {
     ax_.reject(items::kFollowerOtherCommand);
-    if (ax_.activity == Activity::kFollower) cut();
+    if (ax_.activity() == Activity::kFollower) cut();
     return;
   }
-  if (ax_.activity != Activity::kFollower) {
-    if (lsw7 && !prev.follower && !ax_.status.command_error) flag_rose(c);
+  if (ax_.activity() != Activity::kFollower) {
+    if (follower_flag && !prev.follower && !ax_.latches().command_error) flag_rose(c);
     return;
   }
   // The follow motion has ended.
@@ -208,7 +205,7 @@ void Follower::scan(const AxisCommand& c, const AxisCommand& prev) {
     f_.motion = false;
     f_.running = false;
   }
-  if (ax_.stop_cause == StopCause::kFault || ax_.stop_cause == StopCause::kImmediate) {
+  if (ax_.stop_cause() == StopCause::kFault || ax_.stop_cause() == StopCause::kImmediate) {
     // E-stop, a limit in the output direction (A24) or the PLC leaving Run: fault_stop /
     // immediate_stop have set IE/PI; follower mode is left once the pulses have stopped.
     if (!f_.motion) exit();
@@ -218,7 +215,7 @@ void Follower::scan(const AxisCommand& c, const AxisCommand& prev) {
     if (!f_.motion) exit();
     return;
   }
-  if (!lsw7) {
+  if (!follower_flag) {
     flag_cleared(c);
   } else if (c.s_curve()) {
     // 3601-CE-41 on the fly.

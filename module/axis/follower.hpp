@@ -1,7 +1,7 @@
 #pragma once
-// The encoder follower of one axis (3601 firmware 4.1; digest 7.12): entering and leaving
-// follower mode, the ratio and ramps that may change on the fly, and the planner's follow motion
-// that the encoder counts steer. It owns the follower session's state.
+// The encoder follower of one axis (3601 Ch.4 "Encoder Follower", firmware 4.1): entering and
+// leaving follower mode, the ratio and ramps that may change on the fly, and the planner's follow
+// motion that the encoder counts steer. It owns the follower session's state.
 #include <cstdint>
 #include <optional>
 

@@ -1,8 +1,8 @@
 // Find Home + / - (3601 manual Ch.3 item 10, Ch.4 "Find Home" and its notes, Ch.6 HI/IE/PI lists;
-// digest 3.2, 7.11 sequences H-A .. H-D, 8 A8 A12 A15 A44 A49). The 3202 has the same four
+// sequences H-A .. H-D: the step tables below; A8 A12 A15 A44 A49). The 3202 has the same four
 // options; the 3602 the first two (rules.hpp).
 //
-// The four homing options are step tables (A12: the 3601's figures did not survive, the digest's
+// The four homing options are step tables (A12: the 3601's figures did not survive, the manual's
 // written step lists are used and must stay replaceable): a table row says "in step S, on event E,
 // do A and go to step T". What is common to every option (end limits, H-C; E-stop; the start) is
 // code below the tables.
@@ -45,7 +45,7 @@ struct HomingTable {
     Step to;
   };
 
-  // Option 1, H-A: home limit switch only (digest 7.11 H-A steps 1..7).
+  // Option 1, H-A: home limit switch only (3601 Ch.4 "Find Home", steps 1..7).
   static constexpr Row kSwitchOnly[] = {
       {Step::kSearch, Event::kHomeRise, Action::kStopRamp, Step::kFoundStop},     // 2-3
       {Step::kFoundStop, Event::kMotionEnd, Action::kPause, Step::kPause1},       // 3
@@ -55,7 +55,7 @@ struct HomingTable {
 
   // Option 2, H-B: home switch gated by the backplane proximity bit. The home input is ignored
   // until the bit rises; the move-off and the H-C reversal watch the bit, not the home input
-  // ([01] Ch.4 Note 2 under "Home Limit Switch Active..."; A12).
+  // (3601 manual Ch.4 Note 2 under "Home Limit Switch Active..."; A12).
   static constexpr Row kSwitchWithBackplane[] = {
       {Step::kSearch, Event::kProxRise, Action::kSlowToVs, Step::kApproach},
       {Step::kApproach, Event::kHomeRise, Action::kStopAtHome, Step::kFinishing},
@@ -88,7 +88,7 @@ struct HomingTable {
       {Step::kFinishing, Event::kMotionEnd, Action::kComplete, Step::kFinishing},
   };
 
-  // The row for `ev` in `step` of homing option variant + 1 (digest 3.2 table), or nullptr.
+  // The row for `ev` in `step` of homing option variant + 1 (3601 Ch.3), or nullptr.
   static const Row* find(std::uint8_t variant, Step step, Event ev) {
     static constexpr std::span<const Row> kTables[] = {kSwitchOnly, kSwitchWithBackplane,
                                                        kMarkerWithHome, kMarkerWithBackplane};
@@ -117,15 +117,16 @@ bool Homing::admitted(const AxisCommand& c, planner::Direction dir) {
   // 3601-CE-10: "S-Curve acceleration profiles are not allowed during a homing operation."
   if (c.s_curve()) {
     ax_.reject(items::kHomeSCurve, "Find Home with an S-curve selected");
-    if (ax_.rules.homing_s_curve_sets_home_invalid) ax_.status.home_invalid = true;  // 3602-HI-02
+    if (ax_.rules.homing_s_curve_sets_home_invalid)
+      ax_.fire(AxisEvent::kHomeInvalid);  // 3602-HI-02
     return false;
   }
   // 3601-CE-13 / HI-03: Find Home + needs a configured CW limit, Find Home - a CCW limit (not on
-  // the 3602, digest 8.0).
+  // the 3602, 3602 Ch.4 "Homing the 3602").
   if (ax_.rules.homing_needs_limit_ahead && !ax_.cfg.used(limit_toward(dir))) {
     ax_.reject(items::kHomeNoLimit, "Find Home %s: no %s limit configured",
                dir == Direction::kCw ? "+" : "-", dir == Direction::kCw ? "CW" : "CCW");
-    ax_.status.home_invalid = true;
+    ax_.fire(AxisEvent::kHomeInvalid);
     return false;
   }
   // 3602-CE-12: a home-switch homing needs the home input configured (the 3601's configuration
@@ -141,25 +142,26 @@ bool Homing::admitted(const AxisCommand& c, planner::Direction dir) {
     ax_.reject(items::numbered(items::kHomeTarget, items::kHomeTargetHi, ax_.rules.type),
                "Find Home with a target %lld (must be 0)",
                static_cast<long long>(c.target.value_or(0)));
-    ax_.status.home_invalid = true;
+    ax_.fire(AxisEvent::kHomeInvalid);
     return false;
   }
-  // Digest 6.4 row 2: a homing's out-of-range speed, accel or decel raises CE + HI.
+  // 3601-CE-04 with the Home Invalid list: a homing's out-of-range speed, accel or decel raises
+  // CE + HI.
   if (!ax_.speed_in_range(c.speed) || !ax_.rate_in_range(c.accel) || !ax_.rate_in_range(c.decel)) {
     ax_.reject(items::kOutOfRange, "Find Home: speed, accel or decel out of range");
-    ax_.status.home_invalid = true;
+    ax_.fire(AxisEvent::kHomeInvalid);
     return false;
   }
   // 3601-HI-01 / CE-05 / IP-01: Vp < Vs (IP too: the manual's IP #1 is unconditional, 6.4).
   if (*c.speed < ax_.cfg.starting_speed) {
     ax_.reject_profile(items::kVpBelowVs, "Find Home: Vp %d is below Vs %d",
                        static_cast<int>(*c.speed), static_cast<int>(ax_.cfg.starting_speed));
-    ax_.status.home_invalid = true;
+    ax_.fire(AxisEvent::kHomeInvalid);
     return false;
   }
   // A15: no move starts while the E-stop is active.
   if (ax_.estop_active()) {
-    ax_.status.input_error = true;
+    ax_.fire(AxisEvent::kStartBlocked);
     ax_.note(items::kStartTowardLimit, "E-stop active: homing does not start");
     return false;
   }
@@ -172,39 +174,40 @@ void Homing::start(const AxisCommand& c, planner::Direction dir) {
   h_.dir = dir;
   h_.variant = static_cast<std::uint8_t>(ax_.cfg.homing);
   h_.vp = *c.speed;
-  // Constant acceleration only (digest 7.11; S-curve was refused above).
+  // Constant acceleration only (3601-CE-10; S-curve was refused above).
   h_.accel = {static_cast<double>(c.accel), planner::AccelShape::kConstant};
   h_.decel = {static_cast<double>(c.decel), planner::AccelShape::kConstant};
   // A44: the proximity bit acts only when configured. Its transitions count from now on.
   h_.prox = ax_.cfg.backplane_proximity && c.backplane_proximity;
   // "Home input active at the start": the home input, except for option 4 where the backplane
-  // bit stands for it ([01] figure notes: "The Home Input shown above can be either the Home
+  // bit stands for it (3601 manual figure notes: "The Home Input shown above can be either the Home
   // Limit Switch or the Backplane Proximity bit").
   const bool home_active = ax_.cfg.homing == HomingVariant::kMarkerWithBackplane
                                ? h_.prox
                                : ax_.inputs.active(InputLine::kHome);
-  // [01] Ch.4 Note 2 under "End Limit Switch Active...": the limit ahead already active -> begin
-  // at the reversal, no wait (H-C step 4). The opposite limit active: home normally.
+  // 3601 manual Ch.4 Note 2 under "End Limit Switch Active...": the limit ahead already active ->
+  // begin at the reversal, no wait (H-C step 4). The opposite limit active: home normally.
   const bool limit_ahead = ax_.limit_active(dir);
   const bool reverse_first = limit_ahead || home_active;
   const Direction first = reverse_first ? planner::opposite(dir) : dir;
   // A15: a first motion into the (opposite) limit that is already active would be the limit
   // error of 3601-HI-05 at once; refuse it without moving (the position stays as it was).
   if (reverse_first && ax_.limit_active(first)) {
-    ax_.status.home_invalid = true;
-    ax_.status.input_error = true;
+    ax_.fire(AxisEvent::kHomeInvalid);
+    ax_.fire(AxisEvent::kStartBlocked);
     ax_.note(items::kHomingOppositeLimit, "homing: both limits active, no start");
     return;
   }
 
   ax_.clear_move_outcome();
-  ax_.activity = Activity::kHoming;
+  ax_.fire(AxisEvent::kHomingStarted);
   h_.limit_reversed = limit_ahead;
   h_.step = reverse_first ? Step::kReverse : Step::kSearch;
   run(first, false);
 }
 
-// Starts one motion of the sequence: Vp with ramps, or the creep at Vs without (digest 7.11).
+// Starts one motion of the sequence: Vp with ramps, or the creep at Vs without (3601 Ch.4
+// "Find Home").
 bool Homing::run(planner::Direction d, bool creep) {
   planner::RunSpec spec;
   spec.dir = d;
@@ -214,30 +217,27 @@ bool Homing::run(planner::Direction d, bool creep) {
   spec.decel = h_.decel;
   if (ax_.motion.start_run(spec) == 0) {
     // The planner queue is full: the sequence cannot go on; refuse rather than hang.
-    ax_.activity = Activity::kIdle;
+    ax_.fire(AxisEvent::kHomingStalled);
     h_.segment = false;
     ax_.reject(items::kPlannerFull, "planner queue full: homing stopped, re-home");
-    ax_.status.position_invalid = true;
     return false;
   }
   ax_.dir = d;  // 3601-DIR-01: the status direction bits follow the segment under way
   ax_.move_decel = h_.decel;
-  ax_.stop_cause = StopCause::kNone;
+  ax_.fire(AxisEvent::kHomingSegmentStarted);
   h_.segment = true;
   return true;
 }
 
 void Homing::event(Event ev) {
   using Action = HomingTable::Action;
-  if (ax_.activity != Activity::kHoming || ax_.stop_cause != StopCause::kNone) return;
+  if (ax_.activity() != Activity::kHoming || ax_.stop_cause() != StopCause::kNone) return;
   const HomingTable::Row* row = HomingTable::find(h_.variant, h_.step, ev);
   if (row == nullptr) {
     // A motion that ended where no row expects it (a run never ends by itself): the sequence
     // cannot continue; end it as an interrupted motion.
     if (ev == Event::kMotionEnd) {
-      ax_.activity = Activity::kIdle;
-      ax_.status.position_invalid = true;
-      ax_.status.stopped = true;
+      ax_.fire(AxisEvent::kHomingEndedEarly);
       ax_.note(items::kPiFault, "homing motion ended early: re-home");
     }
     return;  // any other event has no meaning in this step (e.g. the home input in H-B search)
@@ -250,7 +250,7 @@ void Homing::event(Event ev) {
       ax_.motion.stop(h_.decel);
       break;
     case Action::kSlowToVs:
-      // Never below Vs; keep running at Vs if reached (digest 7.11 H-B step 3).
+      // Never below Vs; keep running at Vs if reached (3601 Ch.4 "Find Home", H-B step 3).
       if (h_.vp > ax_.cfg.starting_speed) {
         ax_.motion.change_speed(ax_.cfg.starting_speed, h_.accel, h_.decel);
       }
@@ -270,21 +270,18 @@ void Homing::event(Event ev) {
       run(h_.dir, true);
       break;
     case Action::kComplete:
-      // [01] Ch.4 "Find Home": "the 3601 will set the At Home input bit, and then reset both the
-      // current position and the encoder position to zero. If the capture value is present, it
+      // 3601 manual Ch.4 "Find Home": "the 3601 will set the At Home input bit, and then reset both
+      // the current position and the encoder position to zero. If the capture value is present, it
       // too will be reset to zero." Done once the motion has ended, so the step count is final.
-      ax_.activity = Activity::kIdle;
       ax_.set_position(0);
       ax_.write_encoder(0);
       ax_.capture = 0;
-      ax_.status.at_home = true;            // 3601-AH-01
-      ax_.status.position_invalid = false;  // 3601-PI-C1
-      ax_.status.home_invalid = false;      // 3601-HI-C1 (A7)
-      break;                                // 3601-STP-N1: no Stopped after a homing
+      ax_.fire(AxisEvent::kHomingCompleted);  // 3601-AH-01, PI-C1, HI-C1 (A7)
+      break;                                  // 3601-STP-N1: no Stopped after a homing
   }
 }
 
-// An end limit became active during the homing ([01] Ch.4 "Find Home"; digest 7.11 H-C).
+// An end limit became active during the homing (3601 Ch.4 "Find Home", H-C).
 void Homing::limit(bool ahead) {
   if (ahead && h_.limit_reversed && (h_.step == Step::kLimitStop || h_.step == Step::kPause1)) {
     return;  // the same limit again before the reversal has begun (contact bounce): nothing new
@@ -308,11 +305,11 @@ void Homing::limit(bool ahead) {
   }
 }
 
-// Digest 6.4 "Homing overtravel error": HI + IE + PI, immediate stop. 3601-STP-04: Stopped is
+// 3601-HI-04/05, IE-04/05, PI-05/06: HI + IE + PI, immediate stop. 3601-STP-04: Stopped is
 // not set for a limit met during homing.
 void Homing::fail() {
   h_.limit_error = true;
-  ax_.status.home_invalid = true;
+  ax_.fire(AxisEvent::kHomeInvalid);
   ax_.fault_stop(items::kHomeLimitError, "homing: the wrong limit");  // immediate stop, IE, PI
 }
 
@@ -320,7 +317,7 @@ void Homing::fail() {
 // included) stops and sets Home Invalid. A16: a controlled stop at the homing decel, PI unchanged.
 // T = 0: no timeout (3601, 3202: always 0). The clock starts at the first scan of the sequence.
 void Homing::timeout(Nanos now) {
-  if (ax_.cfg.homing_timeout <= 0 || ax_.stop_cause != StopCause::kNone ||
+  if (ax_.cfg.homing_timeout <= 0 || ax_.stop_cause() != StopCause::kNone ||
       h_.step == Step::kFinishing || h_.step == Step::kTimedOut) {
     return;
   }
@@ -329,14 +326,14 @@ void Homing::timeout(Nanos now) {
     return;
   }
   if (now < h_.deadline) return;
-  ax_.status.home_invalid = true;
+  ax_.fire(AxisEvent::kHomingTimedOut);
   ax_.note(items::kHomeTimeout, "homing timeout of %lld s expired",
            static_cast<long long>(ax_.cfg.homing_timeout / kNsPerSec));
   if (h_.segment) {
     h_.step = Step::kTimedOut;  // ends when the stop has (motion_ended)
     ax_.motion.stop(h_.decel);
   } else {
-    ax_.activity = Activity::kIdle;  // in a pause: at rest already
+    ax_.fire(AxisEvent::kHomingOver);  // in a pause: at rest already
   }
 }
 
@@ -355,7 +352,7 @@ void Homing::scan(const AxisCommand& c, Nanos now) {
 
 void Homing::timers(Nanos now) {
   timeout(now);
-  if (ax_.activity != Activity::kHoming || ax_.stop_cause != StopCause::kNone) return;
+  if (ax_.activity() != Activity::kHoming || ax_.stop_cause() != StopCause::kNone) return;
   if (h_.step != Step::kPause1 && h_.step != Step::kPause2) return;
   if (h_.pause_end < 0) {
     h_.pause_end = now + kHomingPause;  // the motion's end was seen at this scan
@@ -366,7 +363,7 @@ void Homing::timers(Nanos now) {
 
 void Homing::on_input(const InputEvent& e, bool was_active, bool now_active) {
   // Stopping already (home reached, error, Immediate Stop): later edges change nothing.
-  if (ax_.stop_cause != StopCause::kNone || h_.step == Step::kFinishing ||
+  if (ax_.stop_cause() != StopCause::kNone || h_.step == Step::kFinishing ||
       h_.step == Step::kTimedOut) {
     return;
   }
@@ -381,7 +378,7 @@ void Homing::on_input(const InputEvent& e, bool was_active, bool now_active) {
   switch (ax_.role_of(e.line)) {
     case InputLine::kEStop:
       // 3601-IE-01 / PI-03 / STP-02; A49: IE + PI, no HI. The homing is a motion in progress
-      // for its whole sequence, pauses included (digest 7.16).
+      // for its whole sequence, pauses included (docs/axis-states.md "States").
       if (now_active && !was_active) ax_.fault_stop(items::kEStop, "E-stop (homing)");
       return;
     case InputLine::kCwLimit:
@@ -398,7 +395,7 @@ void Homing::on_input(const InputEvent& e, bool was_active, bool now_active) {
       if (e.level) event(Event::kMarker);
       return;
     default:
-      return;  // digest 7.11: the External input has no effect; capture is handled generically
+      return;  // 3601 Ch.4 "Find Home": the External input has no effect; capture: generic
   }
 }
 
@@ -406,14 +403,13 @@ void Homing::motion_ended(StopCause cause) {
   if (cause == StopCause::kImmediate || cause == StopCause::kFault) {
     // Immediate Stop command, PLC stop, E-stop or a limit error: the homing is over. PI was set
     // by immediate_stop(). 3601-STP-02/03: Stopped, except after a limit error (STP-04).
-    ax_.activity = Activity::kIdle;
-    if (!h_.limit_error) ax_.status.stopped = true;
+    ax_.fire(h_.limit_error ? AxisEvent::kHomingAbortedByLimit : AxisEvent::kHomingAborted);
     return;
   }
   if (!h_.segment) return;  // a pause: no motion to end
   h_.segment = false;
   if (h_.step == Step::kTimedOut) {
-    ax_.activity = Activity::kIdle;  // 3602-HI-07: the sequence is over
+    ax_.fire(AxisEvent::kHomingOver);  // 3602-HI-07: the sequence is over
     return;
   }
   event(Event::kMotionEnd);

@@ -1,8 +1,8 @@
 #pragma once
 // The homing sequence of one axis (Find Home + / -): its start checks, its steps and pauses, and
-// what an input edge or the end of one of its motions does (digest 7.11). It owns the sequence's
-// state; the axis hands it the command, the scans, the input edges while it runs, and the end of
-// each motion.
+// what an input edge or the end of one of its motions does (3601 Ch.4 "Find Home"). It owns the
+// sequence's state; the axis hands it the command, the scans, the input edges while it runs, and
+// the end of each motion.
 #include <cstdint>
 
 #include "module/axis/axis_state.hpp"

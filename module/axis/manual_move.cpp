@@ -1,5 +1,5 @@
 // Manual (jog) moves and registration moves (3601 manual Ch.4 "Manual Move", "Registration
-// Move"; digest 7.8, 7.9) and the minimum registration distance.
+// Move") and the minimum registration distance.
 #include <algorithm>
 #include <cstdlib>
 
@@ -29,65 +29,71 @@ void ManualMove::command(const AxisCommand& c, planner::Direction dir, Nanos now
   // one with the E-stop active (A15).
   if (ax_.inputs_block_start(dir)) return;
   ax_.clear_move_outcome();
-  ax_.activity = Activity::kManual;
   ax_.dir = dir;
   ax_.move_decel = profile->decel;
-  ax_.stop_cause = StopCause::kNone;
+  begin_run(c, dir, *profile, now);
+  // A plain manual move started with the External input active outputs one step, then stops
+  // (3601 Ch.6 "External Input"). A registration move gets here with the External input active
+  // only where a minimum distance allows it (3602 Ch.4 "Registration Move"; never on the 3601,
+  // 3601-CE-27): it runs, and the active input triggers it once the minimum distance is out.
+  const bool external = !registration && ax_.inputs.active(InputLine::kExternal);
+  if (start_motion(dir, *profile, external) == 0) {
+    one_shot_held_ = false;
+    ax_.reject(items::kPlannerFull);  // refuse rather than lose the command
+    return;
+  }
+  ax_.fire(AxisEvent::kManualStarted);
+  if (external) ax_.fire(AxisEvent::kExternalStop);
+}
 
+// The run's parameters at its start, and its kind: registration (a count), one-shot (Vp = 0) or
+// plain.
+void ManualMove::begin_run(const AxisCommand& c, planner::Direction dir, const Profile& p,
+                           Nanos now) {
   run_ = Run{};
   run_.key = dir == planner::Direction::kCw ? CommandKind::kManualCw : CommandKind::kManualCcw;
   run_.target = c.target;
   run_.speed = c.speed;
   run_.accel = c.accel;
   run_.decel = c.decel;
-  run_.vp = static_cast<std::int32_t>(profile->vp);
-  // Ramped mode only when the initial Vp is above Vs; otherwise constant-speed mode (digest 7.8).
-  run_.ramped = profile->vp > ax_.cfg.starting_speed;
-  if (registration) {
+  run_.vp = static_cast<std::int32_t>(p.vp);
+  // Ramped mode only when the initial Vp is above Vs; otherwise constant-speed mode (3601 Ch.4
+  // "Manual Move").
+  run_.ramped = p.vp > ax_.cfg.starting_speed;
+  if (*c.target != 0) {
     run_.kind = Kind::kRegistration;
-    run_.count = *target;
+    run_.count = *c.target;
     // The distance in force when the move starts: a new one programmed meanwhile (no command set
     // after the bit's release) applies to the next registration move.
     run_.dmin = min_registration_;
     run_.start_steps = ax_.motion.steps();
     run_.start_t = now;
-  } else if (profile->vp == 0) {
+  } else if (p.vp == 0) {
     run_.kind = Kind::kOneShot;
   }
   one_shot_held_ = run_.kind == Kind::kOneShot;
+}
 
-  // One-shot (Vp = 0, digest 7.8; 3601-STP-N1: no Stopped on release) and a plain manual move
-  // started with the External input active (digest 7.6: one step, then stop) both output a
-  // single pulse. A registration move gets here with the External input active only where a
-  // minimum distance allows it (the 3602, digest 8.0; never on the 3601, 3601-CE-27): it runs,
-  // and the active input triggers it once the minimum distance is out (scan()).
-  const bool external = !registration && ax_.inputs.active(InputLine::kExternal);
-  std::uint32_t epoch = 0;
-  if (profile->vp == 0 || external) {
+// The planner's motion: a single pulse for a one-shot (Vp = 0; 3601-STP-N1: no Stopped on
+// release) or with the External input active, else a run. The motion's epoch; 0: refused.
+std::uint32_t ManualMove::start_motion(planner::Direction dir, const Profile& p, bool external) {
+  if (p.vp == 0 || external) {
     planner::MoveSpec one;
     one.steps = 1;
     one.dir = dir;
     one.vs = ax_.cfg.starting_speed;
     one.vp = ax_.cfg.starting_speed;
-    one.accel = profile->accel;
-    one.decel = profile->decel;
-    epoch = ax_.motion.start_move(one);
-    if (external) ax_.stop_cause = StopCause::kExternal;
-  } else {
-    planner::RunSpec run;
-    run.dir = dir;
-    run.vs = ax_.cfg.starting_speed;
-    run.vp = profile->vp;  // <= vs: constant-speed mode, no ramps (planner)
-    run.accel = profile->accel;
-    run.decel = profile->decel;
-    epoch = ax_.motion.start_run(run);
+    one.accel = p.accel;
+    one.decel = p.decel;
+    return ax_.motion.start_move(one);
   }
-  if (epoch == 0) {
-    ax_.activity = Activity::kIdle;
-    ax_.stop_cause = StopCause::kNone;
-    one_shot_held_ = false;
-    ax_.reject(items::kPlannerFull);  // refuse rather than lose the command
-  }
+  planner::RunSpec run;
+  run.dir = dir;
+  run.vs = ax_.cfg.starting_speed;
+  run.vp = p.vp;  // <= vs: constant-speed mode, no ramps (planner)
+  run.accel = p.accel;
+  run.decel = p.decel;
+  return ax_.motion.start_run(run);
 }
 
 // The start checks of a registration move (3601 manual Ch.4 "New Error Bit Functions"); false
@@ -118,14 +124,14 @@ bool ManualMove::registration_start_allowed(std::int32_t count, double vp,
     return false;
   }
   // 3601-CE-27 / IP-12: started with the External input active, whatever the minimum distance
-  // (the 3602 only with a minimum distance of 0, digest 8.0).
+  // (the 3602 only with a minimum distance of 0, 3602 Ch.2 "Registration Move").
   if (ax_.inputs.active(InputLine::kExternal) &&
       (ax_.rules.registration_external_always_error || min_registration_ == 0)) {
     ax_.reject_profile(items::kRegExternal);
     return false;
   }
   // 3601-CE-28 / IP-13: fewer steps than the deceleration from Vp to Vs needs at the programmed
-  // decel and type (digest 7.9 worked example: 4,950 for Vs 1,000, Vp 10,000, decel 10). The
+  // decel and type (3601 Ch.4 "Registration Move": 4,950 for Vs 1,000, Vp 10,000, decel 10). The
   // small tolerance only absorbs floating-point rounding of an exact integer distance.
   if (vp > ax_.cfg.starting_speed) {
     const double need = planner::ramp_distance(vp, ax_.cfg.starting_speed, decel);
@@ -142,7 +148,7 @@ void ManualMove::scan(const AxisCommand& c, const CommandSet& rising, Nanos now)
   const bool held = c.commands.has(run_.key);
   // 3601-DIR-01: the one-shot's direction bit stays on until its bit is reset, pulse or not.
   if (one_shot_held_ && !held) one_shot_held_ = false;
-  if (ax_.activity != Activity::kManual) return;
+  if (ax_.activity() != Activity::kManual) return;
 
   switch (run_.kind) {
     case Kind::kOneShot:
@@ -152,44 +158,38 @@ void ManualMove::scan(const AxisCommand& c, const CommandSet& rising, Nanos now)
     case Kind::kPlain:
       // A released bit was turned into a controlled stop by levels() in this same scan; A11:
       // then the words are not checked (zeroing all eight words is no error on this firmware).
-      if (ax_.stop_cause != StopCause::kNone || !held) return;
+      if (ax_.stop_cause() != StopCause::kNone || !held) return;
       runtime_checks(c);
       return;
     case Kind::kRegistration:
-      break;
+      registration_scan(c, rising, held, now);
+      return;
   }
+}
 
-  if (ax_.stop_cause != StopCause::kNone) {
-    // After the trigger speed changes are ignored (digest 7.9 step 5), but the count still may
-    // not change while the bit is held (3601-CE-31 / IP-16).
-    if (run_.triggered && held &&
-        (ax_.stop_cause == StopCause::kRelease || ax_.stop_cause == StopCause::kExternal) &&
+// A registration move's scan: the count may not change, a Hold before the trigger, the release
+// and the External input as the registration condition (3601 Ch.4 "Registration Move").
+void ManualMove::registration_scan(const AxisCommand& c, const CommandSet& rising, bool held,
+                                   Nanos now) {
+  if (ax_.stop_cause() != StopCause::kNone) {
+    // After the trigger speed changes are ignored, but the count still may not change while the
+    // bit is held (3601-CE-31 / IP-16).
+    const StopCause cause = ax_.stop_cause();
+    if (run_.triggered && held && (cause == StopCause::kRelease || cause == StopCause::kExternal) &&
         c.target != run_.target) {
       error_stop(items::kRegCountChanged);
     }
     return;
   }
-
   if (!held) {
-    // 3601-CE-26 / A45: Hold before the registration condition has been acted on: CE and a plain
-    // controlled stop with the programmed decel; the registration count is not output. (The
-    // Hold bit replaces the manual bit, so this is also the scan in which the bit drops: the
-    // release is not taken as the trigger.) With CE already latched the Hold command is ignored
-    // (3601-CE-L1) and the release is the registration input as usual.
-    const bool hold_rising = rising.has(CommandKind::kHold);
-    if (hold_rising && !ax_.status.command_error) {
-      ax_.reject(items::kHoldNotHoldable, "Hold during a registration move");
-      ax_.stop_cause = StopCause::kRelease;
-      ax_.motion.stop(ax_.move_decel);
-      return;
-    }
+    if (hold_before_trigger(rising)) return;
     if (run_.released_since < 0) run_.released_since = now;
   } else {
     run_.released_since = -1;
     runtime_checks(c);
-    if (ax_.stop_cause != StopCause::kNone) return;  // stopped by an invalid change
+    if (ax_.stop_cause() != StopCause::kNone) return;  // stopped by an invalid change
   }
-  // The External input's level is also followed here (its edges come through manual_on_input).
+  // The External input's level is also followed here (its edges come through on_input).
   if (!ax_.inputs.active(InputLine::kExternal)) {
     run_.external_since = -1;
   } else if (run_.external_since < 0) {
@@ -206,6 +206,18 @@ void ManualMove::scan(const AxisCommand& c, const CommandSet& rising, Nanos now)
     cause = StopCause::kExternal;
   }
   if (since >= 0) registration_check(now, since, cause);
+}
+
+// 3601-CE-26 / A45: Hold before the registration condition has been acted on: CE and a plain
+// controlled stop with the programmed decel; the registration count is not output. (The Hold bit
+// replaces the manual bit, so this is also the scan in which the bit drops: the release is not
+// taken as the trigger.) With CE already latched the Hold command is ignored (3601-CE-L1) and the
+// release is the registration input as usual. True when the Hold was acted on.
+bool ManualMove::hold_before_trigger(const CommandSet& rising) {
+  if (!rising.has(CommandKind::kHold) || ax_.latches().command_error) return false;
+  ax_.reject(items::kHoldNotHoldable, "Hold during a registration move");
+  if (ax_.fire(AxisEvent::kReleaseStop)) ax_.motion.stop(ax_.move_decel);
+  return true;
 }
 
 // Speed / accel / decel / target changes while the bit is held (3601 manual Ch.4 "Manual Move",
@@ -250,7 +262,8 @@ void ManualMove::runtime_checks(const AxisCommand& c) {
   }
   const planner::Ramp up{static_cast<double>(c.accel), c.shape};
   const planner::Ramp down{static_cast<double>(c.decel), c.shape};
-  // The new speed may be below Vs (digest 7.8); the planner ramps to it with accel or decel.
+  // The new speed may be below Vs (3601 Ch.4 "Manual Move"); the planner ramps to it with accel or
+  // decel.
   ax_.motion.change_speed(static_cast<double>(*speed), up, down);
   ax_.move_decel = down;  // a later release stops with the new decel
   run_.vp = *speed;
@@ -265,7 +278,7 @@ void ManualMove::runtime_checks(const AxisCommand& c) {
 void ManualMove::error_stop(const Item& why) {
   ax_.reject_profile(why);
   ax_.motion.immediate_stop();
-  ax_.stop_cause = StopCause::kImmediate;
+  ax_.fire(AxisEvent::kInvalidChange);
 }
 
 // Steps output by the running registration move up to time t, from the pulse thread's history;
@@ -276,11 +289,11 @@ std::int64_t ManualMove::registration_steps_at(Nanos t) const noexcept {
   return std::llabs(s - run_.start_steps);
 }
 
-// The registration condition has been present since `present_since` (level-triggered, digest
-// 7.9 step 3). It counts once the move has output more than Dmin steps (A42: 3601 steps > Dmin;
-// Dmin = 0 disables the rule). If it was already present when the (Dmin+1)-th step went out,
-// the registration starts at that step's own time, found in the step history: the count after
-// the trigger is then exact (R steps after step Dmin+1), independent of the scan period, as
+// The registration condition has been present since `present_since` (level-triggered, 3601 Ch.4
+// "Registration Move" step 3). It counts once the move has output more than Dmin steps (A42: 3601
+// steps > Dmin; Dmin = 0 disables the rule). If it was already present when the (Dmin+1)-th step
+// went out, the registration starts at that step's own time, found in the step history: the count
+// after the trigger is then exact (R steps after step Dmin+1), independent of the scan period, as
 // the firmware's step-counting would make it. Otherwise it starts at the time the condition
 // appeared (the External edge's timestamp, or the scan that saw the bit reset).
 void ManualMove::registration_check(Nanos now, Nanos present_since, StopCause cause) {
@@ -315,13 +328,14 @@ void ManualMove::registration_check(Nanos now, Nanos present_since, StopCause ca
     }
   }
   run_.triggered = true;
-  ax_.stop_cause = cause;  // Stopped when the count has been output (3601-STP-01)
-  // Exactly R further steps, the deceleration included (digest 7.9 step 4, planner).
+  // Stopped when the count has been output (3601-STP-01).
+  ax_.fire(cause == StopCause::kRelease ? AxisEvent::kReleaseStop : AxisEvent::kExternalStop);
+  // Exactly R further steps, the deceleration included (3601 Ch.4 "Registration Move", planner).
   ax_.motion.stop_after(t, run_.count, registration_steps_at(t));
 }
 
 // The store bit rising with no command bit set: Program Minimum Registration Move Distance (3601
-// manual Ch.4 "New Command Bit"; digest 3.8).
+// manual Ch.4 "New Command Bit").
 void ManualMove::store_min_registration(const AxisCommand& c) {
   // The dialect's word rules (words that must be 0 with the store flag).
   if (c.words_invalid) {
@@ -338,12 +352,13 @@ void ManualMove::store_min_registration(const AxisCommand& c) {
 }
 
 // Input edges during a manual move: a registration move takes the External input as its
-// trigger (digest 7.6); the limits and the E-stop keep the generic rules (axis_inputs.cpp).
+// trigger (3601 Ch.6 "External Input"); the limits and the E-stop keep the generic rules
+// (axis_inputs.cpp).
 bool ManualMove::on_input(const InputEvent& e, bool now_active) {
   if (run_.kind != Kind::kRegistration || e.line != InputLine::kExternal) {
     return false;
   }
-  if (run_.triggered || ax_.stop_cause != StopCause::kNone) return true;
+  if (run_.triggered || ax_.stop_cause() != StopCause::kNone) return true;
   if (!now_active) {
     run_.external_since = -1;
     return true;
@@ -367,14 +382,13 @@ std::optional<planner::Direction> ManualMove::one_shot_direction(
 
 // Level-held: the manual move runs while its command is held.
 void ManualMove::levels(const AxisCommand& c) {
-  if (ax_.activity != Activity::kManual || ax_.stop_cause != StopCause::kNone) return;
+  if (ax_.activity() != Activity::kManual || ax_.stop_cause() != StopCause::kNone) return;
   if (owns_release()) return;  // one-shot / registration: scan() handles the release
   if (!c.commands.has(run_.key)) {
     // 3601-STP-01: releasing the bit is a controlled stop to the starting speed. Acted on even
     // while CE is set: a stop request is never ignored. A11: only the command word needs to be
     // cleared; on current firmware zeroing all eight words is not an error.
-    ax_.stop_cause = StopCause::kRelease;
-    ax_.motion.stop(ax_.move_decel);
+    if (ax_.fire(AxisEvent::kReleaseStop)) ax_.motion.stop(ax_.move_decel);
   }
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // Manual (jog) moves of one axis, plain, one-shot and registration, and the minimum
-// registration distance (digest 7.8, 7.9): the start checks, the level the move runs on, the
-// runtime changes of speed/accel/decel/target, and the registration trigger. It owns the run's
-// state; the axis hands it the command, the scans and the External input's edges.
+// registration distance (3601 Ch.4 "Manual Move", "Registration Move"): the start checks, the level
+// the move runs on, the runtime changes of speed/accel/decel/target, and the registration trigger.
+// It owns the run's state; the axis hands it the command, the scans and the External input's edges.
 #include <cstdint>
 #include <optional>
 
@@ -21,7 +21,7 @@ class ManualMove {
   // Every command-mode scan of a configured axis: runtime changes (3601-CE-17/19/30..33), the
   // release of a one-shot or registration move, the registration trigger at `now`.
   void scan(const AxisCommand& c, const CommandSet& rising, Nanos now);
-  // The store-minimum-distance flag rising with no command set (digest 3.8).
+  // The store-minimum-distance flag rising with no command set (3601 Ch.4 "New Command Bit").
   void store_min_registration(const AxisCommand& c);
   // An input edge during a manual/registration move; true if it was fully handled here.
   bool on_input(const InputEvent& e, bool now_active);
@@ -35,6 +35,10 @@ class ManualMove {
 
  private:
   bool owns_release() const noexcept;
+  void begin_run(const AxisCommand& c, planner::Direction dir, const Profile& p, Nanos now);
+  std::uint32_t start_motion(planner::Direction dir, const Profile& p, bool external);
+  void registration_scan(const AxisCommand& c, const CommandSet& rising, bool held, Nanos now);
+  bool hold_before_trigger(const CommandSet& rising);
   bool registration_start_allowed(std::int32_t count, double vp, const planner::Ramp& decel);
   void runtime_checks(const AxisCommand& c);
   void error_stop(const Item& why);

@@ -1,8 +1,8 @@
 #pragma once
 // What differs between the modules is data: one ModuleRules value per module type, read by the
-// shared axis code (module/axis/) wherever the manuals disagree. The values are the digest's
-// (MODULES.md section 1 feature table, 8.0 "Genuine differences between the modules — do not
-// harmonise them", and the 6.x checklists they come from). Only numbers and yes/no facts live
+// shared axis code (module/axis/) wherever the manuals disagree. The values are the manuals'
+// (each manual's specifications and the checklist items named at each field: genuine
+// differences between the modules, not to be harmonised). Only numbers and yes/no facts live
 // here; how a module writes them into its words is its dialect's business (module/m3601/...).
 // The values themselves live with their modules: module/m3601/rules_3601.hpp, ...
 //
@@ -20,7 +20,7 @@ namespace stepmod::module::axis {
 struct ModuleRules {
   ModuleType type{};
 
-  // ---- Ranges (digest section 1 table) ---------------------------------------------------------
+  // ---- Ranges (each manual's Ch.1 specifications) ----------------------------------------------
   std::int32_t target_min{};  // absolute/relative target, preset values, registration counts
   std::int32_t target_max{};
   std::int32_t speed_max{};  // programmed speed Vp (steps/s)
@@ -47,7 +47,7 @@ struct ModuleRules {
   bool cw_ccw_inputs_configurable{};  // 3602: CW/CCW inputs are unused, limits or E-stops
   bool has_disable{};                 // axis/channel disable bit (3602 inferred, 3202 bit 28)
 
-  // ---- Genuine differences of behaviour (digest 8.0) ------------------------------------------
+  // ---- Genuine differences of behaviour (the checklist items named per field) -----------------
   // Preset Position clears Move Complete on the 3602 only (3602-MC-02 vs 3601-MC-03).
   bool preset_clears_move_complete{};
   // Stopped: an event bit set after certain stops (3601, 3202) or "idle in command mode" (3602,
@@ -75,7 +75,8 @@ struct ModuleRules {
   bool input_error_kept_while_inputs_active = false;
 };
 
-// Homing pauses (digest 7.11: every pause of the homing sequences is 2 s, on every module).
+// Homing pauses (3601 Ch.4 "Find Home": every pause of the homing sequences is 2 s, on every
+// module).
 inline constexpr Nanos kHomingPause = 2 * kNsPerSec;
 
 }  // namespace stepmod::module::axis
