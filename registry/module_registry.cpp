@@ -4,12 +4,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "module/m3202/module_3202.hpp"
-#include "module/m3202/rules_3202.hpp"
-#include "module/m3601/module_3601.hpp"
-#include "module/m3601/rules_3601.hpp"
-#include "module/m3602/module_3602.hpp"
-#include "module/m3602/rules_3602.hpp"
+#include "module_types/m3202/module_3202.hpp"
+#include "module_types/m3202/rules_3202.hpp"
+#include "module_types/m3601/module_3601.hpp"
+#include "module_types/m3601/rules_3601.hpp"
+#include "module_types/m3602/module_3602.hpp"
+#include "module_types/m3602/rules_3602.hpp"
 #include "tools/ctl_dialects.hpp"
 
 namespace stepmod::registry {

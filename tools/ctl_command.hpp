@@ -1,7 +1,7 @@
 #pragma once
 // One stepmodctl command as parsed from the command line, before any module dialect judges it:
 // the verb and its options as the user wrote them (numbers still text, so each dialect checks
-// them against what its own words can carry). stepmodctl.cpp fills it; tools/ctl_3601.cpp,
+// them against what its own words can carry). stepmodctl.cpp fills it; module_types/m3601/ctl_3601.cpp,
 // ctl_3602.cpp and ctl_3202.cpp turn it into the PLC library's calls (plc/).
 #include <cstdint>
 #include <optional>

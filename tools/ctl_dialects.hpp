@@ -23,7 +23,7 @@ plc::Outcome run_3202(const Command& c, plc::Port& port, ipc::Client& client,
                       std::chrono::milliseconds timeout);
 
 // The status display (stepmodctl status) and the per-axis summary of each module's input image:
-// tools/ctl_status_3601.cpp, ctl_status_3602.cpp, ctl_status_3202.cpp.
+// module_types/m3601/ctl_status_3601.cpp, ctl_status_3602.cpp, ctl_status_3202.cpp.
 void format_status_3601(std::ostringstream& o, const ImageWords& in);
 void format_status_3602(std::ostringstream& o, const ImageWords& in);
 void format_status_3202(std::ostringstream& o, const ImageWords& in);

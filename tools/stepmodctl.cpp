@@ -2,7 +2,7 @@
 // PLC uses (docs/interface.md 1). This file is main and the commands every module shares (status,
 // watch, raw, panel, trace), one function each in a command table; the command line itself is
 // tools/ctl_cli.cpp. The module commands are parsed into a ctl::Command and run by the dialect
-// the image header names, through its registry row (tools/ctl_3601.cpp, ctl_3602.cpp,
+// the image header names, through its registry row (module_types/m3601/ctl_3601.cpp, ctl_3602.cpp,
 // ctl_3202.cpp), which calls the PLC-side library (plc/).
 //
 // Exit status: 0 ok; 1 the module refused the command (an error bit with its reason), or a
