@@ -13,7 +13,7 @@ std::unique_ptr<gpio::Backend> make_backend(const Config& config) {
     return std::make_unique<gpio::GpiodBackend>(config.chip, lines);
   }
   std::vector<gpio::SimAxisSetup> axes;
-  for (const AxisConfig& a : config.axes) axes.push_back({a, a.sim});
+  for (const AxisSection& a : config.axes) axes.push_back({a, a.sim});
   return std::make_unique<gpio::SimBackend>(axes);
 }
 

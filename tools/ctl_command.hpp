@@ -58,7 +58,9 @@ struct PathArgs {
   bool absolute = false;         // positions, not offsets from the start point
 };
 
-struct Command {
+// One stepmodctl module command as parsed from the command line (ctl_cli.cpp), before a module
+// type's dialect (tools/ctl_dialects.hpp) checks it against its words and runs it.
+struct CtlRequest {
   Verb verb = Verb::kConfigure;
   unsigned unit = 0;  // axis (3602) or channel (3202), 0-based; 0 on a 3601
   ConfigureArgs configure;

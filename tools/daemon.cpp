@@ -114,7 +114,7 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
 
   StackOptions so;
   so.type = config.type;
-  for (const AxisConfig& a : config.axes) {
+  for (const AxisSection& a : config.axes) {
     so.timing.push_back({a.step_pulse_ns, a.dir_setup_ns});
     so.lag_limit_steps.push_back(a.lag_limit_steps);
   }
@@ -135,7 +135,7 @@ Daemon::Daemon(const Config& config, const std::optional<std::string>& trace_pat
     spdlog::warn("replaced {}", old);
   }
   std::vector<DriveEnable::AxisSetup> enables;
-  for (const AxisConfig& a : config.axes) {
+  for (const AxisSection& a : config.axes) {
     enables.push_back({a.enable.has_value(), a.enable_delay_ns, a.enable_release});
   }
   d.drive_enable = std::make_unique<DriveEnable>(*d.backend, std::move(enables), &monotonic_now);

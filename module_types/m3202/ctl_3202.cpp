@@ -38,7 +38,7 @@ std::uint32_t configuration_bits(const ConfigureArgs& a) {
   return bits | levels;
 }
 
-plc::Outcome program_blend(const Command& c, plc::Plc3202& plc, ipc::Client& client,
+plc::Outcome program_blend(const CtlRequest& c, plc::Plc3202& plc, ipc::Client& client,
                            std::chrono::milliseconds timeout) {
   const plc::BlendProfile b =
       blend_from_options(c.blend_file, c.segments, c.final_decel, c.final_type);
@@ -59,7 +59,7 @@ plc::Outcome program_blend(const Command& c, plc::Plc3202& plc, ipc::Client& cli
 
 }  // namespace
 
-plc::Outcome run_3202(const Command& c, plc::Port& port, ipc::Client& client,
+plc::Outcome run_3202(const CtlRequest& c, plc::Port& port, ipc::Client& client,
                       std::chrono::milliseconds timeout) {
   plc::Plc3202 plc(port, timeout);
   const unsigned ch = c.unit;

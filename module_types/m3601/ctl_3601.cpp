@@ -47,7 +47,7 @@ std::uint16_t configuration_lsw(const ConfigureArgs& a) {
   return lsw;
 }
 
-plc::BlendProfile blend_profile(const Command& c) {
+plc::BlendProfile blend_profile(const CtlRequest& c) {
   plc::BlendProfile b = blend_from_options(c.blend_file, c.segments, c.final_decel, c.final_type);
   for (const plc::BlendSegment& s : b.segments) {
     check_range(s.length, "segment LENGTH", kSplit.lo, kSplit.hi, kSplit.words);
@@ -61,7 +61,7 @@ plc::BlendProfile blend_profile(const Command& c) {
 
 }  // namespace
 
-plc::Outcome run_3601(const Command& c, plc::Port& port, std::chrono::milliseconds timeout) {
+plc::Outcome run_3601(const CtlRequest& c, plc::Port& port, std::chrono::milliseconds timeout) {
   if (c.unit != 0) throw UsageError("the 3601 has one axis: --axis 1");
   plc::Plc3601 plc(port, timeout);
   switch (c.verb) {

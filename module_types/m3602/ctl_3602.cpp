@@ -52,7 +52,7 @@ std::uint16_t configuration_lsw(const ConfigureArgs& a) {
   return lsw;
 }
 
-plc::BlendProfile blend_profile(const Command& c) {
+plc::BlendProfile blend_profile(const CtlRequest& c) {
   plc::BlendProfile b = blend_from_options(c.blend_file, c.segments, c.final_decel, c.final_type);
   for (const plc::BlendSegment& s : b.segments) {
     check_range(s.accel, "segment ACCEL", kWord.lo, kWord.hi, kWord.words);
@@ -64,7 +64,7 @@ plc::BlendProfile blend_profile(const Command& c) {
 
 }  // namespace
 
-plc::Outcome run_3602(const Command& c, plc::Port& port, std::chrono::milliseconds timeout) {
+plc::Outcome run_3602(const CtlRequest& c, plc::Port& port, std::chrono::milliseconds timeout) {
   plc::Plc3602 plc(port, timeout);
   const unsigned ax = c.unit;
   switch (c.verb) {

@@ -22,7 +22,7 @@ Method circular(const std::string& sense, Method cw, Method ccw) {
 
 }  // namespace
 
-plc::PathMove3602 path_move_3602(const Command& c, const ProfileLimits& limits) {
+plc::PathMove3602 path_move_3602(const CtlRequest& c, const ProfileLimits& limits) {
   const PathArgs& a = c.path;
   if (c.unit != 0) {
     throw UsageError(
@@ -52,7 +52,7 @@ plc::PathMove3602 path_move_3602(const Command& c, const ProfileLimits& limits) 
   return m;
 }
 
-plc::Outcome run_path_3602(const Command& c, plc::Port& port, std::chrono::milliseconds timeout,
+plc::Outcome run_path_3602(const CtlRequest& c, plc::Port& port, std::chrono::milliseconds timeout,
                            const ProfileLimits& limits) {
   plc::Interp3602 interp(port, timeout);
   if (c.verb == Verb::kPathWait) {

@@ -14,10 +14,10 @@ namespace stepmod::tools::ctl {
 
 // The move the command describes; UsageError for what the 3602's words cannot carry or a
 // method without its arguments.
-plc::PathMove3602 path_move_3602(const Command& c, const ProfileLimits& limits);
+plc::PathMove3602 path_move_3602(const CtlRequest& c, const ProfileLimits& limits);
 
 // Runs `path ...` (Verb::kPath) or `path wait` (Verb::kPathWait) on a 3602.
-plc::Outcome run_path_3602(const Command& c, plc::Port& port, std::chrono::milliseconds timeout,
+plc::Outcome run_path_3602(const CtlRequest& c, plc::Port& port, std::chrono::milliseconds timeout,
                            const ProfileLimits& limits);
 
 }  // namespace stepmod::tools::ctl
