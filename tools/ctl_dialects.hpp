@@ -12,8 +12,8 @@
 
 #include "core/module_shape.hpp"
 #include "ipc/client.hpp"
+#include "plc/move_profile.hpp"
 #include "plc/port.hpp"
-#include "plc/profile.hpp"
 #include "tools/ctl_command.hpp"
 #include "tools/ctl_summary.hpp"
 

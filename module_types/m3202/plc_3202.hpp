@@ -8,12 +8,12 @@
 #include <optional>
 #include <string>
 
-#include "module_types/m3601/plc_3601.hpp"  // Sequencing
-#include "plc/port.hpp"
-#include "plc/profile.hpp"
 #include "module_types/m3202/plc_status_3202.hpp"
-#include "plc/verdict.hpp"
 #include "module_types/m3202/plc_words_3202.hpp"
+#include "module_types/m3601/plc_3601.hpp"  // Sequencing
+#include "plc/move_profile.hpp"
+#include "plc/port.hpp"
+#include "plc/verdict.hpp"
 
 namespace stepmod::plc {
 

@@ -5,7 +5,7 @@
 #include <array>
 #include <cstdint>
 
-#include "plc/profile.hpp"
+#include "plc/move_profile.hpp"
 
 namespace stepmod::plc::m3202 {
 

@@ -7,11 +7,11 @@
 #include <optional>
 #include <string>
 
-#include "plc/port.hpp"
-#include "plc/profile.hpp"
 #include "module_types/m3601/plc_status_3601.hpp"
-#include "plc/verdict.hpp"
 #include "module_types/m3601/plc_words_3601.hpp"
+#include "plc/move_profile.hpp"
+#include "plc/port.hpp"
+#include "plc/verdict.hpp"
 
 namespace stepmod::plc {
 

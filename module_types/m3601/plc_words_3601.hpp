@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/module_shape.hpp"
-#include "plc/profile.hpp"
+#include "plc/move_profile.hpp"
 
 namespace stepmod::plc::m3601 {
 

@@ -9,11 +9,11 @@
 #include <optional>
 
 #include "module_types/m3601/plc_3601.hpp"  // Sequencing
-#include "plc/port.hpp"
-#include "plc/profile.hpp"
 #include "module_types/m3602/plc_status_3602.hpp"
-#include "plc/verdict.hpp"
 #include "module_types/m3602/plc_words_3602.hpp"
+#include "plc/move_profile.hpp"
+#include "plc/port.hpp"
+#include "plc/verdict.hpp"
 
 namespace stepmod::plc {
 

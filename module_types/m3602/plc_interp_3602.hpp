@@ -10,8 +10,8 @@
 
 #include "core/module_shape.hpp"
 #include "module_types/m3602/plc_3602.hpp"
+#include "plc/move_profile.hpp"
 #include "plc/port.hpp"
-#include "plc/profile.hpp"
 
 namespace stepmod::plc {
 
