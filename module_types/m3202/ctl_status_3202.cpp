@@ -1,6 +1,6 @@
 // How stepmodctl shows a 3202's input image: the decoded status display of both channels
 // (stepmodctl status) and the channel summaries (--brief, --json, wait-idle, --wait). Names from
-// the 3202's bit tables (module_types/m3202/words_3202.hpp). Both are columns of its registry row.
+// the 3202's bit tables (module_types/m3202/words_3202.hpp). Both are in its stepmodctl row.
 #include <sstream>
 #include <string>
 #include <vector>

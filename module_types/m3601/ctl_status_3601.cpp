@@ -1,6 +1,6 @@
 // How stepmodctl shows a 3601's input image: the decoded status display (stepmodctl status) and
 // the axis summary (--brief, --json, wait-idle, --wait). Names from the 3601's bit tables,
-// numbers in its decimal split (module_types/m3601/words_3601.hpp). Both are columns of its registry row.
+// numbers in its decimal split (module_types/m3601/words_3601.hpp). Both are in its stepmodctl row.
 #include <sstream>
 #include <string>
 #include <vector>

@@ -1,7 +1,7 @@
 #pragma once
 // The 3601's rules value: what the shared axis code (module/axis/) does differently for this
 // module, as data (the fields are explained in module/axis/rules.hpp). Written down here, with its
-// module; the registry row (registry/module_registry.cpp) points at it.
+// module; its registry row (registry_row_3601.hpp) points at it.
 #include "module/axis/rules.hpp"
 
 namespace stepmod::module::m3601 {
