@@ -225,12 +225,12 @@ class Parser : ConfigReader {
     }
   }
 
-  AxisConfig parse_axis(const toml::table& t, std::size_t index, ModuleType type, bool gpiod,
-                        std::map<int64_t, std::string>& used) const {
+  AxisSection parse_axis(const toml::table& t, std::size_t index, ModuleType type, bool gpiod,
+                         std::map<int64_t, std::string>& used) const {
     // 1-based like the contract's "axis 1, then axis 2" and the VCD names axis1.step.
     const std::string p = "axis[" + std::to_string(index + 1) + "]";
     check_keys(t, p, "axis");
-    AxisConfig a;
+    AxisSection a;
     auto line = [&](std::string_view key, bool input,
                     gpio::LineOptions& opt) -> std::optional<unsigned> {
       const auto v = line_entry(t, p, key, input, gpiod, opt);
@@ -360,7 +360,7 @@ class Parser : ConfigReader {
   }
 
   // The drive-enable output's keys (an extension: off unless `enable` names a line).
-  void parse_enable(const toml::table& t, const std::string& p, AxisConfig& a) const {
+  void parse_enable(const toml::table& t, const std::string& p, AxisSection& a) const {
     if (!a.enable) {
       for (std::string_view k : {"enable_delay_us", "enable_release_on"}) {
         if (const toml::node* n = t.get(k)) {

@@ -23,7 +23,7 @@ using SimAxisConfig = gpio::SimAxisParams;
 // One [[axis]] table. The line offsets (`out[]`, `in[]`, absent = not wired; step and dir are
 // required) are the backend's AxisLines.
 // What releases a drive-enable output besides the axis not being configured (bits of
-// AxisConfig::enable_release; config key enable_release_on).
+// AxisSection::enable_release; config key enable_release_on).
 enum EnableRelease : std::uint8_t {
   kReleaseOnEStop = 1,       // an E-stop input is active
   kReleaseOnFault = 2,       // a late-edge fault or lost input events stopped the axis
@@ -31,9 +31,10 @@ enum EnableRelease : std::uint8_t {
   kReleaseOnConfigMode = 8,  // the axis is in configuration mode
 };
 
-// The initial values are the keys' defaults (config/config_keys.hpp), as the parser leaves them
+// One [[axis]] section of the config file: its lines, timings, drive enable and simulator. The
+// initial values are the keys' defaults (config/config_keys.hpp), as the parser leaves them
 // for a key the file leaves out.
-struct AxisConfig : gpio::AxisLines {
+struct AxisSection : gpio::AxisLines {
   Nanos step_pulse_ns = default_ns(config_key("axis", "step_pulse_ns"));
   Nanos dir_setup_ns = default_ns(config_key("axis", "dir_setup_ns"));
   // Late-edge guard above Vs (docs/slip.md): output steps the axis may lag after a pause.
@@ -45,7 +46,7 @@ struct AxisConfig : gpio::AxisLines {
   SimAxisConfig sim;
 };
 
-// Initial values: as AxisConfig's.
+// Initial values: as AxisSection's.
 struct Config {
   std::string file;  // the path it was read from
   ModuleType type = ModuleType::k3601;
@@ -59,7 +60,7 @@ struct Config {
   // Late-edge guard: a pause in an axis' step train longer than this faults the axis at any
   // speed (rt::PulseEngine::set_late_limit; docs/slip.md).
   Nanos late_limit_ns = default_ns(config_key("rt", "late_limit_us"));
-  std::vector<AxisConfig> axes;
+  std::vector<AxisSection> axes;
   ipc::ModbusOptions modbus;  // [modbus] (docs/interface.md 6), every field set by the parser
 };
 

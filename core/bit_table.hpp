@@ -1,6 +1,6 @@
 #pragma once
 // A named bit (or bit field) of a module word, as a manual's table lists it. Each module's
-// dialect writes its words down once as constexpr tables of these (words/words_3601.hpp,
+// dialect writes its words down once as constexpr tables of these (module_types/m3601/words_3601.hpp,
 // ...); the code's bit constants are looked up in the tables by name at compile time, and
 // stepmodctl shows the same names. Header-only, no dependencies: the PLC side includes it.
 #include <cstdint>

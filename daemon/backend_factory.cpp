@@ -13,7 +13,7 @@ BuiltBackend make_backend(const Config& config) {
     return {std::make_unique<gpio::GpiodBackend>(config.chip, lines), nullptr};
   }
   std::vector<gpio::SimAxisSetup> axes;
-  for (const AxisConfig& a : config.axes) axes.push_back({a, a.sim});
+  for (const AxisSection& a : config.axes) axes.push_back({a, a.sim});
   auto sim = std::make_unique<gpio::SimBackend>(axes);
   gpio::SimBackend* panel_side = sim.get();
   return {std::move(sim), panel_side};

@@ -54,7 +54,7 @@ Daemon::~Daemon() = default;
 void Daemon::Impl::build_stack() {
   StackOptions so;
   so.type = config.type;
-  for (const AxisConfig& a : config.axes) {
+  for (const AxisSection& a : config.axes) {
     so.timing.push_back({a.step_pulse_ns, a.dir_setup_ns});
     so.lag_limit_steps.push_back(a.lag_limit_steps);
   }

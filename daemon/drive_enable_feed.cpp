@@ -13,7 +13,7 @@ namespace stepmod::tools {
 namespace {
 std::vector<DriveEnable::AxisSetup> enable_setups(const Config& config) {
   std::vector<DriveEnable::AxisSetup> enables;
-  for (const AxisConfig& a : config.axes) {
+  for (const AxisSection& a : config.axes) {
     enables.push_back({a.enable.has_value(), a.enable_delay_ns, a.enable_release});
   }
   return enables;

@@ -14,7 +14,7 @@ Stack::Stack(const StackOptions& options, gpio::Backend& backend, SpscRing<Trace
   std::vector<planner::PlannerAxis> planner_axes;
   std::vector<rt::AxisLink> links;
   for (unsigned i = 0; i < shape_.axes; ++i) {
-    auto& a = axes_.emplace_back(std::make_unique<Axis>(options.edge_ring));
+    auto& a = axes_.emplace_back(std::make_unique<AxisPipeline>(options.edge_ring));
     planner_axes.push_back({&a->edges, &a->control, options.timing[i], &a->feedback});
     links.push_back({&a->edges, &a->feedback, &a->control, &a->history});
   }
@@ -26,7 +26,7 @@ Stack::Stack(const StackOptions& options, gpio::Backend& backend, SpscRing<Trace
   }
   std::vector<planner::MotionPort*> ports;
   for (unsigned i = 0; i < shape_.axes; ++i) {
-    Axis& a = *axes_[i];
+    AxisPipeline& a = *axes_[i];
     a.port = std::make_unique<planner::MotionPort>(i, *planner_, a.feedback, a.control, a.history);
     ports.push_back(a.port.get());
   }

@@ -49,8 +49,9 @@ class Stack {
   const rt::AxisFeedback& feedback(unsigned axis) const noexcept { return axes_[axis]->feedback; }
 
  private:
-  struct Axis {
-    explicit Axis(std::size_t ring) : edges(ring) {}
+  // One axis' way from the planner to the step output: its edge ring, feedback and motion port.
+  struct AxisPipeline {
+    explicit AxisPipeline(std::size_t ring) : edges(ring) {}
     SpscRing<rt::Edge> edges;
     rt::AxisFeedback feedback;
     rt::AxisControl control;
@@ -61,7 +62,7 @@ class Stack {
   gpio::Backend& backend_;
   BackendAxisIo module_io_;  // the module's view of backend_: start-up levels, pulse format
   ModuleShape shape_;
-  std::vector<std::unique_ptr<Axis>> axes_;  // stable addresses: the threads hold pointers
+  std::vector<std::unique_ptr<AxisPipeline>> axes_;  // stable addresses: the threads hold pointers
   std::unique_ptr<planner::Planner> planner_;
   // After the axes: destroyed (its thread stopped) before the rings and blocks it reads.
   std::unique_ptr<rt::StepOutput> output_;

@@ -1,6 +1,6 @@
 #pragma once
 // What the control thread asks of an emulated module. One implementation per module type
-// (module/m3601/module_3601.hpp, module/m3602/module_3602.hpp, module/m3202/module_3202.hpp),
+// (module_types/m3601/module_3601.hpp, module_types/m3602/module_3602.hpp, module_types/m3202/module_3202.hpp),
 // made by its registry row (registry/module_registry.hpp): the module's dialect around the
 // shared axis of module/axis/ (docs/ARCHITECTURE.md "The module layer").
 #include <array>

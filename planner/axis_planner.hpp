@@ -1,7 +1,7 @@
 #pragma once
 // One axis of the planner: applies Commands to the axis' motion and turns the motion into timed
 // edges in the axis' ring. Owned and run by the planner thread only. One job per file:
-//   axis_commands.cpp  command dispatch (apply) and the commands that change a running motion
+//   axis_apply.cpp     command dispatch (apply) and the commands that change a running motion
 //   axis_start.cpp     a motion's start: which step source, group start (prepare/launch), aborts
 //   axis_fill.cpp      filling the ring with the one fill loop (step_loop.hpp), the refill time
 //   axis_stops.cpp     controlled stops: the profile's replans and the cut handshake

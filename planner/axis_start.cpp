@@ -13,7 +13,7 @@ AxisPlanner::SourceStart AxisPlanner::start_source(const Command& c) noexcept {
     follow_.start(follow->spec);
     return {&follow_, follow->spec.target < 0 ? Direction::kCcw : Direction::kCw, kEndless};
   }
-  if (c.kind() == CommandKind::kPath || c.kind() == CommandKind::kPathResume) return start_path(c);
+  if (c.kind() == RequestKind::kPath || c.kind() == RequestKind::kPathResume) return start_path(c);
   ProfileSource::Start st{};
   if (const auto* move = std::get_if<MoveSpec>(&c.what)) {
     st = profile_.start(*move);
@@ -35,7 +35,7 @@ bool AxisPlanner::prepare_start(const Command& c, Nanos now) noexcept {
   if (c.epoch <= last_motion_epoch_) return false;  // stale or repeated
   // A new motion replaces one that is still being planned: that one ends on its newest step.
   if (m_.active) finish_at_frontier();
-  if (c.kind() != CommandKind::kPath && c.kind() != CommandKind::kPathResume) discard_path();
+  if (c.kind() != RequestKind::kPath && c.kind() != RequestKind::kPathResume) discard_path();
 
   const SourceStart st = start_source(c);
   Motion m;

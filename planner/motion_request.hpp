@@ -114,7 +114,7 @@ struct FollowUpdate {  // follow motion: new target, speed and ramps
 };
 
 // The kind is the payload's index in CommandPayload: keep the two lists in the same order.
-enum class CommandKind : std::uint8_t {
+enum class RequestKind : std::uint8_t {
   kMove,            // MoveSpec: start as motion `epoch`
   kRun,             // RunSpec: start as motion `epoch`
   kBlend,           // BlendStart: start the slot's BlendSpec as motion `epoch`
@@ -134,7 +134,7 @@ using CommandPayload = std::variant<MoveSpec, RunSpec, BlendStart, SpeedChange, 
                                     StopAfterSpec, AbortSpec, GpoSpec, PulseFormatSpec, FollowStart,
                                     FollowUpdate, PathStart, PathResume, PathHold>;
 static_assert(std::variant_size_v<CommandPayload> ==
-              static_cast<std::size_t>(CommandKind::kPathHold) + 1);
+              static_cast<std::size_t>(RequestKind::kPathHold) + 1);
 
 // Group start: the motions of `size` axes that start together on one time base. Each member's
 // start command carries the same id; the planner starts none of them before it holds all (or
@@ -161,11 +161,11 @@ struct Command {
   GroupTag group;  // start commands only
   CommandPayload what;
 
-  CommandKind kind() const noexcept { return static_cast<CommandKind>(what.index()); }
+  RequestKind kind() const noexcept { return static_cast<RequestKind>(what.index()); }
   bool starts_motion() const noexcept {
-    const CommandKind k = kind();
-    return k == CommandKind::kMove || k == CommandKind::kRun || k == CommandKind::kBlend ||
-           k == CommandKind::kFollow || k == CommandKind::kPath || k == CommandKind::kPathResume;
+    const RequestKind k = kind();
+    return k == RequestKind::kMove || k == RequestKind::kRun || k == RequestKind::kBlend ||
+           k == RequestKind::kFollow || k == RequestKind::kPath || k == RequestKind::kPathResume;
   }
 };
 // Commands cross threads by copy through an SpscRing: small and trivially copyable.

@@ -8,11 +8,11 @@
 namespace stepmod::planner {
 
 void PathBook::before(const Command& c) noexcept {
-  if (c.kind() != CommandKind::kPathResume && c.kind() != CommandKind::kPathHold) return;
+  if (c.kind() != RequestKind::kPathResume && c.kind() != RequestKind::kPathHold) return;
   // An immediate stop of either axis (seen by its planner only when it next runs) discards the
   // path: take every axis' aborts into account before the path is held or resumed.
   for (const auto& a : axes_) a->poll_abort();
-  if (c.kind() != CommandKind::kPathResume || held_ == 0) return;
+  if (c.kind() != RequestKind::kPathResume || held_ == 0) return;
   // A resume before the hold has stopped every axis of the path (the module resumes only from
   // its Hold state, when both have stopped): the axes are not at the stop point the resume
   // would start from, so the path is given up rather than jump there.

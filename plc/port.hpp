@@ -1,7 +1,7 @@
 #pragma once
 // What a PLC program needs of the module's I/O image, whoever carries it: the shared memory of a
 // running stepmodd (plc/shm_port.hpp) or the virtual-time test machine
-// (tests/support/virtual_port.hpp). The dialects (plc/plc_3601.hpp, ...) sequence their commands
+// (tests/support/virtual_port.hpp). The dialects (module_types/m3601/plc_3601.hpp, ...) sequence their commands
 // through this interface only, so stepmodctl and the tests run the same PLC code.
 #include <chrono>
 #include <cstdint>

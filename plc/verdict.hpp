@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "plc/move_profile.hpp"
 #include "plc/port.hpp"
-#include "plc/profile.hpp"
 
 namespace stepmod::plc {
 

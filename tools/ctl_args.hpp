@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "plc/profile.hpp"
+#include "plc/move_profile.hpp"
 #include "tools/ctl_command.hpp"
 
 namespace stepmod::tools::ctl {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "plc/profile.hpp"
+#include "plc/move_profile.hpp"
 #include "tools/ctl_args.hpp"
 
 namespace stepmod::tools::ctl {

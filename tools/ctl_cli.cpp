@@ -8,7 +8,7 @@ namespace stepmod::tools::ctl {
 namespace {
 
 // A module command sets its verb when CLI11 parses it.
-auto verb_setter(Command& cmd) {
+auto verb_setter(CtlRequest& cmd) {
   return [&cmd](CLI::App* sub, Verb v) {
     sub->parse_complete_callback([&cmd, v] { cmd.verb = v; });
     return sub;
@@ -80,7 +80,7 @@ void add_inspection(CLI::App& app, CtlOptions& o, CtlSubcommands& subs) {
 }
 
 // ---- module commands ----
-void add_configure(CLI::App& app, Command& cmd) {
+void add_configure(CLI::App& app, CtlRequest& cmd) {
   const auto verb = verb_setter(cmd);
   ConfigureArgs& cf = cmd.configure;
   auto* configure =
@@ -117,7 +117,7 @@ void add_configure(CLI::App& app, Command& cmd) {
 }
 
 void add_moves(CLI::App& app, CtlOptions& o) {
-  Command& cmd = o.cmd;
+  CtlRequest& cmd = o.cmd;
   const auto verb = verb_setter(cmd);
   auto* move = verb(app.add_subcommand("move", "absolute or relative move"), Verb::kMove);
   move->add_option("KIND", cmd.kind, "abs or rel")
@@ -148,7 +148,7 @@ void add_moves(CLI::App& app, CtlOptions& o) {
   add_wait(home, o.wait);
 }
 
-void add_commands(CLI::App& app, Command& cmd) {
+void add_commands(CLI::App& app, CtlRequest& cmd) {
   const auto verb = verb_setter(cmd);
   verb(app.add_subcommand("hold", "hold move (controlled stop, resumable)"), Verb::kHold);
   auto* resume = verb(app.add_subcommand("resume",
@@ -171,7 +171,7 @@ void add_commands(CLI::App& app, Command& cmd) {
 }
 
 void add_blend(CLI::App& app, CtlOptions& o) {
-  Command& cmd = o.cmd;
+  CtlRequest& cmd = o.cmd;
   const auto verb = verb_setter(cmd);
   auto* blend = app.add_subcommand("blend", "blend move profiles");
   blend->require_subcommand(1);
@@ -199,7 +199,7 @@ void add_blend(CLI::App& app, CtlOptions& o) {
   add_wait(blend_run, o.wait);
 }
 
-void add_follow(CLI::App& app, Command& cmd) {
+void add_follow(CLI::App& app, CtlRequest& cmd) {
   const auto verb = verb_setter(cmd);
   auto* follow =
       verb(app.add_subcommand(
@@ -223,7 +223,7 @@ void add_follow(CLI::App& app, Command& cmd) {
 }
 
 void add_wait_idle_and_gpo(CLI::App& app, CtlOptions& o) {
-  Command& cmd = o.cmd;
+  CtlRequest& cmd = o.cmd;
   const auto verb = verb_setter(cmd);
   auto* wait_idle = verb(app.add_subcommand("wait-idle",
                                             "wait until the axis/channel is neither moving nor "
@@ -243,7 +243,7 @@ void add_wait_idle_and_gpo(CLI::App& app, CtlOptions& o) {
 
 // ---- 3602 interpolated moves: both axes on one path, commanded on axis 1 ----
 void add_path(CLI::App& app, CtlOptions& o) {
-  Command& cmd = o.cmd;
+  CtlRequest& cmd = o.cmd;
   const auto verb = verb_setter(cmd);
   auto* path = app.add_subcommand(
       "path",

@@ -16,7 +16,7 @@ struct CtlOptions {
   int timeout_ms = 2000;
   unsigned axis_no = 0;             // --axis, 1-based; 0 = not given
   unsigned channel_no = 0;          // --channel, 1-based; 0 = not given
-  Command cmd;                      // the module command
+  CtlRequest cmd;                   // the module command
   bool wait = false;                // --wait of a motion command
   bool steal = false;               // --steal: take the commissioning lease over (logged)
   std::string gpo_state;            // gpo on|off

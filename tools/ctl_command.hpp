@@ -1,7 +1,7 @@
 #pragma once
 // One stepmodctl command as parsed from the command line, before any module dialect judges it:
 // the verb and its options as the user wrote them (numbers still text, so each dialect checks
-// them against what its own words can carry). stepmodctl.cpp fills it; tools/ctl_3601.cpp,
+// them against what its own words can carry). stepmodctl.cpp fills it; module_types/m3601/ctl_3601.cpp,
 // ctl_3602.cpp and ctl_3202.cpp turn it into the PLC library's calls (plc/).
 #include <cstdint>
 #include <optional>
@@ -58,7 +58,9 @@ struct PathArgs {
   bool absolute = false;         // positions, not offsets from the start point
 };
 
-struct Command {
+// One stepmodctl module command as parsed from the command line (ctl_cli.cpp), before a module
+// type's dialect (tools/ctl_dialects.hpp) checks it against its words and runs it.
+struct CtlRequest {
   Verb verb = Verb::kConfigure;
   unsigned unit = 0;  // axis (3602) or channel (3202), 0-based; 0 on a 3601
   ConfigureArgs configure;

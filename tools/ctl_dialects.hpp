@@ -1,35 +1,42 @@
 #pragma once
-// stepmodctl's module dialects: a parsed command (ctl_command.hpp) → the PLC library's calls
-// for the module the image belongs to. Each checks every option against its module's words
-// first and throws UsageError before anything is written; then it runs the command over `port`
-// and returns its outcome. One file per module: ctl_3601.cpp, ctl_3602.cpp, ctl_3202.cpp. The
-// registry row of each module type (registry/module_registry.cpp) points at its functions here.
+// stepmodctl's side of each module type, one row each (the client counterpart of the daemon's
+// registry row, registry/module_registry.hpp): its dialect, a parsed command (ctl_command.hpp) ->
+// the PLC library's calls for the module the image belongs to, which checks every option against
+// its module's words first and throws UsageError before anything is written, then runs the
+// command over `port` and returns its outcome; its status display; its per-axis summary. Each row
+// is written in its module type's folder (module_types/mXXXX/ctl_row_XXXX.hpp, pointing at its
+// ctl_XXXX.cpp and ctl_status_XXXX.cpp) and collected by the generated module_types/ctl_rows.hpp.
 #include <chrono>
 #include <sstream>
 #include <vector>
 
+#include "core/module_shape.hpp"
 #include "ipc/client.hpp"
+#include "plc/move_profile.hpp"
 #include "plc/port.hpp"
-#include "plc/profile.hpp"
 #include "tools/ctl_command.hpp"
 #include "tools/ctl_summary.hpp"
 
 namespace stepmod::tools::ctl {
 
-plc::Outcome run_3601(const Command& c, plc::Port& port, std::chrono::milliseconds timeout);
-plc::Outcome run_3602(const Command& c, plc::Port& port, std::chrono::milliseconds timeout);
-// The 3202's blend profile travels as a message through the image's mailbox (`client`).
-plc::Outcome run_3202(const Command& c, plc::Port& port, ipc::Client& client,
-                      std::chrono::milliseconds timeout);
+// The dialect: a parsed command -> the plc/ calls (messages, such as the 3202's blend profile,
+// travel through the image's mailbox, `client`).
+using RunCommand = plc::Outcome(const CtlRequest& c, plc::Port& port, ipc::Client& client,
+                                std::chrono::milliseconds timeout);
+// stepmodctl status: the decoded input image, multi-line.
+using FormatStatus = void(std::ostringstream& o, const ImageWords& in);
+// Every axis/channel in a few words (stepmodctl --brief, --json, wait-idle, --wait).
+using Summarize = std::vector<AxisSummary>(const ImageWords& in);
 
-// The status display (stepmodctl status) and the per-axis summary of each module's input image:
-// tools/ctl_status_3601.cpp, ctl_status_3602.cpp, ctl_status_3202.cpp.
-void format_status_3601(std::ostringstream& o, const ImageWords& in);
-void format_status_3602(std::ostringstream& o, const ImageWords& in);
-void format_status_3202(std::ostringstream& o, const ImageWords& in);
-std::vector<AxisSummary> summarize_3601(const ImageWords& in);
-std::vector<AxisSummary> summarize_3602(const ImageWords& in);
-std::vector<AxisSummary> summarize_3202(const ImageWords& in);
+struct CtlRow {
+  ModuleType type;
+  RunCommand* run_command;      // module_types/mXXXX/ctl_XXXX.cpp
+  FormatStatus* format_status;  // module_types/mXXXX/ctl_status_XXXX.cpp
+  Summarize* summarize;         // module_types/mXXXX/ctl_status_XXXX.cpp
+};
+
+// The row of `type`. Throws std::invalid_argument for a number that is no module type.
+const CtlRow& ctl_row_of(ModuleType type);
 
 // The seconds of jog --for / wait-idle --max as a duration.
 inline std::chrono::milliseconds millis(double seconds) {

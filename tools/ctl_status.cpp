@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "registry/module_registry.hpp"
 #include "tools/ctl_args.hpp"
+#include "tools/ctl_dialects.hpp"
 #include "tools/ctl_fields.hpp"
 
 namespace stepmod::tools::ctl {
@@ -30,7 +30,7 @@ void all_bits(std::ostringstream& o, std::uint32_t word, BitTable table) {
 
 std::string format_status(ModuleType type, const ImageWords& in) {
   std::ostringstream o;
-  registry::row_of(type).format_status(o, in);
+  ctl_row_of(type).format_status(o, in);
   return o.str();
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // Decoding of a module's input image for people (stepmodctl status/watch): every status bit by
-// the name the module's bit table gives it (words/words_3601.hpp, m3602/words_3602.hpp,
+// the name the module's bit table gives it (module_types/m3601/words_3601.hpp, m3602/words_3602.hpp,
 // m3202/words_3202.hpp), positions as numbers in the module's own encoding (its manual's data
 // format).
 #include <cstdint>

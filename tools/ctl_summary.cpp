@@ -1,6 +1,6 @@
 #include "tools/ctl_summary.hpp"
 
-#include "registry/module_registry.hpp"
+#include "tools/ctl_dialects.hpp"
 
 namespace stepmod::tools::ctl {
 
@@ -49,7 +49,7 @@ AxisSummary summary_from_word(std::uint32_t w, const StatusBits& b) {
 }
 
 std::vector<AxisSummary> summarize(ModuleType type, const ImageWords& in) {
-  return registry::row_of(type).summarize(in);
+  return ctl_row_of(type).summarize(in);
 }
 
 MotionEnd judge_end(const AxisSummary& s, Motion kind, const stepmod_reason_t& reason) {

@@ -1,9 +1,9 @@
 // stepmodctl: inspect and drive a running stepmod module through the same shared memory a soft
 // PLC uses (docs/interface.md 1). This file is main and the commands every module shares (status,
 // watch, raw, panel, trace), one function each in a command table; the command line itself is
-// tools/ctl_cli.cpp. The module commands are parsed into a ctl::Command and run by the dialect
-// the image header names, through its registry row (tools/ctl_3601.cpp, ctl_3602.cpp,
-// ctl_3202.cpp), which calls the PLC-side library (plc/).
+// tools/ctl_cli.cpp. The module commands are parsed into a ctl::CtlRequest and run by the dialect
+// the image header names, through its stepmodctl row (module_types/m3601/ctl_3601.cpp,
+// ctl_3602.cpp, ctl_3202.cpp), which calls the PLC-side library (plc/).
 //
 // Exit status: 0 ok; 1 the module refused the command (an error bit with its reason), or a
 // waited-for motion did not end in Move Complete / At Home, or another running process holds the
@@ -27,7 +27,6 @@
 #include "ipc/client.hpp"
 #include "ipc/sim_panel.hpp"
 #include "plc/shm_port.hpp"
-#include "registry/module_registry.hpp"
 #include "tools/ctl_args.hpp"
 #include "tools/ctl_cli.hpp"
 #include "tools/ctl_command.hpp"
@@ -270,7 +269,7 @@ LeasePlan prepare_command(const CtlOptions& o, ipc::Client& client, plc::ShmPort
 // A stop or hold the module ignored (Command Error left set: 3601-CE-L1) while the axis still
 // moves did not do its job, whatever the note says.
 int judge_stop(const CtlOptions& o, ipc::Client& client, const plc::Outcome& out) {
-  const Command& cmd = o.cmd;
+  const CtlRequest& cmd = o.cmd;
   if ((cmd.verb == Verb::kStop || cmd.verb == Verb::kHold) && !out.note.empty()) {
     client.wait_scans(2, std::chrono::milliseconds(o.timeout_ms));
     ImageWords in;
@@ -287,7 +286,7 @@ int judge_stop(const CtlOptions& o, ipc::Client& client, const plc::Outcome& out
 
 int run_module_command(CtlOptions& o, ipc::Client& client) {
   const auto timeout = std::chrono::milliseconds(o.timeout_ms);
-  Command& cmd = o.cmd;
+  CtlRequest& cmd = o.cmd;
   cmd.unit = unit_of(o);
   cmd.gpo_on = o.gpo_state == "on";
   plc::ShmPort port(client, timeout);
@@ -297,7 +296,7 @@ int run_module_command(CtlOptions& o, ipc::Client& client) {
   }
   const LeasePlan lease = prepare_command(o, client, port);
   if (lease.refused) return kExitModuleError;
-  const plc::Outcome out = registry::row_of(client.type()).run_command(cmd, port, client, timeout);
+  const plc::Outcome out = ctl_row_of(client.type()).run_command(cmd, port, client, timeout);
   print_outcome(client, out);
   if (!out.ok) return exit_for(out);
   if (o.wait && starts_motion(cmd.verb)) {

@@ -6,8 +6,8 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "plc/move_profile.hpp"
 #include "plc/port.hpp"
-#include "plc/profile.hpp"
 
 namespace stepmod::web {
 

@@ -1,8 +1,10 @@
 #pragma once
 // The console's side of each module type, one row per type (the web counterpart of the registry
-// row in registry/module_registry.cpp, which cannot depend on web/): how the page shows a unit's
+// row in registry/module_registry.hpp, which cannot depend on web/): how the page shows a unit's
 // registers and status words, which configuration bits its form offers, and the controls that
-// turn the page's commands into the module's plc/ calls. Code in web/ that needs one of these
+// turn the page's commands into the module's plc/ calls. Each row is written in its module
+// type's folder (module_types/mXXXX/view_row_XXXX.hpp, pointing at its view_XXXX.cpp) and
+// collected by the generated module_types/view_rows.hpp. Code in web/ that needs one of these
 // looks the row up here: nothing in web/ switches on the module type.
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -22,31 +24,11 @@ struct ModuleView {
   nlohmann::json (*status_words)(const ImageWords& in, unsigned unit);
   // The configuration bits by name, as the page's form groups them ({"msw": ..., "lsw": ...}).
   nlohmann::json (*config_bits)();
-  // The controls of the module behind `port` (web/view_XXXX.cpp).
+  // The controls of the module behind `port` (module_types/mXXXX/view_XXXX.cpp).
   std::unique_ptr<Controls> (*make_controls)(plc::Port& port);
 };
 
 // The row of `type`. Throws std::invalid_argument for a number that is no module type.
 const ModuleView& view_of(ModuleType type);
-
-// Each module's functions (web/view_XXXX.cpp), named in its row.
-namespace view3601 {
-UnitRegisters registers(const ImageWords& in, unsigned unit);
-nlohmann::json status_words(const ImageWords& in, unsigned unit);
-nlohmann::json config_bits();
-std::unique_ptr<Controls> make_controls(plc::Port& port);
-}  // namespace view3601
-namespace view3602 {
-UnitRegisters registers(const ImageWords& in, unsigned unit);
-nlohmann::json status_words(const ImageWords& in, unsigned unit);
-nlohmann::json config_bits();
-std::unique_ptr<Controls> make_controls(plc::Port& port);
-}  // namespace view3602
-namespace view3202 {
-UnitRegisters registers(const ImageWords& in, unsigned unit);
-nlohmann::json status_words(const ImageWords& in, unsigned unit);
-nlohmann::json config_bits();
-std::unique_ptr<Controls> make_controls(plc::Port& port);
-}  // namespace view3202
 
 }  // namespace stepmod::web

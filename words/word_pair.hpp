@@ -1,6 +1,6 @@
 #pragma once
 // Two 16-bit backplane words holding one 32-bit number, as the PLC sees them (signed INTs): the
-// 3601's and 3602's number encodings (words/words_3601.hpp, words/words_3602.hpp) produce these.
+// 3601's and 3602's number encodings (module_types/m3601/words_3601.hpp, module_types/m3602/words_3602.hpp) produce these.
 #include <cstdint>
 
 namespace stepmod::words {

@@ -1,5 +1,5 @@
 // End to end, the 3202 on the real daemon: both channels driven through shared memory with the
-// PLC-side library (plc/plc_3202.hpp), the blend message through the image's mailbox, checked
+// PLC-side library (module_types/m3202/plc_3202.hpp), the blend message through the image's mailbox, checked
 // through the status image and the VCD trace (exact pulse counts per channel).
 #include <gtest/gtest.h>
 
@@ -9,12 +9,12 @@
 
 #include "ipc/client.hpp"
 #include "ipc/sim_panel.hpp"
-#include "plc/plc_3202.hpp"
+#include "module_types/m3202/plc_3202.hpp"
 #include "plc/shm_port.hpp"
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/sim_config.hpp"
 #include "tests/support/vcd_reader.hpp"
-#include "words/words_3202.hpp"
+#include "module_types/m3202/words_3202.hpp"
 
 namespace stepmod::testing {
 namespace {

@@ -1,5 +1,5 @@
 // End to end, the 3601 features of issue #3 on the real daemon: driven through shared memory
-// with the PLC-side library stepmodctl uses (plc/plc_3601.hpp) and through the simulator
+// with the PLC-side library stepmodctl uses (module_types/m3601/plc_3601.hpp) and through the simulator
 // panel, checked through the status image, the panel's motor position and the VCD trace.
 #include <gtest/gtest.h>
 
@@ -7,12 +7,12 @@
 
 #include "ipc/client.hpp"
 #include "ipc/sim_panel.hpp"
-#include "plc/plc_3601.hpp"
+#include "module_types/m3601/plc_3601.hpp"
 #include "plc/shm_port.hpp"
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/sim_config.hpp"
 #include "tests/support/vcd_reader.hpp"
-#include "words/words_3601.hpp"
+#include "module_types/m3601/words_3601.hpp"
 
 namespace stepmod::testing {
 namespace {

@@ -10,12 +10,12 @@
 
 #include "ipc/client.hpp"
 #include "ipc/sim_panel.hpp"
-#include "plc/plc_3601.hpp"
+#include "module_types/m3601/plc_3601.hpp"
 #include "plc/shm_port.hpp"
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/sim_config.hpp"
 #include "tests/support/vcd_reader.hpp"
-#include "words/words_3601.hpp"
+#include "module_types/m3601/words_3601.hpp"
 
 namespace stepmod::testing {
 namespace {
@@ -46,7 +46,7 @@ std::string config(const std::string& extra = "") {
 }
 
 // A PLC program's side of the image over the real shared memory: the PLC-side library
-// (plc/plc_3601.hpp) over the shared-memory port, at the scan counts these tests were written for
+// (module_types/m3601/plc_3601.hpp) over the shared-memory port, at the scan counts these tests were written for
 // (a command's words held 3 scans, 2 after the release; 3 + 3 for a configuration).
 class ShmPlc {
  public:

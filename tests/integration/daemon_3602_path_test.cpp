@@ -1,5 +1,5 @@
 // End to end: the real stepmodd as a 3602 draws interpolated moves commanded through shared
-// memory by the PLC-side library (plc/interp_3602): a line, a full circle by the centre method,
+// memory by the PLC-side library (module_types/m3602/plc_interp_3602): a line, a full circle by the centre method,
 // an arc by the radius method (the longer arc, R < 0) and one by the via-point method (absolute
 // coordinates). The path is read back from the VCD trace the way an outside checker would: the
 // two step/direction trains merged in time order, (x, y) rebuilt at every step edge, and checked
@@ -25,15 +25,15 @@
 #include <vector>
 
 #include "ipc/client.hpp"
-#include "plc/interp_3602.hpp"
-#include "plc/plc_3602.hpp"
+#include "module_types/m3602/plc_interp_3602.hpp"
+#include "module_types/m3602/plc_3602.hpp"
 #include "plc/shm_port.hpp"
 #include "tests/planner/path_test_util.hpp"
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/sim_config.hpp"
 #include "tests/support/vcd_path.hpp"
 #include "tests/support/vcd_reader.hpp"
-#include "words/words_3602.hpp"
+#include "module_types/m3602/words_3602.hpp"
 
 namespace stepmod::testing {
 namespace {

@@ -1,5 +1,5 @@
 // End to end: the real stepmodd as a 3602 on the simulated machine, driven through shared memory
-// by the PLC-side library (plc/plc_3602), checked through the status words, the panel and the
+// by the PLC-side library (module_types/m3602/plc_3602), checked through the status words, the panel and the
 // VCD trace: both axes at once with exact counts, the binary split at 50,800 and at a negative
 // target, GPO edges, a CW input configured as an E-stop stopping its axis only, the GPO idle-low
 // at SIGTERM, the homing timeout.
@@ -15,12 +15,12 @@
 #include "core/lines.hpp"
 #include "ipc/client.hpp"
 #include "ipc/sim_panel.hpp"
-#include "plc/plc_3602.hpp"
+#include "module_types/m3602/plc_3602.hpp"
 #include "plc/shm_port.hpp"
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/sim_config.hpp"
 #include "tests/support/vcd_reader.hpp"
-#include "words/words_3602.hpp"
+#include "module_types/m3602/words_3602.hpp"
 
 namespace stepmod::testing {
 namespace {

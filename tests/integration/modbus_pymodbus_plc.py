@@ -17,7 +17,7 @@ from pymodbus.client import ModbusTcpClient
 # Debian 12 has pymodbus 3.0, Debian 13 3.8: `count` is passed by name (3.8 takes it by name
 # only), the unit as `slave=` (both).
 
-# 3601 words (words/words_3601.hpp, the manual's layout).
+# 3601 words (module_types/m3601/words_3601.hpp, the manual's layout).
 CFG_MODE = 0x8000
 CFG_ALL_INPUTS_QUAD_STEPDIR = 0x003F | 0x0100 | 0x0400
 ALL_ACTIVE_HIGH = 0x003F

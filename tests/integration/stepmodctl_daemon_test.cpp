@@ -13,13 +13,13 @@
 #include <thread>
 
 #include "ipc/client.hpp"
-#include "plc/status_3202.hpp"
-#include "plc/status_3602.hpp"
+#include "module_types/m3202/plc_status_3202.hpp"
+#include "module_types/m3602/plc_status_3602.hpp"
 #include "tests/support/ctl_run.hpp"
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/vcd_reader.hpp"
-#include "words/words_3202.hpp"
-#include "words/words_3602.hpp"
+#include "module_types/m3202/words_3202.hpp"
+#include "module_types/m3602/words_3602.hpp"
 
 namespace stepmod::testing {
 namespace {

@@ -1,8 +1,8 @@
 // Number encodings of the manuals (3601 ch. 5, 3602 ch. 9, 3202 ch. 5), every range edge in both
 // directions.
-#include "words/words_3202.hpp"
-#include "words/words_3601.hpp"
-#include "words/words_3602.hpp"
+#include "module_types/m3202/words_3202.hpp"
+#include "module_types/m3601/words_3601.hpp"
+#include "module_types/m3602/words_3602.hpp"
 
 #include <gtest/gtest.h>
 

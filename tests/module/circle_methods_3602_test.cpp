@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "module/m3602/circle_methods.hpp"
+#include "module_types/m3602/circle_methods.hpp"
 
 namespace stepmod::module::m3602 {
 namespace {

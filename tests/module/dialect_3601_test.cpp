@@ -1,13 +1,13 @@
-// The 3601 dialect's translations (module/m3601/dialect_3601, config_3601): words -> decoded
+// The 3601 dialect's translations (module_types/m3601/dialect_3601, config_3601): words -> decoded
 // command and configuration, decoded status -> words. The behaviour behind them is tested through
 // PLC words in the other *_3601_test.cpp files and on the shared axis in axis_shared_test.cpp.
 #include <gtest/gtest.h>
 
 #include <set>
 
-#include "module/m3601/config_3601.hpp"
-#include "module/m3601/dialect_3601.hpp"
-#include "words/words_3601.hpp"
+#include "module_types/m3601/config_3601.hpp"
+#include "module_types/m3601/dialect_3601.hpp"
+#include "module_types/m3601/words_3601.hpp"
 
 namespace stepmod::testing {
 namespace {

@@ -3,8 +3,8 @@
 // (3602 manual ch. 9).
 #include <gtest/gtest.h>
 
-#include "module/m3602/dialect_3602.hpp"
-#include "words/words_3602.hpp"
+#include "module_types/m3602/dialect_3602.hpp"
+#include "module_types/m3602/words_3602.hpp"
 
 namespace stepmod::testing {
 namespace {

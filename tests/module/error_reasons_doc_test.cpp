@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "module/axis/error_items.hpp"
-#include "module/m3202/config_3202.hpp"
-#include "module/m3601/config_3601.hpp"
-#include "module/m3602/config_3602.hpp"
-#include "module/m3602/interpolated_items.hpp"
+#include "module_types/m3202/config_3202.hpp"
+#include "module_types/m3601/config_3601.hpp"
+#include "module_types/m3602/config_3602.hpp"
+#include "module_types/m3602/interpolated_items.hpp"
 
 namespace stepmod::module::axis {
 namespace {

@@ -2,7 +2,7 @@
 // A17, A34-A37): the block decoded from all sixteen words, the word rules, the acceptance rules,
 // the geometry check; every refusal is a Command Error on axis 1 only (3602-CE-I1) and starts
 // nothing.
-#include "module/m3602/dialect_3602.hpp"
+#include "module_types/m3602/dialect_3602.hpp"
 #include "tests/module/rig_interp_3602.hpp"
 
 namespace stepmod::testing {

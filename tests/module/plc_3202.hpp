@@ -7,9 +7,9 @@
 
 #include <cstdint>
 
-#include "plc/words_3202.hpp"
+#include "module_types/m3202/plc_words_3202.hpp"
 #include "tests/support/virtual_machine.hpp"
-#include "words/words_3202.hpp"
+#include "module_types/m3202/words_3202.hpp"
 
 namespace stepmod::testing {
 

@@ -1,15 +1,15 @@
 #pragma once
 // A PLC program's view of a 3601 in virtual time: write words, let the module scan, read status.
-// The words and their sequencing are the PLC-side library's (plc/plc_3601.hpp) over the virtual
+// The words and their sequencing are the PLC-side library's (module_types/m3601/plc_3601.hpp) over the virtual
 // machine's port; this fixture only keeps the names the module tests are written in.
 #include <gtest/gtest.h>
 
 #include <cstdint>
 
-#include "plc/plc_3601.hpp"
+#include "module_types/m3601/plc_3601.hpp"
 #include "tests/support/virtual_machine.hpp"
 #include "tests/support/virtual_port.hpp"
-#include "words/words_3601.hpp"
+#include "module_types/m3601/words_3601.hpp"
 
 namespace stepmod::testing {
 

@@ -1,8 +1,8 @@
-// The PLC-side 3602 library (plc/plc_3602) over the virtual machine: one axis configured and
+// The PLC-side 3602 library (module_types/m3602/plc_3602) over the virtual machine: one axis configured and
 // commanded while the other runs, the binary split on the wire, the GPO level kept across commands.
 #include <gtest/gtest.h>
 
-#include "plc/plc_3602.hpp"
+#include "module_types/m3602/plc_3602.hpp"
 #include "tests/module/rig_3602.hpp"
 #include "tests/support/virtual_port.hpp"
 

@@ -1,9 +1,9 @@
-// The PLC-side interpolated moves (plc/interp_3602) over the virtual machine: the block word by
+// The PLC-side interpolated moves (module_types/m3602/plc_interp_3602) over the virtual machine: the block word by
 // word, the manual's sequence (data first, the bits >= 10 ms later), lines and circles to their
 // end points, Hold / Resume on axis 1, refusals reported from axis 1.
 #include <gtest/gtest.h>
 
-#include "plc/interp_3602.hpp"
+#include "module_types/m3602/plc_interp_3602.hpp"
 #include "tests/module/rig_3602.hpp"
 #include "tests/support/virtual_port.hpp"
 

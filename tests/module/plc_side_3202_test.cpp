@@ -1,7 +1,7 @@
-// The PLC side of the 3202 (plc/plc_3202, plc/words_3202, plc/status_3202) against the module in
+// The PLC side of the 3202 (module_types/m3202/plc_3202, module_types/m3202/plc_words_3202, module_types/m3202/plc_status_3202) against the module in
 // virtual time: what stepmodctl does to a 3202, channel by channel.
-#include "module/m3202/blend_message_3202.hpp"
-#include "plc/plc_3202.hpp"
+#include "module_types/m3202/blend_message_3202.hpp"
+#include "module_types/m3202/plc_3202.hpp"
 #include "tests/module/plc_3202.hpp"
 #include "tests/support/virtual_port.hpp"
 

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "ipc/stepmod_image.h"
-#include "module/m3202/blend_message_3202.hpp"
+#include "module_types/m3202/blend_message_3202.hpp"
 #include "tests/module/plc_3202.hpp"
 #include "tests/module/reasons_rig.hpp"
 

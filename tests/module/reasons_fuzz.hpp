@@ -27,8 +27,8 @@
 #include <vector>
 
 #include "module/axis/error_reason.hpp"
-#include "registry/module_registry.hpp"
 #include "tests/support/virtual_machine.hpp"
+#include "tools/ctl_dialects.hpp"
 
 namespace stepmod::testing::fuzz {
 
@@ -87,7 +87,7 @@ class ReasonChecker {
   void scan() {
     vm_.run_until_true([] { return true; }, vm_options_scan_ns);
     ++t_.scans;
-    const auto sums = registry::row_of(vm_.type()).summarize(vm_.plc_in());
+    const auto sums = tools::ctl::ctl_row_of(vm_.type()).summarize(vm_.plc_in());
     for (unsigned u = 0; u < units_; ++u) check(u, sums[u]);
   }
   void scans(unsigned n) {

@@ -1,8 +1,8 @@
 // The 3202's error bits and reasons agree on every scan of random command sequences
 // (tests/module/reasons_fuzz.hpp).
-#include "plc/words_3202.hpp"
+#include "module_types/m3202/plc_words_3202.hpp"
 #include "tests/module/reasons_fuzz.hpp"
-#include "words/words_3202.hpp"
+#include "module_types/m3202/words_3202.hpp"
 
 namespace stepmod::testing::fuzz {
 namespace {

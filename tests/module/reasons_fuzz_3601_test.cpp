@@ -1,8 +1,8 @@
 // The 3601's error bits and reasons agree on every scan of random command sequences
 // (tests/module/reasons_fuzz.hpp).
-#include "plc/words_3601.hpp"
+#include "module_types/m3601/plc_words_3601.hpp"
 #include "tests/module/reasons_fuzz.hpp"
-#include "words/words_3601.hpp"
+#include "module_types/m3601/words_3601.hpp"
 
 namespace stepmod::testing::fuzz {
 namespace {

@@ -4,7 +4,7 @@
 // recorded its reasons for the scan.
 #include "tests/module/reasons_fuzz.hpp"
 #include "tests/module/rig_3602.hpp"
-#include "words/words_3602.hpp"
+#include "module_types/m3602/words_3602.hpp"
 
 namespace stepmod::testing::fuzz {
 namespace {

@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "tests/support/virtual_machine.hpp"
-#include "words/words_3602.hpp"
+#include "module_types/m3602/words_3602.hpp"
 
 namespace stepmod::testing {
 

@@ -20,7 +20,7 @@
 #include "tests/openplc/layer_program.hpp"
 #include "tests/support/daemon_process.hpp"
 #include "tests/support/sim_config.hpp"
-#include "words/words_3601.hpp"
+#include "module_types/m3601/words_3601.hpp"
 
 namespace stepmod::testing {
 namespace {

@@ -1,6 +1,6 @@
-// The PLC-side 3601 dialect (plc/plc_3601) over the shared-memory port, against a scripted fake
+// The PLC-side 3601 dialect (module_types/m3601/plc_3601) over the shared-memory port, against a scripted fake
 // 3601 that scans the image in its own thread: edges, releases, handshakes, error reporting.
-#include "plc/plc_3601.hpp"
+#include "module_types/m3601/plc_3601.hpp"
 
 #include <unistd.h>
 
@@ -13,7 +13,7 @@
 
 #include "ipc/shm_image.hpp"
 #include "plc/shm_port.hpp"
-#include "words/words_3601.hpp"
+#include "module_types/m3601/words_3601.hpp"
 
 namespace stepmod::plc {
 namespace {

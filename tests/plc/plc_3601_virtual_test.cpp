@@ -2,10 +2,10 @@
 // module stack and simulated machine: each command does on the machine what the manual says.
 #include <gtest/gtest.h>
 
-#include "plc/plc_3601.hpp"
+#include "module_types/m3601/plc_3601.hpp"
 #include "tests/support/virtual_machine.hpp"
 #include "tests/support/virtual_port.hpp"
-#include "words/words_3601.hpp"
+#include "module_types/m3601/words_3601.hpp"
 
 namespace stepmod::testing {
 namespace {

@@ -1,4 +1,4 @@
-// The modules' word tables (words/words_3601.hpp, m3602, m3202): the 3601 constants
+// The modules' word tables (module_types/m3601/words_3601.hpp, m3602, m3202): the 3601 constants
 // derived from the table keep the values the module code was written against, every table names
 // each bit once, and status decoding by name reads them.
 #include <gtest/gtest.h>
@@ -7,9 +7,9 @@
 #include <string>
 
 #include "plc/bit_names.hpp"
-#include "words/words_3202.hpp"
-#include "words/words_3601.hpp"
-#include "words/words_3602.hpp"
+#include "module_types/m3202/words_3202.hpp"
+#include "module_types/m3601/words_3601.hpp"
+#include "module_types/m3602/words_3602.hpp"
 
 namespace stepmod::plc {
 namespace {

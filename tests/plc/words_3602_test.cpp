@@ -1,6 +1,6 @@
 // The 3602's blend programming blocks as a PLC program writes them (3602 manual tables 9.2, 9.21
 // and 9.22), word for word; put_axis leaves the other axis alone.
-#include "plc/words_3602.hpp"
+#include "module_types/m3602/plc_words_3602.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 #pragma once
 // A faulty PLC's side of a 3601's image over the real shared memory, for the safety tests
 // (tests/integration/daemon_safety_test.cpp): raw words written with the seqlock, and no
-// heartbeat unless the test beats it (a well-behaved PLC is plc/plc_3601.hpp over plc::ShmPort,
+// heartbeat unless the test beats it (a well-behaved PLC is module_types/m3601/plc_3601.hpp over plc::ShmPort,
 // which beats the heartbeat whenever it waits).
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "ipc/client.hpp"
-#include "words/words_3601.hpp"
+#include "module_types/m3601/words_3601.hpp"
 
 namespace stepmod::testing {
 

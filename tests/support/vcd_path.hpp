@@ -42,7 +42,7 @@ inline std::vector<planner::test::PathPoint> rebuild_from_vcd(const Vcd& vcd) {
 }
 
 // The ideal arc from S = (0, 0) to the end E around the centre C (relative to S) in the given
-// sense; E = S: a full circle. Written from the manual's geometry, not from module/m3602.
+// sense; E = S: a full circle. Written from the manual's geometry, not from module_types/m3602.
 inline planner::PathSpec arc_spec(double cx, double cy, std::int64_t ex, std::int64_t ey, bool cw) {
   planner::PathSpec p;
   p.shape = planner::PathShape::kArc;

@@ -89,7 +89,7 @@ TEST(Config, MinimalFileGetsEveryDefault) {
   // [rt] late_limit_us = 200000 (issue 18: the longest pause at any speed; before: 1000)
   EXPECT_EQ(c.late_limit_ns, 200'000'000);
   ASSERT_EQ(c.axes.size(), 1u);
-  const AxisConfig& a = c.axes[0];
+  const AxisSection& a = c.axes[0];
   EXPECT_EQ(a.out[0], 17u);
   EXPECT_EQ(a.out[1], 27u);
   EXPECT_FALSE(a.out[2].has_value());
@@ -117,7 +117,7 @@ TEST(Config, FullValid3601File) {
   EXPECT_EQ(c.rt_priority, 70);
   EXPECT_EQ(c.rt_cpu, 1);
   EXPECT_EQ(c.late_limit_ns, 250'000);
-  const AxisConfig& a = c.axes.at(0);
+  const AxisSection& a = c.axes.at(0);
   const unsigned want_in[] = {5, 6, 13, 19, 26, 21, 20, 16, 12};
   for (unsigned i = 0; i < kInputLinesPerAxis; ++i) EXPECT_EQ(a.in[i], want_in[i]) << i;
   EXPECT_EQ(a.step_pulse_ns, 2'500);

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "words/words_3601.hpp"
+#include "module_types/m3601/words_3601.hpp"
 
 namespace stepmod::tools::ctl {
 namespace {

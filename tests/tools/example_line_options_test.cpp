@@ -52,7 +52,7 @@ TEST(ExampleBoardConfig, CommentedLineOptionsAndEnableKeysAreValid) {
     return;
   }
   const Config c = parse_config(text, "3601-board.toml");
-  const AxisConfig& a = c.axes.at(0);
+  const AxisSection& a = c.axes.at(0);
   const gpio::LineOptions& home = a.in_opt[static_cast<unsigned>(InputLine::kHome)];
   EXPECT_EQ(a.in[static_cast<unsigned>(InputLine::kHome)], 13u);
   EXPECT_EQ(home.bias, gpio::Bias::kPullUp);

@@ -50,12 +50,12 @@
 
 #include "ipc/client.hpp"
 #include "plc/bit_names.hpp"
-#include "plc/plc_3601.hpp"
+#include "module_types/m3601/plc_3601.hpp"
 #include "plc/shm_port.hpp"
 #include "tests/support/vcd_reader.hpp"
 #include "tests/vm/gpio_uapi.hpp"
 #include "tests/vm/vm_harness.hpp"
-#include "words/words_3601.hpp"
+#include "module_types/m3601/words_3601.hpp"
 
 namespace {
 
@@ -111,7 +111,7 @@ class Daemon3601 : public Daemon {
 
 // ---- the PLC side -----------------------------------------------------------------------------
 
-// The PLC-side library (plc/plc_3601.hpp) over the shared-memory port, at the scan counts these
+// The PLC-side library (module_types/m3601/plc_3601.hpp) over the shared-memory port, at the scan counts these
 // cases were written for (a command's words held 3 scans, 2 after the release; 3 + 3 for a
 // configuration); a module that stops scanning fails the case.
 class Plc {

@@ -27,15 +27,15 @@
 
 #include "ipc/client.hpp"
 #include "plc/bit_names.hpp"
-#include "plc/interp_3602.hpp"
-#include "plc/plc_3202.hpp"
-#include "plc/plc_3602.hpp"
+#include "module_types/m3602/plc_interp_3602.hpp"
+#include "module_types/m3202/plc_3202.hpp"
+#include "module_types/m3602/plc_3602.hpp"
 #include "plc/shm_port.hpp"
 #include "tests/planner/path_ideal.hpp"
 #include "tests/support/vcd_path.hpp"
 #include "tests/vm/vm_harness.hpp"
-#include "words/words_3202.hpp"
-#include "words/words_3602.hpp"
+#include "module_types/m3202/words_3202.hpp"
+#include "module_types/m3602/words_3602.hpp"
 
 namespace {
 

@@ -1,0 +1,41 @@
+#pragma once
+// The 3202's rules value: what the shared axis code (module/axis/) does differently for this
+// module, as data (the fields are explained in module/axis/rules.hpp). Written down here, with its
+// module; its registry row (registry_row_3202.hpp) points at it.
+#include "module/axis/rules.hpp"
+
+namespace stepmod::module::m3202 {
+
+inline constexpr axis::ModuleRules kRules3202{
+    .type = ModuleType::k3202,
+    .target_min = -8'388'608,
+    .target_max = 8'388'607,
+    .speed_max = 1'000'000,
+    .starting_speed_min = 1,
+    .starting_speed_max = 1'000'000,
+    .accel_min = 1'000,  // steps/s^2 (A31 on the upper bound)
+    .accel_max = 2'000'000,
+    .accel_word_unit = 1,
+    .blend_length_max = 8'388'607,
+    .blend_segment_max = 8'388'607,
+    .registration_max = 0,  // no registration move (target must be 0 in manual moves)
+    .has_encoder = true,
+    .has_follower = false,
+    .has_registration = false,
+    .has_marker_homing = true,
+    .has_homing_timeout = false,
+    .homing_timeout_max_s = 0,
+    .has_estop_input = true,
+    .cw_ccw_inputs_configurable = false,
+    .has_disable = true,
+    .preset_clears_move_complete = false,
+    .stopped_means_idle = false,
+    .homing_needs_limit_ahead = true,
+    .homing_s_curve_sets_home_invalid = false,
+    .homing_home_with_limit_is_error = false,
+    .registration_external_always_error = true,  // no registration at all
+    .powers_up_with_configuration_error = false,
+    .hold_ignored_while_decelerating = true,
+};
+
+}  // namespace stepmod::module::m3202

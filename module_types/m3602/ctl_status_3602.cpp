@@ -1,0 +1,76 @@
+// How stepmodctl shows a 3602's input image: the decoded status display of both axes (stepmodctl
+// status) and the axis summaries (--brief, --json, wait-idle, --wait). Names from the 3602's bit
+// tables, numbers in its binary split (module_types/m3602/words_3602.hpp). Both are columns of its registry
+// row.
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "module_types/m3602/plc_status_3602.hpp"
+#include "tools/ctl_dialects.hpp"
+#include "tools/ctl_fields.hpp"
+#include "tools/ctl_status.hpp"
+#include "tools/ctl_summary.hpp"
+#include "module_types/m3602/words_3602.hpp"
+
+namespace stepmod::tools::ctl {
+
+void format_status_3602(std::ostringstream& o, const ImageWords& in) {
+  namespace m = words::m3602;
+  constexpr unsigned kMsw = index_of(m::kInputWords, "Status Bits MSW");
+  constexpr unsigned kLsw = index_of(m::kInputWords, "Status Bits LSW");
+  constexpr unsigned kPosition = index_of(m::kInputWords, "Position MSW");
+  constexpr unsigned kCapture = index_of(m::kInputWords, "Capture MSW");
+  constexpr unsigned kSpeed = index_of(m::kInputWords, "Starting Speed MSW");
+  constexpr unsigned kTimeout = index_of(m::kInputWords, "Homing Timeout");
+  constexpr auto kConfigMode = mask_of<std::uint16_t>(m::kStatusMswBits, "Configuration Mode");
+  constexpr auto kCfgError = mask_of<std::uint16_t>(m::kStatusMswBits, "Configuration Error");
+  constexpr auto kEnabled = mask_of<std::uint16_t>(m::kStatusMswBits, "Axis Enabled");
+  for (unsigned ax = 0; ax < 2; ++ax) {
+    const unsigned b = m::kWordsPerAxis * ax;
+    const std::uint16_t w0 = u16(in.w[b + kMsw]);
+    const std::uint16_t w1 = u16(in.w[b + kLsw]);
+    o << "3602 axis " << ax + 1;
+    if (w0 & kConfigMode) {
+      o << " in CONFIGURATION mode\n";
+      o << "  configuration bits MSW (echo) = 16#" << hex(w0, 4)
+        << "  Configuration Error=" << ((w0 & kCfgError) != 0)
+        << "  axis enabled=" << ((w0 & kEnabled) != 0) << "\n";
+      o << "  configuration bits LSW (echo) = 16#" << hex(w1, 4) << "\n";
+      o << "  starting speed = " << words::decode_3602(in.w[b + kSpeed], in.w[b + kSpeed + 1])
+        << " steps/s\n";
+      o << "  homing timeout = " << in.w[b + kTimeout] << " s\n";
+      continue;
+    }
+    o << " in COMMAND mode\n";
+    o << "  status MSW = 16#" << hex(w0, 4) << "  [" << set_bit_names(w0, m::kStatusMswBits)
+      << "]\n";
+    all_bits(o, w0, m::kStatusMswBits);
+    o << "  status LSW = 16#" << hex(w1, 4) << "  [" << set_bit_names(w1, m::kStatusLswBits)
+      << "]\n";
+    all_bits(o, w1, m::kStatusLswBits);
+    o << "  position = " << words::decode_3602(in.w[b + kPosition], in.w[b + kPosition + 1])
+      << "\n";
+    o << "  capture  = " << words::decode_3602(in.w[b + kCapture], in.w[b + kCapture + 1]) << "\n";
+  }
+}
+
+std::vector<AxisSummary> summarize_3602(const ImageWords& in) {
+  namespace sm = words::m3602::status_msw;
+  constexpr StatusBits kBits{
+      sm::kConfigMode,     sm::kMovingCw,       sm::kMovingCcw,    sm::kHoldState,
+      sm::kStopped,        sm::kAtHome,         sm::kMoveComplete, sm::kConfigurationError,
+      sm::kCommandError,   sm::kInvalidProfile, sm::kInputError,   sm::kHomeInvalid,
+      sm::kPositionInvalid};
+  std::vector<AxisSummary> out;
+  for (unsigned a = 0; a < 2; ++a) {
+    const plc::m3602::Status st = plc::m3602::decode_status(in, a);
+    AxisSummary s = summary_from_word(st.msw, kBits);
+    s.blend_running = st.has_lsw(words::m3602::status_lsw::kBlendRunning);
+    s.position = st.position;
+    out.push_back(s);
+  }
+  return out;
+}
+
+}  // namespace stepmod::tools::ctl

@@ -1,0 +1,36 @@
+#pragma once
+// A 3602's input words decoded for a PLC program, per axis (3602 manual table 8.5, ch. 9): status
+// bits and the binary-split registers. Bit constants: module_types/m3602/words_3602.hpp.
+#include <cstdint>
+
+#include "core/module_shape.hpp"
+#include "module_types/m3602/words_3602.hpp"
+
+namespace stepmod::plc::m3602 {
+
+struct Status {
+  std::uint16_t msw = 0;
+  std::uint16_t lsw = 0;
+  std::int32_t position = 0;  // command mode only
+  std::int32_t capture = 0;
+  bool has(std::uint16_t msw_bit) const { return (msw & msw_bit) != 0; }
+  bool has_lsw(std::uint16_t lsw_bit) const { return (lsw & lsw_bit) != 0; }
+  bool moving() const {
+    return has(words::m3602::status_msw::kMovingCw | words::m3602::status_msw::kMovingCcw);
+  }
+};
+
+// The status of `axis` (0 or 1) in the input image.
+inline Status decode_status(const ImageWords& in, unsigned axis) {
+  namespace iw = words::m3602::in_word;
+  const unsigned b = words::m3602::kWordsPerAxis * axis;
+  using words::decode_3602;
+  Status s;
+  s.msw = static_cast<std::uint16_t>(in.w[b + iw::kStatusMsw]);
+  s.lsw = static_cast<std::uint16_t>(in.w[b + iw::kStatusLsw]);
+  s.position = decode_3602(in.w[b + iw::kPositionMsw], in.w[b + iw::kPositionMsw + 1]);
+  s.capture = decode_3602(in.w[b + iw::kCaptureMsw], in.w[b + iw::kCaptureMsw + 1]);
+  return s;
+}
+
+}  // namespace stepmod::plc::m3602

@@ -1,0 +1,45 @@
+// The 3602 on the console: two axes, MSW/LSW status and configuration words, no encoder input.
+#include "module_types/m3602/plc_3602.hpp"
+#include "module_types/m3602/plc_status_3602.hpp"
+#include "web/bit_json.hpp"
+#include "web/module_views.hpp"
+#include "web/two_unit_controls.hpp"
+#include "module_types/m3602/words_3602.hpp"
+
+namespace stepmod::web::view3602 {
+namespace {
+
+class Controls3602 final : public TwoUnitControls<plc::Plc3602> {
+ public:
+  using TwoUnitControls::TwoUnitControls;
+
+ protected:
+  plc::Outcome configure(unsigned u, std::uint32_t bits, std::int32_t vs) override {
+    return plc_.configure(u, static_cast<std::uint16_t>(bits >> 16),
+                          static_cast<std::uint16_t>(bits & 0xFFFFu), vs);
+  }
+};
+
+}  // namespace
+
+UnitRegisters registers(const ImageWords& in, unsigned unit) {
+  const auto s = plc::m3602::decode_status(in, unit);
+  return {s.position, 0, s.capture};  // the 3602 has no encoder input
+}
+
+nlohmann::json status_words(const ImageWords& in, unsigned unit) {
+  const auto s = plc::m3602::decode_status(in, unit);
+  return nlohmann::json::array({word_json("Status Bits MSW", s.msw, words::m3602::kStatusMswBits),
+                                word_json("Status Bits LSW", s.lsw, words::m3602::kStatusLswBits)});
+}
+
+nlohmann::json config_bits() {
+  return {{"msw", table_json(words::m3602::kConfigMswBits)},
+          {"lsw", table_json(words::m3602::kConfigLswBits)}};
+}
+
+std::unique_ptr<Controls> make_controls(plc::Port& port) {
+  return std::make_unique<Controls3602>(port);
+}
+
+}  // namespace stepmod::web::view3602
