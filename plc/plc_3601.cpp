@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "plc/bit_names.hpp"
+#include "plc/command_answer.hpp"
 #include "words/words_3601.hpp"
 
 namespace stepmod::plc {
@@ -13,13 +14,8 @@ using m3601::put_profile;
 using m3601::put_split;
 
 namespace {
-constexpr ErrorBitSet kErrorBits{
-    m::status_msw::kConfigurationError, m::status_msw::kCommandError,
-    m::status_msw::kInvalidProfile,     m::status_msw::kInputError,
-    m::status_msw::kHomeInvalid,        m::status_msw::kPositionInvalid};
-// Errors that mean "the module rejected or failed this command" (status MSW).
-constexpr std::uint16_t kCommandErrors =
-    m::status_msw::kCommandError | m::status_msw::kInvalidProfile;
+constexpr ErrorBitSet kErrorBits = error_bits_of(m::kStatusMswBits);
+constexpr auto kCommandErrors = static_cast<std::uint16_t>(command_errors(kErrorBits));
 constexpr std::uint16_t kHomeErrors = kCommandErrors | m::status_msw::kHomeInvalid;
 
 std::uint16_t lsw_of(const ImageWords& in) {
@@ -47,14 +43,7 @@ bool Plc3601::release_stale() {
 
 Outcome Plc3601::finish(std::uint16_t error_mask, bool timed_out, const std::string& what) {
   Outcome o;
-  port_.read_inputs(o.in);
-  if (timed_out) {
-    o.ok = false;
-    o.timed_out = true;
-    o.message = what + ": no answer from the module within " + std::to_string(timeout_.count()) +
-                " ms (is stepmodd running?)";
-    return o;
-  }
+  if (!read_answer(port_, timed_out, what, timeout_, o)) return o;
   const auto msw = static_cast<std::uint16_t>(o.in.w[m::in_word::kStatusMsw]);
   const std::uint16_t errors = msw & error_mask;
   verdict_.judge(o, 0, errors, set_bit_names(errors, m::kStatusMswBits),

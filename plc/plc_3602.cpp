@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "plc/bit_names.hpp"
+#include "plc/command_answer.hpp"
 #include "words/words_3602.hpp"
 
 namespace stepmod::plc {
@@ -12,12 +13,8 @@ namespace stepmod::plc {
 namespace m = words::m3602;
 
 namespace {
-constexpr ErrorBitSet kErrorBits{
-    m::status_msw::kConfigurationError, m::status_msw::kCommandError,
-    m::status_msw::kInvalidProfile,     m::status_msw::kInputError,
-    m::status_msw::kHomeInvalid,        m::status_msw::kPositionInvalid};
-constexpr std::uint16_t kCommandErrors =
-    m::status_msw::kCommandError | m::status_msw::kInvalidProfile;
+constexpr ErrorBitSet kErrorBits = error_bits_of(m::kStatusMswBits);
+constexpr auto kCommandErrors = static_cast<std::uint16_t>(command_errors(kErrorBits));
 }  // namespace
 
 Plc3602::Plc3602(Port& port, std::chrono::milliseconds timeout, Sequencing seq)
@@ -36,14 +33,7 @@ std::uint16_t Plc3602::gpo_bit(unsigned axis) const {
 
 Outcome Plc3602::finish(unsigned axis, std::uint16_t error_mask, bool timed_out, const char* what) {
   Outcome o;
-  port_.read_inputs(o.in);
-  if (timed_out) {
-    o.ok = false;
-    o.timed_out = true;
-    o.message = std::string(what) + ": no answer from the module within " +
-                std::to_string(timeout_.count()) + " ms (is stepmodd running?)";
-    return o;
-  }
+  if (!read_answer(port_, timed_out, what, timeout_, o)) return o;
   const std::uint16_t msw = m3602::decode_status(o.in, axis).msw;
   const auto errors = static_cast<std::uint16_t>(msw & error_mask);
   verdict_.judge(o, axis, errors, set_bit_names(errors, m::kStatusMswBits),
