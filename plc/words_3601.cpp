@@ -1,5 +1,7 @@
 #include "plc/words_3601.hpp"
 
+#include "plc/accel_bits.hpp"
+
 #include "words/words_3601.hpp"
 
 namespace stepmod::plc::m3601 {
@@ -52,15 +54,7 @@ ImageWords follower_words(std::uint16_t msw, std::int16_t multiplier, std::int16
 }
 
 std::uint16_t accel_bits(AccelType t) {
-  switch (t) {
-    case AccelType::kConstant:
-      return 0;
-    case AccelType::kTriangularS:
-      return m::cmd_lsw::kSCurve;
-    case AccelType::kTrapezoidalS:
-      return m::cmd_lsw::kSCurve | m::cmd_lsw::kTrapezoidalS;
-  }
-  return 0;
+  return accel_bits_in<std::uint16_t>(m::kCommandLswBits, t);
 }
 
 std::vector<ImageWords> blend_blocks(const BlendProfile& b) {

@@ -1,5 +1,7 @@
 #include "plc/words_3602.hpp"
 
+#include "plc/accel_bits.hpp"
+
 #include "words/words_3602.hpp"
 
 namespace stepmod::plc::m3602 {
@@ -38,15 +40,7 @@ void put_configuration(ImageWords& w, unsigned axis, std::uint16_t cfg_msw, std:
 }
 
 std::uint16_t accel_bits(AccelType t) {
-  switch (t) {
-    case AccelType::kConstant:
-      return 0;
-    case AccelType::kTriangularS:
-      return m::cmd_lsw::kSCurve;
-    case AccelType::kTrapezoidalS:
-      return m::cmd_lsw::kSCurve | m::cmd_lsw::kTrapezoidalS;
-  }
-  return 0;
+  return accel_bits_in<std::uint16_t>(m::kCommandLswBits, t);
 }
 
 void put_axis(ImageWords& w, unsigned axis, const AxisWords& a) {
