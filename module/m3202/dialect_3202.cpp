@@ -36,9 +36,6 @@ bool word_rules_broken(const ImageWords& out, unsigned b, const axis::AxisComman
   }
 }
 
-}  // namespace
-
-namespace {
 // 3202-CE-24, A33: a reserved command bit counts as an extra, undefined command (the last row).
 constexpr auto kCommandKinds = shared::command_bits_of(kCommandBits, cmd_bit::kReserved);
 constexpr auto kShapeBits = shared::shape_bits_of<std::uint32_t>(kCommandBits);

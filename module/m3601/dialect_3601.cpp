@@ -48,17 +48,6 @@ axis::BlendFirstBlock blend_first_block(const ImageWords& out) noexcept {
   return b;
 }
 
-// Segment block (3601 manual ch. 5): words 2-3 length, 4-5 speed, 6 the rate, 7 zero.
-axis::BlendSegmentBlock blend_segment_block(const ImageWords& out,
-                                            const axis::AxisCommand& c) noexcept {
-  axis::BlendSegmentBlock b;
-  b.length = c.target;
-  b.speed = c.speed;
-  b.rate = c.accel;
-  b.unused_words_zero = out.w[out_word::kDecel] == 0;
-  return b;
-}
-
 // The word rules of the command table for the one command set, or for the minimum-registration
 // store when none is (true = broken: Command Error).
 bool word_rules_broken(const ImageWords& out, const axis::AxisCommand& c,
@@ -86,9 +75,6 @@ bool word_rules_broken(const ImageWords& out, const axis::AxisCommand& c,
   }
 }
 
-}  // namespace
-
-namespace {
 // Command MSW bits 0..14 and the command each one asks for (3601 manual ch. 5). Bit 14 is reserved:
 // A33, set with or without a command it is a Command Error.
 constexpr auto kCommandBits = shared::command_bits_of(kCommandMswBits, cmd_msw::kReserved14);
@@ -118,7 +104,7 @@ axis::AxisCommand command_from_words(const ImageWords& out) noexcept {
   c.ratio_multiplier = word(out, out_word::kTargetMsw);
   c.ratio_divisor = word(out, out_word::kTargetLsw);
   c.blend_first = blend_first_block(out);
-  c.blend_segment = blend_segment_block(out, c);
+  c.blend_segment = blend_segment_16bit(c, out.w[out_word::kDecel] == 0);
   c.words_invalid = word_rules_broken(out, c, lsw);
   return c;
 }

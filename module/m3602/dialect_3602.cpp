@@ -65,17 +65,6 @@ bool has_invalid_pair(const ImageWords& out) noexcept {
   return false;
 }
 
-// Segment ("secondary") block (Table 9.22): words 2-3 length, 4-5 speed, 6 the rate, 7 zero.
-axis::BlendSegmentBlock blend_segment_block(const ImageWords& out,
-                                            const axis::AxisCommand& c) noexcept {
-  axis::BlendSegmentBlock b;
-  b.length = c.target;
-  b.speed = c.speed;
-  b.rate = c.accel;
-  b.unused_words_zero = word(out, out_word::kDecel) == 0;
-  return b;
-}
-
 // The LSW of Reset Errors, Run Blend and the minimum-registration store: nothing but the GPO bit
 // besides the command's own (digest 4.5 "16#0000 or 16#0080 only").
 bool lsw_only(std::uint16_t lsw, std::uint16_t allowed) noexcept {
@@ -207,7 +196,7 @@ axis::AxisCommand command_from_words(const ImageWords& out) noexcept {
   // 3602-IP-07: an invalid pair is reported through the final-shape slot the shared code already
   // refuses with IP (the block is then an invalid profile block, IP-19).
   if (c.blend_program && has_invalid_pair(out)) c.blend_first.final_shape.reset();
-  c.blend_segment = blend_segment_block(out, c);
+  c.blend_segment = blend_segment_16bit(c, word(out, out_word::kDecel) == 0);
   c.words_invalid = word_rules_broken(out, c, lsw);
   // 3602-CE-03: the broken rule is the interpolation bits with a command bit.
   if (!c.commands.empty() && (lsw & cmd_lsw::kInterpolation))
