@@ -37,25 +37,20 @@ bool word_rules_broken(const ImageWords& out, unsigned b, const axis::AxisComman
 }
 
 // 3202-CE-24, A33: a reserved command bit counts as an extra, undefined command (the last row).
-constexpr auto kCommandKinds = shared::command_bits_of(kCommandBits, cmd_bit::kReserved);
-constexpr auto kShapeBits = shared::shape_bits_of<std::uint32_t>(kCommandBits);
+constexpr auto kCommandWords =
+    shared::command_words_of(kCommandBits, cmd_bit::kReserved, kCommandBits);
 }  // namespace
 
 axis::AxisCommand command_from_words(const ImageWords& out, unsigned channel) noexcept {
   const unsigned b = channel_base(channel);
   const auto w = static_cast<std::uint32_t>(out.w[b + out_word::kCommand]);
-  axis::AxisCommand c;
-  c.configuration_mode = (w & cmd_bit::kConfigMode) != 0;
-  shared::read_commands(kCommandKinds, w, c.commands);
+  axis::AxisCommand c = shared::decode_command_bits(kCommandWords, w, w);
   // Native DINTs (3202 manual ch. 5). A negative speed is no valid speed.
   c.target = out.w[b + out_word::kTarget];
   const std::int32_t speed = out.w[b + out_word::kSpeed];
   if (speed >= 0) c.speed = speed;
   c.accel = static_cast<std::int64_t>(out.w[b + out_word::kAccel]) * kAccelUnit;
   c.decel = static_cast<std::int64_t>(out.w[b + out_word::kDecel]) * kAccelUnit;
-  c.shape = shared::accel_shape(kShapeBits, w);  // bits 16/17
-  c.encoder_move = (w & cmd_bit::kEncoderMove) != 0;
-  c.backplane_proximity = (w & cmd_bit::kBackplaneProximity) != 0;
   // 3202-CE-05 / IP-03 / HI-04: DINTs b+5..b+7 are reserved and must be 0.
   for (unsigned i = out_word::kFirstReserved; i < kWordsPerChannel; ++i) {
     if (out.w[b + i] != 0) c.reserved_words_nonzero = true;
@@ -73,7 +68,7 @@ constexpr auto kStatusFlags = shared::status_bits_of<std::uint32_t>(kStatusBits)
 
 void status_to_words(const axis::AxisStatus& s, bool disabled, unsigned channel,
                      ImageWords& in) noexcept {
-  std::uint32_t w = status_bit::kModuleOk | shared::status_flags(kStatusFlags, s);  // 3202-MOK-01
+  std::uint32_t w = status_bit::kModuleOk | shared::flags_to_word(kStatusFlags, s);  // 3202-MOK-01
   // Status bit 13 (3202 manual ch. 6): never set while the channel is disabled.
   if (disabled) w &= ~status_bit::kConfigurationError;
   w |= static_cast<std::uint32_t>(s.inputs_active & 0x3Fu) << status_bit::kInputShift;

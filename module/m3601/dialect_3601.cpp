@@ -77,29 +77,20 @@ bool word_rules_broken(const ImageWords& out, const axis::AxisCommand& c,
 
 // Command MSW bits 0..14 and the command each one asks for (3601 manual ch. 5). Bit 14 is reserved:
 // A33, set with or without a command it is a Command Error.
-constexpr auto kCommandBits = shared::command_bits_of(kCommandMswBits, cmd_msw::kReserved14);
-constexpr auto kShapeBits = shared::shape_bits_of<std::uint16_t>(kCommandLswBits);
+constexpr auto kCommandWords =
+    shared::command_words_of(kCommandMswBits, cmd_msw::kReserved14, kCommandLswBits);
 }  // namespace
 
 axis::AxisCommand command_from_words(const ImageWords& out) noexcept {
   const auto msw = static_cast<std::uint16_t>(out.w[out_word::kMsw]);
   const auto lsw = static_cast<std::uint16_t>(out.w[out_word::kLsw]);
-  axis::AxisCommand c;
-  c.configuration_mode = (msw & cmd_msw::kConfigMode) != 0;
-  shared::read_commands(kCommandBits, msw, c.commands);
+  axis::AxisCommand c = shared::decode_command_bits(kCommandWords, msw, lsw);
   // Words 2-3: target / preset value / registration count / distance / blend segment length
   // (decimal split, LSW -999..999, both words of one sign); words 4-5: speed (never negative).
   c.target = words::decode_3601(out.w[out_word::kTargetMsw], out.w[out_word::kTargetLsw]);
   c.speed = words::decode_3601_unsigned(out.w[out_word::kSpeedMsw], out.w[out_word::kSpeedLsw]);
   c.accel = word(out, out_word::kAccel) * kAccelUnit;
   c.decel = word(out, out_word::kDecel) * kAccelUnit;
-  c.shape = shared::accel_shape(kShapeBits, lsw);  // LSW bits 0/1
-  c.encoder_move = (lsw & cmd_lsw::kEncoderMove) != 0;
-  c.follower = (lsw & cmd_lsw::kEncoderFollower) != 0;
-  c.blend_program = (lsw & cmd_lsw::kProgramBlend) != 0;
-  c.blend_transmit = (lsw & cmd_lsw::kBlendTransmit) != 0;
-  c.store_min_registration = (lsw & cmd_lsw::kStoreMinRegistration) != 0;
-  c.backplane_proximity = (lsw & cmd_lsw::kBackplaneProximity) != 0;
   // Encoder follower: words 2 / 3 are the multiplier and divisor, plain integers.
   c.ratio_multiplier = word(out, out_word::kTargetMsw);
   c.ratio_divisor = word(out, out_word::kTargetLsw);
@@ -117,7 +108,7 @@ constexpr auto kLswFlags = shared::status_bits_of<std::uint16_t>(kStatusLswBits)
 
 void status_to_words(const axis::AxisStatus& s, ImageWords& in) noexcept {
   std::uint16_t msw = status_msw::kModuleOk;  // 3601-MOK-01: only a fatal fault clears it
-  msw |= shared::status_flags(kMswFlags, s);
+  msw |= shared::flags_to_word(kMswFlags, s);
 
   // Status LSW bits 0..5: the inputs in InputLine order (capture, external, home, E-stop, CW
   // limit, CCW limit), 3601 manual ch. 6.
@@ -125,7 +116,7 @@ void status_to_words(const axis::AxisStatus& s, ImageWords& in) noexcept {
                                        status_lsw::kHomeActive | status_lsw::kEStopActive |
                                        status_lsw::kCwLimitActive | status_lsw::kCcwLimitActive;
   std::uint16_t lsw = s.inputs_active & kInputBits;
-  lsw |= shared::status_flags(kLswFlags, s);
+  lsw |= shared::flags_to_word(kLswFlags, s);
 
   in = ImageWords{};
   in.w[in_word::kStatusMsw] = static_cast<std::int16_t>(msw);

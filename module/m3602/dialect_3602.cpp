@@ -171,15 +171,14 @@ std::optional<InterpolatedCommand> interpolated_from_words(const ImageWords& out
 namespace {
 // Command MSW bits (3602 manual ch. 9 table 9.3). Bits 10 and 14 are reserved, "must be 0": set,
 // they are a command the manual does not define (A33) and so a Command Error (3602-CE-10).
-constexpr auto kCommandBits = shared::command_bits_of(kCommandMswBits, cmd_msw::kReserved);
+constexpr auto kCommandWords =
+    shared::command_words_of(kCommandMswBits, cmd_msw::kReserved, kCommandLswBits);
 }  // namespace
 
 axis::AxisCommand command_from_words(const ImageWords& out) noexcept {
   const auto msw = static_cast<std::uint16_t>(out.w[out_word::kMsw]);
   const auto lsw = static_cast<std::uint16_t>(out.w[out_word::kLsw]);
-  axis::AxisCommand c;
-  c.configuration_mode = (msw & cmd_msw::kConfigMode) != 0;
-  shared::read_commands(kCommandBits, msw, c.commands);
+  axis::AxisCommand c = shared::decode_command_bits(kCommandWords, msw, lsw);
   // Words 2-3: target / offset / preset value / registration offset / minimum distance / blend
   // segment length; 4-5 the programmed speed. Binary split: every bit pattern is a number, the
   // axis checks its range (3602-CE-05: +-1,073,741,823).
@@ -187,11 +186,6 @@ axis::AxisCommand command_from_words(const ImageWords& out) noexcept {
   c.speed = split(out, out_word::kSpeedMsw);
   c.accel = word(out, out_word::kAccel) * kAccelUnit;
   c.decel = word(out, out_word::kDecel) * kAccelUnit;
-  c.shape = shared::accel_shape(kShapeBits, lsw);  // LSW bits 0/1
-  c.blend_program = (lsw & cmd_lsw::kProgramBlend) != 0;
-  c.blend_transmit = (lsw & cmd_lsw::kBlendTransmit) != 0;
-  c.store_min_registration = (lsw & cmd_lsw::kProgramMinRegistration) != 0;
-  c.backplane_proximity = (lsw & cmd_lsw::kBackplaneProximity) != 0;
   c.blend_first = blend_first_block(out);
   // 3602-IP-07: an invalid pair is reported through the final-shape slot the shared code already
   // refuses with IP (the block is then an invalid profile block, IP-19).
@@ -219,7 +213,7 @@ constexpr auto kLswFlags = shared::status_bits_of<std::uint16_t>(kStatusLswBits)
 }  // namespace
 
 void status_to_words(const axis::AxisStatus& s, const StatusExtras& x, ImageWords& in) noexcept {
-  std::uint16_t msw = shared::status_flags(kMswFlags, s);
+  std::uint16_t msw = shared::flags_to_word(kMswFlags, s);
   if (x.axis_enabled) msw |= status_msw::kAxisEnabled;
 
   // Status LSW bits 0..4: capture, external, home, CW input, CCW input (digest 4.11). The axis
@@ -228,7 +222,7 @@ void status_to_words(const axis::AxisStatus& s, const StatusExtras& x, ImageWord
   const auto active = [&s](InputLine l) {
     return (s.inputs_active >> static_cast<unsigned>(l)) & 1u;
   };
-  std::uint16_t lsw = shared::status_flags(kLswFlags, s);  // blend, registration, proximity
+  std::uint16_t lsw = shared::flags_to_word(kLswFlags, s);  // blend, registration, proximity
   if (active(InputLine::kCapture)) lsw |= status_lsw::kCaptureActive;
   if (active(InputLine::kExternal)) lsw |= status_lsw::kExternalActive;
   if (active(InputLine::kHome)) lsw |= status_lsw::kHomeActive;

@@ -40,35 +40,47 @@ inline constexpr Command kCommands[] = {{"Absolute Move", kAbsoluteMove},
                                         {"Run Blend Move CW", kRunBlendCw},
                                         {"Run Blend Move CCW", kRunBlendCcw}};
 
-using axis::AxisStatus;
-struct Status {
+// A flag and the name its bit has in the manuals (and the 3602's name where it differs).
+template <typename Struct>
+struct Flag {
+  bool Struct::*flag;
   std::string_view name;
-  bool AxisStatus::*flag;
+  std::string_view name_3602 = {};
 };
+using axis::AxisCommand;
+// The command bits that set an option of the decoded command (3601/3202 manual ch. 5, 3602 manual
+// ch. 9 table 9.4).
+inline constexpr Flag<AxisCommand> kCommandFlags[] = {
+    {&AxisCommand::encoder_move, "Encoder Move"},
+    {&AxisCommand::follower, "Encoder Follower"},
+    {&AxisCommand::blend_program, "Program Blend Move"},
+    {&AxisCommand::blend_transmit, "Blend Move Data Transmit"},
+    {&AxisCommand::store_min_registration, "Store Minimum Registration Distance",
+     "Program Minimum Registration Distance"},
+    {&AxisCommand::backplane_proximity, "Backplane Home Proximity"}};
+
+using axis::AxisStatus;
 // The status bits that show a flag of the shared axis (3601/3202 manual ch. 6, 3602 manual ch. 9).
-inline constexpr Status kStatus[] = {
-    {"Moving CW", &AxisStatus::moving_cw},
-    {"CW Motion", &AxisStatus::moving_cw},
-    {"Moving CCW", &AxisStatus::moving_ccw},
-    {"CCW Motion", &AxisStatus::moving_ccw},
-    {"Hold State", &AxisStatus::hold},
-    {"Stopped", &AxisStatus::stopped},
-    {"Axis Stopped", &AxisStatus::stopped},
-    {"At Home", &AxisStatus::at_home},
-    {"Accelerating", &AxisStatus::accelerating},
-    {"Decelerating", &AxisStatus::decelerating},
-    {"Move Complete", &AxisStatus::move_complete},
-    {"Home Invalid", &AxisStatus::home_invalid},
-    {"Invalid Profile", &AxisStatus::invalid_profile},
-    {"Position Invalid", &AxisStatus::position_invalid},
-    {"Input Error", &AxisStatus::input_error},
-    {"Command Error", &AxisStatus::command_error},
-    {"Configuration Error", &AxisStatus::configuration_error},
-    {"Encoder Follower Mode", &AxisStatus::follower_mode},
-    {"Blend Move Running", &AxisStatus::blend_running},
-    {"Blend Block Acknowledge", &AxisStatus::blend_acknowledge},
-    {"Min. Registration Distance Set", &AxisStatus::min_registration_set},
-    {"Backplane Home Proximity Echo", &AxisStatus::proximity_echo}};
+inline constexpr Flag<AxisStatus> kStatus[] = {
+    {&AxisStatus::moving_cw, "Moving CW", "CW Motion"},
+    {&AxisStatus::moving_ccw, "Moving CCW", "CCW Motion"},
+    {&AxisStatus::hold, "Hold State"},
+    {&AxisStatus::stopped, "Stopped", "Axis Stopped"},
+    {&AxisStatus::at_home, "At Home"},
+    {&AxisStatus::accelerating, "Accelerating"},
+    {&AxisStatus::decelerating, "Decelerating"},
+    {&AxisStatus::move_complete, "Move Complete"},
+    {&AxisStatus::home_invalid, "Home Invalid"},
+    {&AxisStatus::invalid_profile, "Invalid Profile"},
+    {&AxisStatus::position_invalid, "Position Invalid"},
+    {&AxisStatus::input_error, "Input Error"},
+    {&AxisStatus::command_error, "Command Error"},
+    {&AxisStatus::configuration_error, "Configuration Error"},
+    {&AxisStatus::follower_mode, "Encoder Follower Mode"},
+    {&AxisStatus::blend_running, "Blend Move Running"},
+    {&AxisStatus::blend_acknowledge, "Blend Block Acknowledge"},
+    {&AxisStatus::min_registration_set, "Min. Registration Distance Set"},
+    {&AxisStatus::proximity_echo, "Backplane Home Proximity Echo"}};
 }  // namespace names
 
 template <typename Word>
@@ -100,32 +112,53 @@ void read_commands(const std::array<CommandBit<Word>, N>& bits, Word word,
   }
 }
 
-template <typename Word>
-struct StatusBit {
-  Word bit = 0;  // 0: a bit of the table that shows no flag of the axis
-  bool axis::AxisStatus::*flag = nullptr;
+template <typename Word, typename Struct>
+struct FlagBit {
+  Word bit = 0;  // 0: a bit of the table that is no flag of `Struct`
+  bool Struct::*flag = nullptr;
 };
 
-// A status word's bits that show a flag of the shared axis, from the manual's table `t`.
-template <typename Word, std::size_t N>
-consteval std::array<StatusBit<Word>, N> status_bits_of(const std::array<NamedBit, N>& t) {
-  std::array<StatusBit<Word>, N> out{};
+// A word's bits that stand for a flag of `Struct`, from the manual's table `t` and one of the name
+// tables above.
+template <typename Word, typename Struct, std::size_t N, std::size_t M>
+consteval std::array<FlagBit<Word, Struct>, N> flag_bits_of(const std::array<NamedBit, N>& t,
+                                                            const names::Flag<Struct> (&n)[M]) {
+  std::array<FlagBit<Word, Struct>, N> out{};
   for (std::size_t i = 0; i < N; ++i) {
-    for (const names::Status& s : names::kStatus) {
-      if (s.name == t[i].name) out[i] = {mask_of<Word>(t, s.name), s.flag};
+    for (const names::Flag<Struct>& f : n) {
+      if (f.name == t[i].name || f.name_3602 == t[i].name)
+        out[i] = {mask_of<Word>(t, t[i].name), f.flag};
     }
   }
   return out;
 }
-
-// The bits of `bits` whose flag is set in `s`.
 template <typename Word, std::size_t N>
-Word status_flags(const std::array<StatusBit<Word>, N>& bits, const axis::AxisStatus& s) noexcept {
+consteval auto status_bits_of(const std::array<NamedBit, N>& t) {
+  return flag_bits_of<Word>(t, names::kStatus);
+}
+template <typename Word, std::size_t N>
+consteval auto option_bits_of(const std::array<NamedBit, N>& t) {
+  return flag_bits_of<Word>(t, names::kCommandFlags);
+}
+
+// The bits of `bits` whose flag is set in `s` (status words).
+template <typename Word, typename Struct, std::size_t N>
+Word flags_to_word(const std::array<FlagBit<Word, Struct>, N>& bits, const Struct& s) noexcept {
   Word w = 0;
-  for (const StatusBit<Word>& b : bits) {
+  for (const FlagBit<Word, Struct>& b : bits) {
     if (b.flag != nullptr && s.*b.flag) w = static_cast<Word>(w | b.bit);
   }
   return w;
+}
+
+// Sets the flags of `s` whose bit `word` has (command options; a flag two bits name is set by
+// either).
+template <typename Word, typename Struct, std::size_t N>
+void word_to_flags(const std::array<FlagBit<Word, Struct>, N>& bits, Word word,
+                   Struct& s) noexcept {
+  for (const FlagBit<Word, Struct>& b : bits) {
+    if (b.flag != nullptr && (word & b.bit) != 0) s.*b.flag = true;
+  }
 }
 
 // The acceleration-shape bits of a command word (all three manuals: the S-curve bit, then the
@@ -145,6 +178,36 @@ constexpr planner::AccelShape accel_shape(const ShapeBits<Word>& b, Word word) n
   if (!(word & b.s_curve)) return planner::AccelShape::kConstant;
   return (word & b.trapezoidal) ? planner::AccelShape::kTrapezoidalS
                                 : planner::AccelShape::kTriangularS;
+}
+
+// Everything the shared names find in a dialect's command words: the command bits (with the
+// reserved ones last), the mode bit, and in the options word (the 3601/3602 LSW; the 3202's one
+// DINT holds both) the acceleration shape and the command's option flags.
+template <typename Word, std::size_t NC, std::size_t NO>
+struct CommandWords {
+  std::array<CommandBit<Word>, NC + 1> commands;
+  Word config_mode;
+  ShapeBits<Word> shape;
+  std::array<FlagBit<Word, axis::AxisCommand>, NO> options;
+};
+template <typename Word, std::size_t NC, std::size_t NO>
+consteval CommandWords<Word, NC, NO> command_words_of(const std::array<NamedBit, NC>& commands,
+                                                      Word reserved,
+                                                      const std::array<NamedBit, NO>& options) {
+  return {command_bits_of(commands, reserved), mask_of<Word>(commands, "Configuration Mode"),
+          shape_bits_of<Word>(options), option_bits_of<Word>(options)};
+}
+
+// A decoded command with what `t` names read from its words; the rest is the dialect's.
+template <typename Word, std::size_t NC, std::size_t NO>
+axis::AxisCommand decode_command_bits(const CommandWords<Word, NC, NO>& t, Word command_word,
+                                      Word option_word) noexcept {
+  axis::AxisCommand c;
+  c.configuration_mode = (command_word & t.config_mode) != 0;
+  read_commands(t.commands, command_word, c.commands);
+  c.shape = accel_shape(t.shape, option_word);
+  word_to_flags(t.options, option_word, c);
+  return c;
 }
 
 }  // namespace stepmod::module::shared
