@@ -4,6 +4,7 @@
 // alike), and the message of a command the module did not answer in time.
 #include <chrono>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
@@ -27,6 +28,17 @@ consteval ErrorBitSet error_bits_of(const Table& t) {
 // Errors that mean "the module rejected or failed this command".
 constexpr std::uint32_t command_errors(const ErrorBitSet& b) noexcept {
   return b.ce | b.ip;
+}
+
+// `port`, when its module is of type `t`; else std::invalid_argument naming both (each dialect's
+// PLC driver takes its port through this).
+inline Port& port_of_type(Port& port, ModuleType t) {
+  if (port.type() != t) {
+    throw std::invalid_argument("the module is a " +
+                                std::to_string(static_cast<unsigned>(port.type())) + ", not a " +
+                                std::to_string(static_cast<unsigned>(t)));
+  }
+  return port;
 }
 
 // Reads the module's answer into `o`; false (with `o` saying so) when the command timed out

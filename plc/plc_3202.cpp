@@ -19,12 +19,10 @@ constexpr std::uint32_t kCommandBits = 0x3FFFu;  // bits 0..13
 }  // namespace
 
 Plc3202::Plc3202(Port& port, std::chrono::milliseconds timeout, Sequencing seq)
-    : port_(port), timeout_(timeout), seq_(seq), verdict_(port, shape_of(port.type()).axes) {
-  if (port.type() != ModuleType::k3202) {
-    throw std::invalid_argument(
-        "the module is a " + std::to_string(static_cast<unsigned>(port.type())) + ", not a 3202");
-  }
-}
+    : port_(port_of_type(port, ModuleType::k3202)),
+      timeout_(timeout),
+      seq_(seq),
+      verdict_(port, shape_of(port.type()).axes) {}
 
 void Plc3202::write_channel(unsigned ch, const ChannelWords& words) {
   port_.update_outputs([&](ImageWords& w) {

@@ -24,12 +24,10 @@ std::uint16_t lsw_of(const ImageWords& in) {
 }  // namespace
 
 Plc3601::Plc3601(Port& port, std::chrono::milliseconds timeout, Sequencing seq)
-    : port_(port), timeout_(timeout), seq_(seq), verdict_(port, shape_of(port.type()).axes) {
-  if (port.type() != ModuleType::k3601) {
-    throw std::invalid_argument(
-        "the module is a " + std::to_string(static_cast<unsigned>(port.type())) + ", not a 3601");
-  }
-}
+    : port_(port_of_type(port, ModuleType::k3601)),
+      timeout_(timeout),
+      seq_(seq),
+      verdict_(port, shape_of(port.type()).axes) {}
 
 bool Plc3601::release_bits(unsigned word, std::uint16_t bits) {
   if ((static_cast<std::uint16_t>(port_.outputs().w[word]) & bits) == 0) return true;

@@ -18,12 +18,10 @@ constexpr auto kCommandErrors = static_cast<std::uint16_t>(command_errors(kError
 }  // namespace
 
 Plc3602::Plc3602(Port& port, std::chrono::milliseconds timeout, Sequencing seq)
-    : port_(port), timeout_(timeout), seq_(seq), verdict_(port, shape_of(port.type()).axes) {
-  if (port.type() != ModuleType::k3602) {
-    throw std::invalid_argument(
-        "the module is a " + std::to_string(static_cast<unsigned>(port.type())) + ", not a 3602");
-  }
-}
+    : port_(port_of_type(port, ModuleType::k3602)),
+      timeout_(timeout),
+      seq_(seq),
+      verdict_(port, shape_of(port.type()).axes) {}
 
 std::uint16_t Plc3602::gpo_bit(unsigned axis) const {
   const auto lsw =
