@@ -51,35 +51,34 @@ consteval unsigned bit_of(const Table& table, std::string_view name) {
   throw "bit_of: no field of this name in the table";
 }
 
-// The 16-bit modules' words (3601, 3602): their dialects' constants are written with these two.
-namespace bits16 {
-template <typename Table>
-consteval std::uint16_t field(const Table& t, std::string_view name) {
-  return mask_of<std::uint16_t>(t, name);
-}
-// The bits of a 16-bit word that no field of `t` names: the manual's reserved bits.
-template <typename Table>
-consteval std::uint16_t unnamed(const Table& t) {
-  std::uint16_t named = 0;
-  for (const NamedBit& b : t) {
-    named = static_cast<std::uint16_t>(named | ((1u << b.width) - 1) << b.bit);
+// A word type's field mask and reserved bits (the bits of the word no field of a table names:
+// the manual's reserved bits), as callables so that one definition serves every word type.
+template <typename Word>
+struct FieldOf {
+  template <typename Table>
+  consteval Word operator()(const Table& t, std::string_view name) const {
+    return mask_of<Word>(t, name);
   }
-  return static_cast<std::uint16_t>(~named);
-}
-}  // namespace bits16
+};
+template <typename Word>
+struct UnnamedOf {
+  template <typename Table>
+  consteval Word operator()(const Table& t) const {
+    Word named = 0;
+    for (const NamedBit& b : t) named = static_cast<Word>(named | ((1ull << b.width) - 1) << b.bit);
+    return static_cast<Word>(~named);
+  }
+};
 
-// The 32-bit modules' words (3202): the same two, over DINTs.
+// The dialects' constants are written with these two: the 16-bit modules' words (3601, 3602) and
+// the 32-bit modules' DINTs (3202).
+namespace bits16 {
+inline constexpr FieldOf<std::uint16_t> field{};
+inline constexpr UnnamedOf<std::uint16_t> unnamed{};
+}  // namespace bits16
 namespace bits32 {
-template <typename Table>
-consteval std::uint32_t field(const Table& t, std::string_view name) {
-  return mask_of<std::uint32_t>(t, name);
-}
-template <typename Table>
-consteval std::uint32_t unnamed(const Table& t) {
-  std::uint32_t named = 0;
-  for (const NamedBit& b : t) named |= static_cast<std::uint32_t>(((1ull << b.width) - 1) << b.bit);
-  return ~named;
-}
+inline constexpr FieldOf<std::uint32_t> field{};
+inline constexpr UnnamedOf<std::uint32_t> unnamed{};
 }  // namespace bits32
 
 }  // namespace stepmod

@@ -1,7 +1,7 @@
 #pragma once
 // Which chip lines one axis uses: the `[[axis]]` line keys of docs/interface.md section 2, without
 // the rest of the configuration, so that gpio/ does not depend on config/. The daemon copies
-// tools::AxisConfig::out/in into this. An absent offset means "not wired".
+// config::AxisSection::out/in (config/config.hpp) into this. An absent offset means "not wired".
 #include <optional>
 
 #include "gpio/backend.hpp"

@@ -41,4 +41,11 @@ inline void decode_blend_types_16bit(const ImageWords& out, unsigned pairs_1_to_
   }
 }
 
+// A segment block (3601 manual ch. 5, 3602 manual table 9.22): words 2-3 the length, 4-5 the
+// speed, 6 the rate, as the command words decode them; `word7_zero`: the unused word 7 is 0.
+inline axis::BlendSegmentBlock blend_segment_16bit(const axis::AxisCommand& c,
+                                                   bool word7_zero) noexcept {
+  return {c.target, c.speed, c.accel, word7_zero};
+}
+
 }  // namespace stepmod::module

@@ -10,37 +10,29 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 }  // namespace
 
+ProfileSource::Start ProfileSource::begin(const Facts& f, std::int64_t end) noexcept {
+  solver_.reset(&phases_);
+  vs_ = f.vs;
+  decel_ = f.decel;
+  constant_speed_ = f.constant_speed;
+  can_change_speed_ = f.can_change_speed;
+  dir_ = f.dir;
+  return Start{f.dir, end};
+}
+
 ProfileSource::Start ProfileSource::start(const MoveSpec& m) noexcept {
   build_move(m, phases_);
-  solver_.reset(&phases_);
-  vs_ = m.vs;
-  decel_ = m.decel;
-  constant_speed_ = m.vp <= m.vs;
-  can_change_speed_ = false;
-  dir_ = m.dir;
-  return Start{m.dir, m.steps};
+  return begin({m.dir, m.vs, m.decel, m.vp <= m.vs, false}, m.steps);
 }
 
 ProfileSource::Start ProfileSource::start(const RunSpec& r) noexcept {
   build_run(r, phases_);
-  solver_.reset(&phases_);
-  vs_ = r.vs;
-  decel_ = r.decel;
-  constant_speed_ = r.vp <= r.vs;
-  can_change_speed_ = true;
-  dir_ = r.dir;
-  return Start{r.dir, kEndless};
+  return begin({r.dir, r.vs, r.decel, r.vp <= r.vs, true}, kEndless);
 }
 
 ProfileSource::Start ProfileSource::start(const BlendSpec& b) noexcept {
   build_blend(b, phases_);
-  solver_.reset(&phases_);
-  vs_ = b.vs;
-  decel_ = b.final_decel;
-  constant_speed_ = false;
-  can_change_speed_ = false;
-  dir_ = b.dir;
-  return Start{b.dir, blend_length(b)};
+  return begin({b.dir, b.vs, b.final_decel, false, false}, blend_length(b));
 }
 
 FirstStep ProfileSource::first_step(std::int64_t end) noexcept {

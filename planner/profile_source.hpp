@@ -66,6 +66,16 @@ class ProfileSource final : public StepSource {
                      bool exact_ramp) noexcept;
 
  private:
+  // What every start does once phases_ holds the law: the solver on it and the motion's facts.
+  struct Facts {
+    Direction dir;
+    double vs;
+    Ramp decel;
+    bool constant_speed;
+    bool can_change_speed;
+  };
+  Start begin(const Facts& f, std::int64_t end) noexcept;
+
   PhaseList phases_;
   StepSolver solver_;
   double vs_ = 1.0;

@@ -242,6 +242,13 @@ void add_wait_idle_and_gpo(CLI::App& app, CtlOptions& o) {
 }
 
 // ---- 3602 interpolated moves: both axes on one path, commanded on axis 1 ----
+// A point or length of a path, in steps (STEPS), never optional.
+struct PathWord {
+  const char* name;
+  std::string* to;
+  const char* help;
+};
+
 void add_path(CLI::App& app, CtlOptions& o) {
   CtlRequest& cmd = o.cmd;
   const auto verb = verb_setter(cmd);
@@ -260,42 +267,37 @@ void add_path(CLI::App& app, CtlOptions& o) {
     });
     return sub;
   };
-  const auto end_point = [&](CLI::App* sub) {
-    sub->add_option("X", pa.end_x, "end point X (axis 1), steps")->type_name("STEPS")->required();
-    sub->add_option("Y", pa.end_y, "end point Y (axis 2), steps")->type_name("STEPS")->required();
-  };
   const auto path_options = [&](CLI::App* sub) {
     sub->add_flag("--abs", pa.absolute, "points are positions (default: offsets from the start)");
     add_profile(sub, cmd.profile, true);
     add_wait(sub, o.wait);
   };
-  const auto sense = [&](CLI::App* sub) {
-    sub->add_option("SENSE", pa.sense, "cw or ccw (X right, Y up)")
-        ->required()
-        ->check(CLI::IsMember({"cw", "ccw", "CW", "CCW"}));
+  // One method: the sense (circles by centre or radius), the end point X Y, the method's own
+  // words, then the options every method takes.
+  const auto method = [&](const char* name, const char* help, bool with_sense,
+                          std::initializer_list<PathWord> own) {
+    auto* sub = path_move(name, help);
+    if (with_sense) {
+      sub->add_option("SENSE", pa.sense, "cw or ccw (X right, Y up)")
+          ->required()
+          ->check(CLI::IsMember({"cw", "ccw", "CW", "CCW"}));
+    }
+    const auto add = [sub](std::initializer_list<PathWord> words) {
+      for (const PathWord& w : words)
+        sub->add_option(w.name, *w.to, w.help)->type_name("STEPS")->required();
+    };
+    add({{"X", &pa.end_x, "end point X (axis 1), steps"},
+         {"Y", &pa.end_y, "end point Y (axis 2), steps"}});
+    add(own);
+    path_options(sub);
   };
-  auto* path_line = path_move("line", "linear interpolation to X Y");
-  end_point(path_line);
-  path_options(path_line);
-  auto* path_centre = path_move(
-      "centre", "circular arc to X Y around the centre CX CY; X Y = the start: a full circle");
-  sense(path_centre);
-  end_point(path_centre);
-  path_centre->add_option("CX", pa.point_x, "centre X, steps")->type_name("STEPS")->required();
-  path_centre->add_option("CY", pa.point_y, "centre Y, steps")->type_name("STEPS")->required();
-  path_options(path_centre);
-  auto* path_radius = path_move(
-      "radius", "circular arc to X Y of radius R: R > 0 the shorter arc, R < 0 the longer one");
-  sense(path_radius);
-  end_point(path_radius);
-  path_radius->add_option("R", pa.radius, "signed radius, steps")->type_name("STEPS")->required();
-  path_options(path_radius);
-  auto* path_via =
-      path_move("via", "circular arc to X Y through the via point VX VY (its sense follows)");
-  end_point(path_via);
-  path_via->add_option("VX", pa.point_x, "via point X, steps")->type_name("STEPS")->required();
-  path_via->add_option("VY", pa.point_y, "via point Y, steps")->type_name("STEPS")->required();
-  path_options(path_via);
+  method("line", "linear interpolation to X Y", false, {});
+  method("centre", "circular arc to X Y around the centre CX CY; X Y = the start: a full circle",
+         true, {{"CX", &pa.point_x, "centre X, steps"}, {"CY", &pa.point_y, "centre Y, steps"}});
+  method("radius", "circular arc to X Y of radius R: R > 0 the shorter arc, R < 0 the longer one",
+         true, {{"R", &pa.radius, "signed radius, steps"}});
+  method("via", "circular arc to X Y through the via point VX VY (its sense follows)", false,
+         {{"VX", &pa.point_x, "via point X, steps"}, {"VY", &pa.point_y, "via point Y, steps"}});
   auto* path_wait =
       verb(path->add_subcommand("wait", "waits until both axes have stopped"), Verb::kPathWait);
   path_wait->add_option("--max", cmd.wait_seconds, "give up after this many seconds (60)")

@@ -30,21 +30,11 @@ std::string AxisSummary::error_names() const {
   return s;
 }
 
-AxisSummary summary_from_word(std::uint32_t w, const StatusBits& b) {
+AxisSummary summary_from_word(std::uint32_t w, std::span<const SummaryBit> bits) {
   AxisSummary s;
-  s.configuration_mode = (w & b.cfg_mode) != 0;
-  s.moving_cw = (w & b.cw) != 0;
-  s.moving_ccw = (w & b.ccw) != 0;
-  s.hold = (w & b.hold) != 0;
-  s.stopped = (w & b.stopped) != 0;
-  s.at_home = (w & b.at_home) != 0;
-  s.move_complete = (w & b.complete) != 0;
-  s.cfg_error = (w & b.cfg) != 0;
-  s.command_error = (w & b.ce) != 0;
-  s.invalid_profile = (w & b.ip) != 0;
-  s.input_error = (w & b.ie) != 0;
-  s.home_invalid = (w & b.hi) != 0;
-  s.position_invalid = (w & b.pi) != 0;
+  for (const SummaryBit& b : bits) {
+    if (b.flag != nullptr && (w & b.mask) != 0) s.*b.flag = true;
+  }
   return s;
 }
 

@@ -1,9 +1,14 @@
 #pragma once
 // One axis/channel of any module in a few words (stepmodctl status --brief / --json, wait-idle
 // and --wait): its state, position, error bits and the module's reason (INTERFACE 3.4).
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
+#include <string_view>
+#include <tuple>
 #include <vector>
 
 #include "core/module_shape.hpp"
@@ -41,14 +46,46 @@ struct AxisSummary {
 // Every axis/channel of a module of `type` (its registry row's summarize).
 std::vector<AxisSummary> summarize(ModuleType type, const ImageWords& in);
 
-// A status word's bits, whichever module: each module's summary (tools/ctl_status_XXXX.cpp) fills
-// one from its words' constants.
-struct StatusBits {
-  std::uint32_t cfg_mode, cw, ccw, hold, stopped, at_home, complete;
-  std::uint32_t cfg, ce, ip, ie, hi, pi;
+// A status word's bit that shows a flag of the summary.
+struct SummaryBit {
+  std::uint32_t mask = 0;  // 0: a bit of the table that shows no flag of the summary
+  bool AxisSummary::*flag = nullptr;
 };
-// The flags of one status word (blend_running and position are the module's to add).
-AxisSummary summary_from_word(std::uint32_t w, const StatusBits& b);
+
+// The bits of a module's status word (tools/ctl_status_XXXX.cpp) that show a summary flag, found
+// by name in its manual's table: the manuals name them alike but for the 3602's "CW Motion",
+// "CCW Motion" and "Axis Stopped".
+template <typename Table>
+consteval auto summary_bits_of(const Table& t) {
+  using S = AxisSummary;
+  std::array<SummaryBit, std::tuple_size_v<Table>> out{};
+  // Gives `flag` to the table's bit of that name (or of the 3602's name).
+  const auto name = [&t, &out](bool S::*flag, std::string_view n, std::string_view n_3602 = {}) {
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      if (t[i].name == n || t[i].name == n_3602) {
+        out[i] = {((1u << t[i].width) - 1u) << t[i].bit, flag};
+      }
+    }
+  };
+  name(&S::configuration_mode, "Configuration Mode");
+  name(&S::moving_cw, "Moving CW", "CW Motion");
+  name(&S::moving_ccw, "Moving CCW", "CCW Motion");
+  name(&S::blend_running, "Blend Move Running");
+  name(&S::hold, "Hold State");
+  name(&S::stopped, "Stopped", "Axis Stopped");
+  name(&S::at_home, "At Home");
+  name(&S::move_complete, "Move Complete");
+  name(&S::cfg_error, "Configuration Error");
+  name(&S::command_error, "Command Error");
+  name(&S::invalid_profile, "Invalid Profile");
+  name(&S::input_error, "Input Error");
+  name(&S::home_invalid, "Home Invalid");
+  name(&S::position_invalid, "Position Invalid");
+  return out;
+}
+
+// The flags of one status word (position, and a blend bit in another word, are the module's).
+AxisSummary summary_from_word(std::uint32_t w, std::span<const SummaryBit> bits);
 
 // How a motion ended, for wait-idle and --wait: ok when it ended in Move Complete (At Home after
 // a homing; a jog: stopped without an error), else a sentence with the reason.

@@ -2,24 +2,20 @@
 
 #include <cstdio>
 
+#include "core/enum_names.hpp"
+
 namespace stepmod::module::axis {
 
+namespace {
+// In list order from kConfiguration = 1 (error_reason.hpp).
+constexpr std::array<std::string_view, 6> kListAbbreviations = {"CFG", "CE", "IP",
+                                                                "IE",  "HI", "PI"};
+static_assert(static_cast<std::size_t>(ErrorList::kPositionInvalid) == kListAbbreviations.size());
+}  // namespace
+
 const char* list_abbreviation(ErrorList list) noexcept {
-  switch (list) {
-    case ErrorList::kConfiguration:
-      return "CFG";
-    case ErrorList::kCommand:
-      return "CE";
-    case ErrorList::kInvalidProfile:
-      return "IP";
-    case ErrorList::kInput:
-      return "IE";
-    case ErrorList::kHomeInvalid:
-      return "HI";
-    case ErrorList::kPositionInvalid:
-      return "PI";
-  }
-  return "?";
+  // The table's views are of literals, so data() is NUL-terminated.
+  return enum_name(list, kListAbbreviations, 1).data();
 }
 
 std::uint32_t item_code(ModuleType t, ErrorList list, unsigned number) noexcept {

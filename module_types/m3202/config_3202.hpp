@@ -19,6 +19,7 @@ struct Config3202 {
 };
 
 // The manual's invalid-configuration list, item by item. kNone = valid.
+// Alike the 3601 enum (config_3601.hpp) on purpose: the same list, but each has its own item ids.
 enum class ConfigFault : std::uint8_t {
   kNone = 0,
   kNoHoming,                   // #1  (3202-CFG-02)

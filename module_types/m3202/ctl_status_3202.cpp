@@ -52,17 +52,11 @@ void format_status_3202(std::ostringstream& o, const ImageWords& in) {
 }
 
 std::vector<AxisSummary> summarize_3202(const ImageWords& in) {
-  namespace sb = words::m3202::status_bit;
-  constexpr StatusBits kBits{
-      sb::kConfigMode,     sb::kMovingCw,       sb::kMovingCcw,    sb::kHoldState,
-      sb::kStopped,        sb::kAtHome,         sb::kMoveComplete, sb::kConfigurationError,
-      sb::kCommandError,   sb::kInvalidProfile, sb::kInputError,   sb::kHomeInvalid,
-      sb::kPositionInvalid};
+  constexpr auto kBits = summary_bits_of(words::m3202::kStatusBits);
   std::vector<AxisSummary> out;
   for (unsigned c = 0; c < 2; ++c) {
     const plc::m3202::Status st = plc::m3202::decode_status(in, c);
     AxisSummary s = summary_from_word(st.word, kBits);
-    s.blend_running = st.has(sb::kBlendRunning);
     s.position = st.position;
     out.push_back(s);
   }

@@ -4,6 +4,7 @@
 #include "module_types/m3202/rules_3202.hpp"
 
 #include "module/axis/rules.hpp"
+#include "module/shared/dialect_names.hpp"
 #include "module_types/m3202/words_3202.hpp"
 
 namespace stepmod::module::m3202 {
@@ -15,34 +16,6 @@ using axis::CommandKind;
 
 // A31: the 3202's accel/decel DINTs are steps/s^2 already (unit 1).
 constexpr std::int64_t kAccelUnit = kRules3202.accel_word_unit;
-
-struct CommandBit {
-  std::uint32_t bit;
-  CommandKind kind;
-};
-constexpr CommandBit kCommandKinds[] = {
-    {cmd_bit::kAbsoluteMove, CommandKind::kAbsoluteMove},
-    {cmd_bit::kRelativeMove, CommandKind::kRelativeMove},
-    {cmd_bit::kHold, CommandKind::kHold},
-    {cmd_bit::kResume, CommandKind::kResume},
-    {cmd_bit::kImmediateStop, CommandKind::kImmediateStop},
-    {cmd_bit::kFindHomeCw, CommandKind::kFindHomeCw},
-    {cmd_bit::kFindHomeCcw, CommandKind::kFindHomeCcw},
-    {cmd_bit::kManualCw, CommandKind::kManualCw},
-    {cmd_bit::kManualCcw, CommandKind::kManualCcw},
-    {cmd_bit::kPresetPosition, CommandKind::kPresetPosition},
-    {cmd_bit::kPresetEncoder, CommandKind::kPresetEncoder},
-    {cmd_bit::kResetErrors, CommandKind::kResetErrors},
-    {cmd_bit::kRunBlendCw, CommandKind::kRunBlendCw},
-    {cmd_bit::kRunBlendCcw, CommandKind::kRunBlendCcw},
-};
-
-// Command word bits 16/17: constant, triangular S or trapezoidal S (17 ignored without 16).
-planner::AccelShape shape_from_word(std::uint32_t w) noexcept {
-  if (!(w & cmd_bit::kSCurve)) return planner::AccelShape::kConstant;
-  return (w & cmd_bit::kTrapezoidalS) ? planner::AccelShape::kTrapezoidalS
-                                      : planner::AccelShape::kTriangularS;
-}
 
 // The per-command "must be 0" rules of the command table (3202 manual ch. 5: speed/accel/decel 0
 // for both presets, 3202-CE-09; target/speed/accel/decel 0 for Run Blend, 3202-CE-18).
@@ -63,27 +36,21 @@ bool word_rules_broken(const ImageWords& out, unsigned b, const axis::AxisComman
   }
 }
 
+// 3202-CE-24, A33: a reserved command bit counts as an extra, undefined command (the last row).
+constexpr auto kCommandWords =
+    shared::command_words_of(kCommandBits, cmd_bit::kReserved, kCommandBits);
 }  // namespace
 
 axis::AxisCommand command_from_words(const ImageWords& out, unsigned channel) noexcept {
   const unsigned b = channel_base(channel);
   const auto w = static_cast<std::uint32_t>(out.w[b + out_word::kCommand]);
-  axis::AxisCommand c;
-  c.configuration_mode = (w & cmd_bit::kConfigMode) != 0;
-  for (const CommandBit& cb : kCommandKinds) {
-    if (w & cb.bit) c.commands.set(cb.kind);
-  }
-  // 3202-CE-24, A33: a reserved command bit counts as an extra, undefined command.
-  if (w & cmd_bit::kReserved) c.commands.set(CommandKind::kUndefined);
+  axis::AxisCommand c = shared::decode_command_bits(kCommandWords, w, w);
   // Native DINTs (3202 manual ch. 5). A negative speed is no valid speed.
   c.target = out.w[b + out_word::kTarget];
   const std::int32_t speed = out.w[b + out_word::kSpeed];
   if (speed >= 0) c.speed = speed;
   c.accel = static_cast<std::int64_t>(out.w[b + out_word::kAccel]) * kAccelUnit;
   c.decel = static_cast<std::int64_t>(out.w[b + out_word::kDecel]) * kAccelUnit;
-  c.shape = shape_from_word(w);
-  c.encoder_move = (w & cmd_bit::kEncoderMove) != 0;
-  c.backplane_proximity = (w & cmd_bit::kBackplaneProximity) != 0;
   // 3202-CE-05 / IP-03 / HI-04: DINTs b+5..b+7 are reserved and must be 0.
   for (unsigned i = out_word::kFirstReserved; i < kWordsPerChannel; ++i) {
     if (out.w[b + i] != 0) c.reserved_words_nonzero = true;
@@ -94,28 +61,18 @@ axis::AxisCommand command_from_words(const ImageWords& out, unsigned channel) no
   return c;
 }
 
+namespace {
+// The status bits that show the shared axis' flags, by their names in the manual.
+constexpr auto kStatusFlags = shared::status_bits_of<std::uint32_t>(kStatusBits);
+}  // namespace
+
 void status_to_words(const axis::AxisStatus& s, bool disabled, unsigned channel,
                      ImageWords& in) noexcept {
-  std::uint32_t w = status_bit::kModuleOk;  // 3202-MOK-01
-  if (s.moving_cw) w |= status_bit::kMovingCw;
-  if (s.moving_ccw) w |= status_bit::kMovingCcw;
-  if (s.hold) w |= status_bit::kHoldState;
-  if (s.stopped) w |= status_bit::kStopped;
-  if (s.at_home) w |= status_bit::kAtHome;
-  if (s.accelerating) w |= status_bit::kAccelerating;
-  if (s.decelerating) w |= status_bit::kDecelerating;
-  if (s.move_complete) w |= status_bit::kMoveComplete;
-  if (s.blend_running) w |= status_bit::kBlendRunning;
-  if (s.position_invalid) w |= status_bit::kPositionInvalid;
-  if (s.input_error) w |= status_bit::kInputError;
-  if (s.command_error) w |= status_bit::kCommandError;
+  std::uint32_t w = status_bit::kModuleOk | shared::flags_to_word(kStatusFlags, s);  // 3202-MOK-01
   // Status bit 13 (3202 manual ch. 6): never set while the channel is disabled.
-  if (s.configuration_error && !disabled) w |= status_bit::kConfigurationError;
-  if (s.home_invalid) w |= status_bit::kHomeInvalid;
-  if (s.invalid_profile) w |= status_bit::kInvalidProfile;
+  if (disabled) w &= ~status_bit::kConfigurationError;
   w |= static_cast<std::uint32_t>(s.inputs_active & 0x3Fu) << status_bit::kInputShift;
   if (disabled) w |= status_bit::kChannelDisabled;  // 3202-DIS-01
-  if (s.proximity_echo) w |= status_bit::kProximityEcho;
 
   const unsigned b = channel_base(channel);
   for (unsigned i = 0; i < kWordsPerChannel; ++i) in.w[b + i] = 0;

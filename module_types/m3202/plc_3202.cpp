@@ -4,6 +4,7 @@
 
 #include "plc/bit_names.hpp"
 #include "module_types/m3202/words_3202.hpp"
+#include "plc/command_answer.hpp"
 
 namespace stepmod::plc {
 
@@ -11,23 +12,17 @@ namespace m = words::m3202;
 using m3202::ChannelWords;
 
 namespace {
-constexpr ErrorBitSet kErrorBits{
-    m::status_bit::kConfigurationError, m::status_bit::kCommandError,
-    m::status_bit::kInvalidProfile,     m::status_bit::kInputError,
-    m::status_bit::kHomeInvalid,        m::status_bit::kPositionInvalid};
-constexpr std::uint32_t kCommandErrors =
-    m::status_bit::kCommandError | m::status_bit::kInvalidProfile;
+constexpr ErrorBitSet kErrorBits = error_bits_of(m::kStatusBits);
+constexpr std::uint32_t kCommandErrors = command_errors(kErrorBits);
 constexpr std::uint32_t kHomeErrors = kCommandErrors | m::status_bit::kHomeInvalid;
 constexpr std::uint32_t kCommandBits = 0x3FFFu;  // bits 0..13
 }  // namespace
 
 Plc3202::Plc3202(Port& port, std::chrono::milliseconds timeout, Sequencing seq)
-    : port_(port), timeout_(timeout), seq_(seq), verdict_(port, shape_of(port.type()).axes) {
-  if (port.type() != ModuleType::k3202) {
-    throw std::invalid_argument(
-        "the module is a " + std::to_string(static_cast<unsigned>(port.type())) + ", not a 3202");
-  }
-}
+    : port_(port_of_type(port, ModuleType::k3202)),
+      timeout_(timeout),
+      seq_(seq),
+      verdict_(port, shape_of(port.type()).axes) {}
 
 void Plc3202::write_channel(unsigned ch, const ChannelWords& words) {
   port_.update_outputs([&](ImageWords& w) {
@@ -38,14 +33,7 @@ void Plc3202::write_channel(unsigned ch, const ChannelWords& words) {
 Outcome Plc3202::finish(unsigned ch, std::uint32_t error_mask, bool timed_out,
                         const std::string& what) {
   Outcome o;
-  port_.read_inputs(o.in);
-  if (timed_out) {
-    o.ok = false;
-    o.timed_out = true;
-    o.message = what + ": no answer from the module within " + std::to_string(timeout_.count()) +
-                " ms (is stepmodd running?)";
-    return o;
-  }
+  if (!read_answer(port_, timed_out, what, timeout_, o)) return o;
   const std::uint32_t word = m3202::decode_status(o.in, ch).word;
   const std::uint32_t errors = word & error_mask;
   verdict_.judge(o, ch, errors, set_bit_names(errors, m::kStatusBits),

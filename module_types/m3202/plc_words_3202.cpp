@@ -1,6 +1,7 @@
 #include "module_types/m3202/plc_words_3202.hpp"
 
 #include "module_types/m3202/words_3202.hpp"
+#include "plc/accel_bits.hpp"
 
 namespace stepmod::plc::m3202 {
 
@@ -25,15 +26,7 @@ ChannelWords configuration_words(std::uint32_t bits, std::int32_t start_speed) {
 }
 
 std::uint32_t accel_bits(AccelType t) {
-  switch (t) {
-    case AccelType::kConstant:
-      return 0;
-    case AccelType::kTriangularS:
-      return mw::cmd_bit::kSCurve;
-    case AccelType::kTrapezoidalS:
-      return mw::cmd_bit::kSCurve | mw::cmd_bit::kTrapezoidalS;
-  }
-  return 0;
+  return accel_bits_in<std::uint32_t>(mw::kCommandBits, t);
 }
 
 std::array<std::int32_t, 52> blend_message(std::int32_t channel_number, const BlendProfile& b) {

@@ -58,12 +58,7 @@ void format_status_3601(std::ostringstream& o, const ImageWords& in) {
 }
 
 std::vector<AxisSummary> summarize_3601(const ImageWords& in) {
-  namespace sm = words::m3601::status_msw;
-  constexpr StatusBits kBits{
-      sm::kConfigMode,     sm::kMovingCw,       sm::kMovingCcw,    sm::kHoldState,
-      sm::kStopped,        sm::kAtHome,         sm::kMoveComplete, sm::kConfigurationError,
-      sm::kCommandError,   sm::kInvalidProfile, sm::kInputError,   sm::kHomeInvalid,
-      sm::kPositionInvalid};
+  constexpr auto kBits = summary_bits_of(words::m3601::kStatusMswBits);
   const plc::m3601::Status st = plc::m3601::decode_status(in);
   AxisSummary s = summary_from_word(st.msw, kBits);
   s.blend_running = st.has_lsw(words::m3601::status_lsw::kBlendRunning);

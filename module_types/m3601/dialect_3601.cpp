@@ -5,6 +5,7 @@
 
 #include "module/axis/rules.hpp"
 #include "module/blend_types_16bit.hpp"
+#include "module/shared/dialect_names.hpp"
 #include "module_types/m3601/words_3601.hpp"
 
 namespace stepmod::module::m3601 {
@@ -17,30 +18,6 @@ using axis::CommandKind;
 // Accel/decel words are steps/ms/s; the shared code works in steps/s^2 (3601 manual ch. 5).
 constexpr std::int64_t kAccelUnit = kRules3601.accel_word_unit;
 
-// Command MSW bits 0..14 and the command each one asks for (3601 manual ch. 5). Bit 14 is reserved:
-// A33, set with or without a command it is a Command Error.
-struct CommandBit {
-  std::uint16_t bit;
-  CommandKind kind;
-};
-constexpr CommandBit kCommandBits[] = {
-    {cmd_msw::kAbsoluteMove, CommandKind::kAbsoluteMove},
-    {cmd_msw::kRelativeMove, CommandKind::kRelativeMove},
-    {cmd_msw::kHold, CommandKind::kHold},
-    {cmd_msw::kResume, CommandKind::kResume},
-    {cmd_msw::kImmediateStop, CommandKind::kImmediateStop},
-    {cmd_msw::kFindHomeCw, CommandKind::kFindHomeCw},
-    {cmd_msw::kFindHomeCcw, CommandKind::kFindHomeCcw},
-    {cmd_msw::kManualCw, CommandKind::kManualCw},
-    {cmd_msw::kManualCcw, CommandKind::kManualCcw},
-    {cmd_msw::kPresetPosition, CommandKind::kPresetPosition},
-    {cmd_msw::kPresetEncoder, CommandKind::kPresetEncoder},
-    {cmd_msw::kResetErrors, CommandKind::kResetErrors},
-    {cmd_msw::kRunBlendCw, CommandKind::kRunBlendCw},
-    {cmd_msw::kRunBlendCcw, CommandKind::kRunBlendCcw},
-    {cmd_msw::kReserved14, CommandKind::kUndefined},
-};
-
 std::int32_t word(const ImageWords& out, unsigned i) noexcept {
   return static_cast<std::int16_t>(out.w[i]);
 }
@@ -51,13 +28,6 @@ bool words_zero(const ImageWords& out, unsigned first, unsigned last) noexcept {
     if (out.w[w] != 0) return false;
   }
   return true;
-}
-
-// Command LSW bits 0/1: constant, triangular S or trapezoidal S.
-planner::AccelShape shape_from_lsw(std::uint16_t lsw) noexcept {
-  if (!(lsw & cmd_lsw::kSCurve)) return planner::AccelShape::kConstant;
-  return (lsw & cmd_lsw::kTrapezoidalS) ? planner::AccelShape::kTrapezoidalS
-                                        : planner::AccelShape::kTriangularS;
 }
 
 // First blend block (3601 manual ch. 5): word 2 the segment count, words 4 / 3 the
@@ -75,17 +45,6 @@ axis::BlendFirstBlock blend_first_block(const ImageWords& out) noexcept {
   const auto w5 = static_cast<std::uint16_t>(out.w[kFinalDecelWord]);
   b.final_decel = static_cast<std::int64_t>(w5 & 0x3FFF) * kAccelUnit;
   b.unused_words_zero = out.w[out_word::kAccel] == 0 && out.w[out_word::kDecel] == 0;
-  return b;
-}
-
-// Segment block (3601 manual ch. 5): words 2-3 length, 4-5 speed, 6 the rate, 7 zero.
-axis::BlendSegmentBlock blend_segment_block(const ImageWords& out,
-                                            const axis::AxisCommand& c) noexcept {
-  axis::BlendSegmentBlock b;
-  b.length = c.target;
-  b.speed = c.speed;
-  b.rate = c.accel;
-  b.unused_words_zero = out.w[out_word::kDecel] == 0;
   return b;
 }
 
@@ -116,54 +75,40 @@ bool word_rules_broken(const ImageWords& out, const axis::AxisCommand& c,
   }
 }
 
+// Command MSW bits 0..14 and the command each one asks for (3601 manual ch. 5). Bit 14 is reserved:
+// A33, set with or without a command it is a Command Error.
+constexpr auto kCommandWords =
+    shared::command_words_of(kCommandMswBits, cmd_msw::kReserved14, kCommandLswBits);
 }  // namespace
 
 axis::AxisCommand command_from_words(const ImageWords& out) noexcept {
   const auto msw = static_cast<std::uint16_t>(out.w[out_word::kMsw]);
   const auto lsw = static_cast<std::uint16_t>(out.w[out_word::kLsw]);
-  axis::AxisCommand c;
-  c.configuration_mode = (msw & cmd_msw::kConfigMode) != 0;
-  for (const CommandBit& b : kCommandBits) {
-    if (msw & b.bit) c.commands.set(b.kind);
-  }
+  axis::AxisCommand c = shared::decode_command_bits(kCommandWords, msw, lsw);
   // Words 2-3: target / preset value / registration count / distance / blend segment length
   // (decimal split, LSW -999..999, both words of one sign); words 4-5: speed (never negative).
   c.target = words::decode_3601(out.w[out_word::kTargetMsw], out.w[out_word::kTargetLsw]);
   c.speed = words::decode_3601_unsigned(out.w[out_word::kSpeedMsw], out.w[out_word::kSpeedLsw]);
   c.accel = word(out, out_word::kAccel) * kAccelUnit;
   c.decel = word(out, out_word::kDecel) * kAccelUnit;
-  c.shape = shape_from_lsw(lsw);
-  c.encoder_move = (lsw & cmd_lsw::kEncoderMove) != 0;
-  c.follower = (lsw & cmd_lsw::kEncoderFollower) != 0;
-  c.blend_program = (lsw & cmd_lsw::kProgramBlend) != 0;
-  c.blend_transmit = (lsw & cmd_lsw::kBlendTransmit) != 0;
-  c.store_min_registration = (lsw & cmd_lsw::kStoreMinRegistration) != 0;
-  c.backplane_proximity = (lsw & cmd_lsw::kBackplaneProximity) != 0;
   // Encoder follower: words 2 / 3 are the multiplier and divisor, plain integers.
   c.ratio_multiplier = word(out, out_word::kTargetMsw);
   c.ratio_divisor = word(out, out_word::kTargetLsw);
   c.blend_first = blend_first_block(out);
-  c.blend_segment = blend_segment_block(out, c);
+  c.blend_segment = blend_segment_16bit(c, out.w[out_word::kDecel] == 0);
   c.words_invalid = word_rules_broken(out, c, lsw);
   return c;
 }
 
+namespace {
+// The status bits that show the shared axis' flags, by their names in the manual.
+constexpr auto kMswFlags = shared::status_bits_of<std::uint16_t>(kStatusMswBits);
+constexpr auto kLswFlags = shared::status_bits_of<std::uint16_t>(kStatusLswBits);
+}  // namespace
+
 void status_to_words(const axis::AxisStatus& s, ImageWords& in) noexcept {
   std::uint16_t msw = status_msw::kModuleOk;  // 3601-MOK-01: only a fatal fault clears it
-  if (s.moving_cw) msw |= status_msw::kMovingCw;
-  if (s.moving_ccw) msw |= status_msw::kMovingCcw;
-  if (s.accelerating) msw |= status_msw::kAccelerating;
-  if (s.decelerating) msw |= status_msw::kDecelerating;
-  if (s.hold) msw |= status_msw::kHoldState;
-  if (s.stopped) msw |= status_msw::kStopped;
-  if (s.at_home) msw |= status_msw::kAtHome;
-  if (s.move_complete) msw |= status_msw::kMoveComplete;
-  if (s.home_invalid) msw |= status_msw::kHomeInvalid;
-  if (s.invalid_profile) msw |= status_msw::kInvalidProfile;
-  if (s.position_invalid) msw |= status_msw::kPositionInvalid;
-  if (s.input_error) msw |= status_msw::kInputError;
-  if (s.command_error) msw |= status_msw::kCommandError;
-  if (s.configuration_error) msw |= status_msw::kConfigurationError;
+  msw |= shared::flags_to_word(kMswFlags, s);
 
   // Status LSW bits 0..5: the inputs in InputLine order (capture, external, home, E-stop, CW
   // limit, CCW limit), 3601 manual ch. 6.
@@ -171,11 +116,7 @@ void status_to_words(const axis::AxisStatus& s, ImageWords& in) noexcept {
                                        status_lsw::kHomeActive | status_lsw::kEStopActive |
                                        status_lsw::kCwLimitActive | status_lsw::kCcwLimitActive;
   std::uint16_t lsw = s.inputs_active & kInputBits;
-  if (s.proximity_echo) lsw |= status_lsw::kProximityEcho;
-  if (s.blend_running) lsw |= status_lsw::kBlendRunning;
-  if (s.blend_acknowledge) lsw |= status_lsw::kBlendAcknowledge;
-  if (s.follower_mode) lsw |= status_lsw::kFollowerMode;
-  if (s.min_registration_set) lsw |= status_lsw::kMinRegistrationSet;
+  lsw |= shared::flags_to_word(kLswFlags, s);
 
   in = ImageWords{};
   in.w[in_word::kStatusMsw] = static_cast<std::int16_t>(msw);

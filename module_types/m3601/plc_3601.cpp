@@ -4,6 +4,7 @@
 
 #include "plc/bit_names.hpp"
 #include "module_types/m3601/words_3601.hpp"
+#include "plc/command_answer.hpp"
 
 namespace stepmod::plc {
 
@@ -13,13 +14,8 @@ using m3601::put_profile;
 using m3601::put_split;
 
 namespace {
-constexpr ErrorBitSet kErrorBits{
-    m::status_msw::kConfigurationError, m::status_msw::kCommandError,
-    m::status_msw::kInvalidProfile,     m::status_msw::kInputError,
-    m::status_msw::kHomeInvalid,        m::status_msw::kPositionInvalid};
-// Errors that mean "the module rejected or failed this command" (status MSW).
-constexpr std::uint16_t kCommandErrors =
-    m::status_msw::kCommandError | m::status_msw::kInvalidProfile;
+constexpr ErrorBitSet kErrorBits = error_bits_of(m::kStatusMswBits);
+constexpr auto kCommandErrors = static_cast<std::uint16_t>(command_errors(kErrorBits));
 constexpr std::uint16_t kHomeErrors = kCommandErrors | m::status_msw::kHomeInvalid;
 
 std::uint16_t lsw_of(const ImageWords& in) {
@@ -28,12 +24,10 @@ std::uint16_t lsw_of(const ImageWords& in) {
 }  // namespace
 
 Plc3601::Plc3601(Port& port, std::chrono::milliseconds timeout, Sequencing seq)
-    : port_(port), timeout_(timeout), seq_(seq), verdict_(port, shape_of(port.type()).axes) {
-  if (port.type() != ModuleType::k3601) {
-    throw std::invalid_argument(
-        "the module is a " + std::to_string(static_cast<unsigned>(port.type())) + ", not a 3601");
-  }
-}
+    : port_(port_of_type(port, ModuleType::k3601)),
+      timeout_(timeout),
+      seq_(seq),
+      verdict_(port, shape_of(port.type()).axes) {}
 
 bool Plc3601::release_bits(unsigned word, std::uint16_t bits) {
   if ((static_cast<std::uint16_t>(port_.outputs().w[word]) & bits) == 0) return true;
@@ -47,14 +41,7 @@ bool Plc3601::release_stale() {
 
 Outcome Plc3601::finish(std::uint16_t error_mask, bool timed_out, const std::string& what) {
   Outcome o;
-  port_.read_inputs(o.in);
-  if (timed_out) {
-    o.ok = false;
-    o.timed_out = true;
-    o.message = what + ": no answer from the module within " + std::to_string(timeout_.count()) +
-                " ms (is stepmodd running?)";
-    return o;
-  }
+  if (!read_answer(port_, timed_out, what, timeout_, o)) return o;
   const auto msw = static_cast<std::uint16_t>(o.in.w[m::in_word::kStatusMsw]);
   const std::uint16_t errors = msw & error_mask;
   verdict_.judge(o, 0, errors, set_bit_names(errors, m::kStatusMswBits),

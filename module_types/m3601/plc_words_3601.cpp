@@ -1,6 +1,7 @@
 #include "module_types/m3601/plc_words_3601.hpp"
 
 #include "module_types/m3601/words_3601.hpp"
+#include "plc/accel_bits.hpp"
 
 namespace stepmod::plc::m3601 {
 
@@ -52,15 +53,7 @@ ImageWords follower_words(std::uint16_t msw, std::int16_t multiplier, std::int16
 }
 
 std::uint16_t accel_bits(AccelType t) {
-  switch (t) {
-    case AccelType::kConstant:
-      return 0;
-    case AccelType::kTriangularS:
-      return m::cmd_lsw::kSCurve;
-    case AccelType::kTrapezoidalS:
-      return m::cmd_lsw::kSCurve | m::cmd_lsw::kTrapezoidalS;
-  }
-  return 0;
+  return accel_bits_in<std::uint16_t>(m::kCommandLswBits, t);
 }
 
 std::vector<ImageWords> blend_blocks(const BlendProfile& b) {
@@ -69,18 +62,9 @@ std::vector<ImageWords> blend_blocks(const BlendProfile& b) {
   first.w[2] = static_cast<std::int32_t>(b.segments.size());
   // Type pairs: two bits per segment, segments 1..8 in word 4, 9..16 in word 3 (low bit S-curve,
   // high bit trapezoidal: the command LSW's code, 3601 manual ch. 5).
-  std::uint16_t pairs_lo = 0;
-  std::uint16_t pairs_hi = 0;
-  for (std::size_t i = 0; i < b.segments.size() && i < 16; ++i) {
-    const std::uint16_t bits = accel_bits(b.segments[i].type);
-    if (i < 8) {
-      pairs_lo = static_cast<std::uint16_t>(pairs_lo | bits << (2 * i));
-    } else {
-      pairs_hi = static_cast<std::uint16_t>(pairs_hi | bits << (2 * (i - 8)));
-    }
-  }
-  first.w[3] = static_cast<std::int16_t>(pairs_hi);
-  first.w[4] = static_cast<std::int16_t>(pairs_lo);
+  const TypePairs pairs = segment_type_pairs(b, accel_bits);
+  first.w[3] = static_cast<std::int16_t>(pairs.hi);
+  first.w[4] = static_cast<std::int16_t>(pairs.lo);
   // Word 5: type in bits 15..14, value in bits 13..0.
   first.w[5] = static_cast<std::int16_t>(accel_bits(b.final_type) << 14 | (b.final_decel & 0x3FFF));
   blocks.push_back(first);

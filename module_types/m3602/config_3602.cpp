@@ -1,7 +1,9 @@
 #include "module_types/m3602/config_3602.hpp"
 #include "module_types/m3602/rules_3602.hpp"
 
+#include "core/enum_names.hpp"
 #include "module/axis/rules.hpp"
+#include "module/shared/invalid_configs.hpp"
 #include "module_types/m3602/words_3602.hpp"
 
 namespace stepmod::module::m3602 {
@@ -31,30 +33,22 @@ axis::LimitFunction function_of(unsigned field) noexcept {
 
 // kNone = 0, then the checklist in order from CFG-02.
 unsigned checklist_item(ConfigFault f) noexcept {
-  const auto n = static_cast<unsigned>(f);
-  return n == 0 ? 0u : n + 1u;
+  return shared::checklist_item_in_order(f);
 }
 
 std::string_view describe(ConfigFault f) noexcept {
-  switch (f) {
-    case ConfigFault::kNone:
-      return "valid";
-    case ConfigFault::kReservedMswBits:
-      return "reserved configuration MSW bit set (8, 9, 11, 12, 13)";
-    case ConfigFault::kCwInputFunction:
-      return "CW input function 11";
-    case ConfigFault::kCcwInputFunction:
-      return "CCW input function 11";
-    case ConfigFault::kReservedLswBits:
-      return "reserved configuration LSW bit set (5..15)";
-    case ConfigFault::kStartingSpeedRange:
-      return "starting speed outside 1..1,000,000";
-    case ConfigFault::kHomingTimeoutRange:
-      return "homing timeout outside 0..300 s";
-    case ConfigFault::kReservedWords:
-      return "reserved configuration word (5..7) not zero";
-  }
-  return "?";
+  // In enumerator order (config_3602.hpp).
+  static constexpr std::array<std::string_view, 8> kTexts = {
+      "valid",
+      "reserved configuration MSW bit set (8, 9, 11, 12, 13)",
+      "CW input function 11",
+      "CCW input function 11",
+      "reserved configuration LSW bit set (5..15)",
+      "starting speed outside 1..1,000,000",
+      "homing timeout outside 0..300 s",
+      "reserved configuration word (5..7) not zero"};
+  static_assert(static_cast<std::size_t>(ConfigFault::kReservedWords) + 1 == kTexts.size());
+  return enum_name(f, kTexts);
 }
 
 ConfigFault check_config(const ImageWords& out, Config3602& decoded) noexcept {

@@ -56,12 +56,7 @@ void format_status_3602(std::ostringstream& o, const ImageWords& in) {
 }
 
 std::vector<AxisSummary> summarize_3602(const ImageWords& in) {
-  namespace sm = words::m3602::status_msw;
-  constexpr StatusBits kBits{
-      sm::kConfigMode,     sm::kMovingCw,       sm::kMovingCcw,    sm::kHoldState,
-      sm::kStopped,        sm::kAtHome,         sm::kMoveComplete, sm::kConfigurationError,
-      sm::kCommandError,   sm::kInvalidProfile, sm::kInputError,   sm::kHomeInvalid,
-      sm::kPositionInvalid};
+  constexpr auto kBits = summary_bits_of(words::m3602::kStatusMswBits);
   std::vector<AxisSummary> out;
   for (unsigned a = 0; a < 2; ++a) {
     const plc::m3602::Status st = plc::m3602::decode_status(in, a);

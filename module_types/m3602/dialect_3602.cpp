@@ -6,6 +6,7 @@
 #include "core/lines.hpp"
 #include "module/axis/rules.hpp"
 #include "module/blend_types_16bit.hpp"
+#include "module/shared/dialect_names.hpp"
 #include "module_types/m3602/interpolated_items.hpp"
 #include "module_types/m3602/words_3602.hpp"
 
@@ -18,29 +19,8 @@ using axis::CommandKind;
 
 // Accel/decel words are steps/ms/s; the shared code works in steps/s^2 (digest 7.1).
 constexpr std::int64_t kAccelUnit = kRules3602.accel_word_unit;
-
-struct CommandBit {
-  std::uint16_t bit;
-  CommandKind kind;
-};
-// Command MSW bits (digest 4.6). Bits 10 and 14 are reserved, "must be 0": set, they are a
-// command the manual does not define (A33) and so a Command Error (3602-CE-10).
-constexpr CommandBit kCommandBits[] = {
-    {cmd_msw::kAbsoluteMove, CommandKind::kAbsoluteMove},
-    {cmd_msw::kRelativeMove, CommandKind::kRelativeMove},
-    {cmd_msw::kHold, CommandKind::kHold},
-    {cmd_msw::kResume, CommandKind::kResume},
-    {cmd_msw::kImmediateStop, CommandKind::kImmediateStop},
-    {cmd_msw::kFindHomeCw, CommandKind::kFindHomeCw},
-    {cmd_msw::kFindHomeCcw, CommandKind::kFindHomeCcw},
-    {cmd_msw::kJogCw, CommandKind::kManualCw},
-    {cmd_msw::kJogCcw, CommandKind::kManualCcw},
-    {cmd_msw::kPresetPosition, CommandKind::kPresetPosition},
-    {cmd_msw::kResetErrors, CommandKind::kResetErrors},
-    {cmd_msw::kRunBlendCw, CommandKind::kRunBlendCw},
-    {cmd_msw::kRunBlendCcw, CommandKind::kRunBlendCcw},
-    {cmd_msw::kReserved, CommandKind::kUndefined},
-};
+// Command LSW bits 0/1 (3602 manual ch. 9 table 9.4): the acceleration shape.
+constexpr auto kShapeBits = shared::shape_bits_of<std::uint16_t>(kCommandLswBits);
 
 std::int32_t word(const ImageWords& out, unsigned i) noexcept {
   return static_cast<std::int16_t>(out.w[i]);
@@ -53,14 +33,6 @@ bool words_zero(const ImageWords& out, unsigned first, unsigned last) noexcept {
     if (static_cast<std::int16_t>(out.w[w]) != 0) return false;
   }
   return true;
-}
-
-// Command LSW bits 0/1 (digest 4.7): bit 0 selects S-curve, bit 1 then trapezoidal; bit 1 alone
-// is still constant.
-planner::AccelShape shape_from_lsw(std::uint16_t lsw) noexcept {
-  if (!(lsw & cmd_lsw::kSCurve)) return planner::AccelShape::kConstant;
-  return (lsw & cmd_lsw::kTrapezoidalS) ? planner::AccelShape::kTrapezoidalS
-                                        : planner::AccelShape::kTriangularS;
 }
 
 // First ("initial") blend block (digest 4.5, Table 9.21): word 2 the segment count, words 4 / 3
@@ -91,17 +63,6 @@ bool has_invalid_pair(const ImageWords& out) noexcept {
     if (((w >> (2 * ((s - 1) % 8))) & 0x3u) == 0b10u) return true;
   }
   return false;
-}
-
-// Segment ("secondary") block (Table 9.22): words 2-3 length, 4-5 speed, 6 the rate, 7 zero.
-axis::BlendSegmentBlock blend_segment_block(const ImageWords& out,
-                                            const axis::AxisCommand& c) noexcept {
-  axis::BlendSegmentBlock b;
-  b.length = c.target;
-  b.speed = c.speed;
-  b.rate = c.accel;
-  b.unused_words_zero = word(out, out_word::kDecel) == 0;
-  return b;
 }
 
 // The LSW of Reset Errors, Run Blend and the minimum-registration store: nothing but the GPO bit
@@ -194,7 +155,7 @@ std::optional<InterpolatedCommand> interpolated_from_words(const ImageWords& out
     }
   }
   c.absolute = (lsw & cmd_lsw::kAbsoluteCoordinates) != 0;
-  c.shape = shape_from_lsw(lsw);
+  c.shape = shared::accel_shape(kShapeBits, lsw);  // LSW bits 0/1
   c.speed = split(out, interp_word::kSpeedMsw);
   c.accel = word(out, interp_word::kAccel) * kAccelUnit;
   c.decel = word(out, interp_word::kDecel) * kAccelUnit;
@@ -207,14 +168,17 @@ std::optional<InterpolatedCommand> interpolated_from_words(const ImageWords& out
   return c;
 }
 
+namespace {
+// Command MSW bits (3602 manual ch. 9 table 9.3). Bits 10 and 14 are reserved, "must be 0": set,
+// they are a command the manual does not define (A33) and so a Command Error (3602-CE-10).
+constexpr auto kCommandWords =
+    shared::command_words_of(kCommandMswBits, cmd_msw::kReserved, kCommandLswBits);
+}  // namespace
+
 axis::AxisCommand command_from_words(const ImageWords& out) noexcept {
   const auto msw = static_cast<std::uint16_t>(out.w[out_word::kMsw]);
   const auto lsw = static_cast<std::uint16_t>(out.w[out_word::kLsw]);
-  axis::AxisCommand c;
-  c.configuration_mode = (msw & cmd_msw::kConfigMode) != 0;
-  for (const CommandBit& b : kCommandBits) {
-    if (msw & b.bit) c.commands.set(b.kind);
-  }
+  axis::AxisCommand c = shared::decode_command_bits(kCommandWords, msw, lsw);
   // Words 2-3: target / offset / preset value / registration offset / minimum distance / blend
   // segment length; 4-5 the programmed speed. Binary split: every bit pattern is a number, the
   // axis checks its range (3602-CE-05: +-1,073,741,823).
@@ -222,16 +186,11 @@ axis::AxisCommand command_from_words(const ImageWords& out) noexcept {
   c.speed = split(out, out_word::kSpeedMsw);
   c.accel = word(out, out_word::kAccel) * kAccelUnit;
   c.decel = word(out, out_word::kDecel) * kAccelUnit;
-  c.shape = shape_from_lsw(lsw);
-  c.blend_program = (lsw & cmd_lsw::kProgramBlend) != 0;
-  c.blend_transmit = (lsw & cmd_lsw::kBlendTransmit) != 0;
-  c.store_min_registration = (lsw & cmd_lsw::kProgramMinRegistration) != 0;
-  c.backplane_proximity = (lsw & cmd_lsw::kBackplaneProximity) != 0;
   c.blend_first = blend_first_block(out);
   // 3602-IP-07: an invalid pair is reported through the final-shape slot the shared code already
   // refuses with IP (the block is then an invalid profile block, IP-19).
   if (c.blend_program && has_invalid_pair(out)) c.blend_first.final_shape.reset();
-  c.blend_segment = blend_segment_block(out, c);
+  c.blend_segment = blend_segment_16bit(c, word(out, out_word::kDecel) == 0);
   c.words_invalid = word_rules_broken(out, c, lsw);
   // 3602-CE-03: the broken rule is the interpolation bits with a command bit.
   if (!c.commands.empty() && (lsw & cmd_lsw::kInterpolation))
@@ -247,22 +206,14 @@ std::int32_t wrap_to_int32(std::int64_t v) noexcept {
   return static_cast<std::int32_t>(static_cast<std::uint32_t>(static_cast<std::uint64_t>(v)));
 }
 
+namespace {
+// The status bits that show the shared axis' flags, by their names in the manual.
+constexpr auto kMswFlags = shared::status_bits_of<std::uint16_t>(kStatusMswBits);
+constexpr auto kLswFlags = shared::status_bits_of<std::uint16_t>(kStatusLswBits);
+}  // namespace
+
 void status_to_words(const axis::AxisStatus& s, const StatusExtras& x, ImageWords& in) noexcept {
-  std::uint16_t msw = 0;
-  if (s.moving_cw) msw |= status_msw::kMovingCw;
-  if (s.moving_ccw) msw |= status_msw::kMovingCcw;
-  if (s.hold) msw |= status_msw::kHoldState;
-  if (s.stopped) msw |= status_msw::kStopped;
-  if (s.at_home) msw |= status_msw::kAtHome;
-  if (s.accelerating) msw |= status_msw::kAccelerating;
-  if (s.decelerating) msw |= status_msw::kDecelerating;
-  if (s.move_complete) msw |= status_msw::kMoveComplete;
-  if (s.home_invalid) msw |= status_msw::kHomeInvalid;
-  if (s.invalid_profile) msw |= status_msw::kInvalidProfile;
-  if (s.position_invalid) msw |= status_msw::kPositionInvalid;
-  if (s.input_error) msw |= status_msw::kInputError;
-  if (s.command_error) msw |= status_msw::kCommandError;
-  if (s.configuration_error) msw |= status_msw::kConfigurationError;
+  std::uint16_t msw = shared::flags_to_word(kMswFlags, s);
   if (x.axis_enabled) msw |= status_msw::kAxisEnabled;
 
   // Status LSW bits 0..4: capture, external, home, CW input, CCW input (digest 4.11). The axis
@@ -271,17 +222,13 @@ void status_to_words(const axis::AxisStatus& s, const StatusExtras& x, ImageWord
   const auto active = [&s](InputLine l) {
     return (s.inputs_active >> static_cast<unsigned>(l)) & 1u;
   };
-  std::uint16_t lsw = 0;
+  std::uint16_t lsw = shared::flags_to_word(kLswFlags, s);  // blend, registration, proximity
   if (active(InputLine::kCapture)) lsw |= status_lsw::kCaptureActive;
   if (active(InputLine::kExternal)) lsw |= status_lsw::kExternalActive;
   if (active(InputLine::kHome)) lsw |= status_lsw::kHomeActive;
   if (active(InputLine::kCwLimit)) lsw |= status_lsw::kCwActive;
   if (active(InputLine::kCcwLimit)) lsw |= status_lsw::kCcwActive;
-  if (s.blend_running) lsw |= status_lsw::kBlendRunning;
-  if (s.blend_acknowledge) lsw |= status_lsw::kBlendAcknowledge;
-  if (s.min_registration_set) lsw |= status_lsw::kMinRegistrationSet;
   if (x.interpolating) lsw |= status_lsw::kInterpolatedRunning;
-  if (s.proximity_echo) lsw |= status_lsw::kProximityEcho;
   if (x.gpo) lsw |= status_lsw::kGpo;
 
   in = ImageWords{};

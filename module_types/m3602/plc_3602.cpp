@@ -6,27 +6,22 @@
 
 #include "plc/bit_names.hpp"
 #include "module_types/m3602/words_3602.hpp"
+#include "plc/command_answer.hpp"
 
 namespace stepmod::plc {
 
 namespace m = words::m3602;
 
 namespace {
-constexpr ErrorBitSet kErrorBits{
-    m::status_msw::kConfigurationError, m::status_msw::kCommandError,
-    m::status_msw::kInvalidProfile,     m::status_msw::kInputError,
-    m::status_msw::kHomeInvalid,        m::status_msw::kPositionInvalid};
-constexpr std::uint16_t kCommandErrors =
-    m::status_msw::kCommandError | m::status_msw::kInvalidProfile;
+constexpr ErrorBitSet kErrorBits = error_bits_of(m::kStatusMswBits);
+constexpr auto kCommandErrors = static_cast<std::uint16_t>(command_errors(kErrorBits));
 }  // namespace
 
 Plc3602::Plc3602(Port& port, std::chrono::milliseconds timeout, Sequencing seq)
-    : port_(port), timeout_(timeout), seq_(seq), verdict_(port, shape_of(port.type()).axes) {
-  if (port.type() != ModuleType::k3602) {
-    throw std::invalid_argument(
-        "the module is a " + std::to_string(static_cast<unsigned>(port.type())) + ", not a 3602");
-  }
-}
+    : port_(port_of_type(port, ModuleType::k3602)),
+      timeout_(timeout),
+      seq_(seq),
+      verdict_(port, shape_of(port.type()).axes) {}
 
 std::uint16_t Plc3602::gpo_bit(unsigned axis) const {
   const auto lsw =
@@ -36,14 +31,7 @@ std::uint16_t Plc3602::gpo_bit(unsigned axis) const {
 
 Outcome Plc3602::finish(unsigned axis, std::uint16_t error_mask, bool timed_out, const char* what) {
   Outcome o;
-  port_.read_inputs(o.in);
-  if (timed_out) {
-    o.ok = false;
-    o.timed_out = true;
-    o.message = std::string(what) + ": no answer from the module within " +
-                std::to_string(timeout_.count()) + " ms (is stepmodd running?)";
-    return o;
-  }
+  if (!read_answer(port_, timed_out, what, timeout_, o)) return o;
   const std::uint16_t msw = m3602::decode_status(o.in, axis).msw;
   const auto errors = static_cast<std::uint16_t>(msw & error_mask);
   verdict_.judge(o, axis, errors, set_bit_names(errors, m::kStatusMswBits),

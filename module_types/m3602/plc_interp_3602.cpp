@@ -6,6 +6,7 @@
 #include "module_types/m3602/plc_status_3602.hpp"
 #include "module_types/m3602/plc_words_3602.hpp"
 #include "module_types/m3602/words_3602.hpp"
+#include "plc/command_answer.hpp"
 
 namespace stepmod::plc {
 
@@ -13,8 +14,8 @@ namespace m = words::m3602;
 namespace iw = words::m3602::interp_word;
 
 namespace {
-constexpr std::uint16_t kCommandErrors =
-    m::status_msw::kCommandError | m::status_msw::kInvalidProfile;
+constexpr auto kCommandErrors =
+    static_cast<std::uint16_t>(command_errors(error_bits_of(m::kStatusMswBits)));
 }  // namespace
 
 std::uint16_t m3602::interpolation_bits(const PathMove3602& p) {
@@ -63,14 +64,7 @@ Interp3602::Interp3602(Port& port, std::chrono::milliseconds timeout, Sequencing
 
 Outcome Interp3602::finish(bool timed_out, const char* what) {
   Outcome o;
-  port_.read_inputs(o.in);
-  if (timed_out) {
-    o.ok = false;
-    o.timed_out = true;
-    o.message = std::string(what) + ": no answer from the module within " +
-                std::to_string(timeout_.count()) + " ms (is stepmodd running?)";
-    return o;
-  }
+  if (!read_answer(port_, timed_out, what, timeout_, o)) return o;
   // Every interpolated error is reported on axis 1 (3602-CE-I1).
   const std::uint16_t msw = m3602::decode_status(o.in, 0).msw;
   if (msw & kCommandErrors) {

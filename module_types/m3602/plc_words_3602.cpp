@@ -1,6 +1,7 @@
 #include "module_types/m3602/plc_words_3602.hpp"
 
 #include "module_types/m3602/words_3602.hpp"
+#include "plc/accel_bits.hpp"
 
 namespace stepmod::plc::m3602 {
 
@@ -38,15 +39,7 @@ void put_configuration(ImageWords& w, unsigned axis, std::uint16_t cfg_msw, std:
 }
 
 std::uint16_t accel_bits(AccelType t) {
-  switch (t) {
-    case AccelType::kConstant:
-      return 0;
-    case AccelType::kTriangularS:
-      return m::cmd_lsw::kSCurve;
-    case AccelType::kTrapezoidalS:
-      return m::cmd_lsw::kSCurve | m::cmd_lsw::kTrapezoidalS;
-  }
-  return 0;
+  return accel_bits_in<std::uint16_t>(m::kCommandLswBits, t);
 }
 
 void put_axis(ImageWords& w, unsigned axis, const AxisWords& a) {
@@ -59,18 +52,9 @@ std::vector<AxisWords> blend_blocks(const BlendProfile& b) {
   std::vector<AxisWords> blocks;
   AxisWords first{};
   first[2] = static_cast<std::int32_t>(b.segments.size());
-  std::uint16_t pairs_lo = 0;
-  std::uint16_t pairs_hi = 0;
-  for (std::size_t i = 0; i < b.segments.size() && i < 16; ++i) {
-    const std::uint16_t bits = accel_bits(b.segments[i].type);
-    if (i < 8) {
-      pairs_lo = static_cast<std::uint16_t>(pairs_lo | bits << (2 * i));
-    } else {
-      pairs_hi = static_cast<std::uint16_t>(pairs_hi | bits << (2 * (i - 8)));
-    }
-  }
-  first[3] = static_cast<std::int16_t>(pairs_hi);
-  first[4] = static_cast<std::int16_t>(pairs_lo);
+  const TypePairs pairs = segment_type_pairs(b, accel_bits);  // as the 3601 (3602 manual ch. 9)
+  first[3] = static_cast<std::int16_t>(pairs.hi);
+  first[4] = static_cast<std::int16_t>(pairs.lo);
   first[5] =
       static_cast<std::int16_t>(accel_bits(b.final_type) << 14 | (b.final_decel & kFinalValue));
   blocks.push_back(first);

@@ -7,8 +7,11 @@
 #include <string>
 
 #include "plc/bit_names.hpp"
+#include "module_types/m3202/plc_words_3202.hpp"
 #include "module_types/m3202/words_3202.hpp"
+#include "module_types/m3601/plc_words_3601.hpp"
 #include "module_types/m3601/words_3601.hpp"
+#include "module_types/m3602/plc_words_3602.hpp"
 #include "module_types/m3602/words_3602.hpp"
 
 namespace stepmod::plc {
@@ -160,6 +163,32 @@ TEST(BitNames, SetFieldsByNameInBitOrder) {
   // A two-bit field shows its value: CW input as E-stop (10b at bits 4:3).
   EXPECT_EQ(set_bit_names(0b10u << 3, words::m3602::kConfigMswBits),
             "CW Input Function (1 = limit, 2 = E-stop)=2");
+}
+
+}  // namespace
+}  // namespace stepmod::plc
+
+namespace stepmod::plc {
+namespace {
+
+// plc/accel_bits.hpp finds each manual's S-curve bits by name: the values the dialects had
+// written out by hand.
+TEST(PlcAccelBits, EachModuleGetsTheBitsItsManualGivesEachType) {
+  namespace m1 = words::m3601;
+  namespace m2 = words::m3602;
+  namespace m3 = words::m3202;
+  EXPECT_EQ(m3601::accel_bits(AccelType::kConstant), 0);
+  EXPECT_EQ(m3601::accel_bits(AccelType::kTriangularS), m1::cmd_lsw::kSCurve);
+  EXPECT_EQ(m3601::accel_bits(AccelType::kTrapezoidalS),
+            m1::cmd_lsw::kSCurve | m1::cmd_lsw::kTrapezoidalS);
+  EXPECT_EQ(m3602::accel_bits(AccelType::kConstant), 0);
+  EXPECT_EQ(m3602::accel_bits(AccelType::kTriangularS), m2::cmd_lsw::kSCurve);
+  EXPECT_EQ(m3602::accel_bits(AccelType::kTrapezoidalS),
+            m2::cmd_lsw::kSCurve | m2::cmd_lsw::kTrapezoidalS);
+  EXPECT_EQ(m3202::accel_bits(AccelType::kConstant), 0u);
+  EXPECT_EQ(m3202::accel_bits(AccelType::kTriangularS), m3::cmd_bit::kSCurve);
+  EXPECT_EQ(m3202::accel_bits(AccelType::kTrapezoidalS),
+            m3::cmd_bit::kSCurve | m3::cmd_bit::kTrapezoidalS);
 }
 
 }  // namespace

@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include "module_types/m3202/words_3202.hpp"
 #include "module_types/m3601/words_3601.hpp"
+#include "module_types/m3602/words_3602.hpp"
+#include "tools/ctl_summary.hpp"
 
 namespace stepmod::tools::ctl {
 namespace {
@@ -66,6 +69,37 @@ TEST(CtlStatus, RawWordsHexPerWordSize) {
   w.w[0] = -1;
   EXPECT_EQ(format_words(w, 1, 2), "  [ 0]          -1  16#FFFF\n");
   EXPECT_EQ(format_words(w, 1, 4), "  [ 0]          -1  16#FFFFFFFF\n");
+}
+
+}  // namespace
+}  // namespace stepmod::tools::ctl
+
+namespace stepmod::tools::ctl {
+namespace {
+
+// tools/ctl_summary.hpp finds the summary's bits by name in each manual's status table: every
+// flag lands on the bit its module's constant names (the 3602's "CW Motion", "Axis Stopped").
+TEST(CtlSummary, EachModulesStatusBitsGiveTheirFlags) {
+  namespace m1 = words::m3601::status_msw;
+  namespace m2 = words::m3602::status_msw;
+  namespace m3 = words::m3202::status_bit;
+  constexpr auto k3601 = summary_bits_of(words::m3601::kStatusMswBits);
+  constexpr auto k3602 = summary_bits_of(words::m3602::kStatusMswBits);
+  constexpr auto k3202 = summary_bits_of(words::m3202::kStatusBits);
+  AxisSummary s = summary_from_word(m1::kMovingCw | m1::kCommandError | m1::kModuleOk, k3601);
+  EXPECT_TRUE(s.moving_cw && s.command_error);
+  EXPECT_FALSE(s.moving_ccw || s.stopped || s.configuration_mode);
+  s = summary_from_word(m2::kMovingCcw | m2::kStopped | m2::kHomeInvalid, k3602);
+  EXPECT_TRUE(s.moving_ccw && s.stopped && s.home_invalid);
+  EXPECT_FALSE(s.moving_cw || s.command_error);
+  s = summary_from_word(m3::kBlendRunning | m3::kInvalidProfile | m3::kConfigMode, k3202);
+  EXPECT_TRUE(s.blend_running && s.invalid_profile && s.configuration_mode);
+  EXPECT_FALSE(s.home_invalid || s.hold);
+  s = summary_from_word(m3::kHoldState | m3::kAtHome | m3::kMoveComplete | m3::kPositionInvalid |
+                            m3::kInputError | m3::kConfigurationError,
+                        k3202);
+  EXPECT_TRUE(s.hold && s.at_home && s.move_complete && s.position_invalid && s.input_error &&
+              s.cfg_error);
 }
 
 }  // namespace
