@@ -28,6 +28,9 @@ std::vector<GpioChipInfo> list_gpio_chips(const std::string& dev_dir = "/dev");
 // The chip a configuration's `chip` names, as the backend would open it: a path, a number
 // ("0": gpiochip0), a name ("gpiochip4") or a label ("pinctrl-rp1"); nullptr if none.
 const GpioChipInfo* find_gpio_chip(const std::vector<GpioChipInfo>& chips, const std::string& chip);
+// One chip's name, label and line count; nullopt when `path` is no GPIO chip or cannot be
+// opened (per libgpiod generation).
+std::optional<GpioChipInfo> read_gpio_chip(const std::string& path);
 // Whether `offset` of the chip at `path` is in use (nothing is requested).
 GpioLineUse gpio_line_use(const std::string& path, unsigned offset);
 

@@ -1,30 +1,16 @@
 // gpio/chip_survey.hpp on libgpiod 1.6.
-#include <dirent.h>
 #include <gpiod.h>
-
-#include <algorithm>
 
 #include "gpio/chip_survey.hpp"
 
 namespace stepmod::gpio {
 
-std::vector<GpioChipInfo> list_gpio_chips(const std::string& dev_dir) {
-  std::vector<GpioChipInfo> chips;
-  DIR* d = opendir(dev_dir.c_str());
-  if (d == nullptr) return chips;
-  while (const dirent* e = readdir(d)) {
-    const std::string name = e->d_name;
-    if (name.rfind("gpiochip", 0) != 0) continue;
-    const std::string path = dev_dir + "/" + name;
-    gpiod_chip* c = gpiod_chip_open(path.c_str());
-    if (c == nullptr) continue;
-    chips.push_back({path, gpiod_chip_name(c), gpiod_chip_label(c), gpiod_chip_num_lines(c)});
-    gpiod_chip_close(c);
-  }
-  closedir(d);
-  std::sort(chips.begin(), chips.end(),
-            [](const GpioChipInfo& a, const GpioChipInfo& b) { return a.path < b.path; });
-  return chips;
+std::optional<GpioChipInfo> read_gpio_chip(const std::string& path) {
+  gpiod_chip* c = gpiod_chip_open(path.c_str());
+  if (c == nullptr) return std::nullopt;
+  GpioChipInfo info{path, gpiod_chip_name(c), gpiod_chip_label(c), gpiod_chip_num_lines(c)};
+  gpiod_chip_close(c);
+  return info;
 }
 
 GpioLineUse gpio_line_use(const std::string& path, unsigned offset) {
