@@ -31,6 +31,10 @@ const GpioChipInfo* find_gpio_chip(const std::vector<GpioChipInfo>& chips, const
 // One chip's name, label and line count; nullopt when `path` is no GPIO chip or cannot be
 // opened (per libgpiod generation).
 std::optional<GpioChipInfo> read_gpio_chip(const std::string& path);
+// What the kernel says of a line (`consumer` may be null).
+inline GpioLineUse line_use(bool used, const char* consumer) {
+  return {true, used, consumer != nullptr ? consumer : ""};
+}
 // Whether `offset` of the chip at `path` is in use (nothing is requested).
 GpioLineUse gpio_line_use(const std::string& path, unsigned offset);
 

@@ -14,17 +14,11 @@ std::optional<GpioChipInfo> read_gpio_chip(const std::string& path) {
 }
 
 GpioLineUse gpio_line_use(const std::string& path, unsigned offset) {
-  GpioLineUse use;
   gpiod_chip* c = gpiod_chip_open(path.c_str());
-  if (c == nullptr) return use;
-  if (offset < gpiod_chip_num_lines(c)) {
-    if (gpiod_line* l = gpiod_chip_get_line(c, offset)) {
-      use.exists = true;
-      use.used = gpiod_line_is_used(l);
-      const char* who = gpiod_line_consumer(l);
-      use.consumer = who != nullptr ? who : "";
-    }
-  }
+  if (c == nullptr) return {};
+  gpiod_line* l = offset < gpiod_chip_num_lines(c) ? gpiod_chip_get_line(c, offset) : nullptr;
+  const GpioLineUse use = l == nullptr ? GpioLineUse{}
+                                       : line_use(gpiod_line_is_used(l), gpiod_line_consumer(l));
   gpiod_chip_close(c);
   return use;
 }

@@ -20,16 +20,13 @@ std::optional<GpioChipInfo> read_gpio_chip(const std::string& path) {
 }
 
 GpioLineUse gpio_line_use(const std::string& path, unsigned offset) {
-  GpioLineUse use;
   gpiod_chip* c = gpiod_chip_open(path.c_str());
-  if (c == nullptr) return use;
-  if (gpiod_line_info* info = gpiod_chip_get_line_info(c, offset)) {
-    use.exists = true;
-    use.used = gpiod_line_info_is_used(info);
-    const char* who = gpiod_line_info_get_consumer(info);
-    use.consumer = who != nullptr ? who : "";
-    gpiod_line_info_free(info);
-  }
+  if (c == nullptr) return {};
+  gpiod_line_info* i = gpiod_chip_get_line_info(c, offset);  // null: no such offset
+  const GpioLineUse use =
+      i == nullptr ? GpioLineUse{}
+                   : line_use(gpiod_line_info_is_used(i), gpiod_line_info_get_consumer(i));
+  if (i != nullptr) gpiod_line_info_free(i);
   gpiod_chip_close(c);
   return use;
 }
