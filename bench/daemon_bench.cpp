@@ -324,6 +324,13 @@ int cpu(int argc, char** argv) {
   std::printf("daemon CPU at %d steps/s: %.1f %% of a core (moving: %s)\n", rate, pct_cpu,
               moving ? "yes" : "NO");
   std::printf("RESULT bench=cpu rate=%d cpu_pct=%.2f moving=%d\n", rate, pct_cpu, moving ? 1 : 0);
+  // Where the pulse thread's CPU goes: how often it woke (the daemon's own count at its end).
+  d.stop();
+  const std::string log = d.log();
+  for (const char* what : {"wake-ups:", "pulse thread:"}) {
+    const auto at = log.rfind(what);
+    if (at != std::string::npos) std::printf("  %s\n", log.substr(at, log.find('\n', at) - at).c_str());
+  }
   return moving ? 0 : 1;
 }
 

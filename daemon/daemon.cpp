@@ -8,6 +8,7 @@
 #include "daemon/realtime_setup.hpp"
 #include "daemon/sim_panel_link.hpp"
 #include "daemon/stack.hpp"
+#include "doctor/startup_notice.hpp"
 #include "ipc/modbus_server.hpp"
 #include "ipc/shm_image.hpp"
 #include "planner/planner_thread.hpp"
@@ -103,6 +104,9 @@ bool Daemon::run(const std::atomic<bool>& stop) {
   // The VCD's times are relative to this instant; an outside tool (bench/daemon_bench) needs it
   // to compare trace times with its own CLOCK_MONOTONIC readings.
   if (d.trace) spdlog::info("trace: #0 is CLOCK_MONOTONIC {} ns", d.start);
+  // Whether the pulse CPU is shared, throttled or without PREEMPT_RT (the doctor's probes:
+  // stepmodctl doctor measures what that costs).
+  if (auto n = doctor::pulse_cpu_notice(d.config.rt_cpu); !n.empty()) spdlog::info("{}", n);
   systemd::notify_ready("running");
   if (d.io.sim == nullptr) raise_control_thread(d.config.rt_priority);
   d.control->run(stop);

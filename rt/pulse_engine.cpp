@@ -396,45 +396,53 @@ void PulseEngine::execute_head(Nanos write_time) noexcept {
   const Nanos rest = motion ? absorb(axis, e, write_time) : 0;
   if (direction_edge) dir_late_[axis] = rest;
 
-  AxisFeedback* fb = link.feedback;
-  if (e.dpos != 0) {
-    // A step's leading edge.
-    dir_late_[axis] = 0;
-    if (e.level != 0) {
-      pulse_high_[axis] = static_cast<std::uint8_t>(e.line);
-      pulse_late_[axis] = rest;
-    }
-    if (motion) {
-      Track& tr = track_[axis];
-      if (fb != nullptr) {
-        fb->step_interval_ns.store(tr.step_seen ? e.t - tr.step_planned : 0,
-                                   std::memory_order_relaxed);
-      }
-      tr.step_seen = true;
-      tr.step_planned = e.t;
-      tr.step_wire = write_time;
-    }
-    if (fb != nullptr) {
-      const std::int64_t steps = fb->steps.load(std::memory_order_relaxed) + e.dpos;
-      // History first: a reader that sees the new count in `steps` and then asks the history
-      // for a time after this step finds it there.
-      if (link.history != nullptr) {
-        link.history->record(write_time, steps);
-        if (announced_ == link.history) announced_ = nullptr;  // record() ended the announcement
-      }
-      fb->last_step_t.store(write_time, std::memory_order_relaxed);
-      fb->steps.store(steps, std::memory_order_release);
-    }
-  }
-  if (motion) in_motion_[axis] = (e.flags & edge_flag::kLast) != 0 ? 0 : 1;
-  if (fb != nullptr && motion) {
-    fb->epoch.store(e.epoch, std::memory_order_release);
-    fb->flags.store(e.flags, std::memory_order_release);
-    // Last: a reader that sees the motion finished also sees its final count and flags.
-    if ((e.flags & edge_flag::kLast) != 0) store_max(fb->finished_epoch, e.epoch);
-  }
+  if (e.dpos != 0) record_step(axis, e, write_time, rest);
+  if (motion) publish_motion(axis, e);
   // Against when it was due (its slipped time): the error the pulse thread itself adds.
   stats_.record(write_time - due_t);
+}
+
+// After writing a step's edge (dpos != 0) at `write_time`: its pulse, the guard's memory of the
+// step and the step count (history first).
+void PulseEngine::record_step(unsigned axis, const Edge& e, Nanos write_time, Nanos rest) noexcept {
+  const AxisLink& link = axes_[axis];
+  AxisFeedback* fb = link.feedback;
+  dir_late_[axis] = 0;
+  if (e.level != 0) {
+    pulse_high_[axis] = static_cast<std::uint8_t>(e.line);
+    pulse_late_[axis] = rest;
+  }
+  if ((e.flags & edge_flag::kMotion) != 0) {
+    Track& tr = track_[axis];
+    if (fb != nullptr) {
+      fb->step_interval_ns.store(tr.step_seen ? e.t - tr.step_planned : 0,
+                                 std::memory_order_relaxed);
+    }
+    tr.step_seen = true;
+    tr.step_planned = e.t;
+    tr.step_wire = write_time;
+  }
+  if (fb == nullptr) return;
+  const std::int64_t steps = fb->steps.load(std::memory_order_relaxed) + e.dpos;
+  // History first: a reader that sees the new count in `steps` and then asks the history for a
+  // time after this step finds it there.
+  if (link.history != nullptr) {
+    link.history->record(write_time, steps);
+    if (announced_ == link.history) announced_ = nullptr;  // record() ended the announcement
+  }
+  fb->last_step_t.store(write_time, std::memory_order_relaxed);
+  fb->steps.store(steps, std::memory_order_release);
+}
+
+// After writing motion edge `e`: whether the motion goes on, and its epoch and flags published.
+void PulseEngine::publish_motion(unsigned axis, const Edge& e) noexcept {
+  in_motion_[axis] = (e.flags & edge_flag::kLast) != 0 ? 0 : 1;
+  AxisFeedback* fb = axes_[axis].feedback;
+  if (fb == nullptr) return;
+  fb->epoch.store(e.epoch, std::memory_order_release);
+  fb->flags.store(e.flags, std::memory_order_release);
+  // Last: a reader that sees the motion finished also sees its final count and flags.
+  if ((e.flags & edge_flag::kLast) != 0) store_max(fb->finished_epoch, e.epoch);
 }
 
 }  // namespace stepmod::rt

@@ -104,6 +104,8 @@ class PulseEngine {
   bool waits_for_group(unsigned axis, const Edge& e) const noexcept;
   void apply_abort(unsigned axis) noexcept;
   void execute_head(Nanos write_time) noexcept;  // execute_one() but the announcement's end
+  void record_step(unsigned axis, const Edge& e, Nanos write_time, Nanos rest) noexcept;
+  void publish_motion(unsigned axis, const Edge& e) noexcept;
   void write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept;
   void drop_stale(unsigned axis) noexcept;
   void drop_beyond_limit(unsigned axis) noexcept;

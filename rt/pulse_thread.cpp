@@ -1,64 +1,16 @@
 #include "rt/pulse_thread.hpp"
 
 #include "rt/adaptive_spin.hpp"
+#include "rt/deadline_sleep.hpp"
 #include "rt/off_cpu_budget.hpp"
+#include "rt/thread_setup.hpp"
 
-#include <linux/futex.h>
 #include <pthread.h>
-#include <sched.h>
-#include <sys/mman.h>
-#include <sys/syscall.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
-#include <system_error>
 
 namespace stepmod::rt {
 
-namespace {
-
-inline void cpu_relax() noexcept {
-#if defined(__x86_64__) || defined(__i386__)
-  __builtin_ia32_pause();
-#elif defined(__aarch64__) || defined(__arm__)
-  asm volatile("yield" ::: "memory");
-#endif
-}
-
-// Touch the stack the loop will use so that its first page faults happen here, not at an edge.
-// With mlockall(MCL_FUTURE) the touched pages then stay resident.
-[[gnu::noinline]] void prefault_stack(std::size_t bytes) noexcept {
-  if (bytes == 0) return;
-  auto* p = static_cast<volatile char*>(__builtin_alloca(bytes));
-  for (std::size_t i = 0; i < bytes; i += 1024) p[i] = 0;
-}
-
-// Sleeps until `deadline` (absolute CLOCK_MONOTONIC) or until `word` no longer holds `seen`
-// (FUTEX_WAIT_BITSET measures an absolute timeout on CLOCK_MONOTONIC). Returns early on a
-// signal or a spurious wake-up, which the loop tolerates: it re-reads the clock every turn.
-void futex_sleep_until(std::atomic<std::uint32_t>& word, std::uint32_t seen,
-                       Nanos deadline) noexcept {
-  static_assert(sizeof(std::atomic<std::uint32_t>) == sizeof(std::uint32_t));
-  const timespec ts = to_timespec(deadline);
-  syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&word), FUTEX_WAIT_BITSET_PRIVATE, seen, &ts,
-          nullptr, FUTEX_BITSET_MATCH_ANY);
-}
-
-// CPU time of the calling thread (a system call: read once per 20 ms window only).
-Nanos thread_cpu_now() noexcept {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<Nanos>(ts.tv_sec) * kNsPerSec + ts.tv_nsec;
-}
-
-void futex_wake_all(std::atomic<std::uint32_t>& word) noexcept {
-  syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&word), FUTEX_WAKE_PRIVATE, INT32_MAX,
-          nullptr, nullptr, 0);
-}
-
-}  // namespace
 
 PulseThread::PulseThread(PulseEngine& engine, Options options)
     : engine_(engine), options_(options) {}
@@ -116,58 +68,8 @@ void PulseThread::body() noexcept {
 }
 
 void PulseThread::setup() noexcept {
-  // Memory first: once locked (MCL_FUTURE), the stack touched below stays resident too. Refusal
-  // (no CAP_IPC_LOCK and a small RLIMIT_MEMLOCK) is recorded; the thread still runs, with the
-  // risk of a page fault at an edge.
-  if (options_.lock_memory) {
-    // MCL_ONFAULT: pages are locked as they are touched, and never paged out after, instead of
-    // every mapping being populated whole (other threads' 8 MB stacks, whole libraries: twice
-    // the resident memory). Everything the loop uses was touched before it starts (rings and
-    // statistics are initialised when allocated; the stack is prefaulted below); a code page
-    // run for the first time costs one minor fault, once. Kernels before 4.4: plain mlockall.
-    int rc = mlockall(MCL_CURRENT | MCL_FUTURE | MCL_ONFAULT);
-    if (rc != 0 && errno == EINVAL) rc = mlockall(MCL_CURRENT | MCL_FUTURE);
-    if (rc == 0) {
-      status_.memory_locked = true;
-    } else {
-      status_.mlock_errno = errno;
-    }
-  }
-  if (options_.priority > 0) {
-    sched_param sp{};
-    sp.sched_priority = std::clamp(options_.priority, sched_get_priority_min(SCHED_FIFO),
-                                   sched_get_priority_max(SCHED_FIFO));
-    const int rc = pthread_setschedparam(pthread_self(), SCHED_FIFO, &sp);
-    if (rc == 0) {
-      status_.fifo = true;
-    } else {
-      status_.sched_errno = rc;
-    }
-  }
-  if (options_.cpu >= 0) {
-    cpu_set_t set;
-    CPU_ZERO(&set);
-    int rc = EINVAL;
-    if (options_.cpu < CPU_SETSIZE) {
-      CPU_SET(static_cast<unsigned>(options_.cpu), &set);
-      rc = pthread_setaffinity_np(pthread_self(), sizeof(set), &set);
-    }
-    if (rc == 0) {
-      status_.pinned = true;
-    } else {
-      status_.affinity_errno = rc;
-    }
-  }
-  // On a machine with one CPU the thread may use (and not pinned to a CPU of its own), every
-  // microsecond it spins before an edge is taken from the threads that feed it (the planner, the
-  // control thread, the PLC): there the early wake-up stays within kSharedSingleCpuSpin.
-  cpu_set_t allowed;
-  CPU_ZERO(&allowed);
-  if (options_.cpu < 0 && sched_getaffinity(0, sizeof allowed, &allowed) == 0 &&
-      CPU_COUNT(&allowed) <= 1) {
-    single_shared_cpu_ = true;
-  }
-  prefault_stack(options_.prefault_stack_bytes);
+  // The early wake-up's cap on a machine whose only CPU the thread shares (loop()).
+  single_shared_cpu_ = setup_output_thread(options_, status_);
 }
 
 // No allocation, lock, logging or system call in here but the engine's line writes, the clock

@@ -28,6 +28,7 @@
 #include "ipc/sim_panel.hpp"
 #include "plc/shm_port.hpp"
 #include "tools/ctl_args.hpp"
+#include "tools/ctl_board.hpp"
 #include "tools/ctl_cli.hpp"
 #include "tools/ctl_command.hpp"
 #include "tools/ctl_dialects.hpp"
@@ -364,7 +365,10 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "stepmodctl " STEPMOD_VERSION);
   CtlOptions options;
   const CtlSubcommands subs = define_cli(app, options);
+  BoardCommands board;  // doctor, isolate: no module needed
+  add_board_commands(app, board);
   if (const auto exit_status = parse(app, argc, argv)) return *exit_status;
+  if (const auto exit_status = run_board_command(board)) return *exit_status;
   try {
     return run_command(options, subs);
   } catch (const UsageError& e) {
