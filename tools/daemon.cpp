@@ -19,7 +19,9 @@
 #include "ipc/shm_image.hpp"
 #include "ipc/sim_panel.hpp"
 #include "module/axis/error_items.hpp"
+#include "planner/output_doorbell.hpp"
 #include "planner/planner_thread.hpp"
+#include "rt/limits_hint.hpp"
 #include "rt/step_output.hpp"
 #include "systemd/notify.hpp"
 #include "systemd/watchdog.hpp"
@@ -58,8 +60,8 @@ struct Daemon::Impl {
   systemd::Watchdog watchdog;  // WatchdogSec=: petted per scan while the pulse thread loops
   std::atomic<std::uint64_t> input_trace_dropped{0};  // control thread writes, trace reads
   rt::StepOutput* pulse = nullptr;                    // while run() runs
-  std::uint32_t planner_wakes = 0;              // the planner's wake counter as last seen by kick()
-  std::vector<std::uint32_t> late_faults_seen;  // per axis: faults already logged
+  std::optional<planner::OutputDoorbell> doorbell;    // kick()'s: when to ring (set by run())
+  std::vector<std::uint32_t> late_faults_seen;        // per axis: faults already logged
   // Per axis, for the "needs a CPU of its own" notice: the step count at the last scan and the
   // motion it was last given for.
   std::vector<std::uint32_t> cpu_notice_epoch;
@@ -74,13 +76,11 @@ struct Daemon::Impl {
   std::vector<std::uint32_t> input_loss_epochs;
 
   // After the control thread may have submitted commands (or set an immediate stop, which is
-  // also submitted): ring the pulse thread's doorbell so that it polls for the new edges. It
-  // otherwise sleeps until its next edge (PulseThreadOptions::quiet_sleep_ns).
+  // also submitted): ring the pulse thread's doorbell so that it polls for the new edges, and
+  // again once the planner has planned them (planner/output_doorbell.hpp). It otherwise sleeps
+  // until its next edge (PulseThreadOptions::quiet_sleep_ns).
   void kick() noexcept {
-    const std::uint32_t w = stack->planner().wake_counter().load(std::memory_order_acquire);
-    if (w == planner_wakes) return;
-    planner_wakes = w;
-    if (pulse != nullptr) pulse->ring();
+    if (doorbell && doorbell->due() && pulse != nullptr) pulse->ring();
   }
 
   void control_loop(const std::atomic<bool>& stop);
@@ -184,14 +184,15 @@ void warn_pulse_setup(const rt::StepOutput::Options& po, const rt::StepOutput::S
   if (!st.fifo) {
     spdlog::warn(
         "pulse thread: SCHED_FIFO priority {} refused ({}); running without real-time "
-        "priority: pulse timing will suffer under load",
-        po.priority, std::strerror(st.sched_errno));
+        "priority: pulse timing will suffer under load{}",
+        po.priority, std::strerror(st.sched_errno), rt::rtprio_fix(st.sched_errno));
   }
   if (!po.lock_memory) {
     // A sanitizer build never asks (its shadow memory cannot be locked): no refusal to report.
     spdlog::info("memory locking is off in this sanitizer build");
   } else if (!st.memory_locked) {
-    spdlog::warn("mlockall refused ({}); memory is not locked", std::strerror(st.mlock_errno));
+    spdlog::warn("mlockall refused ({}); memory is not locked{}", std::strerror(st.mlock_errno),
+                 rt::memlock_fix(st.mlock_errno));
   }
   if (po.cpu >= 0 && !st.pinned) {
     spdlog::warn("cannot pin the pulse thread to CPU {} ({})", po.cpu,
@@ -248,7 +249,7 @@ bool Daemon::run(const std::atomic<bool>& stop) {
   const rt::StepOutput::Options po = pulse_options(d.config);
   rt::StepOutput& pulse = d.stack->output();
   d.pulse = &pulse;
-  d.planner_wakes = d.stack->planner().wake_counter().load();
+  d.doorbell.emplace(d.stack->planner());
   if (d.trace) start_trace_thread(*d.trace);
   if (!pulse.start(po)) throw std::runtime_error("cannot start the pulse thread");
   warn_pulse_setup(po, pulse.status());
