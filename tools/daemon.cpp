@@ -75,10 +75,9 @@ struct Daemon::Impl {
   std::uint64_t lost_inputs_seen = 0;
   std::vector<std::uint32_t> input_loss_epochs;
 
-  // After the control thread may have submitted commands (or set an immediate stop, which is
-  // also submitted): ring the pulse thread's doorbell so that it polls for the new edges, and
-  // again once the planner has planned them (planner/output_doorbell.hpp). It otherwise sleeps
-  // until its next edge (PulseThreadOptions::quiet_sleep_ns).
+  // After the control thread may have submitted commands (an immediate stop too): ring the pulse
+  // thread so that it polls for the new edges, and again once they are planned (it otherwise
+  // sleeps until its next edge, quiet_sleep_ns; planner/output_doorbell.hpp).
   void kick() noexcept {
     if (doorbell && doorbell->due() && pulse != nullptr) pulse->ring();
   }
