@@ -179,7 +179,7 @@ class Parser : ConfigReader {
       const auto* s = n->as_string();
       if (s == nullptr || static_cast<std::int64_t>(s->get().size()) < chip.min) {
         fail(n->source(), "gpio.chip",
-             "must be a chip name (" + std::string(chip.text) + ") or a /dev path");
+             "must be a chip name (" + std::string(chip.text) + "), a /dev path or a label");
       }
       c.chip = s->get();
     }

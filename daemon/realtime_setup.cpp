@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "rt/limits_hint.hpp"
+
 namespace stepmod::tools {
 
 rt::StepOutput::Options pulse_options(const Config& config) {
@@ -27,14 +29,15 @@ void warn_pulse_setup(const rt::StepOutput::Options& po, const rt::StepOutput::S
   if (!st.fifo) {
     spdlog::warn(
         "pulse thread: SCHED_FIFO priority {} refused ({}); running without real-time "
-        "priority: pulse timing will suffer under load",
-        po.priority, std::strerror(st.sched_errno));
+        "priority: pulse timing will suffer under load{}",
+        po.priority, std::strerror(st.sched_errno), rt::rtprio_fix(st.sched_errno));
   }
   if (!po.lock_memory) {
     // A sanitizer build never asks (its shadow memory cannot be locked): no refusal to report.
     spdlog::info("memory locking is off in this sanitizer build");
   } else if (!st.memory_locked) {
-    spdlog::warn("mlockall refused ({}); memory is not locked", std::strerror(st.mlock_errno));
+    spdlog::warn("mlockall refused ({}); memory is not locked{}", std::strerror(st.mlock_errno),
+                 rt::memlock_fix(st.mlock_errno));
   }
   if (po.cpu >= 0 && !st.pinned) {
     spdlog::warn("cannot pin the pulse thread to CPU {} ({})", po.cpu,

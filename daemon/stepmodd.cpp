@@ -1,9 +1,11 @@
 // stepmodd: one emulated stepper-controller module per process (docs/interface.md section 1).
 //   stepmodd --config FILE [--trace FILE.vcd] [--log-level LEVEL]
-//   stepmodd --check --config FILE     validate the configuration only (creates nothing)
+//   stepmodd --check --config FILE     validate the configuration and this machine (creates and
+//                                      requests nothing)
 //   stepmodd --version
 // Exit status: 0 after SIGINT/SIGTERM/SIGHUP (or a valid --check), 2 for a bad command line or
-// config file, 1 when the module cannot be started (GPIO lines, shared memory, trace file), 3
+// config file (or an [rt] cpu this machine has not), 1 when the module cannot be started (GPIO
+// chip or lines missing or busy, shared memory, trace file; --check: the chip or lines), 3
 // after such a signal when the trace lost records (the VCD says so too). SIGPIPE is ignored: a
 // closed log pipe never ends the daemon.
 #include <spdlog/sinks/stdout_color_sinks.h>  // declares stderr_color_mt too
@@ -16,11 +18,14 @@
 #include <exception>
 #include <optional>
 #include <thread>
+#include <vector>
 
 #include "core/version.hpp"
 #include "config/config.hpp"
 #include "daemon/daemon.hpp"
 #include "daemon/daemon_log.hpp"
+#include "gpio/chip_probe.hpp"
+#include "rt/cpus_online.hpp"
 
 namespace {
 
@@ -78,6 +83,29 @@ int run_until_signal(const stepmod::tools::Config& config,
   return 0;
 }
 
+// The configuration against this machine, for --check and before a start: [rt] cpu online (else
+// exit 2, a configuration error), and with the gpiod backend the chip there (by name, path or
+// label) with every configured line on it and free, nothing requested (else exit 1). 0: fine.
+int check_this_machine(const stepmod::tools::Config& config) {
+  if (const auto online = stepmod::rt::cpus_online()) {
+    if (const std::string p = stepmod::rt::rt_cpu_problem(config.rt_cpu, *online); !p.empty()) {
+      spdlog::error("{}: key 'rt.cpu': {}", config.file, p);
+      return 2;
+    }
+  }
+  if (config.backend != stepmod::tools::Config::Backend::kGpiod) return 0;
+  try {
+    const std::vector<stepmod::gpio::AxisLines> lines(config.axes.begin(), config.axes.end());
+    const stepmod::gpio::ChipInfo chip = stepmod::gpio::probe_chip(config.chip, lines);
+    spdlog::info("GPIO chip '{}': {} [{}], {} lines; the configured lines are there and free",
+                 config.chip, chip.path, chip.label, chip.lines);
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+  return 0;
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"stepmodd: software replacement for an AMCI 3601/3602/3202 stepper module"};
   std::string config_path;
@@ -87,7 +115,8 @@ int run(int argc, char** argv) {
   app.set_version_flag("--version", "stepmodd " STEPMOD_VERSION);
   app.add_option("--config", config_path, "module configuration (TOML, see README)")->required();
   app.add_flag("--check", check_only,
-               "validate the configuration and exit: 0 valid, 2 not (nothing is created)");
+               "validate the configuration and exit: 0 valid, 2 not; with the gpiod backend also "
+               "the chip and lines (1: missing or busy; nothing is created or requested)");
   app.add_option("--trace", trace_path, "write every GPIO line change to this VCD file");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}));
@@ -111,6 +140,7 @@ int run(int argc, char** argv) {
     spdlog::error("{}", e.what());
     return 2;
   }
+  if (const int rc = check_this_machine(config); rc != 0) return rc;
   if (check_only) {
     spdlog::info("{}: valid (module {} '{}', {} axis/axes)", config_path,
                  static_cast<unsigned>(config.type), config.name, config.axes.size());

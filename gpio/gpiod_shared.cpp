@@ -6,6 +6,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "gpio/chip_probe.hpp"
 #include "gpio/gpiod_backend.hpp"
 
 namespace stepmod::gpio {
@@ -28,9 +29,10 @@ std::string GpiodShared::request_error(const std::string& what) {
 }
 
 void GpiodShared::throw_chip_not_found(const std::string& chip) {
-  const int e = errno;
-  throw std::runtime_error("GPIO chip '" + chip +
-                           "' not found or not accessible: " + std::strerror(e != 0 ? e : ENOENT));
+  const int e = errno != 0 ? errno : ENOENT;
+  if (e == ENOENT) throw std::runtime_error(chip_missing_message(chip, list_chips()));
+  throw std::runtime_error("GPIO chip '" + chip + "' not accessible: " + std::strerror(e) +
+                           chip_access_hint(e));
 }
 
 void GpiodShared::claim(unsigned axis, bool input, unsigned line, unsigned offset) {

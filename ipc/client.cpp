@@ -63,8 +63,8 @@ bool Client::read_outputs(ImageWords& out) const noexcept {
 
 void Client::require_writable() const {
   if (!map_.writable()) {
-    throw IpcError("/dev/shm" + image_object(name_) +
-                   " is read-only for this user (needs the group of the daemon)");
+    throw IpcError("/dev/shm" + image_object(name_) + " is read-only for this user (" + kGroupHint +
+                   ")");
   }
 }
 

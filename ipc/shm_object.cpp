@@ -14,6 +14,7 @@ namespace stepmod::ipc {
 namespace {
 
 std::string errno_text(int e) {
+  if (e == EACCES || e == EPERM) return std::string(std::strerror(e)) + " (" + kGroupHint + ")";
   return std::strerror(e);
 }
 

@@ -16,6 +16,12 @@ class IpcError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// For an image or panel this user may not open (or only read): the group to join. The packaged
+// daemon (stepmodd@.service) runs as group 'stepmod' and makes its objects mode 0660.
+inline constexpr const char* kGroupHint =
+    "only the daemon's group may use it: `sudo usermod -aG stepmod $USER` (the packaged "
+    "service's group), then log in again";
+
 // Module names (docs/interface.md 2 `module.name`): 1..64 characters of a-z, 0-9, '-', '_'. Keeps
 // the object inside /dev/shm (no '/') and the name usable in unit names and file names.
 inline constexpr std::size_t kMaxNameLength = 64;

@@ -73,13 +73,15 @@ PanelAxis SimPanelClient::read(unsigned axis) const {
 
 void SimPanelClient::force(unsigned axis, unsigned input, bool level) {
   check(axis, input);
-  if (!map_.writable()) throw IpcError("simulator panel is read-only for this user");
+  if (!map_.writable())
+    throw IpcError(std::string("simulator panel is read-only for this user (") + kGroupHint + ")");
   stepmod_panel_force(p_, axis, input, level ? 1 : 0);
 }
 
 void SimPanelClient::release(unsigned axis, unsigned input) {
   check(axis, input);
-  if (!map_.writable()) throw IpcError("simulator panel is read-only for this user");
+  if (!map_.writable())
+    throw IpcError(std::string("simulator panel is read-only for this user (") + kGroupHint + ")");
   stepmod_panel_release(p_, axis, input);
 }
 

@@ -99,6 +99,8 @@ void Planner::launch_group(Nanos now) {
 }
 
 Nanos Planner::service(Nanos now) {
+  // Before the queue is drained: a command submitted after this read is not counted as served.
+  const std::uint32_t seen = wake_.load(std::memory_order_acquire);
   Command c;
   while (queue_.try_pop(c)) {
     if (c.axis < axes_.size()) apply(c, now);
@@ -130,6 +132,7 @@ Nanos Planner::service(Nanos now) {
   for (unsigned i = 0; i < axes_.size(); ++i) {
     next = std::min(next, axes_[i]->fill(now, fill_slip_[i]));
   }
+  if (group_.id == 0) served_.store(seen, std::memory_order_release);
   return next;
 }
 

@@ -55,6 +55,12 @@ class Planner final : public CommandSink {
 
   // For the planner thread's sleep: a counter bumped by submit(), so a sleeper can be woken.
   std::atomic<std::uint32_t>& wake_counter() noexcept { return wake_; }
+  // The wake counter as read at the start of the last service() that left nothing submitted
+  // before it unplanned (no group start still collecting its members): equal to the wake
+  // counter, every command submitted so far is in the edge rings. The step output's doorbell
+  // rings again then (planner/output_doorbell.hpp).
+  std::uint32_t served() const noexcept { return served_.load(std::memory_order_acquire); }
+  std::uint32_t wakes() const noexcept { return wake_.load(std::memory_order_acquire); }
   const PlannerOptions& options() const noexcept { return options_; }
 
  private:
@@ -77,6 +83,7 @@ class Planner final : public CommandSink {
   std::unique_ptr<BlendSlot[]> blend_slots_;
   SpscRing<Command> queue_;
   std::atomic<std::uint32_t> wake_{0};
+  std::atomic<std::uint32_t> served_{0};
   // The group start being collected: its id, size, the commands received, and the axes that
   // accepted theirs (an aborted or stale start is not a member any more).
   GroupTag group_{};

@@ -1,6 +1,7 @@
 // The shared-memory image (docs/interface.md 3): layout, creation rules, client checks, the seqlock
 // single-threaded behaviour, heartbeat and scan counter.
 #include <fcntl.h>
+#include <grp.h>
 #include <sys/file.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
@@ -348,6 +349,44 @@ TEST(ShmImage, MessageAreaIdleWithoutRequest) {
   const std::string n = test_name("msg");
   ShmImage img(n, k3202);
   EXPECT_FALSE(img.pending_message().has_value());
+}
+
+// A user outside the daemon's group (the image is 0660) is told which group to join and how,
+// not only "Permission denied" (issue 33).
+TEST(ShmImage, AUserOutsideTheGroupIsToldWhichGroupToJoin) {
+  if (::geteuid() != 0) GTEST_SKIP() << "needs root to become another user";
+  const std::string n = test_name("perm");
+  ShmImage img(n, k3601);
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::close(fds[0]);
+    std::string m = "(opened)";
+    if (::setgroups(0, nullptr) != 0 || ::setresgid(65534, 65534, 65534) != 0 ||
+        ::setresuid(65534, 65534, 65534) != 0) {
+      m = "(cannot drop privileges)";
+    } else {
+      try {
+        Client c(n);
+      } catch (const IpcError& e) {
+        m = e.what();
+      }
+    }
+    const ssize_t w = ::write(fds[1], m.data(), m.size());
+    ::_exit(w == static_cast<ssize_t>(m.size()) ? 0 : 1);
+  }
+  ::close(fds[1]);
+  std::string got;
+  char buf[512];
+  for (ssize_t r; (r = ::read(fds[0], buf, sizeof buf)) > 0;)
+    got.append(buf, static_cast<std::size_t>(r));
+  ::close(fds[0]);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  EXPECT_NE(got.find("Permission denied"), std::string::npos) << got;
+  EXPECT_NE(got.find("usermod -aG stepmod"), std::string::npos) << got;
 }
 
 }  // namespace

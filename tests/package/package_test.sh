@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The Debian package end to end (ctest label "package"): builds it with cpack from this build
 # tree, installs it with dpkg -i, checks what a board gets (user, groups, udev rule, unit, man
-# pages, conffiles, copyright, changelog), runs lintian (no error, no warning), checks the unit's
+# pages, conffiles, copyright, changelog), checks docs/board.md's list of installed files against
+# the package (board_files.sh) and that every documentation reference resolves where it is
+# installed (doc_refs.sh), runs lintian (no error, no warning), checks the unit's
 # hardening (exposure <= 3.0 with what stepmodd needs kept), runs the installed stepmodd as the
 # stepmod user without privileges on an example config and drives a move with the installed
 # stepmodctl (under strace: every system call allowed by the unit's filter), verifies the unit
@@ -66,7 +68,7 @@ done
 
 step "copyright, changelog, lintian, the unit's exposure"
 for f in ./usr/share/doc/stepmod/copyright ./usr/share/doc/stepmod/changelog.gz \
-         ./usr/share/man/man5/stepmod.toml.5.gz ./usr/share/doc/stepmod/interface.md; do
+         ./usr/share/man/man5/stepmod.toml.5.gz ./usr/share/doc/stepmod/docs/interface.md; do
   grep -qx "$f" "$tmp/files" || fail "$f not in the package"
 done
 dpkg-deb -x "$deb" "$tmp/root"
@@ -76,6 +78,10 @@ zcat "$tmp/root/usr/share/doc/stepmod/changelog.gz" | head -n 1 | grep -q "^step
 head -n 1 "$tmp/root/usr/share/doc/stepmod/copyright" |
   grep -qx 'Format: https://www.debian.org/doc/packaging-manuals/copyright-format/1.0/' ||
   fail "copyright is not machine-readable (DEP-5)"
+# docs/board.md's list of installed files, and every documentation reference where installed.
+dpkg-deb -c "$deb" | awk '$1 !~ /^d/ {print substr($6, 2)}' | sort >"$tmp/plain-files"
+"$(dirname "$0")/board_files.sh" "$(dirname "$0")/../../docs/board.md" "$tmp/plain-files"
+"$(dirname "$0")/doc_refs.sh" "$tmp/root"
 "$(dirname "$0")/package_lint.sh" "$tmp/out"
 "$(dirname "$0")/unit_exposure.sh" "$tmp/root/usr/lib/systemd/system/stepmodd@.service" "$tmp"
 

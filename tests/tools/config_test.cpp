@@ -260,7 +260,7 @@ TEST(ConfigError, Backend) {
                       "test.toml:9: key 'gpio.backend': must be one of \"sim\", \"gpiod\"");
   EXPECT_CONFIG_ERROR(
       std::string(kMinimal3601) + "[gpio]\nchip = \"\"\n",
-      "test.toml:9: key 'gpio.chip': must be a chip name (gpiochip0) or a /dev path");
+      "test.toml:9: key 'gpio.chip': must be a chip name (gpiochip0), a /dev path or a label");
 }
 
 TEST(ConfigError, PriorityAndCpu) {
