@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "registry/module_registry.hpp"
 #include "web/reason.hpp"
 
 namespace stepmod::web {
@@ -112,7 +113,8 @@ nlohmann::json Commander::command(const nlohmann::json& req, std::uintptr_t conn
     const plc::Outcome o = controls_->run(req);
     nlohmann::json r = reply(cmd, o.ok, o.ok ? "done" : o.message);
     const unsigned unit = req.value("unit", 0u);
-    r["reason"] = reason_json(client_.raw(), unit);
+    r["reason"] = reason_json(client_.raw(), unit,
+                              registry::row_of(client_.type()).rules->accel_word_unit);
     return r;
   } catch (const std::invalid_argument& e) {
     return reply(cmd, false, std::string("refused: ") + e.what());

@@ -12,6 +12,7 @@
 #include "web/auth.hpp"
 #include "web/image_json.hpp"
 #include "web/options.hpp"
+#include "web/reason_help.hpp"
 
 namespace stepmod::web {
 namespace {
@@ -51,6 +52,19 @@ TEST(WebAuth, TheTokenMakesASessionAndNothingElseDoes) {
   EXPECT_FALSE(auth.valid("stepmod_web=0000"));
   EXPECT_FALSE(auth.valid(nullptr));
   EXPECT_NE(auth.login("0123456789abcdef0123"), id);  // every login its own session
+  std::remove(f.c_str());
+}
+
+TEST(WebAuth, LogoutEndsTheSessionOnly) {
+  const std::string f = token_file("0123456789abcdef0123\n");
+  Auth auth(f);
+  const std::string a = "stepmod_web=" + auth.login("0123456789abcdef0123");
+  const std::string b = "stepmod_web=" + auth.login("0123456789abcdef0123");
+  EXPECT_TRUE(auth.logout(a.c_str()));
+  EXPECT_FALSE(auth.valid(a.c_str()));
+  EXPECT_TRUE(auth.valid(b.c_str()));  // another browser's session stays
+  EXPECT_FALSE(auth.logout(a.c_str()));
+  EXPECT_FALSE(auth.logout(nullptr));
   std::remove(f.c_str());
 }
 
@@ -101,6 +115,44 @@ TEST(WebModule, UnitShowsEveryNamedStatusBit) {
   }
   EXPECT_EQ(set, 2);
   EXPECT_EQ(j["words"][0]["bits"].size(), 16u);
+}
+
+// Issue 32: a reason's full condition, what to do and its anchor, for every code the page can see.
+TEST(WebReasons, EveryItemHasItsConditionAndAFix) {
+  const auto t = reason_table(ModuleType::k3601);
+  ASSERT_TRUE(t.contains("10401"));  // 3601-IE-01, the E-stop
+  EXPECT_EQ(t["10401"]["id"], "3601-IE-01");
+  EXPECT_EQ(t["10401"]["condition"], "the E-stop input activated");
+  EXPECT_NE(t["10401"]["fix"].get<std::string>().find("E-stop"), std::string::npos);
+  EXPECT_TRUE(t.contains("10200"));  // each list's own code, the fallback of unlisted items
+  for (const auto& [code, row] : t.items()) {
+    EXPECT_FALSE(row["fix"].get<std::string>().empty()) << code;
+    EXPECT_FALSE(row["condition"].get<std::string>().empty()) << code;
+  }
+  // The 3602's path items and shared items numbered alike (3602-CE-10) keep every condition.
+  const auto t2 = reason_table(ModuleType::k3602);
+  EXPECT_EQ(t2["20267"]["id"], "3602-CE-I7");
+  EXPECT_NE(t2["20210"]["condition"].get<std::string>().find(";"), std::string::npos);
+  EXPECT_NE(reasons_page(ModuleType::k3602).find("id=\"3602-CE-I7\""), std::string::npos);
+}
+
+TEST(WebReasons, RatesAreGivenInTheFormsUnit) {
+  EXPECT_EQ(in_form_units("3601-CE-04: accel 5000000 or decel 100000 steps/s2 out of", 1000),
+            "3601-CE-04: accel 5000 or decel 100 steps/ms/s out of");
+  EXPECT_EQ(in_form_units("accel 1500 or decel 2 steps/s2", 1000),
+            "accel 1.5 or decel 0.002 steps/ms/s");
+  EXPECT_EQ(in_form_units("accel 500 or decel 100000 steps/s2 out of range", 1),
+            "accel 500 or decel 100000 steps/s2 out of range");  // the 3202's form: steps/s2
+  EXPECT_EQ(in_form_units("3601-CE-05: Vp 500 is below Vs 1000", 1000),
+            "3601-CE-05: Vp 500 is below Vs 1000");
+}
+
+TEST(WebModule, HelloNamesTheConsoleProcessAndTheReasons) {
+  const auto h = hello_json("m", ModuleType::k3202);
+  EXPECT_EQ(h["type"], "hello");
+  EXPECT_EQ(h["console"]["pid"].get<long long>(), static_cast<long long>(getpid()));
+  EXPECT_GT(h["console"]["started_ms"].get<long long>(), 0);
+  EXPECT_EQ(h["reasons"]["30401"]["id"], "3202-IE-01");
 }
 
 }  // namespace
