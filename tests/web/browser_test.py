@@ -346,9 +346,65 @@ class Web3601(unittest.TestCase):
         self.c.fill("#unit-0 .f-accel", 5000)  # the manual's range is 1..2000
         self.c.click("#unit-0 .b-rel")
         msg = self.c.wait_message(r"move: .*Invalid Profile").string
+        # Issue 32: the rates in the form's unit, the cut sentence marked, what to do, the item.
+        self.assertRegex(msg, r"3601-CE-04: accel 5000 or decel 100 steps/ms/s out .*… — ")
+        cell = self.c.el("#unit-0 .reason")
+        self.assertIn("active", cell.get_attribute("class"))
+        self.assertIn("What to do: ", cell.text)
+        self.assertRegex(self.c.el("#unit-0 .reason a").get_attribute("href"),
+                         r"/reasons#3601-CE-04$")
+        self.c.click("#unit-0 .b-reset")  # the error cleared: the reason is no longer red
+        wait_for(lambda: "active" not in cell.get_attribute("class"), 5, "the reason cleared")
+        self.assertTrue(cell.text.startswith("(cleared) 3601-CE-04"), cell.text)
         self.c.click("#release")
-        if lease_enforced():  # the error reasons of the image come with the same branch
-            self.assertRegex(msg, r"3601-")
+
+    def test_limit_stop_replaces_the_jog_message(self):
+        self.jog_until_moving()
+        self.c.wait_message(r"^jog_press: done")
+        self.m.ctl("panel", "force", "1", "cw_limit", "1")
+        try:
+            self.c.wait_message(r"^Axis 1: 3601-IE-02: .* — ")
+        finally:
+            release_button(self.c)
+            self.m.ctl("panel", "release", "1", "cw_limit")
+        self.c.click("#unit-0 .b-reset")
+        self.c.click("#release")
+
+    def test_long_texts_move_no_button(self):
+        rect = "return JSON.stringify(document.querySelector('#unit-0 .b-jog-cw')" \
+               ".getBoundingClientRect())"
+        before = self.c.d.execute_script(rect)
+        self.c.d.execute_script(
+            "say('x '.repeat(400), true); const r = {seq: 99, item: 10401, text: 'y '.repeat(40)};"
+            "showReason(document.querySelector('#unit-0 .reason'), state.reasons, r, true);"
+            "document.getElementById('conn').textContent = 'z'.repeat(300);")
+        self.assertEqual(self.c.d.execute_script(rect), before)
+
+    def test_take_and_release_follow_the_lease_then_logout(self):
+        enabled = lambda css: self.c.d.execute_script(  # noqa: E731
+            "return !document.querySelector('%s').disabled" % css)
+        wait_for(lambda: enabled("#take") and not enabled("#release"), 5, "Take offered")
+        self.take_configured()
+        wait_for(lambda: not enabled("#take") and enabled("#release"), 5, "Release offered")
+        self.c.click("#release")
+        wait_for(lambda: enabled("#take") and not enabled("#release"), 5, "Take offered again")
+        self.c.click("#logout")
+        wait_for(lambda: self.c.d.current_url.endswith("/login"), 5, "the login page")
+        self.c.d.get(self.m.url("/"))
+        self.assertTrue(self.c.el("#token").is_displayed())  # the session is gone
+
+    def test_console_restart_is_shown(self):
+        t0 = time.time() * 1000
+        self.m.web.send_signal(signal.SIGKILL)
+        self.m.web.wait()
+        view = lambda: self.c.d.execute_script("return window.consoleStats.view")  # noqa: E731
+        wait_for(lambda: view()["state"] != "live", 5, "the page no longer live")
+        print("not live %d ms after the kill (%s)" % (view()["since"] - t0, self.c.text("#conn")))
+        self.assertLess(view()["since"] - t0, 1000)
+        self.assertEqual(self.c.text("#lease"), "unknown: no live data")
+        self.m.start_web()
+        wait_for(lambda: view()["state"] == "console restarted", 5, "console restarted")
+        self.assertIn("log in again", self.c.text("#conn"))
 
     def jog_until_moving(self):
         self.take_configured()
