@@ -468,6 +468,7 @@ class BrowserPage(unittest.TestCase):
         bt.wait_for(lambda: self.view()["state"] == "live", 10, "the page live again")
         t0 = time.time() * 1000
         self.m.daemon.send_signal(signal.SIGKILL)  # the daemon gone; its image stays, frozen
+        self.m.daemon.wait()  # reaped, as systemd does (a zombie still answers kill(pid, 0))
         bt.wait_for(lambda: self.view()["state"] == "daemon stopped", 5,
                     "the page saying daemon stopped")
         print("daemon stopped shown after %d ms" % (self.view()["since"] - t0))
