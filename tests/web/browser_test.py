@@ -606,6 +606,11 @@ class Web3602(unittest.TestCase):
                 self.assertEqual(m.ctl("--axis", axis, "configure", "--start-speed", "1000")
                                  .returncode, 0)
             c = Console(m)
+            # The two-bit CW input function: a select of every value, E-stop among them.
+            options = c.d.execute_script(
+                "return [...document.querySelectorAll('#unit-0 select.cm')[0].options]"
+                ".map(o => o.textContent)")
+            self.assertEqual(options, ["0: unused", "1: limit", "2: E-stop", "3: reserved"])
             r = m.ctl("path", "centre", "ccw", "0", "0", "2000", "0", "--speed", "6000",
                       "--accel", "20", "--decel", "20")
             self.assertEqual(r.returncode, 0, r.stderr)

@@ -80,6 +80,10 @@ TEST(WebModule, DescribesThe3602WithItsConfigurationBitsAndRanges) {
   EXPECT_EQ(j["type"], 3602);
   EXPECT_EQ(j["units"], 2);
   EXPECT_FALSE(j["config_bits"]["msw"].empty());
+  // The two-bit CW/CCW input function (limit or E-stop) is one field the page offers whole.
+  int two_bit = 0;
+  for (const auto& b : j["config_bits"]["msw"]) two_bit += b.value("width", 1) == 2;
+  EXPECT_EQ(two_bit, 2);
   EXPECT_GT(j["ranges"]["speed_max"].get<int>(), 0);
   EXPECT_LE(j["ranges"]["accel_min"].get<int>(), j["ranges"]["accel_max"].get<int>());
 }

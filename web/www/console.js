@@ -54,16 +54,37 @@ function configBits(box, bits, prefix) {
   for (const b of bits) {
     if (b.name === "Configuration Mode") continue; // added by the plc/ library
     const l = document.createElement("label");
-    const c = document.createElement("input");
-    c.type = "checkbox"; c.dataset.bit = b.bit; c.className = prefix;
+    const c = b.width > 1 ? fieldSelect(b) : document.createElement("input");
+    if (!(b.width > 1)) c.type = "checkbox";
+    c.dataset.bit = b.bit; c.className = prefix;
     l.appendChild(c); l.appendChild(document.createTextNode(" " + b.name));
     box.appendChild(l);
   }
 }
 
+// A field of several bits: every value, named as the manual's name says ("(1 = limit,
+// 2 = E-stop)"); 0 is "unused", a value the name does not give is reserved (a Configuration
+// Error: the module's configuration check says which item).
+function fieldSelect(b) {
+  const names = { 0: "unused" };
+  const m = /\(([^)]*)\)/.exec(b.name);
+  if (m) for (const part of m[1].split(",")) {
+    const kv = /^\s*(\d+)\s*=\s*(.+?)\s*$/.exec(part);
+    if (kv) names[kv[1]] = kv[2];
+  }
+  const sel = document.createElement("select");
+  for (let v = 0; v < (1 << b.width); v++) {
+    const o = document.createElement("option");
+    o.value = v; o.textContent = `${v}: ${names[v] || "reserved"}`;
+    sel.appendChild(o);
+  }
+  return sel;
+}
+
 function wordOf(root, cls) {
   let w = 0;
   for (const c of root.querySelectorAll("input." + cls)) if (c.checked) w |= 1 << c.dataset.bit;
+  for (const c of root.querySelectorAll("select." + cls)) w |= parseInt(c.value, 10) << c.dataset.bit;
   return w;
 }
 
