@@ -598,6 +598,55 @@ class Web3202(unittest.TestCase):
 
 
 class Web3602(unittest.TestCase):
+    def test_paths_from_the_page_live_in_xy(self):
+        """Issue 32: a line and a full circle commanded from the page (under the lease), drawn live
+        in XY beside the planned path, ending on the image's end point; the GPO of axis 1."""
+        m = Machine("3602-sim.toml", 18614)
+        c = None
+        try:
+            for axis in ("1", "2"):
+                self.assertEqual(m.ctl("--axis", axis, "configure", "--start-speed", "500")
+                                 .returncode, 0)
+            c = Console(m)
+            time.sleep(1.1)  # stepmodctl was a PLC: its heartbeat goes quiet
+            c.take()
+            c.fill("#path .p-speed", 2000)
+
+            def run(method, ex, ey, px=0, py=0, sense="cw"):
+                c.d.execute_script(
+                    "const r = document.getElementById('path'), v = arguments;"
+                    "r.querySelector('.p-method').value = v[0];"
+                    "r.querySelector('.p-sense').value = v[1];"
+                    "['.p-ex', '.p-ey', '.p-px', '.p-py'].forEach("
+                    "  (f, i) => { r.querySelector(f).value = v[2 + i]; });"
+                    "showPathFields(r);", method, sense, ex, ey, px, py)
+                c.click("#path .b-path")
+                c.wait_message(r"^path: done")
+                m.ctl("path", "wait")
+                end = (m.image_position(1), m.image_position(2))
+                xy = lambda: c.d.execute_script(  # noqa: E731
+                    "return [state.xy.x.at(-1), state.xy.y.at(-1), state.xy.plan.at(-1)]")
+                wait_for(lambda: xy()[:2] == list(end), 5, "the XY trace at %r (%r)" % (end, xy()))
+                plan_end = xy()[2]
+                self.assertAlmostEqual(plan_end[0], end[0], delta=1)
+                self.assertAlmostEqual(plan_end[1], end[1], delta=1)
+                return end
+
+            self.assertEqual(run("line", 1000, 500), (1000, 500))
+            self.assertEqual(run("centre", 0, 0, 500, 0, "ccw"), (1000, 500))  # full circle
+            xs = c.d.execute_script("return [Math.min(...state.xy.x), Math.max(...state.xy.x)]")
+            self.assertLessEqual(xs[0], 0)
+            self.assertGreaterEqual(xs[1], 1999)  # the circle's far side, 2 x 500 from its start
+            c.d.execute_script("document.getElementById('path').scrollIntoView()")
+            c.d.save_screenshot(screenshot_path("web-3602-xy.png"))
+            c.click("#path .p-gpo0")
+            c.wait_message(r"^gpo: done")
+            c.click("#release")
+        finally:
+            if c:
+                c.close()
+            m.close()
+
     def test_circle_screenshot(self):
         m = Machine("3602-sim.toml", 18612, trace=True)
         c = None

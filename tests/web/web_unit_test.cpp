@@ -12,6 +12,7 @@
 #include "web/auth.hpp"
 #include "web/image_json.hpp"
 #include "web/options.hpp"
+#include "web/path_request.hpp"
 #include "web/reason_help.hpp"
 
 namespace stepmod::web {
@@ -157,6 +158,49 @@ TEST(WebModule, HelloNamesTheConsoleProcessAndTheReasons) {
   EXPECT_EQ(h["console"]["pid"].get<long long>(), static_cast<long long>(getpid()));
   EXPECT_GT(h["console"]["started_ms"].get<long long>(), 0);
   EXPECT_EQ(h["reasons"]["30401"]["id"], "3202-IE-01");
+}
+
+// Issue 32: the page's 3602 paths, each field checked before anything is written.
+TEST(WebPath, ARequestBecomesTheManualsMove) {
+  const auto req = nlohmann::json::parse(
+      R"({"cmd": "path", "unit": 0, "method": "centre", "sense": "ccw", "absolute": false,
+          "end_x": 0, "end_y": 0, "point_x": 2000, "point_y": 0, "speed": 6000, "accel": 20,
+          "decel": 20, "profile": 0})");
+  const plc::PathMove3602 m = path_request(req);
+  EXPECT_EQ(m.method, plc::PathMove3602::Method::kCentreCcw);
+  EXPECT_EQ(m.point_x, 2000);
+  EXPECT_EQ(m.profile.speed, 6000);
+  auto line = req;
+  line["method"] = "line";
+  line["end_x"] = -5;
+  EXPECT_EQ(path_request(line).method, plc::PathMove3602::Method::kLinear);
+  EXPECT_EQ(path_request(line).end_x, -5);
+}
+
+TEST(WebPath, BadFieldsAreRefusedByName) {
+  const auto ok = nlohmann::json::parse(
+      R"({"method": "radius", "sense": "cw", "absolute": true, "end_x": 10, "end_y": 10,
+          "radius": 100, "speed": 1000, "accel": 20, "decel": 20, "profile": 0})");
+  EXPECT_NO_THROW(path_request(ok));
+  const auto refused = [&](const char* key, const nlohmann::json& value, const char* says) {
+    auto r = ok;
+    if (value.is_null()) r.erase(key);
+    else r[key] = value;
+    try {
+      path_request(r);
+      ADD_FAILURE() << key << " taken";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+  };
+  refused("method", "spiral", "method");
+  refused("sense", "up", "sense");
+  refused("radius", nullptr, "radius");
+  refused("radius", 3'000'000'000LL, "radius");
+  refused("end_x", "12", "end_x");
+  refused("absolute", 1, "absolute");
+  refused("accel", -1, "accel");
+  refused("profile", 3, "profile");
 }
 
 }  // namespace

@@ -173,6 +173,7 @@ function buildUnits(hello) {
     main.appendChild(root);
     state.units.push({ root: root, plot: new LivePlot(root.querySelector("canvas"), 5) });
   }
+  state.xy = hello.module.type === 3602 ? buildPath(main) : null;
 }
 
 // The bit lists are built once (the first batch) and then only their values change, rather than
@@ -221,6 +222,10 @@ function showBatch(b) {
     state.batches = 0; state.samples = 0; state.rateT0 = now;
   }
   window.consoleStats.batches++;
+  if (b.pos.length >= 2 && b.pos[0].length) {
+    state.lastPos = [b.pos[0][b.pos[0].length - 1], b.pos[1][b.pos[1].length - 1]];
+    if (state.xy) state.xy.push(b.pos[0], b.pos[1]);
+  }
   b.status.forEach((s, u) => {
     const unit = state.units[u]; if (!unit) return;
     unit.plot.push(b.t_us, b.pos[u]);
