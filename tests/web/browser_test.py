@@ -651,9 +651,10 @@ class Web3602(unittest.TestCase):
         m = Machine("3602-sim.toml", 18612, trace=True)
         c = None
         try:
-            for axis in ("1", "2"):
-                self.assertEqual(m.ctl("--axis", axis, "configure", "--start-speed", "1000")
-                                 .returncode, 0)
+            # Axis 1 in step + direction mode, axis 2 in CW/CCW mode: the picture reads each.
+            for axis, mode in (("1", []), ("2", ["--cw-ccw"])):
+                self.assertEqual(m.ctl("--axis", axis, "configure", "--start-speed", "1000",
+                                       *mode).returncode, 0)
             c = Console(m)
             # The two-bit CW input function: a select of every value, E-stop among them.
             options = c.d.execute_script(
@@ -680,8 +681,9 @@ class Web3602(unittest.TestCase):
             c.el("#vcd").send_keys(m.trace)
             wait_for(lambda: c.text("#pic-xy h2") != "", 30, "the XY picture")
             # The circle crosses 4 x 2000 integers on each axis, the line 2000 on axis 1.
-            self.assertRegex(c.text("#pic-axis1 h2"), r"^axis1: 10000 steps, end position 2000 ")
-            self.assertRegex(c.text("#pic-axis2 h2"), r"^axis2: 8000 steps, end position 0 ")
+            self.assertRegex(c.text("#pic-axis1 h2"),
+                             r"^axis1: 10000 steps, end position 2000 .*, step\+dir, ")
+            self.assertRegex(c.text("#pic-axis2 h2"), r"^axis2: 8000 steps, end position 0 .*, CW/CCW, ")
             c.d.execute_script("document.getElementById('pic-xy').scrollIntoView()")
             c.d.save_screenshot(screenshot_path("web-3602-path.png"))
         finally:
