@@ -296,6 +296,15 @@ class Web3601(unittest.TestCase):
             "return [...document.querySelectorAll('#unit-0 .words li.on')]"
             ".map(e => e.dataset.name)")
         self.assertIn("Module OK", on)
+        # Display units (issue 32): the console's own setting, the position's row converted.
+        self.c.fill("#spu", 200)
+        self.c.fill("#uname", "mm")
+        wait_for(lambda: self.c.text("#unit-0 .upos") ==
+                 "%g mm" % (int(self.c.text("#unit-0 .pos")) / 200), 5,
+                 "the position in mm (%r)" % self.c.text("#unit-0 .upos"))
+        # The plot's grid: position ticks at round values (1, 2, 5 x 10^k).
+        ticks = self.c.d.execute_script("return state.units[0].plot.lastTicks")
+        self.assertGreaterEqual(len(ticks), 2)
 
     def test_commissioning_refused_while_plc_heartbeat_live(self):
         plc = HeartbeatPlc(self.m.name)

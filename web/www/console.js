@@ -176,6 +176,28 @@ function buildUnits(hello) {
   state.xy = hello.module.type === 3602 ? buildPath(main) : null;
 }
 
+// Display units, the console's own setting (kept in this browser): steps per mm, degree, ... The
+// module's words stay in steps; only this row converts.
+function displayUnits() {
+  const spu = parseFloat($("spu").value);
+  return { spu: spu > 0 ? spu : 1, name: $("uname").value || "step" };
+}
+
+function showInUnits(root, steps) {
+  const u = displayUnits();
+  const text = `${+(steps / u.spu).toFixed(4)} ${u.name}`;
+  const cell = root.querySelector(".upos");
+  if (cell.textContent !== text) cell.textContent = text;
+}
+
+function loadDisplayUnits() {
+  for (const id of ["spu", "uname"]) {
+    const saved = localStorage.getItem("stepmod." + id);
+    if (saved !== null) $(id).value = saved;
+    $(id).addEventListener("change", () => localStorage.setItem("stepmod." + id, $(id).value));
+  }
+}
+
 // The bit lists are built once (the first batch) and then only their values change, rather than
 // rebuilding every list item of every unit 25 times a second. (Measured on the 3601 page, the
 // browser's CPU did not change measurably: the page's stalls on the loaded test machine came
@@ -231,6 +253,7 @@ function showBatch(b) {
     unit.plot.push(b.t_us, b.pos[u]);
     const r = unit.root;
     r.querySelector(".pos").textContent = s.position;
+    showInUnits(r, s.position);
     r.querySelector(".enc").textContent = state.module.has_encoder ? s.encoder : "— (no encoder input)";
     r.querySelector(".cap").textContent = s.capture;
     r.querySelector(".speed").textContent = Math.round(unit.plot.lastSpeed());
@@ -367,6 +390,7 @@ document.addEventListener("visibilitychange", () => { if (document.visibilitySta
 window.addEventListener("load", () => {
   $("take").addEventListener("click", () => send({ op: "take" }));
   $("release").addEventListener("click", () => { endJog(); send({ op: "release" }); });
+  loadDisplayUnits();
   setInterval(keepAlive, 50);
   setInterval(showView, 100);
   connect();
