@@ -30,7 +30,8 @@ Commander::Commander(const std::string& module_name, const Sampler& sampler, Opt
       lease_(client_),
       sampler_(sampler),
       opt_(opt),
-      controls_(make_controls(port_)) {
+      controls_(make_controls(port_)),
+      sim_(module_name) {
   deadman_ = std::thread([this] { deadman_loop(); });
 }
 
@@ -110,6 +111,10 @@ nlohmann::json Commander::command(const nlohmann::json& req, std::uintptr_t conn
     return reply(cmd, false, "refused: take the commissioning lease first");
   }
   try {
+    if (cmd == "force_input") {
+      sim_.force(req);
+      return reply(cmd, true, "done");
+    }
     const plc::Outcome o = controls_->run(req);
     nlohmann::json r = reply(cmd, o.ok, o.ok ? "done" : o.message);
     const unsigned unit = req.value("unit", 0u);

@@ -15,7 +15,11 @@ using Clock = std::chrono::steady_clock;
 
 Sampler::Sampler(const std::string& module_name, Publish publish, std::chrono::microseconds period,
                  std::chrono::milliseconds batch)
-    : client_(module_name), publish_(std::move(publish)), period_(period), batch_(batch) {
+    : client_(module_name),
+      sim_(module_name),
+      publish_(std::move(publish)),
+      period_(period),
+      batch_(batch) {
   link_.heartbeat = client_.heartbeat_value();
   link_.heartbeat_changed = Clock::now();
   scan_ = client_.scan_counter();
@@ -94,6 +98,7 @@ std::string Sampler::batch_json() {
                         {"pos", pos},
                         {"status", status},
                         {"scan", client_.scan_counter()},
+                        {"sim", sim_.state()},
                         {"daemon",
                          {{"quiet_ms", image_ms.count()}, {"gone", gone}, {"stopped", stopped}}},
                         {"health",

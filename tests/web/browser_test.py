@@ -370,12 +370,18 @@ class Web3601(unittest.TestCase):
     def test_limit_stop_replaces_the_jog_message(self):
         self.jog_until_moving()
         self.c.wait_message(r"^jog_press: done")
-        self.m.ctl("panel", "force", "1", "cw_limit", "1")
+        # The CW limit forced from the page's simulated-machine panel (a keyboard-free click: the
+        # held pointer stays on the jog button in the browser's model, the force goes by script).
+        self.c.d.execute_script("command(0, 'force_input', {input: 'cw_limit', level: 1})")
         try:
             self.c.wait_message(r"^Axis 1: 3601-IE-02: .* — ")
+            wait_for(lambda: self.c.text("#unit-0 .sim-in[data-input=cw_limit] span") ==
+                     "cw_limit: forced 1", 5, "the page showing the forced limit")
         finally:
             release_button(self.c)
-            self.m.ctl("panel", "release", "1", "cw_limit")
+            self.c.click("#unit-0 .sim-in[data-input=cw_limit] .f-free")
+        wait_for(lambda: self.c.text("#unit-0 .sim-in[data-input=cw_limit] span") ==
+                 "cw_limit: free", 5, "the limit released from the page")
         self.c.click("#unit-0 .b-reset")
         self.c.click("#release")
 

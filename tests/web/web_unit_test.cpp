@@ -14,6 +14,7 @@
 #include "web/options.hpp"
 #include "web/path_request.hpp"
 #include "web/reason_help.hpp"
+#include "web/sim_inputs.hpp"
 
 namespace stepmod::web {
 namespace {
@@ -201,6 +202,16 @@ TEST(WebPath, BadFieldsAreRefusedByName) {
   refused("absolute", 1, "absolute");
   refused("accel", -1, "accel");
   refused("profile", 3, "profile");
+}
+
+// Without a simulated machine (real hardware, or no daemon) nothing is shown and a force is
+// refused, never attempted.
+TEST(WebSimInputs, WithoutAPanelNothingIsShownOrForced) {
+  SimInputs sim("webunit-no-such-module");
+  EXPECT_FALSE(sim.present());
+  EXPECT_TRUE(sim.state().is_null());
+  const auto req = nlohmann::json::parse(R"({"unit": 0, "input": "estop", "level": 1})");
+  EXPECT_THROW(sim.force(req), std::invalid_argument);
 }
 
 }  // namespace

@@ -260,6 +260,7 @@ function showBatch(b) {
     showReason(r.querySelector(".reason"), state.reasons, s.reason, reasonActive(s.words, s.reason));
     newReason(u, s.reason);
     showWords(r.querySelector(".words"), s.words);
+    showSim(r.querySelector(".sim"), u, b.sim);
   });
   $("health").textContent = `${b.health.names} (16#${b.health.flags.toString(16)})`;
   $("plc").textContent = b.plc.stale ? "heartbeat stale" :
