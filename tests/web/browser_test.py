@@ -362,6 +362,7 @@ class Web3601(unittest.TestCase):
         self.assertIn("What to do: ", cell.text)
         self.assertRegex(self.c.el("#unit-0 .reason a").get_attribute("href"),
                          r"/reasons#3601-CE-04$")
+        self.c.d.save_screenshot(screenshot_path("web-3601-reason.png"))
         self.c.click("#unit-0 .b-reset")  # the error cleared: the reason is no longer red
         wait_for(lambda: "active" not in cell.get_attribute("class"), 5, "the reason cleared")
         self.assertTrue(cell.text.startswith("(cleared) 3601-CE-04"), cell.text)
@@ -417,6 +418,7 @@ class Web3601(unittest.TestCase):
         print("not live %d ms after the kill (%s)" % (view()["since"] - t0, self.c.text("#conn")))
         self.assertLess(view()["since"] - t0, 1000)
         self.assertEqual(self.c.text("#lease"), "unknown: no live data")
+        self.c.d.save_screenshot(screenshot_path("web-3601-stale.png"))
         self.m.start_web()
         wait_for(lambda: view()["state"] == "console restarted", 5, "console restarted")
         self.assertIn("log in again", self.c.text("#conn"))
