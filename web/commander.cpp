@@ -5,6 +5,7 @@
 
 #include "registry/module_registry.hpp"
 #include "web/reason.hpp"
+#include "web/reason_help.hpp"
 
 namespace stepmod::web {
 namespace {
@@ -116,10 +117,11 @@ nlohmann::json Commander::command(const nlohmann::json& req, std::uintptr_t conn
       return reply(cmd, true, "done");
     }
     const plc::Outcome o = controls_->run(req);
-    nlohmann::json r = reply(cmd, o.ok, o.ok ? "done" : o.message);
+    // The plc/ library's message quotes the image's reason: its rates too in the form's unit.
+    const std::int64_t accel_unit = registry::row_of(client_.type()).rules->accel_word_unit;
+    nlohmann::json r = reply(cmd, o.ok, o.ok ? "done" : in_form_units(o.message, accel_unit));
     const unsigned unit = req.value("unit", 0u);
-    r["reason"] = reason_json(client_.raw(), unit,
-                              registry::row_of(client_.type()).rules->accel_word_unit);
+    r["reason"] = reason_json(client_.raw(), unit, accel_unit);
     return r;
   } catch (const std::invalid_argument& e) {
     return reply(cmd, false, std::string("refused: ") + e.what());

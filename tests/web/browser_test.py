@@ -305,6 +305,13 @@ class Web3601(unittest.TestCase):
         # The plot's grid: position ticks at round values (1, 2, 5 x 10^k).
         ticks = self.c.d.execute_script("return state.units[0].plot.lastTicks")
         self.assertGreaterEqual(len(ticks), 2)
+        # Speed: 4,000 steps/s sampled every 1 ms in whole 1 ms scans reads 4,000; a preset's
+        # jump (50,000 steps in 1 ms, faster than the module's 1,000,000 steps/s) is no speed.
+        speeds = self.c.d.execute_script(
+            "const p = new LivePlot(document.createElement('canvas'), 5, 1000000), t = [], x = [];"
+            "for (let i = 0; i < 200; i++) { t.push(i * 1000); x.push(4 * i + (i >= 100 ? 50000 : 0)); }"
+            "p.push(t, x); return [p.speed[99], p.speed[100], p.speed[101], p.speed[199]];")
+        self.assertEqual(speeds, [4000, 0, 4000, 4000])
 
     def test_commissioning_refused_while_plc_heartbeat_live(self):
         plc = HeartbeatPlc(self.m.name)
@@ -356,7 +363,7 @@ class Web3601(unittest.TestCase):
         self.c.click("#unit-0 .b-rel")
         msg = self.c.wait_message(r"move: .*Invalid Profile").string
         # Issue 32: the rates in the form's unit, the cut sentence marked, what to do, the item.
-        self.assertRegex(msg, r"3601-CE-04: accel 5000 or decel 100 steps/ms/s out .*… — ")
+        self.assertRegex(msg, r"3601-CE-04: accel 5000 or decel 100 steps/ms/s out.*… — Reset Errors")
         cell = self.c.el("#unit-0 .reason")
         self.assertIn("active", cell.get_attribute("class"))
         self.assertIn("What to do: ", cell.text)

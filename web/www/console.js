@@ -171,7 +171,7 @@ function buildUnits(hello) {
     }
     wireControls(root, u, hello.module.ranges);
     main.appendChild(root);
-    state.units.push({ root: root, plot: new LivePlot(root.querySelector("canvas"), 5) });
+    state.units.push({ root: root, plot: new LivePlot(root.querySelector("canvas"), 5, hello.module.ranges.speed_max) });
   }
   state.xy = hello.module.type === 3602 ? buildPath(main) : null;
 }
@@ -311,7 +311,13 @@ function onMessage(ev) {
     // A reason the reply carries is this command's (a configuration's Position Invalid, a
     // refusal's reason): the batches do not announce it again over the reply.
     if (m.reason && m.reason.seq && state.lastUnit !== undefined) state.reasonSeq[state.lastUnit] = m.reason.seq;
-    const why = m.reason && m.reason.seq && !m.ok ? ` — ${reasonLine(state.reasons, m.reason)}` : "";
+    // The plc/ library's message may quote the reason already: then only what to do is added.
+    const row = m.reason && m.reason.seq ? reasonRow(state.reasons, m.reason.item) : null;
+    const why = !m.ok && m.reason && m.reason.seq
+      ? (m.message.includes(m.reason.text.trim())
+        ? (m.reason.cut ? "…" : "") + (row ? ` — ${row.fix}` : "")
+        : ` — ${reasonLine(state.reasons, m.reason)}`)
+      : "";
     say(`${m.op}: ${m.message}${why}`, !m.ok);
   }
 }

@@ -10,28 +10,38 @@ const SPEED_WINDOW_US = 50000;
 const MAX_SPEED = 2000000; // steps/s: above every module's range
 
 class LivePlot {
-  constructor(canvas, seconds) {
+  constructor(canvas, seconds, speedMax) {
     this.canvas = canvas;
     this.span = seconds * 1e6; // µs
     this.t = []; this.pos = []; this.speed = [];
     this.pending = false;
+    this.speedMax = speedMax || MAX_SPEED;
+    this.breakAt = -Infinity; // time of the last jump no motor makes (a preset, a configuration)
   }
 
   // Speed from position and time: the slope over about `window` µs (many module scans), so
-  // that a scan's quantisation does not show as noise; a jump no motor makes (a preset, a
-  // configuration zeroing the position: over MAX_SPEED) is no speed.
-  static slope(t, pos, i, window) {
+  // that a scan's quantisation does not show as noise, from samples at `from` or later: a jump
+  // no motor makes (a preset, a configuration zeroing the position) is no speed.
+  static slope(t, pos, i, window, from) {
+    const start = from === undefined ? -Infinity : from;
     let j = i;
-    while (j > 0 && t[i] - t[j - 1] <= window) j--;
-    if (j === i) return i > 0 ? LivePlot.slope(t, pos, i, Infinity) : 0;
+    while (j > 0 && t[j - 1] >= start && t[i] - t[j - 1] <= window) j--;
+    if (j === i) { // no sample within the window: the previous one, unless across a jump
+      if (i === 0 || t[i - 1] < start) return 0;
+      j = i - 1;
+    }
     const v = (pos[i] - pos[j]) * 1e6 / (t[i] - t[j]);
     return Math.abs(v) > MAX_SPEED ? 0 : v;
   }
 
   push(ts, ps) {
     for (let k = 0; k < ts.length; k++) {
+      const n = this.t.length;
+      // A step between two samples faster than the module can move is a preset or a
+      // configuration's zero: the speed's window starts after it.
+      if (n && Math.abs(ps[k] - this.pos[n - 1]) > this.speedMax * (ts[k] - this.t[n - 1]) * 1.1e-6 + 8) this.breakAt = ts[k];
       this.t.push(ts[k]); this.pos.push(ps[k]);
-      this.speed.push(LivePlot.slope(this.t, this.pos, this.t.length - 1, SPEED_WINDOW_US));
+      this.speed.push(LivePlot.slope(this.t, this.pos, n, SPEED_WINDOW_US, this.breakAt));
     }
     const cut = this.t.length ? this.t[this.t.length - 1] - this.span : 0;
     let drop = 0;
