@@ -4,9 +4,9 @@
 // Plc3602, Plc3202) over a port without heartbeat. Bad input (unknown command, missing or
 // out-of-range field) is refused with a message before anything is written.
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-#include <nlohmann/json.hpp>
 
 #include "plc/port.hpp"
 #include "plc/profile.hpp"

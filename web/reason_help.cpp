@@ -12,18 +12,24 @@ using module::axis::ErrorList;
 using module::axis::Item;
 namespace items = module::axis::items;
 
-constexpr ErrorList kLists[] = {ErrorList::kConfiguration, ErrorList::kCommand,
+constexpr ErrorList kLists[] = {ErrorList::kConfiguration,  ErrorList::kCommand,
                                 ErrorList::kInvalidProfile, ErrorList::kInput,
-                                ErrorList::kHomeInvalid, ErrorList::kPositionInvalid};
+                                ErrorList::kHomeInvalid,    ErrorList::kPositionInvalid};
 
 const char* list_name(ErrorList l) {
   switch (l) {
-    case ErrorList::kConfiguration: return "Configuration Error";
-    case ErrorList::kCommand: return "Command Error";
-    case ErrorList::kInvalidProfile: return "Invalid Profile";
-    case ErrorList::kInput: return "Input Error";
-    case ErrorList::kHomeInvalid: return "Home Invalid";
-    case ErrorList::kPositionInvalid: return "Position Invalid";
+    case ErrorList::kConfiguration:
+      return "Configuration Error";
+    case ErrorList::kCommand:
+      return "Command Error";
+    case ErrorList::kInvalidProfile:
+      return "Invalid Profile";
+    case ErrorList::kInput:
+      return "Input Error";
+    case ErrorList::kHomeInvalid:
+      return "Home Invalid";
+    case ErrorList::kPositionInvalid:
+      return "Position Invalid";
   }
   return "";
 }
@@ -106,9 +112,8 @@ void add_item(Table& table, ModuleType type, const Item* item) {
   const unsigned n = item->number(type);
   if (n == 0) return;  // this module's list has no item of its own: the list's entry answers
   const std::uint32_t code = module::axis::item_code(type, item->list, n);
-  const auto [it, added] =
-      table.try_emplace(code, Row{module::axis::item_id(type, item->list, n), item->what,
-                                  fix_of(item)});
+  const auto [it, added] = table.try_emplace(
+      code, Row{module::axis::item_id(type, item->list, n), item->what, fix_of(item)});
   if (!added) it->second.condition += std::string("; ") + item->what;  // e.g. 3602-CE-10
 }
 
@@ -128,11 +133,16 @@ Table table_of(ModuleType type) {
 std::string escaped(const std::string& s) {
   std::string out;
   for (const char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else if (c == '"')
+      out += "&quot;";
+    else
+      out += c;
   }
   return out;
 }

@@ -9,8 +9,8 @@
 namespace stepmod::web {
 namespace {
 // In the panel's order (STEPMOD_IN_*), named as stepmodctl panel names them.
-constexpr std::array<std::string_view, 6> kInputs = {"capture",  "external", "home",
-                                                     "estop",    "cw_limit", "ccw_limit"};
+constexpr std::array<std::string_view, 6> kInputs = {"capture", "external", "home",
+                                                     "estop",   "cw_limit", "ccw_limit"};
 }  // namespace
 
 SimInputs::SimInputs(const std::string& name) {
@@ -32,7 +32,8 @@ nlohmann::json SimInputs::state() const {
     }
     axes.push_back({{"forced", forced},
                     {"outputs",
-                     {{"step", p.outputs & 1u}, {"dir", (p.outputs >> 1) & 1u},
+                     {{"step", p.outputs & 1u},
+                      {"dir", (p.outputs >> 1) & 1u},
                       {"gpo", (p.outputs >> 2) & 1u}}}});
   }
   return axes;
@@ -45,8 +46,9 @@ void SimInputs::force(const nlohmann::json& req) {
   unsigned index = 0;
   while (index < kInputs.size() && kInputs[index] != input) ++index;
   if (index == kInputs.size()) {
-    throw std::invalid_argument("input must be capture, external, home, estop, cw_limit or "
-                                "ccw_limit");
+    throw std::invalid_argument(
+        "input must be capture, external, home, estop, cw_limit or "
+        "ccw_limit");
   }
   if (!req.contains("level")) throw std::invalid_argument("missing field 'level' (0, 1 or null)");
   if (req["level"].is_null()) {

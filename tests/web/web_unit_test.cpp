@@ -185,8 +185,10 @@ TEST(WebPath, BadFieldsAreRefusedByName) {
   EXPECT_NO_THROW(path_request(ok));
   const auto refused = [&](const char* key, const nlohmann::json& value, const char* says) {
     auto r = ok;
-    if (value.is_null()) r.erase(key);
-    else r[key] = value;
+    if (value.is_null())
+      r.erase(key);
+    else
+      r[key] = value;
     try {
       path_request(r);
       ADD_FAILURE() << key << " taken";
