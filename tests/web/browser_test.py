@@ -639,6 +639,10 @@ class Web3602(unittest.TestCase):
             c.fill("#path .p-speed", 1000)
 
             def run(method, ex, ey, px=0, py=0, sense="cw"):
+                # As the 3202's tests: a headless page starved past the deadman's limit on this
+                # loaded machine lost the lease (the safe outcome): take it again.
+                if not c.text("#lease").startswith("held by this console"):
+                    c.take()
                 c.d.execute_script(
                     "const r = document.getElementById('path'), v = arguments;"
                     "r.querySelector('.p-method').value = v[0];"
