@@ -68,6 +68,13 @@ bool Auth::valid(const char* cookie_header) {
   return true;
 }
 
+bool Auth::logout(const char* cookie_header) {
+  const std::string id = cookie_value(cookie_header, kCookie);
+  if (id.empty()) return false;
+  std::lock_guard lock(m_);
+  return sessions_.erase(id) > 0;
+}
+
 std::string cookie_value(const char* header, const std::string& name) {
   if (header == nullptr) return "";
   const std::string h(header);

@@ -22,6 +22,8 @@ class Auth {
   std::string login(const std::string& token);
   // Whether the Cookie header carries a live session.
   bool valid(const char* cookie_header);
+  // Ends the session the Cookie header carries (the page's logout); false when it had none.
+  bool logout(const char* cookie_header);
 
  private:
   std::string token_;

@@ -3,7 +3,9 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "registry/module_registry.hpp"
 #include "web/reason.hpp"
+#include "web/reason_help.hpp"
 
 namespace stepmod::web {
 namespace {
@@ -29,7 +31,8 @@ Commander::Commander(const std::string& module_name, const Sampler& sampler, Opt
       lease_(client_),
       sampler_(sampler),
       opt_(opt),
-      controls_(make_controls(port_)) {
+      controls_(make_controls(port_)),
+      sim_(module_name) {
   deadman_ = std::thread([this] { deadman_loop(); });
 }
 
@@ -109,10 +112,16 @@ nlohmann::json Commander::command(const nlohmann::json& req, std::uintptr_t conn
     return reply(cmd, false, "refused: take the commissioning lease first");
   }
   try {
+    if (cmd == "force_input") {
+      sim_.force(req);
+      return reply(cmd, true, "done");
+    }
     const plc::Outcome o = controls_->run(req);
-    nlohmann::json r = reply(cmd, o.ok, o.ok ? "done" : o.message);
+    // The plc/ library's message quotes the image's reason: its rates too in the form's unit.
+    const std::int64_t accel_unit = registry::row_of(client_.type()).rules->accel_word_unit;
+    nlohmann::json r = reply(cmd, o.ok, o.ok ? "done" : in_form_units(o.message, accel_unit));
     const unsigned unit = req.value("unit", 0u);
-    r["reason"] = reason_json(client_.raw(), unit);
+    r["reason"] = reason_json(client_.raw(), unit, accel_unit);
     return r;
   } catch (const std::invalid_argument& e) {
     return reply(cmd, false, std::string("refused: ") + e.what());

@@ -21,6 +21,7 @@
 #include "plc/shm_port.hpp"
 #include "web/controls.hpp"
 #include "web/sampler.hpp"
+#include "web/sim_inputs.hpp"
 
 namespace stepmod::web {
 
@@ -36,7 +37,8 @@ class Commander {
   Commander& operator=(const Commander&) = delete;
 
   // One request of connection `conn` ({"op": "take" | "release" | "keepalive" | "cmd", ...});
-  // the reply to send back (keep-alives get none: null). A "cmd" needs the lease, but "stop".
+  // the reply to send back (keep-alives get none: null). A "cmd" needs the lease, but "stop";
+  // "force_input" forces an input of the simulated machine (sim_inputs.hpp).
   nlohmann::json handle(const nlohmann::json& req, std::uintptr_t conn);
   // The connection is gone: if it was the operator, the lease is no longer renewed.
   void disconnected(std::uintptr_t conn);
@@ -53,6 +55,7 @@ class Commander {
   const Sampler& sampler_;
   Options opt_;
   std::unique_ptr<Controls> controls_;
+  SimInputs sim_;  // the simulated machine's inputs ("force_input"), where there is one
 
   std::mutex m_;  // guards everything below and serialises the plc/ calls
   std::uintptr_t operator_ = 0;

@@ -1,9 +1,11 @@
 #include "web/controls.hpp"
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "web/module_views.hpp"
+#include "web/path_request.hpp"
 
 namespace stepmod::web {
 
@@ -21,18 +23,6 @@ std::int64_t request_int(const nlohmann::json& req, const char* name, std::int64
 }
 
 namespace {
-
-// The profile fields as the page sends them; the module itself checks the manual's ranges and
-// answers with Invalid Profile / Command Error, which the page shows with the reason.
-plc::Profile profile_of(const nlohmann::json& req) {
-  plc::Profile p;
-  p.speed = static_cast<std::int32_t>(request_int(req, "speed", 0, 2'000'000'000));
-  p.accel = static_cast<std::int32_t>(request_int(req, "accel", 0, 1'000'000));
-  p.decel = static_cast<std::int32_t>(request_int(req, "decel", 0, 1'000'000));
-  const auto t = request_int(req, "profile", 0, 2);
-  p.type = static_cast<plc::AccelType>(t);
-  return p;
-}
 
 bool cw_of(const nlohmann::json& req) {
   const std::string d = req.value("dir", "");
@@ -71,6 +61,7 @@ plc::Outcome Controls::run(const nlohmann::json& req) {
     return configure(u, config_bits(req),
                      static_cast<std::int32_t>(request_int(req, "start_speed", 0, 2'000'000'000)));
   }
+  if (std::optional<plc::Outcome> o = module_command(cmd, u, req)) return *o;
   throw std::invalid_argument("unknown command '" + cmd + "'");
 }
 

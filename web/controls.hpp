@@ -5,6 +5,8 @@
 // out-of-range field) is refused with a message before anything is written.
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
 
 #include "plc/move_profile.hpp"
 #include "plc/port.hpp"
@@ -35,6 +37,12 @@ class Controls {
   virtual std::uint32_t config_bits(const nlohmann::json& req) const;
   virtual plc::Outcome configure(unsigned u, std::uint32_t bits, std::int32_t start_speed) = 0;
   virtual unsigned units() const = 0;
+  // A command only this module has (the 3602's "path" and "gpo"); nullopt: none such.
+  virtual std::optional<plc::Outcome> module_command(const std::string& cmd, unsigned u,
+                                                     const nlohmann::json& req) {
+    (void)cmd, (void)u, (void)req;
+    return std::nullopt;
+  }
 };
 
 // The integer field `name` of a request, checked against lo..hi (std::invalid_argument naming the

@@ -1,7 +1,12 @@
 #include "web/image_json.hpp"
 
+#include <unistd.h>
+
+#include <chrono>
+
 #include "registry/module_registry.hpp"
 #include "web/module_views.hpp"
+#include "web/reason_help.hpp"
 
 namespace stepmod::web {
 
@@ -40,6 +45,17 @@ nlohmann::json module_json(ModuleType type) {
             {"accel_default", per_s2 ? 100'000 : 100},
             {"target_min", r.target_min},
             {"target_max", r.target_max}}}};
+}
+
+nlohmann::json hello_json(const std::string& name, ModuleType type) {
+  static const auto started = std::chrono::duration_cast<std::chrono::milliseconds>(
+                                  std::chrono::system_clock::now().time_since_epoch())
+                                  .count();
+  return {{"type", "hello"},
+          {"name", name},
+          {"module", module_json(type)},
+          {"console", {{"pid", static_cast<std::int64_t>(getpid())}, {"started_ms", started}}},
+          {"reasons", reason_table(type)}};
 }
 
 }  // namespace stepmod::web

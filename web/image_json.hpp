@@ -4,6 +4,7 @@
 // capture in steps; the configuration fields and ranges for the page's form.
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "core/module_shape.hpp"
 
@@ -27,5 +28,11 @@ nlohmann::json unit_json(ModuleType type, const ImageWords& in, unsigned unit);
 // whether it has an encoder input, the configuration bits by name and the ranges of the manual's
 // fields.
 nlohmann::json module_json(ModuleType type);
+
+// The page's first message (and /api/hello): {"type": "hello", "name", "module": module_json(),
+// "console": {"pid", "started_ms"}, "reasons": reason_table()}. The console's process id is the
+// lease holder the image shows while a page of this console holds it; pid and start time tell
+// a page that reconnects whether stepmod-web restarted meanwhile (its lease and session gone).
+nlohmann::json hello_json(const std::string& name, ModuleType type);
 
 }  // namespace stepmod::web

@@ -5,6 +5,8 @@
 #include <string>
 #include <thread>
 
+#include "web/reason_help.hpp"
+
 namespace stepmod::web {
 namespace {
 constexpr unsigned kOffReasons = 448;
@@ -18,7 +20,8 @@ T relaxed(const unsigned char* p) {
 }
 }  // namespace
 
-nlohmann::json reason_json(const stepmod_image_t& img, unsigned unit) {
+nlohmann::json reason_json(const stepmod_image_t& img, unsigned unit,
+                           std::int64_t accel_word_unit) {
   if (unit >= 2) return nlohmann::json::object();
   const auto* base = reinterpret_cast<const unsigned char*>(&img);
   const unsigned char* block = base + kOffReasons + static_cast<std::size_t>(kStride) * unit;
@@ -36,7 +39,11 @@ nlohmann::json reason_json(const stepmod_image_t& img, unsigned unit) {
       text.push_back(c);
     }
     if (relaxed<std::uint32_t>(reinterpret_cast<const unsigned char*>(seq)) == s0) {
-      return {{"seq", rseq}, {"item", item}, {"text", text}};
+      const bool cut = text.size() + 1 >= kText;
+      return {{"seq", rseq},
+              {"item", item},
+              {"text", in_form_units(text, accel_word_unit)},
+              {"cut", cut}};
     }
   }
   return nlohmann::json::object();

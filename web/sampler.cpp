@@ -4,6 +4,7 @@
 
 #include "ipc/health.hpp"
 #include "ipc/lease.hpp"
+#include "registry/module_registry.hpp"
 #include "web/image_json.hpp"
 #include "web/reason.hpp"
 
@@ -14,7 +15,11 @@ using Clock = std::chrono::steady_clock;
 
 Sampler::Sampler(const std::string& module_name, Publish publish, std::chrono::microseconds period,
                  std::chrono::milliseconds batch)
-    : client_(module_name), publish_(std::move(publish)), period_(period), batch_(batch) {
+    : client_(module_name),
+      sim_(module_name),
+      publish_(std::move(publish)),
+      period_(period),
+      batch_(batch) {
   link_.heartbeat = client_.heartbeat_value();
   link_.heartbeat_changed = Clock::now();
   scan_ = client_.scan_counter();
@@ -74,7 +79,7 @@ std::string Sampler::batch_json() {
   nlohmann::json status = nlohmann::json::array();
   for (unsigned u = 0; u < units; ++u) {
     nlohmann::json j = unit_json(type, last_in_, u);
-    j["reason"] = reason_json(client_.raw(), u);
+    j["reason"] = reason_json(client_.raw(), u, registry::row_of(type).rules->accel_word_unit);
     status.push_back(std::move(j));
   }
   const ipc::Health h = client_.read_health();
@@ -82,6 +87,10 @@ std::string Sampler::batch_json() {
   const auto quiet_ms =
       std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - link.heartbeat_changed);
   const auto image_ms = image_quiet();
+  const bool gone = image_ms >= kDaemonGone;
+  // Gone and its process no longer runs: stopped (or killed), not merely frozen (SIGSTOP, a hang).
+  const bool stopped =
+      gone && !ipc::Lease::process_running(static_cast<std::uint32_t>(client_.raw().owner_pid));
   // The image's strings (the reasons) come from another process: bad UTF-8 in them is written
   // as U+FFFD rather than thrown out of this thread.
   return nlohmann::json{{"type", "batch"},
@@ -89,8 +98,9 @@ std::string Sampler::batch_json() {
                         {"pos", pos},
                         {"status", status},
                         {"scan", client_.scan_counter()},
+                        {"sim", sim_.state()},
                         {"daemon",
-                         {{"quiet_ms", image_ms.count()}, {"gone", image_ms >= kDaemonGone}}},
+                         {{"quiet_ms", image_ms.count()}, {"gone", gone}, {"stopped", stopped}}},
                         {"health",
                          {{"flags", h.flags},
                           {"names", ipc::health_flag_names(h.flags)},

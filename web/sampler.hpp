@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "ipc/client.hpp"
+#include "web/sim_inputs.hpp"
 
 namespace stepmod::web {
 
@@ -55,6 +56,7 @@ class Sampler {
   std::string batch_json();
 
   ipc::Client client_;
+  SimInputs sim_;  // the simulated machine's forced inputs and outputs, where there is one
   Publish publish_;
   std::chrono::microseconds period_;
   std::chrono::milliseconds batch_;

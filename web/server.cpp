@@ -195,9 +195,26 @@ int Server::login(mg_connection* c) {
                      "; HttpOnly; SameSite=Strict; Path=/\r\nLocation: /\r\n");
 }
 
+// The page's Log out: a form posted from the console's own page ends its session. (The page's
+// WebSocket closes as the browser leaves the page: a lease it held is no longer renewed.)
+int Server::logout(mg_connection* c) {
+  if (!hosts_.origin_ok(mg_get_header(c, "Origin"), mg_get_header(c, "Host"))) {
+    return respond(c, 403, "text/plain; charset=utf-8",
+                   "403: log out from this console's own page (Origin, Host)\n");
+  }
+  if (auth_.logout(mg_get_header(c, "Cookie"))) {
+    std::fprintf(stderr, "stepmod-web: logout from %s: the session closed\n",
+                 mg_get_request_info(c)->remote_addr);
+  }
+  return respond(c, 303, "text/plain", "logged out\n",
+                 std::string("Set-Cookie: ") + Auth::kCookie +
+                     "=; Max-Age=0; HttpOnly; SameSite=Strict; Path=/\r\nLocation: /login\r\n");
+}
+
 int Server::serve_file(mg_connection* c, const std::string& uri) {
   static const std::set<std::string> kFiles = {"/index.html", "/console.js",   "/plot.js",
-                                               "/style.css",  "/picture.html", "/picture.js"};
+                                               "/style.css",  "/reasons.js",   "/path.js",
+                                               "/inputs.js",  "/picture.html", "/picture.js"};
   const std::string path = uri == "/" ? "/index.html" : uri;
   if (kFiles.count(path) == 0) return respond(c, 404, "text/plain", "not found\n");
   return respond(c, 200, mime_of(path), read_file(opt_.www_dir + path));
@@ -208,6 +225,7 @@ int Server::on_http(mg_connection* c) {
   const std::string uri = ri->local_uri != nullptr ? ri->local_uri : "/";
   if (uri == "/login" && std::string(ri->request_method) == "POST") return login(c);
   guard_.request_read(c);
+  if (uri == "/logout" && std::string(ri->request_method) == "POST") return logout(c);
   if (!hosts_.host_ok(mg_get_header(c, "Host"))) {
     return respond(c, 421, "text/plain; charset=utf-8",
                    "421: this console is not served under that name (Host header; see "
@@ -224,6 +242,7 @@ int Server::on_http(mg_connection* c) {
     return respond(c, 401, "text/plain", "401: log in first (/login)\n");
   }
   if (uri == "/api/hello") return respond(c, 200, "application/json", hello_);
+  if (uri == "/reasons") return respond(c, 200, "text/html; charset=utf-8", opt_.reasons_page);
   return serve_file(c, uri);
 }
 

@@ -28,6 +28,7 @@ struct ServerOptions {
   std::string www_dir;
   std::string module_name;
   std::vector<std::string> allow_hosts;  // --allow-host: more names the console is served under
+  std::string reasons_page;              // /reasons: the module's error items (reason_help.hpp)
 };
 
 // civetweb's worker threads: WebSockets keep one each (at most WsLimits::max_sessions), waiting
@@ -61,6 +62,7 @@ class Server {
   int login(mg_connection* conn);
   int check_login(mg_connection* conn, const std::string& client);
   int serve_file(mg_connection* conn, const std::string& uri);
+  int logout(mg_connection* conn);
 
   ServerOptions opt_;
   Auth& auth_;

@@ -14,6 +14,7 @@
 #include "web/commander.hpp"
 #include "web/image_json.hpp"
 #include "web/options.hpp"
+#include "web/reason_help.hpp"
 #include "web/sampler.hpp"
 #include "web/server.hpp"
 
@@ -91,9 +92,9 @@ void settle(Args& a, const CLI::App& app) {
 void serve(const Args& a, stepmod::web::Auth& auth) {
   using namespace stepmod::web;
   stepmod::ipc::Client probe(a.name);
-  const std::string hello =
-      nlohmann::json{{"type", "hello"}, {"name", a.name}, {"module", module_json(probe.type())}}
-          .dump();
+  const std::string hello = hello_json(a.name, probe.type()).dump();
+  ServerOptions opt = a.opt;
+  opt.reasons_page = reasons_page(probe.type());
   std::unique_ptr<Server> server;
   std::mutex server_m;
   Sampler sampler(a.name, [&](const std::string& json) {
@@ -103,7 +104,7 @@ void serve(const Args& a, stepmod::web::Auth& auth) {
   Commander commander(a.name, sampler, {std::chrono::milliseconds(a.quiet_ms)});
   {
     std::lock_guard lock(server_m);
-    server = std::make_unique<Server>(a.opt, auth, commander, hello);
+    server = std::make_unique<Server>(opt, auth, commander, hello);
   }
   std::fprintf(stderr, "stepmod-web: module %s, http://%s:%u/ (token: %s)\n", a.name.c_str(),
                a.opt.listen.c_str(), a.opt.port, a.token_file.c_str());

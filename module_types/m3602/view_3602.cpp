@@ -1,8 +1,12 @@
 // The 3602 on the console: two axes, MSW/LSW status and configuration words, no encoder input.
+#include <stdexcept>
+
 #include "module_types/m3602/plc_3602.hpp"
+#include "module_types/m3602/plc_interp_3602.hpp"
 #include "module_types/m3602/plc_status_3602.hpp"
 #include "web/bit_json.hpp"
 #include "web/module_views.hpp"
+#include "web/path_request.hpp"
 #include "web/two_unit_controls.hpp"
 #include "module_types/m3602/words_3602.hpp"
 
@@ -11,13 +15,27 @@ namespace {
 
 class Controls3602 final : public TwoUnitControls<plc::Plc3602> {
  public:
-  using TwoUnitControls::TwoUnitControls;
+  explicit Controls3602(plc::Port& port) : TwoUnitControls(port), interp_(port) {}
 
  protected:
+  // The interpolated moves (on axis 1: both axes) and the general-purpose output.
+  std::optional<plc::Outcome> module_command(const std::string& cmd, unsigned u,
+                                             const nlohmann::json& req) override {
+    if (cmd == "path") {
+      if (u != 0) throw std::invalid_argument("a path is commanded on axis 1 (unit 0)");
+      return interp_.move(path_request(req));
+    }
+    if (cmd == "gpo") return plc_.set_gpo(u, request_bool(req, "on"));
+    return std::nullopt;
+  }
+
   plc::Outcome configure(unsigned u, std::uint32_t bits, std::int32_t vs) override {
     return plc_.configure(u, static_cast<std::uint16_t>(bits >> 16),
                           static_cast<std::uint16_t>(bits & 0xFFFFu), vs);
   }
+
+ private:
+  plc::Interp3602 interp_;
 };
 
 }  // namespace

@@ -296,6 +296,22 @@ class Web3601(unittest.TestCase):
             "return [...document.querySelectorAll('#unit-0 .words li.on')]"
             ".map(e => e.dataset.name)")
         self.assertIn("Module OK", on)
+        # Display units (issue 32): the console's own setting, the position's row converted.
+        self.c.fill("#spu", 200)
+        self.c.fill("#uname", "mm")
+        wait_for(lambda: self.c.text("#unit-0 .upos") ==
+                 "%g mm" % (int(self.c.text("#unit-0 .pos")) / 200), 5,
+                 "the position in mm (%r)" % self.c.text("#unit-0 .upos"))
+        # The plot's grid: position ticks at round values (1, 2, 5 x 10^k).
+        ticks = self.c.d.execute_script("return state.units[0].plot.lastTicks")
+        self.assertGreaterEqual(len(ticks), 2)
+        # Speed: 4,000 steps/s sampled every 1 ms in whole 1 ms scans reads 4,000; a preset's
+        # jump (50,000 steps in 1 ms, faster than the module's 1,000,000 steps/s) is no speed.
+        speeds = self.c.d.execute_script(
+            "const p = new LivePlot(document.createElement('canvas'), 5, 1000000), t = [], x = [];"
+            "for (let i = 0; i < 200; i++) { t.push(i * 1000); x.push(4 * i + (i >= 100 ? 50000 : 0)); }"
+            "p.push(t, x); return [p.speed[99], p.speed[100], p.speed[101], p.speed[199]];")
+        self.assertEqual(speeds, [4000, 0, 4000, 4000])
 
     def test_commissioning_refused_while_plc_heartbeat_live(self):
         plc = HeartbeatPlc(self.m.name)
@@ -346,9 +362,73 @@ class Web3601(unittest.TestCase):
         self.c.fill("#unit-0 .f-accel", 5000)  # the manual's range is 1..2000
         self.c.click("#unit-0 .b-rel")
         msg = self.c.wait_message(r"move: .*Invalid Profile").string
+        # Issue 32: the rates in the form's unit, the cut sentence marked, what to do, the item.
+        self.assertRegex(msg, r"3601-CE-04: accel 5000 or decel 100 steps/ms/s out.*… — Reset Errors")
+        cell = self.c.el("#unit-0 .reason")
+        self.assertIn("active", cell.get_attribute("class"))
+        self.assertIn("What to do: ", cell.text)
+        self.assertRegex(self.c.el("#unit-0 .reason a").get_attribute("href"),
+                         r"/reasons#3601-CE-04$")
+        self.c.d.save_screenshot(screenshot_path("web-3601-reason.png"))
+        self.c.click("#unit-0 .b-reset")  # the error cleared: the reason is no longer red
+        wait_for(lambda: "active" not in cell.get_attribute("class"), 5, "the reason cleared")
+        self.assertTrue(cell.text.startswith("(cleared) 3601-CE-04"), cell.text)
         self.c.click("#release")
-        if lease_enforced():  # the error reasons of the image come with the same branch
-            self.assertRegex(msg, r"3601-")
+
+    def test_limit_stop_replaces_the_jog_message(self):
+        self.jog_until_moving()
+        self.c.wait_message(r"^jog_press: done")
+        # The CW limit forced from the page's simulated-machine panel (a keyboard-free click: the
+        # held pointer stays on the jog button in the browser's model, the force goes by script).
+        self.c.d.execute_script("command(0, 'force_input', {input: 'cw_limit', level: 1})")
+        try:
+            self.c.wait_message(r"^Axis 1: 3601-IE-02: .* — ")
+            wait_for(lambda: self.c.text("#unit-0 .sim-in[data-input=cw_limit] span") ==
+                     "cw_limit: forced 1", 5, "the page showing the forced limit")
+        finally:
+            release_button(self.c)
+            self.c.click("#unit-0 .sim-in[data-input=cw_limit] .f-free")
+        wait_for(lambda: self.c.text("#unit-0 .sim-in[data-input=cw_limit] span") ==
+                 "cw_limit: free", 5, "the limit released from the page")
+        self.c.click("#unit-0 .b-reset")
+        self.c.click("#release")
+
+    def test_long_texts_move_no_button(self):
+        rect = "return JSON.stringify(document.querySelector('#unit-0 .b-jog-cw')" \
+               ".getBoundingClientRect())"
+        before = self.c.d.execute_script(rect)
+        self.c.d.execute_script(
+            "say('x '.repeat(400), true); const r = {seq: 99, item: 10401, text: 'y '.repeat(40)};"
+            "showReason(document.querySelector('#unit-0 .reason'), state.reasons, r, true);"
+            "document.getElementById('conn').textContent = 'z'.repeat(300);")
+        self.assertEqual(self.c.d.execute_script(rect), before)
+
+    def test_take_and_release_follow_the_lease_then_logout(self):
+        enabled = lambda css: self.c.d.execute_script(  # noqa: E731
+            "return !document.querySelector('%s').disabled" % css)
+        wait_for(lambda: enabled("#take") and not enabled("#release"), 5, "Take offered")
+        self.take_configured()
+        wait_for(lambda: not enabled("#take") and enabled("#release"), 5, "Release offered")
+        self.c.click("#release")
+        wait_for(lambda: enabled("#take") and not enabled("#release"), 5, "Take offered again")
+        self.c.click("#logout")
+        wait_for(lambda: self.c.d.current_url.endswith("/login"), 5, "the login page")
+        self.c.d.get(self.m.url("/"))
+        self.assertTrue(self.c.el("#token").is_displayed())  # the session is gone
+
+    def test_console_restart_is_shown(self):
+        t0 = time.time() * 1000
+        self.m.web.send_signal(signal.SIGKILL)
+        self.m.web.wait()
+        view = lambda: self.c.d.execute_script("return window.consoleStats.view")  # noqa: E731
+        wait_for(lambda: view()["state"] != "live", 5, "the page no longer live")
+        print("not live %d ms after the kill (%s)" % (view()["since"] - t0, self.c.text("#conn")))
+        self.assertLess(view()["since"] - t0, 1000)
+        self.assertEqual(self.c.text("#lease"), "unknown: no live data")
+        self.c.d.save_screenshot(screenshot_path("web-3601-stale.png"))
+        self.m.start_web()
+        wait_for(lambda: view()["state"] == "console restarted", 5, "console restarted")
+        self.assertIn("log in again", self.c.text("#conn"))
 
     def jog_until_moving(self):
         self.take_configured()
@@ -542,14 +622,75 @@ class Web3202(unittest.TestCase):
 
 
 class Web3602(unittest.TestCase):
+    def test_paths_from_the_page_live_in_xy(self):
+        """Issue 32: a line and a full circle commanded from the page (under the lease), drawn live
+        in XY beside the planned path, ending on the image's end point; the GPO of axis 1."""
+        m = Machine("3602-sim.toml", 18614)
+        c = None
+        try:
+            for axis in ("1", "2"):
+                self.assertEqual(m.ctl("--axis", axis, "configure", "--start-speed", "500")
+                                 .returncode, 0)
+            c = Console(m)
+            time.sleep(1.1)  # stepmodctl was a PLC: its heartbeat goes quiet
+            c.take()
+            # 1,000 steps/s as the 3202's tests: the pulse thread sleeps between edges, and the
+            # headless page, not starved, keeps the deadman's keep-alives coming.
+            c.fill("#path .p-speed", 1000)
+
+            def run(method, ex, ey, px=0, py=0, sense="cw"):
+                # As the 3202's tests: a headless page starved past the deadman's limit on this
+                # loaded machine lost the lease (the safe outcome): take it again.
+                if not c.text("#lease").startswith("held by this console"):
+                    c.take()
+                c.d.execute_script(
+                    "const r = document.getElementById('path'), v = arguments;"
+                    "r.querySelector('.p-method').value = v[0];"
+                    "r.querySelector('.p-sense').value = v[1];"
+                    "['.p-ex', '.p-ey', '.p-px', '.p-py'].forEach("
+                    "  (f, i) => { r.querySelector(f).value = v[2 + i]; });"
+                    "showPathFields(r);", method, sense, ex, ey, px, py)
+                c.click("#path .b-path")
+                c.wait_message(r"^path: done")
+                m.ctl("path", "wait")
+                end = (m.image_position(1), m.image_position(2))
+                xy = lambda: c.d.execute_script(  # noqa: E731
+                    "return [state.xy.x.at(-1), state.xy.y.at(-1), state.xy.plan.at(-1)]")
+                wait_for(lambda: xy()[:2] == list(end), 5, "the XY trace at %r (%r)" % (end, xy()))
+                plan_end = xy()[2]
+                self.assertAlmostEqual(plan_end[0], end[0], delta=1)
+                self.assertAlmostEqual(plan_end[1], end[1], delta=1)
+                return end
+
+            self.assertEqual(run("line", 1000, 500), (1000, 500))
+            self.assertEqual(run("centre", 0, 0, 500, 0, "ccw"), (1000, 500))  # full circle
+            xs = c.d.execute_script("return [Math.min(...state.xy.x), Math.max(...state.xy.x)]")
+            self.assertLessEqual(xs[0], 0)
+            self.assertGreaterEqual(xs[1], 1999)  # the circle's far side, 2 x 500 from its start
+            c.d.execute_script("document.getElementById('path').scrollIntoView()")
+            c.d.save_screenshot(screenshot_path("web-3602-xy.png"))
+            c.click("#path .p-gpo0")
+            c.wait_message(r"^gpo: done")
+            c.click("#release")
+        finally:
+            if c:
+                c.close()
+            m.close()
+
     def test_circle_screenshot(self):
         m = Machine("3602-sim.toml", 18612, trace=True)
         c = None
         try:
-            for axis in ("1", "2"):
-                self.assertEqual(m.ctl("--axis", axis, "configure", "--start-speed", "1000")
-                                 .returncode, 0)
+            # Axis 1 in step + direction mode, axis 2 in CW/CCW mode: the picture reads each.
+            for axis, mode in (("1", []), ("2", ["--cw-ccw"])):
+                self.assertEqual(m.ctl("--axis", axis, "configure", "--start-speed", "1000",
+                                       *mode).returncode, 0)
             c = Console(m)
+            # The two-bit CW input function: a select of every value, E-stop among them.
+            options = c.d.execute_script(
+                "return [...document.querySelectorAll('#unit-0 select.cm')[0].options]"
+                ".map(o => o.textContent)")
+            self.assertEqual(options, ["0: unused", "1: limit", "2: E-stop", "3: reserved"])
             r = m.ctl("path", "centre", "ccw", "0", "0", "2000", "0", "--speed", "6000",
                       "--accel", "20", "--decel", "20")
             self.assertEqual(r.returncode, 0, r.stderr)
@@ -570,8 +711,9 @@ class Web3602(unittest.TestCase):
             c.el("#vcd").send_keys(m.trace)
             wait_for(lambda: c.text("#pic-xy h2") != "", 30, "the XY picture")
             # The circle crosses 4 x 2000 integers on each axis, the line 2000 on axis 1.
-            self.assertRegex(c.text("#pic-axis1 h2"), r"^axis1: 10000 steps, end position 2000 ")
-            self.assertRegex(c.text("#pic-axis2 h2"), r"^axis2: 8000 steps, end position 0 ")
+            self.assertRegex(c.text("#pic-axis1 h2"),
+                             r"^axis1: 10000 steps, end position 2000 .*, step\+dir, ")
+            self.assertRegex(c.text("#pic-axis2 h2"), r"^axis2: 8000 steps, end position 0 .*, CW/CCW, ")
             c.d.execute_script("document.getElementById('pic-xy').scrollIntoView()")
             c.d.save_screenshot(screenshot_path("web-3602-path.png"))
         finally:

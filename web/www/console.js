@@ -2,23 +2,30 @@
 // the page's requests. Controls act only under the commissioning lease; while this page holds it
 // and has the focus it sends keep-alives 20 times a second, and stepmod-web renews the lease
 // only while they arrive (the deadman). A jog button acts only while it is held down.
-// The page says how old its data is: "stale" when no update came for STALE_MS, "daemon gone"
-// when the daemon's image stopped advancing; Take control is offered only on a live view, and
-// a page that saw no update for BLIND_MS stops its keep-alives (its operator no longer sees the
-// axes: the lease expires and the daemon stops them).
+// The page says how old its data is: "stale" when no update came for STALE_MS, "daemon
+// stopped" (or frozen) when the daemon's image stopped advancing, "no connection" when the
+// WebSocket closed and "console restarted" when the stepmod-web it reconnects to is another
+// process (or no longer knows the session). Take control is offered only on a live view with
+// the lease free, and a page that saw no update for BLIND_MS stops its keep-alives (its operator
+// no longer sees the axes: the lease expires and the daemon stops them). The lease shown is the
+// image's holder, compared with the console's process id (the hello), never the page's memory.
 "use strict";
 
 const STALE_MS = 500;
 const BLIND_MS = 1000;
 const state = { ws: null, module: null, units: [], holding: false, myLease: false,
                 leaseSeen: false, takenAt: 0, lastBatchAt: 0, daemon: null, blindSaid: false,
+                console: null, restarted: false, holder: 0, reasons: null, reasonSeq: [],
                 batches: 0, samples: 0, rateT0: performance.now(), jog: null };
 const $ = (id) => document.getElementById(id);
 window.consoleStats = { batches: 0, samples: 0, rate: 0, sampleRate: 0,
                         view: { state: "connecting", since: Date.now() } };
 
+// The message area has a fixed height (style.css): a long message never moves the buttons
+// (a held jog button that moved from under the pointer would end the jog); its whole text is
+// the area's tooltip.
 function say(text, bad) {
-  const m = $("msg"); m.textContent = text; m.style.color = bad ? "#ff8a80" : "#b9f6ca";
+  const m = $("msg"); m.textContent = text; m.title = text; m.style.color = bad ? "#ff8a80" : "#b9f6ca";
 }
 
 function send(obj) {
@@ -37,6 +44,7 @@ function profile(root) {
 // Every command is sent whatever the lease or the view (an immediate stop above all: it is the
 // daemon that decides); one that cannot be sent says so.
 function command(unit, cmd, extra) {
+  state.lastUnit = unit;
   if (!send(Object.assign({ op: "cmd", unit: unit, cmd: cmd }, extra || {}))) {
     say(`${cmd}: NOT SENT: no connection to stepmod-web`, true);
   }
@@ -46,16 +54,37 @@ function configBits(box, bits, prefix) {
   for (const b of bits) {
     if (b.name === "Configuration Mode") continue; // added by the plc/ library
     const l = document.createElement("label");
-    const c = document.createElement("input");
-    c.type = "checkbox"; c.dataset.bit = b.bit; c.className = prefix;
+    const c = b.width > 1 ? fieldSelect(b) : document.createElement("input");
+    if (!(b.width > 1)) c.type = "checkbox";
+    c.dataset.bit = b.bit; c.className = prefix;
     l.appendChild(c); l.appendChild(document.createTextNode(" " + b.name));
     box.appendChild(l);
   }
 }
 
+// A field of several bits: every value, named as the manual's name says ("(1 = limit,
+// 2 = E-stop)"); 0 is "unused", a value the name does not give is reserved (a Configuration
+// Error: the module's configuration check says which item).
+function fieldSelect(b) {
+  const names = { 0: "unused" };
+  const m = /\(([^)]*)\)/.exec(b.name);
+  if (m) for (const part of m[1].split(",")) {
+    const kv = /^\s*(\d+)\s*=\s*(.+?)\s*$/.exec(part);
+    if (kv) names[kv[1]] = kv[2];
+  }
+  const sel = document.createElement("select");
+  for (let v = 0; v < (1 << b.width); v++) {
+    const o = document.createElement("option");
+    o.value = v; o.textContent = `${v}: ${names[v] || "reserved"}`;
+    sel.appendChild(o);
+  }
+  return sel;
+}
+
 function wordOf(root, cls) {
   let w = 0;
   for (const c of root.querySelectorAll("input." + cls)) if (c.checked) w |= 1 << c.dataset.bit;
+  for (const c of root.querySelectorAll("select." + cls)) w |= parseInt(c.value, 10) << c.dataset.bit;
   return w;
 }
 
@@ -118,6 +147,12 @@ function wireControls(root, u, ranges) {
 }
 
 function buildUnits(hello) {
+  const c = hello.console;
+  if (state.console && c && (c.pid !== state.console.pid || c.started_ms !== state.console.started_ms)) {
+    state.restarted = true;
+    say(`console restarted (process ${state.console.pid} → ${c.pid}): this page's lease ended`, true);
+  }
+  state.console = c || null; state.reasons = hello.reasons || null; state.reasonSeq = [];
   state.module = hello.module;
   $("title").textContent = `stepmod console: ${hello.name} (AMCI ${hello.module.type})`;
   const main = $("units"); main.textContent = "";
@@ -136,7 +171,30 @@ function buildUnits(hello) {
     }
     wireControls(root, u, hello.module.ranges);
     main.appendChild(root);
-    state.units.push({ root: root, plot: new LivePlot(root.querySelector("canvas"), 5) });
+    state.units.push({ root: root, plot: new LivePlot(root.querySelector("canvas"), 5, hello.module.ranges.speed_max) });
+  }
+  state.xy = hello.module.type === 3602 ? buildPath(main) : null;
+}
+
+// Display units, the console's own setting (kept in this browser): steps per mm, degree, ... The
+// module's words stay in steps; only this row converts.
+function displayUnits() {
+  const spu = parseFloat($("spu").value);
+  return { spu: spu > 0 ? spu : 1, name: $("uname").value || "step" };
+}
+
+function showInUnits(root, steps) {
+  const u = displayUnits();
+  const text = `${+(steps / u.spu).toFixed(4)} ${u.name}`;
+  const cell = root.querySelector(".upos");
+  if (cell.textContent !== text) cell.textContent = text;
+}
+
+function loadDisplayUnits() {
+  for (const id of ["spu", "uname"]) {
+    const saved = localStorage.getItem("stepmod." + id);
+    if (saved !== null) $(id).value = saved;
+    $(id).addEventListener("change", () => localStorage.setItem("stepmod." + id, $(id).value));
   }
 }
 
@@ -186,30 +244,61 @@ function showBatch(b) {
     state.batches = 0; state.samples = 0; state.rateT0 = now;
   }
   window.consoleStats.batches++;
+  if (b.pos.length >= 2 && b.pos[0].length) {
+    state.lastPos = [b.pos[0][b.pos[0].length - 1], b.pos[1][b.pos[1].length - 1]];
+    if (state.xy) state.xy.push(b.pos[0], b.pos[1]);
+  }
   b.status.forEach((s, u) => {
     const unit = state.units[u]; if (!unit) return;
     unit.plot.push(b.t_us, b.pos[u]);
     const r = unit.root;
     r.querySelector(".pos").textContent = s.position;
+    showInUnits(r, s.position);
     r.querySelector(".enc").textContent = state.module.has_encoder ? s.encoder : "— (no encoder input)";
     r.querySelector(".cap").textContent = s.capture;
     r.querySelector(".speed").textContent = Math.round(unit.plot.lastSpeed());
-    r.querySelector(".reason").textContent = s.reason && s.reason.seq ? s.reason.text : "none";
+    showReason(r.querySelector(".reason"), state.reasons, s.reason, reasonActive(s.words, s.reason));
+    newReason(u, s.reason);
     showWords(r.querySelector(".words"), s.words);
+    showSim(r.querySelector(".sim"), u, b.sim);
   });
   $("health").textContent = `${b.health.names} (16#${b.health.flags.toString(16)})`;
   $("plc").textContent = b.plc.stale ? "heartbeat stale" :
     (b.plc.quiet_ms < 1000 ? `heartbeat live (${b.plc.heartbeat})` : `no heartbeat for ${(b.plc.quiet_ms / 1000).toFixed(1)} s`);
-  const holder = b.lease.holder;
-  state.myLease = state.holding && holder !== 0;
+  showLease(b.lease.holder);
+}
+
+// A reason recorded while the page looks (a limit stop under a held jog, say) replaces the
+// message of the last command ("jog_press: done" is no longer true).
+function newReason(u, r) {
+  const seq = r && r.seq ? r.seq : 0;
+  const before = state.reasonSeq[u];
+  state.reasonSeq[u] = seq;
+  if (before === undefined || seq === before || !seq) return;
+  const noun = state.module.unit_noun;
+  say(`${noun.charAt(0).toUpperCase() + noun.slice(1)} ${u + 1}: ${reasonLine(state.reasons, r)}`, true);
+}
+
+// The lease as the image shows it: free, this console's (this page or another of its pages), or
+// another process'.
+function showLease(holder) {
+  state.holder = holder;
+  const mine = state.console && holder === state.console.pid;
   // The batches and the replies come from separate threads of stepmod-web: a batch sampled just
-  // before the take can arrive after its reply. "Free" ends this page's hold only once a batch
-  // has shown the lease held, or a second after the take; else the page would stop its
+  // before the take can arrive after its reply. A lease not ours ends this page's hold only once
+  // a batch has shown it ours, or a second after the take; else the page would stop its
   // keep-alives and the lease would expire under the operator.
-  if (state.holding && holder !== 0) state.leaseSeen = true;
-  const stale = !state.leaseSeen && performance.now() - state.takenAt < 1000;
-  if (state.holding && holder === 0 && !stale) { state.holding = false; say("the lease ended (expired or freed): the axes were stopped", true); }
-  $("lease").textContent = holder === 0 ? "free" : (state.holding ? `held by this console (process ${holder})` : `held by process ${holder}`);
+  if (state.holding && mine) state.leaseSeen = true;
+  const early = !state.leaseSeen && performance.now() - state.takenAt < 1000;
+  if (state.holding && !mine && !early) {
+    state.holding = false;
+    say("the lease ended (expired or freed): the axes were stopped", true);
+  }
+  state.myLease = state.holding && mine;
+  $("lease").textContent = holder === 0 ? "free" :
+    (mine ? (state.holding ? `held by this console (process ${holder})` :
+                             `held by this console, another page (process ${holder})`) :
+            `held by process ${holder}`);
 }
 
 function onMessage(ev) {
@@ -219,23 +308,47 @@ function onMessage(ev) {
   else if (m.type === "reply") {
     if (m.op === "take" && m.ok) { state.holding = true; state.leaseSeen = false; state.takenAt = performance.now(); }
     if (m.op === "release" && m.ok) state.holding = false;
-    const why = m.reason && m.reason.seq && !m.ok ? ` — ${m.reason.text}` : "";
+    // A reason the reply carries is this command's (a configuration's Position Invalid, a
+    // refusal's reason): the batches do not announce it again over the reply.
+    if (m.reason && m.reason.seq && state.lastUnit !== undefined) state.reasonSeq[state.lastUnit] = m.reason.seq;
+    // The plc/ library's message may quote the reason already: then only what to do is added.
+    const row = m.reason && m.reason.seq ? reasonRow(state.reasons, m.reason.item) : null;
+    const why = !m.ok && m.reason && m.reason.seq
+      ? (m.message.includes(m.reason.text.trim())
+        ? (m.reason.cut ? "…" : "") + (row ? ` — ${row.fix}` : "")
+        : ` — ${reasonLine(state.reasons, m.reason)}`)
+      : "";
     say(`${m.op}: ${m.message}${why}`, !m.ok);
   }
 }
 
 function connect() {
   const ws = new WebSocket((location.protocol === "https:" ? "wss://" : "ws://") + location.host + "/ws");
-  state.ws = ws; state.lastBatchAt = 0;
-  ws.onclose = () => { state.holding = false; showView(); setTimeout(connect, 1000); };
+  state.ws = ws;
+  ws.onclose = () => { state.holding = false; showView(); checkConsole(); setTimeout(connect, 1000); };
   ws.onmessage = onMessage;
 }
 
+// After the WebSocket closed: is stepmod-web there, and the same process? A restarted one no
+// longer knows this page's session (401) or names another process.
+function checkConsole() {
+  fetch("/api/hello", { cache: "no-store" }).then((r) => {
+    if (r.status === 401) { state.restarted = "login"; showView(); return null; }
+    return r.ok ? r.json() : null;
+  }).then((h) => {
+    if (h && h.console && state.console && h.console.started_ms !== state.console.started_ms) {
+      state.restarted = true; showView();
+    }
+  }).catch(() => {});
+}
+
 function viewState(age) {
-  if (!state.ws || state.ws.readyState !== WebSocket.OPEN) return "closed";
+  const open = state.ws && state.ws.readyState === WebSocket.OPEN;
+  if (state.restarted === "login" || (state.restarted && !open)) return "console restarted";
+  if (!open) return "closed";
   if (!state.lastBatchAt) return "connecting";
   if (age > STALE_MS) return "stale";
-  if (state.daemon && state.daemon.gone) return "daemon gone";
+  if (state.daemon && state.daemon.gone) return state.daemon.stopped ? "daemon stopped" : "daemon frozen";
   return "live";
 }
 
@@ -245,13 +358,21 @@ function showView() {
   const s = viewState(age);
   if (s !== window.consoleStats.view.state) window.consoleStats.view = { state: s, since: Date.now() };
   const secs = (ms) => `${(ms / 1000).toFixed(1)} s`;
+  const quiet = secs((state.daemon ? state.daemon.quiet_ms : 0) + age);
   $("conn").textContent = {
-    live: "live", connecting: "connecting", closed: "closed: reconnecting",
-    stale: `stale: no update for ${secs(age)}`,
-    "daemon gone": `daemon gone: its image stopped ${secs((state.daemon ? state.daemon.quiet_ms : 0) + age)} ago`,
+    live: "live", connecting: "connecting",
+    closed: `no connection to stepmod-web: reconnecting (no data for ${secs(age)})`,
+    "console restarted": state.restarted === "login"
+      ? "console restarted: log in again (reload the page)"
+      : "console restarted: this page's lease and jog ended",
+    stale: `stale: no data for ${secs(age)}`,
+    "daemon stopped": `daemon stopped: no scan for ${quiet}`,
+    "daemon frozen": `daemon frozen: its image stopped ${quiet} ago`,
   }[s];
   $("age").textContent = state.lastBatchAt ? `${Math.round(age)} ms` : "-";
-  $("take").disabled = s !== "live";
+  if (s !== "live") $("lease").textContent = "unknown: no live data";
+  $("take").disabled = s !== "live" || state.holding || state.holder !== 0;
+  $("release").disabled = !state.holding;
   document.body.classList.toggle("notlive", s !== "live");
 }
 
@@ -276,6 +397,7 @@ document.addEventListener("visibilitychange", () => { if (document.visibilitySta
 window.addEventListener("load", () => {
   $("take").addEventListener("click", () => send({ op: "take" }));
   $("release").addEventListener("click", () => { endJog(); send({ op: "release" }); });
+  loadDisplayUnits();
   setInterval(keepAlive, 50);
   setInterval(showView, 100);
   connect();

@@ -2,15 +2,19 @@
 // axis' position, speed and motion phase over time, beside the manual's ideal trapezoid for the
 // given Vs/Vp/accel/decel (Vp 0: not drawn); two axes also as an XY path (3602 interpolation).
 // The parsing follows scripts/plot-axis and scripts/plot-path: position = rising edges of
-// AXIS.step, +1 when AXIS.dir is high (CW), -1 when low; the $dumpvars levels are no steps.
+// AXIS.step, +1 when AXIS.dir is high (CW), -1 when low, in step + direction mode; in CW/CCW
+// mode +1 per rising edge of AXIS.step, -1 per rising edge of AXIS.dir (chosen per axis).
 "use strict";
 
+// The step outputs' rising edges per axis: each step edge with the dir level at that time, and
+// the dir line's own rising edges (in CW/CCW mode the "step" line carries the CW pulses and the
+// "dir" line the CCW pulses). The $dumpvars levels are no edges.
 function parseVcd(text) {
-  const names = {}, axes = {}, level = {}, dir = {};
+  const names = {}, raw = {}, level = {}, dir = {};
   let scale = 1e-9, t = 0, initial = false;
   const unitScale = { s: 1, ms: 1e-3, us: 1e-6, ns: 1e-9, ps: 1e-12 };
-  for (const raw of text.split("\n")) {
-    const line = raw.trim();
+  for (const rawLine of text.split("\n")) {
+    const line = rawLine.trim();
     if (!line) continue;
     const f = line.split(/\s+/);
     if (f[0] === "$timescale") {
@@ -25,18 +29,43 @@ function parseVcd(text) {
       const v = line[0] === "1", n = names[line.slice(1)];
       if (!n) continue;
       const [axis, wire] = n.split(".");
-      if (wire === "dir") dir[axis] = v;
-      else if (wire === "step") {
-        if (v && !level[n] && !initial) {
-          const a = axes[axis] || (axes[axis] = { t: [], pos: [], p: 0 });
-          a.p += dir[axis] ? 1 : -1;
-          a.t.push(t); a.pos.push(a.p);
-        }
-        level[n] = v;
+      if (wire !== "dir" && wire !== "step") continue;
+      const r = raw[axis] || (raw[axis] = { stepT: [], stepDir: [], dirT: [] });
+      if (v && !level[n] && !initial) {
+        if (wire === "step") { r.stepT.push(t); r.stepDir.push(!!dir[axis]); } else r.dirT.push(t);
       }
+      if (wire === "dir") dir[axis] = v;
+      level[n] = v;
     }
   }
+  const mode = document.getElementById("i-mode").value, axes = {};
+  for (const [name, r] of Object.entries(raw)) {
+    const a = positions(r, outputMode(r, mode));
+    if (a.t.length) axes[name] = a;
+  }
   return axes;
+}
+
+// Step + direction or CW/CCW pulses. "auto": CW/CCW when the dir line pulses (at least 32 rising
+// edges and 1 % of the step edges; a step/dir path reverses a few times). A move that only ran
+// CW in CW/CCW mode looks like a CCW move in step/dir mode: choose the mode then.
+function outputMode(r, mode) {
+  if (mode !== "auto") return mode;
+  return r.dirT.length >= 32 && r.dirT.length * 100 >= r.stepT.length ? "cwccw" : "stepdir";
+}
+
+function positions(r, mode) {
+  const a = { t: [], pos: [], p: 0, mode: mode };
+  if (mode === "stepdir") {
+    for (let i = 0; i < r.stepT.length; i++) { a.p += r.stepDir[i] ? 1 : -1; a.t.push(r.stepT[i]); a.pos.push(a.p); }
+    return a;
+  }
+  let i = 0, j = 0; // CW pulses on step (+1), CCW pulses on dir (-1), in time order
+  while (i < r.stepT.length || j < r.dirT.length) {
+    const cw = j >= r.dirT.length || (i < r.stepT.length && r.stepT[i] <= r.dirT[j]);
+    a.p += cw ? 1 : -1; a.t.push(cw ? r.stepT[i++] : r.dirT[j++]); a.pos.push(a.p);
+  }
+  return a;
 }
 
 // Speed in time bins (about 800 over the trace, at least 2 ms each): steps in a bin over its
@@ -107,6 +136,7 @@ function drawAxis(main, name, a) {
   for (const p of ph) counts[p] = (counts[p] || 0) + 1;
   const h = document.createElement("h2");
   h.textContent = `${name}: ${a.pos.length} steps, end position ${a.p} (from the trace's start), ` +
+    `${a.mode === "cwccw" ? "CW/CCW" : "step+dir"}, ` +
     `${a.t[0].toFixed(4)} s .. ${a.t[a.t.length - 1].toFixed(4)} s`;
   h.dataset.end = a.p;
   box.appendChild(h);
