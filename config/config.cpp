@@ -6,6 +6,7 @@
 #include <arpa/inet.h>
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include "gpio/sim_machine.hpp"
 #include "config/config_keys.hpp"
 #include "config/config_reader.hpp"
+#include "config/rt_section.hpp"
 
 namespace stepmod::tools {
 namespace {
@@ -33,15 +35,14 @@ class Parser : ConfigReader {
   explicit Parser(std::string file) : ConfigReader(std::move(file)) {}
 
   Config run(std::string_view text) {
-    toml::table root;
-    try {
-      root = toml::parse(text, file());
-    } catch (const toml::parse_error& e) {
-      throw ConfigError(file() + ":" + std::to_string(e.source().begin.line) +
-                        ": TOML syntax error: " + std::string(e.description()));
-    }
+    const toml::table root = parse(text);
     Config c;
     c.file = file();
+    if (const toml::node* rack = root.get("rack")) {
+      fail(rack->source(), "rack",
+           "this is a rack file (docs/interface.md section 7), not a module file: stepmodd "
+           "--config takes it; a rack's module files are module files of their own");
+    }
     check_keys(root, "", "");
 
     const toml::table* module = sub_table(root, "", "module");
@@ -186,12 +187,8 @@ class Parser : ConfigReader {
   }
 
   void parse_rt(const toml::table* r, Config& c) const {
-    const std::string p = "rt";
-    if (r != nullptr) check_keys(*r, p, "rt");
-    c.rt_priority = static_cast<int>(get_int(r, p, config_key("rt", "priority")));
-    c.rt_cpu = static_cast<int>(get_int(r, p, config_key("rt", "cpu")));
-    // The longest pause at any speed (late edges slip, never burst: docs/slip.md).
-    c.late_limit_ns = get_ns(r, p, config_key("rt", "late_limit_us"));
+    read_rt_section(*this, r, c);
+    if (r != nullptr) c.rt_table_line = std::max(1u, r->source().begin.line);
   }
 
   void parse_axes(const toml::table& root, const toml::table* module, Config& c) const {
@@ -439,12 +436,16 @@ Config parse_config(std::string_view toml_text, const std::string& file_name) {
   return Parser(file_name).run(toml_text);
 }
 
-Config load_config(const std::string& path) {
+std::string read_config_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(path + ": cannot read: " + std::strerror(errno));
   std::ostringstream ss;
   ss << in.rdbuf();
-  return parse_config(ss.str(), path);
+  return ss.str();
+}
+
+Config load_config(const std::string& path) {
+  return parse_config(read_config_file(path), path);
 }
 
 }  // namespace stepmod::tools

@@ -60,6 +60,9 @@ struct Config {
   // Late-edge guard: a pause in an axis' step train longer than this faults the axis at any
   // speed (rt::PulseEngine::set_late_limit; docs/slip.md).
   Nanos late_limit_ns = default_ns(config_key("rt", "late_limit_us"));
+  // The line of the file's [rt] table, 0 when it has none (a rack's module file must not have
+  // one: config/rack_config.hpp).
+  unsigned rt_table_line = 0;
   std::vector<AxisSection> axes;
   ipc::ModbusOptions modbus;  // [modbus] (docs/interface.md 6), every field set by the parser
 };
@@ -71,6 +74,7 @@ class ConfigError : public std::runtime_error {
 };
 
 Config load_config(const std::string& path);  // throws ConfigError
+std::string read_config_file(const std::string& path);  // the text; throws ConfigError
 Config parse_config(std::string_view toml_text, const std::string& file_name);  // same checks
 
 }  // namespace stepmod::tools

@@ -245,6 +245,15 @@ inline constexpr ConfigKey kLineOptionKeys[] = {
 }  // namespace config_key_rows
 
 using config_key_rows::kConfigKeys;
+
+// A rack file's own keys (docs/interface.md section 7): [rack] modules; its [rt] table takes the
+// rows of kConfigKeys' [rt]. A rack file has no other table.
+// clang-format off
+inline constexpr ConfigKey kRackModulesKey = {
+    .table = "rack", .key = "modules", .type = KeyType::kList, .absent = Absent::kRequired,
+    .min = 1, .max = 16,
+    .doc = "the module files (section 2) of the rack, absolute or relative to the rack file"};
+// clang-format on
 using config_key_rows::kLineOptionKeys;
 
 // The row of `table`.`key` (the line options: table "line"), or null.

@@ -15,6 +15,15 @@ void ConfigReader::fail(const toml::source_region& where, const std::string& key
   throw ConfigError(loc + ": key '" + key + "': " + what);
 }
 
+toml::table ConfigReader::parse(std::string_view text) const {
+  try {
+    return toml::parse(text, file_);
+  } catch (const toml::parse_error& e) {
+    throw ConfigError(file_ + ":" + std::to_string(e.source().begin.line) +
+                      ": TOML syntax error: " + std::string(e.description()));
+  }
+}
+
 void ConfigReader::check_keys(const toml::table& t, const std::string& prefix,
                               std::string_view table) const {
   check_keys_in(t, prefix, config_keys_of(table));

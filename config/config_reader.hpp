@@ -23,6 +23,9 @@ class ConfigReader {
 
   const std::string& file() const { return file_; }
 
+  // The whole file as TOML; a syntax error is a ConfigError with its line.
+  toml::table parse(std::string_view text) const;
+
   [[noreturn]] void fail(const toml::source_region& where, const std::string& key,
                          const std::string& what) const;
 
