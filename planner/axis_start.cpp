@@ -73,7 +73,11 @@ void AxisPlanner::launch(Nanos origin) noexcept {
 
 void AxisPlanner::publish_motion(const Motion& m, double vs) noexcept {
   if (control_ == nullptr) return;
-  control_->motion_group.store(rt::pack_epoch(m.epoch, m.group), std::memory_order_release);
+  // A rack's modules number their groups each on their own: the domain keeps them apart.
+  const std::uint32_t key =
+      m.group == 0 ? 0
+                   : (1 + (m.group - 1) % 0x00FF'FFFFu) | std::uint32_t{opt_.group_domain} << 24;
+  control_->motion_group.store(rt::pack_epoch(m.epoch, key), std::memory_order_release);
   control_->motion_vs.store(rt::pack_epoch(m.epoch, rt::vs_interval_ns(vs)),
                             std::memory_order_release);
 }

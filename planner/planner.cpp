@@ -26,7 +26,7 @@ Planner::~Planner() = default;
 
 bool Planner::submit(const Command& c) noexcept {
   if (!queue_.try_push(c)) return false;
-  bump_and_wake(wake_);
+  bump_and_wake(*wake_);
   return true;
 }
 
@@ -100,7 +100,7 @@ void Planner::launch_group(Nanos now) {
 
 Nanos Planner::service(Nanos now) {
   // Before the queue is drained: a command submitted after this read is not counted as served.
-  const std::uint32_t seen = wake_.load(std::memory_order_acquire);
+  const std::uint32_t seen = wake_->load(std::memory_order_acquire);
   Command c;
   while (queue_.try_pop(c)) {
     if (c.axis < axes_.size()) apply(c, now);

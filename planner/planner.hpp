@@ -36,6 +36,13 @@ struct PlannerOptions {
   // A stop with a trigger time replaces queued edges from max(trigger, now + this) on: time for
   // the pulse thread to see the cut before it runs the first edge it drops (rt/edge_cut.hpp).
   Nanos cut_margin_ns = 100 * kNsPerUs;
+  // A rack (docs/ARCHITECTURE.md, "A rack"): each module has a planner of its own, and one
+  // planner thread serves them all. The planners then share one wake counter (the thread sleeps
+  // on it; null: the planner's own), and each puts its module's number in the top 8 bits of the
+  // group keys the pulse thread sees, so that two modules' groups never share a slip cell or a
+  // late-edge fault.
+  std::atomic<std::uint32_t>* wake_counter = nullptr;
+  std::uint8_t group_domain = 0;
 };
 
 class AxisPlanner;  // planner/axis_planner.hpp
@@ -54,13 +61,13 @@ class Planner final : public CommandSink {
   Nanos service(Nanos now);
 
   // For the planner thread's sleep: a counter bumped by submit(), so a sleeper can be woken.
-  std::atomic<std::uint32_t>& wake_counter() noexcept { return wake_; }
+  std::atomic<std::uint32_t>& wake_counter() noexcept { return *wake_; }
   // The wake counter as read at the start of the last service() that left nothing submitted
   // before it unplanned (no group start still collecting its members): equal to the wake
   // counter, every command submitted so far is in the edge rings. The step output's doorbell
   // rings again then (planner/output_doorbell.hpp).
   std::uint32_t served() const noexcept { return served_.load(std::memory_order_acquire); }
-  std::uint32_t wakes() const noexcept { return wake_.load(std::memory_order_acquire); }
+  std::uint32_t wakes() const noexcept { return wake_->load(std::memory_order_acquire); }
   const PlannerOptions& options() const noexcept { return options_; }
 
  private:
@@ -82,7 +89,8 @@ class Planner final : public CommandSink {
   std::vector<std::unique_ptr<AxisPlanner>> axes_;
   std::unique_ptr<BlendSlot[]> blend_slots_;
   SpscRing<Command> queue_;
-  std::atomic<std::uint32_t> wake_{0};
+  std::atomic<std::uint32_t> own_wake_{0};
+  std::atomic<std::uint32_t>* wake_ = options_.wake_counter ? options_.wake_counter : &own_wake_;
   std::atomic<std::uint32_t> served_{0};
   // The group start being collected: its id, size, the commands received, and the axes that
   // accepted theirs (an aborted or stale start is not a member any more).

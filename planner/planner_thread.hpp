@@ -1,8 +1,10 @@
 #pragma once
 // The planner thread: Planner::service(now), then sleep until the time it asked for or until a
-// command is submitted (the planner's wake counter changes).
+// command is submitted (the planner's wake counter changes). In a rack it serves every module's
+// planner, which then share one wake counter (PlannerOptions::wake_counter).
 #include <atomic>
 #include <thread>
+#include <vector>
 
 #include "planner/planner.hpp"
 
@@ -10,7 +12,9 @@ namespace stepmod::planner {
 
 class PlannerThread {
  public:
-  explicit PlannerThread(Planner& planner) noexcept : planner_(planner) {}
+  explicit PlannerThread(Planner& planner) : planners_{&planner} {}
+  // Every planner's wake counter must be the first's (throws std::invalid_argument).
+  explicit PlannerThread(std::vector<Planner*> planners);
   ~PlannerThread() { stop(); }
   PlannerThread(const PlannerThread&) = delete;
   PlannerThread& operator=(const PlannerThread&) = delete;
@@ -29,7 +33,7 @@ class PlannerThread {
  private:
   void run() noexcept;
 
-  Planner& planner_;
+  std::vector<Planner*> planners_;  // at least one
   std::thread thread_;
   std::atomic<bool> stop_{false};
   std::atomic<std::uint64_t> loops_{0};

@@ -9,6 +9,7 @@
 #include "planner/motion_port.hpp"
 #include "planner/planner.hpp"
 #include "planner_test_util.hpp"
+#include "rt/slip.hpp"
 
 namespace stepmod::planner {
 namespace {
@@ -192,6 +193,32 @@ TEST(BlendSlot, OneBlendInFlightPerAxisAndItsTableArrivesWhole) {
   EXPECT_NE(r.ports[1]->start_blend(other), 0u);
   r.run_for(2 * kNsPerSec);
   EXPECT_EQ(r.steps(1).size(), 1'000u + 601u);
+}
+
+// A rack: each module's planner numbers its groups from 1, and the pulse thread keys its slip
+// cells and late-edge faults by group. The module's domain in the key's top byte keeps two
+// modules' groups apart; a motion alone keeps key 0.
+TEST(GroupStart, RackDomainKeepsModulesGroupKeysApart) {
+  std::array<std::uint32_t, 2> keys{};
+  for (const std::uint8_t domain : {0, 5}) {
+    PlannerOptions opt;
+    opt.group_domain = domain;
+    TwoAxes r(opt);
+    const GroupTag g = GroupIds{}.next(2);  // id 1 in every module
+    const MoveSpec same = move(100, 2'000, 8'000, 40'000, 40'000);
+    ASSERT_NE(r.ports[0]->start_move(same, g), 0u);
+    ASSERT_NE(r.ports[1]->start_move(same, g), 0u);
+    r.run_for(10 * kNsPerMs);
+    const std::uint32_t k0 = rt::packed_value(r.control[0].motion_group.load());
+    EXPECT_EQ(k0, rt::packed_value(r.control[1].motion_group.load()));  // one group
+    keys[domain == 0 ? 0 : 1] = k0;
+  }
+  EXPECT_EQ(keys[0], 1u);  // a lone module's keys are its group ids
+  EXPECT_EQ(keys[1], (5u << 24) | 1u);
+  TwoAxes alone;
+  ASSERT_NE(alone.ports[0]->start_move(move(100, 2'000, 8'000, 40'000, 40'000)), 0u);
+  alone.run_for(10 * kNsPerMs);
+  EXPECT_EQ(rt::packed_value(alone.control[0].motion_group.load()), 0u);
 }
 
 TEST(Command, IsSmallAndTriviallyCopyable) {
