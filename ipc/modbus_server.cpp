@@ -59,8 +59,13 @@ class LogThrottle {
 }  // namespace
 
 struct ModbusServer::Impl {
-  ShmMapping map;
-  std::unique_ptr<ModbusMap> regs;
+  // A module served: its unit id, its image mapped, its registers.
+  struct Unit {
+    std::uint8_t id = 0;
+    ShmMapping map;
+    std::unique_ptr<ModbusMap> regs;
+  };
+  std::vector<Unit> units;
   int listen_fd = -1;
   int wake_fd = -1;
   std::list<Connection> clients;
@@ -75,9 +80,11 @@ struct ModbusServer::Impl {
   }
   void accept_one(const ModbusOptions& o);
   void make_room(const std::string& newcomer, Nanos now);
-  bool serve(Connection& c, short revents, std::uint8_t unit_id);
-  bool receive(Connection& c, std::uint8_t unit_id);
-  bool answer(Connection& c, std::uint8_t unit_id);
+  void add_unit(const ModbusUnit& u);
+  ModbusMap* unit(std::uint8_t id) noexcept;
+  bool serve(Connection& c, short revents);
+  bool receive(Connection& c);
+  bool answer(Connection& c);
   bool send_pending(Connection& c);
   bool timed_out(const Connection& c, Nanos now, Nanos idle_timeout);
   int poll_timeout_ms(Nanos now, Nanos idle_timeout) const;
@@ -105,20 +112,38 @@ int listen_on(const ModbusOptions& o) {
 }
 }  // namespace
 
-ModbusServer::ModbusServer(const std::string& name, const ModbusOptions& options)
-    : impl_(std::make_unique<Impl>()), options_(options) {
+ModbusServer::ModbusServer(std::span<const ModbusUnit> units)
+    : impl_(std::make_unique<Impl>()),
+      options_(units.empty() ? ModbusOptions{} : units.front().options) {
   Impl& d = *impl_;
-  check_name(name);
-  d.map = ShmMapping::open(image_object(name), STEPMOD_IMAGE_SIZE);
-  auto* img = static_cast<stepmod_image_t*>(d.map.data());
-  if (!d.map.writable() || !stepmod_magic_is(img->magic, STEPMOD_IMAGE_MAGIC)) {
-    throw IpcError("modbus: the image of module '" + name + "' is not a writable stepmod image");
-  }
-  d.regs = std::make_unique<ModbusMap>(*img, options.writes);
-  d.listen_fd = listen_on(options);
+  if (units.empty()) throw IpcError("modbus: a server needs a module to serve");
+  for (const ModbusUnit& u : units) d.add_unit(u);
+  d.listen_fd = listen_on(options_);
   d.wake_fd = ::eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
   if (d.wake_fd < 0) throw IpcError(std::string("modbus: eventfd: ") + std::strerror(errno));
   thread_ = std::thread([this] { run(); });
+}
+
+void ModbusServer::Impl::add_unit(const ModbusUnit& u) {
+  check_name(u.name);
+  if (unit(u.options.unit_id) != nullptr) {
+    throw IpcError("modbus: unit id " + std::to_string(u.options.unit_id) + " twice");
+  }
+  Unit& n = units.emplace_back();
+  n.id = u.options.unit_id;
+  n.map = ShmMapping::open(image_object(u.name), STEPMOD_IMAGE_SIZE);
+  auto* img = static_cast<stepmod_image_t*>(n.map.data());
+  if (!n.map.writable() || !stepmod_magic_is(img->magic, STEPMOD_IMAGE_MAGIC)) {
+    throw IpcError("modbus: the image of module '" + u.name + "' is not a writable stepmod image");
+  }
+  n.regs = std::make_unique<ModbusMap>(*img, u.options.writes);
+}
+
+ModbusMap* ModbusServer::Impl::unit(std::uint8_t id) noexcept {
+  for (Unit& u : units) {
+    if (u.id == id) return u.regs.get();
+  }
+  return nullptr;
 }
 
 ModbusServer::~ModbusServer() {
@@ -181,15 +206,15 @@ void ModbusServer::Impl::make_room(const std::string& newcomer, Nanos now) {
 }
 
 // One connection's turn after poll(); false: close it.
-bool ModbusServer::Impl::serve(Connection& c, short revents, std::uint8_t unit_id) {
+bool ModbusServer::Impl::serve(Connection& c, short revents) {
   if ((revents & POLLOUT) && !send_pending(c)) return false;
-  if ((revents & (POLLIN | POLLHUP | POLLERR)) && !receive(c, unit_id)) return false;
+  if ((revents & (POLLIN | POLLHUP | POLLERR)) && !receive(c)) return false;
   // After a malformed frame: closed once the answers owed to the frames before it are sent.
   return c.closing_since == 0 || !c.out.empty();
 }
 
 // Reads what the socket has; false: the connection is to be closed.
-bool ModbusServer::Impl::receive(Connection& c, std::uint8_t unit_id) {
+bool ModbusServer::Impl::receive(Connection& c) {
   // A bounded number of reads per round: a client that sends without pause gets its turn like
   // every other, not the whole thread.
   for (int round = 0; round < 16; ++round) {
@@ -207,7 +232,7 @@ bool ModbusServer::Impl::receive(Connection& c, std::uint8_t unit_id) {
     c.last_heard = now;
     if (c.in.empty()) c.frame_start = now;
     c.in.insert(c.in.end(), buf, buf + n);
-    if (!answer(c, unit_id)) {
+    if (!answer(c)) {
       c.closing_since = now;
       c.in.clear();
       c.frame_start = 0;
@@ -220,7 +245,7 @@ bool ModbusServer::Impl::receive(Connection& c, std::uint8_t unit_id) {
 
 // Puts the answer to every whole frame in c.in into c.out; false on a malformed frame (left
 // unanswered: the connection is to be closed once the answers before it are sent).
-bool ModbusServer::Impl::answer(Connection& c, std::uint8_t unit_id) {
+bool ModbusServer::Impl::answer(Connection& c) {
   std::size_t used = 0;
   bool well_formed = true;
   for (;;) {
@@ -231,11 +256,11 @@ bool ModbusServer::Impl::answer(Connection& c, std::uint8_t unit_id) {
       well_formed = false;
       break;
     }
-    if (f.unit != unit_id) {
+    if (ModbusMap* regs = unit(f.unit)) {
+      append_response(c.out, f, regs->handle(f.pdu));
+    } else {
       // Addressed to another unit behind this "gateway": there is none.
       append_exception(c.out, f, ModbusException::kGatewayTargetFailed);
-    } else {
-      append_response(c.out, f, regs->handle(f.pdu));
     }
     c.served = true;
     used += f.size;
@@ -317,8 +342,7 @@ void ModbusServer::run() noexcept {
     const Nanos now = monotonic_now();
     for (std::size_t i = 0; i < polled.size(); ++i) {
       Connection& c = *polled[i];
-      if (!d.serve(c, fds[i + 2].revents, options_.unit_id) ||
-          d.timed_out(c, now, idle_timeout)) {
+      if (!d.serve(c, fds[i + 2].revents) || d.timed_out(c, now, idle_timeout)) {
         ::close(c.fd);
         c.fd = -1;
       }

@@ -1,5 +1,7 @@
 #pragma once
-// Modbus/TCP server of docs/interface.md section 6, serving one module's shared-memory image. It
+// Modbus/TCP server of docs/interface.md section 6, serving one module's shared-memory image, or
+// in a rack (section 7) those of every module with the same listen address, told apart by the
+// request's unit id (another unit id: exception 0B). It
 // runs in its own thread at normal priority and reaches the image only through its seqlocks
 // (ModbusMap), never through the control thread: a flood of requests costs this thread CPU time,
 // not a scan.
@@ -14,14 +16,22 @@
 // closed connection, never a normal answer; the frames before it are answered first.
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "core/clock.hpp"
 #include "ipc/modbus_connection.hpp"
 #include "ipc/modbus_options.hpp"
 
 namespace stepmod::ipc {
+
+// One module a server serves: its image's name and its [modbus] table (its unit id and writes).
+struct ModbusUnit {
+  std::string name;
+  ModbusOptions options;
+};
 
 class ModbusServer {
  public:
@@ -32,7 +42,12 @@ class ModbusServer {
 
   // Maps the image of module `name` (created by this process's ShmImage beforehand), binds
   // options.address:port and starts serving. Throws IpcError (address in use, bad address...).
-  ModbusServer(const std::string& name, const ModbusOptions& options);
+  ModbusServer(const std::string& name, const ModbusOptions& options)
+      : ModbusServer(std::vector<ModbusUnit>{{name, options}}) {}
+  // Several modules on one address: the server's keys (address, port, max_clients, allow,
+  // idle_timeout_ms) are the first unit's (config/rack_config.hpp checks that they agree); the
+  // unit ids must differ.
+  explicit ModbusServer(std::span<const ModbusUnit> units);
   ~ModbusServer();  // stop(); closes every connection
   ModbusServer(const ModbusServer&) = delete;
   ModbusServer& operator=(const ModbusServer&) = delete;
@@ -47,7 +62,7 @@ class ModbusServer {
   void run() noexcept;
 
   std::unique_ptr<Impl> impl_;
-  ModbusOptions options_;
+  ModbusOptions options_;  // the server's keys (the first unit's)
   std::thread thread_;
 };
 
