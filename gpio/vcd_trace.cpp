@@ -37,11 +37,12 @@ TraceWire enable_trace_wire(unsigned axis, bool active_low) {
   return {static_cast<std::uint8_t>(axis), false, kEnableTraceLine, false, active_low};
 }
 
-std::string wire_name(const TraceWire& w) {
+std::string wire_name(const TraceWire& w, std::span<const std::string> axis_names) {
   const std::string_view key = w.is_input ? input_key(static_cast<InputLine>(w.line))
                                : w.line == kEnableTraceLine
                                    ? std::string_view("enable")
                                    : output_key(static_cast<OutputLine>(w.line));
+  if (w.axis < axis_names.size()) return axis_names[w.axis] + "." + std::string(key);
   return "axis" + std::to_string(unsigned{w.axis} + 1) + "." + std::string(key);
 }
 
@@ -68,8 +69,11 @@ std::vector<TraceWire> trace_wires(Backend& backend) {
 // ---- VcdTrace -----------------------------------------------------------------------------------
 
 VcdTrace::VcdTrace(const std::string& path, std::span<const TraceWire> wires, Nanos start,
-                   bool loss_marker)
-    : path_(path), start_(start), wires_(wires.begin(), wires.end()) {
+                   bool loss_marker, std::vector<std::string> axis_names)
+    : path_(path),
+      start_(start),
+      wires_(wires.begin(), wires.end()),
+      axis_names_(std::move(axis_names)) {
   file_ = create_file_beside(path, "trace file");
   // The stream writes through its own descriptor; file_.fd stays open after fclose(), so that
   // close() can name an unnamed (O_TMPFILE) file once the stream's errors are known.
@@ -101,7 +105,8 @@ VcdTrace::VcdTrace(const std::string& path, std::span<const TraceWire> wires, Na
   // top-level scope, which some readers require.
   std::fprintf(f_, "$scope module stepmod $end\n");
   for (std::size_t i = 0; i < wires_.size(); ++i) {
-    std::fprintf(f_, "$var wire 1 %s %s $end\n", ids_[i].c_str(), wire_name(wires_[i]).c_str());
+    std::fprintf(f_, "$var wire 1 %s %s $end\n", ids_[i].c_str(),
+                 wire_name(wires_[i], axis_names_).c_str());
   }
   if (loss_marker) {
     marker_ = static_cast<int>(ids_.size());
@@ -347,7 +352,7 @@ TraceOutcome TraceWriter::finish(std::uint64_t dropped_outputs, std::uint64_t dr
 void TraceWriter::write_vcd(std::uint64_t dropped_outputs, std::uint64_t dropped_inputs) {
   const bool spool_failed = failed();
   const bool lost = dropped_outputs + dropped_inputs > 0 || markers_ > 0 || spool_failed;
-  vcd_ = std::make_unique<VcdTrace>(path_, wires_, start_, lost);
+  vcd_ = std::make_unique<VcdTrace>(path_, wires_, start_, lost, axis_names_);
   try {
     // Outputs first on equal times.
     SpoolReader out_file(out_spool_.fd(), out_spool_.path());

@@ -36,8 +36,10 @@ inline constexpr std::uint8_t kEnableTraceLine = kOutputLinesPerAxis;
 // The enable wire of `axis`, released (logically low) at #0: the daemon releases it at start.
 TraceWire enable_trace_wire(unsigned axis, bool active_low);
 
-// The VCD name of a line: "axis1.step", "axis2.cw_limit", "axis1.enable", ...
-std::string wire_name(const TraceWire& w);
+// The VCD name of a line: "axis1.step", "axis2.cw_limit", "axis1.enable", ...; with
+// `axis_names` (a rack, docs/interface.md section 7: by trace axis, "x.axis1") the axis part is
+// its name: "x.axis1.step".
+std::string wire_name(const TraceWire& w, std::span<const std::string> axis_names = {});
 
 class VcdTrace {
  public:
@@ -46,8 +48,9 @@ class VcdTrace {
   // never followed); throws std::runtime_error naming the file if it cannot be created.
   // `start`: CLOCK_MONOTONIC time that is #0.
   // `loss_marker`: also declare the wire kLossMarkerWire, driven by kLossMarker records.
+  // `axis_names`: as wire_name's.
   VcdTrace(const std::string& path, std::span<const TraceWire> wires, Nanos start,
-           bool loss_marker = false);
+           bool loss_marker = false, std::vector<std::string> axis_names = {});
   ~VcdTrace();  // as close() if still open, ignoring errors (a failed file is removed)
   VcdTrace(const VcdTrace&) = delete;
   VcdTrace& operator=(const VcdTrace&) = delete;
@@ -81,6 +84,7 @@ class VcdTrace {
   Nanos start_ = 0;
   Nanos last_ = 0;  // last written time, relative
   std::vector<TraceWire> wires_;
+  std::vector<std::string> axis_names_;
   std::vector<std::string> ids_;
   std::vector<std::uint8_t> levels_;
   std::vector<int> index_;  // (axis * 2 + is_input) * 16 + line -> wire, -1 if absent
@@ -132,6 +136,9 @@ class TraceWriter {
     lost_inputs_ = inputs;
   }
 
+  // The wires' axis names (wire_name; a rack's). Call before start().
+  void name_axes(std::vector<std::string> names) { axis_names_ = std::move(names); }
+
   // Starts the thread. `fifo_priority` > 0: the thread asks for SCHED_FIFO at that priority
   // (the daemon: 1, below every other real-time thread but above all normal ones), so that a
   // loaded machine cannot starve it for the seconds it takes to fill a ring at 2 M records/s;
@@ -169,6 +176,7 @@ class TraceWriter {
 
   std::string path_;
   std::vector<TraceWire> wires_;
+  std::vector<std::string> axis_names_;
   Nanos start_;
   SpscRing<TraceRecord>& outputs_;
   SpscRing<TraceRecord>& inputs_;
