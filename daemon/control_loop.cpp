@@ -6,8 +6,8 @@
 
 #include "daemon/daemon_trace.hpp"
 #include "daemon/module_io.hpp"
+#include "daemon/module_stack.hpp"
 #include "daemon/sim_panel_link.hpp"
-#include "daemon/stack.hpp"
 #include "daemon/supervision_log.hpp"
 
 namespace stepmod::tools {
@@ -24,12 +24,13 @@ ControlLoop::ControlLoop(const Parts& parts)
       lost_inputs_(parts.stack),
       enables_(parts.stack, parts.config, lost_inputs_, parts.trace),
       health_(parts.stack, parts.config, lost_inputs_, parts.trace),
-      cpu_notice_(parts.stack, parts.config, parts.stack.output()),
-      doorbell_(parts.stack.planner(), parts.stack.output()) {}
+      cpu_notice_(parts.stack, parts.config, parts.output),
+      doorbell_(parts.stack.planner(), parts.output) {}
 
-void ControlLoop::run(const std::atomic<bool>& stop) {
+void ControlLoop::run(const std::atomic<bool>& stop, const std::atomic<bool>* halt) {
   next_scan_ = monotonic_now();
-  while (!stop.load(std::memory_order_acquire)) {
+  while (!stop.load(std::memory_order_acquire) &&
+         (halt == nullptr || !halt->load(std::memory_order_acquire))) {
     const Nanos now = take_events();
     if (now < next_scan_) continue;
     scan(now);
@@ -106,7 +107,7 @@ void ControlLoop::scan(Nanos now) {
   // bits) finds them. Marked done before this publication, a refused message was seen done with
   // Invalid Profile still clear (a loaded machine preempted the control thread in between).
   if (message) image.finish_message(message->seq, message_result);
-  watchdog_.scan(now, parts_.stack.output().loops());
+  watchdog_.scan(now, parts_.output.loops());
 }
 
 void ControlLoop::note_scan_published() noexcept {

@@ -1,5 +1,5 @@
 #pragma once
-// The control thread's loop (the thread that runs Daemon::run, real-time below the pulse thread
+// A module's control thread's loop (one per module of the rack, real-time below the pulse thread
 // on real lines): input events as they come, the PLC image once per scan. Each scan: the PLC
 // supervision and the lease decide which words the module gets, the module scans them, and its
 // followers run in order (drive enables, the pulse thread's doorbell, the CPU notice, reasons,
@@ -23,24 +23,26 @@
 
 namespace stepmod::tools {
 
-class DaemonTrace;
+class ModuleTrace;
 class SimPanelLink;
-class Stack;
+class ModuleStack;
 
 class ControlLoop {
  public:
   // What the loop works on; all of it outlives the loop. `trace` and `panel` may be null.
   struct Parts {
     const Config& config;
-    Stack& stack;
+    ModuleStack& stack;
+    rt::StepOutput& output;  // the rack's, shared with the other modules
     ipc::ShmImage& image;
-    DaemonTrace* trace;
+    ModuleTrace* trace;
     SimPanelLink* panel;
   };
   explicit ControlLoop(const Parts& parts);
 
-  // Until `stop`: input events as they come, a scan every [module] scan_us.
-  void run(const std::atomic<bool>& stop);
+  // Until `stop` or `halt` (null: none; a rack halts its modules when one of them fails): input
+  // events as they come, a scan every [module] scan_us.
+  void run(const std::atomic<bool>& stop, const std::atomic<bool>* halt = nullptr);
   // After run(): immediate stop of every axis, and a bounded wait until the pulse thread has
   // acknowledged it.
   void stop_motion();
@@ -64,8 +66,8 @@ class ControlLoop {
   ImageWords given_{};  // the output words the module last scanned (held while a drive gets ready)
   Nanos next_scan_ = 0;
   ipc::PlcSupervisor supervisor_;
-  LeaseKeeper lease_;         // docs/interface.md 3.5
-  ReasonPublisher reasons_;   // docs/interface.md 3.4
+  LeaseKeeper lease_;        // docs/interface.md 3.5
+  ReasonPublisher reasons_;  // docs/interface.md 3.4
   LostInputWatch lost_inputs_;
   DriveEnableFeed enables_;
   HealthWords health_;

@@ -4,11 +4,11 @@
 
 #include <string>
 
-#include "daemon/stack.hpp"
+#include "daemon/module_stack.hpp"
 
 namespace stepmod::tools {
 
-CpuNotice::CpuNotice(Stack& stack, const Config& config, const rt::StepOutput& pulse)
+CpuNotice::CpuNotice(ModuleStack& stack, const Config& config, const rt::StepOutput& pulse)
     : stack_(stack), config_(config), pulse_(pulse), noticed_epoch_(stack.shape().axes, 0) {}
 
 // Once the motion is past its acceleration, naming its programmed speed there (the planned step

@@ -13,18 +13,18 @@
 
 namespace stepmod::tools {
 
-class Stack;
+class ModuleStack;
 
 class CpuNotice {
  public:
-  CpuNotice(Stack& stack, const Config& config, const rt::StepOutput& pulse);
+  CpuNotice(ModuleStack& stack, const Config& config, const rt::StepOutput& pulse);
   // Control thread, per scan.
   void scan();
 
  private:
   void warn(unsigned axis, Nanos interval) const;
 
-  Stack& stack_;
+  ModuleStack& stack_;
   const Config& config_;
   const rt::StepOutput& pulse_;
   std::vector<std::uint32_t> noticed_epoch_;  // per axis: the motion last noticed

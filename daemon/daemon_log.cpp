@@ -27,7 +27,25 @@ class PriorityFlag final : public spdlog::custom_flag_formatter {
     return spdlog::details::make_unique<PriorityFlag>();
   }
 };
+
+thread_local std::string t_scope;  // set_log_scope
+
+// "%&": the logging thread's scope (a rack's module), or nothing.
+class ScopeFlag final : public spdlog::custom_flag_formatter {
+ public:
+  void format(const spdlog::details::log_msg& /*msg*/, const std::tm& /*tm*/,
+              spdlog::memory_buf_t& dest) override {
+    dest.append(t_scope.data(), t_scope.data() + t_scope.size());
+  }
+  std::unique_ptr<custom_flag_formatter> clone() const override {
+    return spdlog::details::make_unique<ScopeFlag>();
+  }
+};
 }  // namespace
+
+void set_log_scope(std::string scope) {
+  t_scope = std::move(scope);
+}
 
 bool is_journal_stream(const char* journal_stream, int fd) {
   if (journal_stream == nullptr) return false;
@@ -64,11 +82,11 @@ std::shared_ptr<spdlog::logger> make_daemon_logger() {
   const bool journal = is_journal_stream(std::getenv("JOURNAL_STREAM"), STDERR_FILENO);
   auto logger =
       journal ? spdlog::stderr_logger_mt("stepmodd") : spdlog::stderr_color_mt("stepmodd");
-  if (journal) {
-    auto f = std::make_unique<spdlog::pattern_formatter>();
-    f->add_flag<PriorityFlag>('*').set_pattern("%*%v");
-    logger->set_formatter(std::move(f));
-  }
+  auto f = std::make_unique<spdlog::pattern_formatter>();
+  f->add_flag<PriorityFlag>('*').add_flag<ScopeFlag>('&');
+  // spdlog's own "%+" with the scope before the text.
+  f->set_pattern(journal ? "%*%&%v" : "[%Y-%m-%d %H:%M:%S.%e] [%n] [%^%l%$] %&%v");
+  logger->set_formatter(std::move(f));
   spdlog::set_default_logger(logger);
   return logger;
 }

@@ -17,6 +17,10 @@ bool is_journal_stream(const char* journal_stream, int fd);
 // The "<N>" syslog priority prefix of a spdlog level (sd-daemon.h: SD_ERR = <3>, ...).
 const char* syslog_prefix(spdlog::level::level_enum level) noexcept;
 
+// The calling thread's scope: every line it logs starts with `scope` ("[x] ": the module whose
+// control thread it is, in a rack); "" (the default) for none.
+void set_log_scope(std::string scope);
+
 // Creates the "stepmodd" logger on stderr as described above and makes it the default.
 std::shared_ptr<spdlog::logger> make_daemon_logger();
 

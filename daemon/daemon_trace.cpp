@@ -23,13 +23,38 @@ DaemonTrace::DaemonTrace()
 
 DaemonTrace::~DaemonTrace() = default;
 
-void DaemonTrace::open(const std::string& path, Nanos start, const Config& config, Stack& stack) {
-  auto wires = gpio::trace_wires(stack.backend());
-  for (unsigned a = 0; a < config.axes.size(); ++a) {
-    if (config.axes[a].enable)
-      wires.push_back(gpio::enable_trace_wire(a, config.axes[a].enable_opt.active_low));
+// A rack's wires carry their module's name (docs/interface.md section 7): "x.axis1.step".
+std::vector<std::string> DaemonTrace::axis_names(std::span<const Config> modules, Stack& stack) {
+  std::vector<std::string> names;
+  for (unsigned k = 0; k < stack.modules(); ++k) {
+    for (unsigned a = 0; a < stack.module(k).shape().axes; ++a) {
+      names.push_back(modules[k].name + ".axis" + std::to_string(a + 1));
+    }
+  }
+  return names;
+}
+
+void DaemonTrace::open(const std::string& path, Nanos start, std::span<const Config> modules,
+                       bool rack_file, Stack& stack) {
+  std::vector<gpio::TraceWire> wires;
+  for (unsigned k = 0; k < stack.modules(); ++k) {
+    const unsigned first = stack.first_axis(k);
+    for (gpio::TraceWire w : gpio::trace_wires(stack.module(k).backend())) {
+      w.axis = static_cast<std::uint8_t>(w.axis + first);
+      wires.push_back(w);
+    }
+  }
+  for (unsigned k = 0; k < stack.modules(); ++k) {
+    const std::vector<AxisSection>& axes = modules[k].axes;
+    for (unsigned a = 0; a < axes.size(); ++a) {
+      if (axes[a].enable) {
+        wires.push_back(
+            gpio::enable_trace_wire(stack.first_axis(k) + a, axes[a].enable_opt.active_low));
+      }
+    }
   }
   writer_ = std::make_unique<gpio::TraceWriter>(path, wires, start, *output_, *input_);
+  if (rack_file) writer_->name_axes(axis_names(modules, stack));
   output_dropped_ = &stack.output().trace_dropped_counter();
   writer_->watch_losses(output_dropped_, &input_dropped_);
 }
@@ -45,6 +70,7 @@ void DaemonTrace::start_thread() {
 }
 
 void DaemonTrace::record_input(const TraceRecord& r) noexcept {
+  const std::lock_guard<std::mutex> turn(input_producer_);
   if (!input_->try_push(r)) {
     input_dropped_.store(input_dropped_.load(std::memory_order_relaxed) + 1,
                          std::memory_order_relaxed);
@@ -61,8 +87,7 @@ std::uint64_t DaemonTrace::dropped() const noexcept {
 bool DaemonTrace::lost() {
   const bool spool_failed = writer_->failed();
   if (dropped() == 0 && !spool_failed) return false;
-  if (!loss_logged_) {
-    loss_logged_ = true;
+  if (!loss_logged_.exchange(true)) {
     spdlog::error("trace: records lost ({}): the VCD will be incomplete",
                   spool_failed ? "a trace spool could not be written: disk full?"
                                : "the trace ring was full");
@@ -70,12 +95,14 @@ bool DaemonTrace::lost() {
   return true;
 }
 
-void DaemonTrace::record_idle_outputs(const Stack& stack, Nanos now) noexcept {
-  for (unsigned a = 0; a < stack.shape().axes; ++a) {
-    const std::uint8_t levels = stack.feedback(a).output_levels.load(std::memory_order_acquire);
-    for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
-      if ((levels >> l) & 1u) {
-        output_->try_push({now, static_cast<std::uint8_t>(a), static_cast<std::uint8_t>(l), 0, 0});
+void DaemonTrace::record_idle_outputs(Stack& stack, Nanos now) noexcept {
+  for (unsigned k = 0; k < stack.modules(); ++k) {
+    const ModuleStack& m = stack.module(k);
+    for (unsigned a = 0; a < m.shape().axes; ++a) {
+      const std::uint8_t levels = m.feedback(a).output_levels.load(std::memory_order_acquire);
+      const auto axis = static_cast<std::uint8_t>(stack.first_axis(k) + a);
+      for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
+        if ((levels >> l) & 1u) output_->try_push({now, axis, static_cast<std::uint8_t>(l), 0, 0});
       }
     }
   }

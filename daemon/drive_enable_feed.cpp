@@ -5,7 +5,7 @@
 #include "daemon/daemon_trace.hpp"
 #include "daemon/health_words.hpp"
 #include "daemon/lost_input_watch.hpp"
-#include "daemon/stack.hpp"
+#include "daemon/module_stack.hpp"
 #include "gpio/vcd_trace.hpp"
 
 namespace stepmod::tools {
@@ -20,8 +20,8 @@ std::vector<DriveEnable::AxisSetup> enable_setups(const Config& config) {
 }
 }  // namespace
 
-DriveEnableFeed::DriveEnableFeed(Stack& stack, const Config& config,
-                                 const LostInputWatch& lost_inputs, DaemonTrace* trace)
+DriveEnableFeed::DriveEnableFeed(ModuleStack& stack, const Config& config,
+                                 const LostInputWatch& lost_inputs, ModuleTrace* trace)
     : stack_(stack),
       lost_inputs_(lost_inputs),
       trace_(trace),

@@ -9,15 +9,15 @@
 
 namespace stepmod::tools {
 
-class DaemonTrace;
+class ModuleTrace;
 class LostInputWatch;
-class Stack;
+class ModuleStack;
 
 class DriveEnableFeed {
  public:
   // `trace` may be null (no --trace).
-  DriveEnableFeed(Stack& stack, const Config& config, const LostInputWatch& lost_inputs,
-                  DaemonTrace* trace);
+  DriveEnableFeed(ModuleStack& stack, const Config& config, const LostInputWatch& lost_inputs,
+                  ModuleTrace* trace);
 
   // Whether a drive enabled a moment ago is not ready yet (the module keeps its previous words).
   bool holding(Nanos now) const noexcept { return enable_.holding(now); }
@@ -27,9 +27,9 @@ class DriveEnableFeed {
   void trace_release(Nanos now) noexcept;
 
  private:
-  Stack& stack_;
+  ModuleStack& stack_;
   const LostInputWatch& lost_inputs_;
-  DaemonTrace* trace_;
+  ModuleTrace* trace_;
   DriveEnable enable_;
 };
 

@@ -7,12 +7,12 @@
 
 #include "daemon/daemon_trace.hpp"
 #include "daemon/lost_input_watch.hpp"
-#include "daemon/stack.hpp"
+#include "daemon/module_stack.hpp"
 
 namespace stepmod::tools {
 
-HealthWords::HealthWords(Stack& stack, const Config& config, const LostInputWatch& lost_inputs,
-                         DaemonTrace* trace)
+HealthWords::HealthWords(ModuleStack& stack, const Config& config,
+                         const LostInputWatch& lost_inputs, ModuleTrace* trace)
     : stack_(stack),
       config_(config),
       lost_inputs_(lost_inputs),

@@ -11,15 +11,15 @@
 
 namespace stepmod::tools {
 
-class DaemonTrace;
+class ModuleTrace;
 class LostInputWatch;
-class Stack;
+class ModuleStack;
 
 class HealthWords {
  public:
   // `trace` may be null (no --trace).
-  HealthWords(Stack& stack, const Config& config, const LostInputWatch& lost_inputs,
-              DaemonTrace* trace);
+  HealthWords(ModuleStack& stack, const Config& config, const LostInputWatch& lost_inputs,
+              ModuleTrace* trace);
 
   ipc::Health scan(std::uint32_t supervisor_flags);
 
@@ -33,10 +33,10 @@ class HealthWords {
  private:
   void log_fault(unsigned axis, const planner::MotionPort::LateFault& f) const;
 
-  Stack& stack_;
+  ModuleStack& stack_;
   const Config& config_;
   const LostInputWatch& lost_inputs_;
-  DaemonTrace* trace_;
+  ModuleTrace* trace_;
   std::vector<std::uint32_t> faults_seen_;  // per axis: faults already logged
 };
 

@@ -2,7 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "daemon/stack.hpp"
+#include "daemon/module_stack.hpp"
 #include "module/axis/error_items.hpp"
 
 namespace stepmod::tools {

@@ -9,11 +9,11 @@
 
 namespace stepmod::tools {
 
-class Stack;
+class ModuleStack;
 
 class LostInputWatch {
  public:
-  explicit LostInputWatch(Stack& stack) : stack_(stack) {}
+  explicit LostInputWatch(ModuleStack& stack) : stack_(stack) {}
 
   // After each batch of input events: a new loss stops every moving axis as a PLC leaving Run
   // mode does (immediate stop, position invalid) and is logged.
@@ -22,7 +22,7 @@ class LostInputWatch {
   bool lasts() const noexcept;
 
  private:
-  Stack& stack_;
+  ModuleStack& stack_;
   std::uint64_t seen_ = 0;             // the backend's loss count already acted on
   std::vector<std::uint32_t> epochs_;  // each axis' motion epoch at the last loss
 };

@@ -2,35 +2,35 @@
 
 #include <stdexcept>
 
-#include "registry/module_registry.hpp"
+#include "daemon/rack_lines.hpp"
 
 namespace stepmod::tools {
 
-Stack::Stack(const StackOptions& options, gpio::Backend& backend, SpscRing<TraceRecord>* trace)
-    : backend_(backend), module_io_(backend), shape_(shape_of(options.type)) {
-  if (options.timing.size() != shape_.axes || backend.axes() != shape_.axes) {
-    throw std::invalid_argument("the module, its timing and its backend disagree on the axes");
-  }
-  std::vector<planner::PlannerAxis> planner_axes;
+Stack::Stack(std::span<const StackModule> modules, SpscRing<TraceRecord>* trace) {
+  if (modules.empty()) throw std::invalid_argument("a stack needs a module");
   std::vector<rt::AxisLink> links;
-  for (unsigned i = 0; i < shape_.axes; ++i) {
-    auto& a = axes_.emplace_back(std::make_unique<AxisPipeline>(options.edge_ring));
-    planner_axes.push_back({&a->edges, &a->control, options.timing[i], &a->feedback});
-    links.push_back({&a->edges, &a->feedback, &a->control, &a->history});
+  std::vector<gpio::Backend*> backends;
+  for (const StackModule& m : modules) {
+    first_axis_.push_back(static_cast<unsigned>(links.size()));
+    ModuleStack& s = *modules_.emplace_back(std::make_unique<ModuleStack>(m.options, *m.backend));
+    for (const rt::AxisLink& l : s.links()) links.push_back(l);
+    backends.push_back(m.backend);
   }
-  planner_ = std::make_unique<planner::Planner>(planner_axes, options.planner);
-  output_ = rt::make_step_output(options.step_output, {backend_, links, trace});
-  output_->set_late_limit(options.late_limit_ns);
-  for (unsigned i = 0; i < options.lag_limit_steps.size() && i < shape_.axes; ++i) {
-    output_->set_lag_limit(i, options.lag_limit_steps[i]);
+  // A lone module's step output writes its backend directly: no look-up on the way.
+  gpio::Backend* lines = backends.front();
+  if (backends.size() > 1) {
+    rack_lines_ = std::make_unique<RackLines>(backends);
+    lines = rack_lines_.get();
   }
-  std::vector<planner::MotionPort*> ports;
-  for (unsigned i = 0; i < shape_.axes; ++i) {
-    AxisPipeline& a = *axes_[i];
-    a.port = std::make_unique<planner::MotionPort>(i, *planner_, a.feedback, a.control, a.history);
-    ports.push_back(a.port.get());
+  const StackOptions& first = modules.front().options;
+  output_ = rt::make_step_output(first.step_output, {*lines, links, trace});
+  output_->set_late_limit(first.late_limit_ns);
+  for (std::size_t k = 0; k < modules.size(); ++k) {
+    const auto& lag = modules[k].options.lag_limit_steps;
+    for (unsigned i = 0; i < lag.size() && i < modules_[k]->shape().axes; ++i) {
+      output_->set_lag_limit(first_axis_[k] + i, lag[i]);
+    }
   }
-  personality_ = registry::make_personality(options.type, module_io_, ports);
 }
 
 Stack::~Stack() = default;

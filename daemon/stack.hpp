@@ -1,72 +1,54 @@
 #pragma once
-// One emulated module's whole motion stack, wired but without threads: per-axis edge rings,
-// step-output feedback and control, the planner, the step output (rt/step_output.hpp; made by
-// name, not started) and the module personality.
-// The daemon drives it with its threads (daemon.cpp); tests drive the very same objects in
-// virtual time (tests/support/virtual_machine.hpp).
+// The daemon's whole motion stack, wired but without threads: the rack's modules (each its own
+// edge rings, planner and personality: daemon/module_stack.hpp) and the one step output that
+// drains every module's rings (rt/step_output.hpp; made by name, not started). A lone module is
+// a rack of one. The daemon drives it with its threads (daemon.cpp); tests drive the very same
+// objects in virtual time (tests/support/virtual_machine.hpp).
 #include <memory>
-#include <string>
+#include <span>
 #include <vector>
 
 #include "core/spsc_ring.hpp"
 #include "core/trace_record.hpp"
-#include "daemon/module_io.hpp"
+#include "daemon/module_stack.hpp"
+#include "daemon/stack_options.hpp"
 #include "gpio/backend.hpp"
-#include "module/personality.hpp"
-#include "planner/motion_port.hpp"
-#include "planner/planner.hpp"
-#include "rt/axis_feedback.hpp"
 #include "rt/step_output.hpp"
-#include "rt/step_output_factory.hpp"
 
 namespace stepmod::tools {
 
-struct StackOptions {
-  ModuleType type = ModuleType::k3601;
-  std::vector<planner::AxisTiming> timing;  // one per axis
-  planner::PlannerOptions planner;
-  std::size_t edge_ring = 1u << 15;  // edges per axis: > lookahead x max edge rate (2 MHz x 4 ms)
-  Nanos late_limit_ns = 0;           // late-edge guard (rt::StepOutput::set_late_limit); 0 = off
-  std::vector<std::uint32_t>
-      lag_limit_steps;  // per axis (rt::StepOutput::set_lag_limit); none/0 = off
-  std::string step_output{rt::kPulseThreadOutput};  // rt::make_step_output's name
+// One module of a rack: how its stack is built, and its own lines.
+struct StackModule {
+  StackOptions options;
+  gpio::Backend* backend = nullptr;
 };
 
 class Stack {
  public:
-  // `backend` and `trace` (may be null) must outlive the stack.
-  Stack(const StackOptions& options, gpio::Backend& backend, SpscRing<TraceRecord>* trace);
+  // A rack of `modules` (1 or more, in rack order); the step output's keys (late_limit_ns,
+  // step_output) are the first module's. Each backend and `trace` (may be null) must outlive
+  // the stack. The step output's axes are the modules' axes in rack order (first_axis()).
+  Stack(std::span<const StackModule> modules, SpscRing<TraceRecord>* trace);
+  // A rack of one module.
+  Stack(const StackOptions& options, gpio::Backend& backend, SpscRing<TraceRecord>* trace)
+      : Stack(std::span<const StackModule>(std::vector<StackModule>{{options, &backend}}), trace) {}
   ~Stack();
   Stack(const Stack&) = delete;
   Stack& operator=(const Stack&) = delete;
 
-  gpio::Backend& backend() noexcept { return backend_; }
-  planner::Planner& planner() noexcept { return *planner_; }
+  unsigned modules() const noexcept { return static_cast<unsigned>(modules_.size()); }
+  ModuleStack& module(unsigned k) noexcept { return *modules_[k]; }
+  const ModuleStack& module(unsigned k) const noexcept { return *modules_[k]; }
+  // The step output's number of module k's first axis.
+  unsigned first_axis(unsigned k) const noexcept { return first_axis_[k]; }
   rt::StepOutput& output() noexcept { return *output_; }
-  module::Personality& personality() noexcept { return *personality_; }
-  const ModuleShape& shape() const noexcept { return shape_; }
-  planner::MotionPort& motion(unsigned axis) noexcept { return *axes_[axis]->port; }
-  const rt::AxisFeedback& feedback(unsigned axis) const noexcept { return axes_[axis]->feedback; }
 
  private:
-  // One axis' way from the planner to the step output: its edge ring, feedback and motion port.
-  struct AxisPipeline {
-    explicit AxisPipeline(std::size_t ring) : edges(ring) {}
-    SpscRing<rt::Edge> edges;
-    rt::AxisFeedback feedback;
-    rt::AxisControl control;
-    rt::StepHistory history;
-    std::unique_ptr<planner::MotionPort> port;
-  };
-
-  gpio::Backend& backend_;
-  BackendAxisIo module_io_;  // the module's view of backend_: start-up levels, pulse format
-  ModuleShape shape_;
-  std::vector<std::unique_ptr<AxisPipeline>> axes_;  // stable addresses: the threads hold pointers
-  std::unique_ptr<planner::Planner> planner_;
-  // After the axes: destroyed (its thread stopped) before the rings and blocks it reads.
+  std::vector<std::unique_ptr<ModuleStack>> modules_;
+  std::vector<unsigned> first_axis_;
+  std::unique_ptr<gpio::Backend> rack_lines_;  // several modules: their lines as one backend
+  // Last: destroyed (its thread stopped) before the rings and blocks it reads.
   std::unique_ptr<rt::StepOutput> output_;
-  std::unique_ptr<module::Personality> personality_;
 };
 
 }  // namespace stepmod::tools

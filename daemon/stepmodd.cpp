@@ -1,7 +1,8 @@
-// stepmodd: one emulated stepper-controller module per process (docs/interface.md section 1).
-//   stepmodd --config FILE [--trace FILE.vcd] [--log-level LEVEL]
-//   stepmodd --check --config FILE     validate the configuration and this machine (creates and
-//                                      requests nothing)
+// stepmodd: one emulated stepper-controller module per process, or a rack of them
+// (docs/interface.md sections 1 and 7).
+//   stepmodd --config FILE [--trace FILE.vcd] [--log-level LEVEL]   FILE: a module or rack file
+//   stepmodd --check --config FILE     validate the configuration (every file of a rack) and
+//                                      this machine (creates and requests nothing)
 //   stepmodd --version
 // Exit status: 0 after SIGINT/SIGTERM/SIGHUP (or a valid --check), 2 for a bad command line or
 // config file (or an [rt] cpu this machine has not), 1 when the module cannot be started (GPIO
@@ -20,8 +21,8 @@
 #include <thread>
 #include <vector>
 
+#include "config/rack_config.hpp"
 #include "core/version.hpp"
-#include "config/config.hpp"
 #include "daemon/daemon.hpp"
 #include "daemon/daemon_log.hpp"
 #include "gpio/chip_probe.hpp"
@@ -43,7 +44,7 @@ sigset_t block_stop_signals() {
 }
 
 // The daemon on a thread of its own until one of `signals` (or its failure); the exit status.
-int run_until_signal(const stepmod::tools::Config& config,
+int run_until_signal(const stepmod::tools::RackConfig& config,
                      const std::optional<std::string>& trace_path, const sigset_t& signals) {
   try {
     stepmod::tools::Daemon daemon(config, trace_path);
@@ -86,7 +87,7 @@ int run_until_signal(const stepmod::tools::Config& config,
 // The configuration against this machine, for --check and before a start: [rt] cpu online (else
 // exit 2, a configuration error), and with the gpiod backend the chip there (by name, path or
 // label) with every configured line on it and free, nothing requested (else exit 1). 0: fine.
-int check_this_machine(const stepmod::tools::Config& config) {
+int check_module_here(const stepmod::tools::Config& config) {
   if (const auto online = stepmod::rt::cpus_online()) {
     if (const std::string p = stepmod::rt::rt_cpu_problem(config.rt_cpu, *online); !p.empty()) {
       spdlog::error("{}: key 'rt.cpu': {}", config.file, p);
@@ -106,6 +107,14 @@ int check_this_machine(const stepmod::tools::Config& config) {
   return 0;
 }
 
+// Every module of the rack against this machine: the first problem's status.
+int check_this_machine(const stepmod::tools::RackConfig& rack) {
+  for (const stepmod::tools::Config& m : rack.modules) {
+    if (const int rc = check_module_here(m); rc != 0) return rc;
+  }
+  return 0;
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"stepmodd: software replacement for an AMCI 3601/3602/3202 stepper module"};
   std::string config_path;
@@ -113,7 +122,9 @@ int run(int argc, char** argv) {
   std::string log_level = "info";
   bool check_only = false;
   app.set_version_flag("--version", "stepmodd " STEPMOD_VERSION);
-  app.add_option("--config", config_path, "module configuration (TOML, see README)")->required();
+  app.add_option("--config", config_path,
+                 "module configuration, or a rack file naming several (TOML, see README)")
+      ->required();
   app.add_flag("--check", check_only,
                "validate the configuration and exit: 0 valid, 2 not; with the gpiod backend also "
                "the chip and lines (1: missing or busy; nothing is created or requested)");
@@ -133,17 +144,22 @@ int run(int argc, char** argv) {
   stepmod::tools::make_daemon_logger();
   spdlog::set_level(spdlog::level::from_str(log_level));
 
-  stepmod::tools::Config config;
+  stepmod::tools::RackConfig config;
   try {
-    config = stepmod::tools::load_config(config_path);
+    config = stepmod::tools::load_rack(config_path);
   } catch (const stepmod::tools::ConfigError& e) {
     spdlog::error("{}", e.what());
     return 2;
   }
   if (const int rc = check_this_machine(config); rc != 0) return rc;
   if (check_only) {
-    spdlog::info("{}: valid (module {} '{}', {} axis/axes)", config_path,
-                 static_cast<unsigned>(config.type), config.name, config.axes.size());
+    for (const stepmod::tools::Config& m : config.modules) {
+      spdlog::info("{}: valid (module {} '{}', {} axis/axes)", m.file,
+                   static_cast<unsigned>(m.type), m.name, m.axes.size());
+    }
+    if (config.rack_file) {
+      spdlog::info("{}: valid rack of {} modules", config_path, config.modules.size());
+    }
     return 0;
   }
 

@@ -41,7 +41,7 @@ AxisRig::AxisRig(const ax::ModuleRules& rules)
   stack_->output().set_clock(&rig_clock);
   t_rig_now = now_;
   io_ = std::make_unique<tools::BackendAxisIo>(*sim_);
-  axis_ = std::make_unique<ax::Axis>(rules, *io_, stack_->motion(0));
+  axis_ = std::make_unique<ax::Axis>(rules, *io_, stack_->module(0).motion(0));
   status_ = axis_->status();
 }
 
@@ -108,7 +108,7 @@ void AxisRig::step_until(Nanos t) {
       output.execute_one(now_);
       deliver_inputs();
     } else if (next_plan_ == now_) {
-      const Nanos want = stack_->planner().service(now_);
+      const Nanos want = stack_->module(0).planner().service(now_);
       next_plan_ = std::clamp(want, now_ + 1, now_ + kPlannerMaxSleep);
     } else {
       deliver_inputs();

@@ -58,7 +58,7 @@ void VirtualMachine::deliver_inputs() {
     // A deadline in the past: take what is there, never sleep.
     const std::size_t n = sim_->wait_events(events, 0);
     for (std::size_t i = 0; i < n; ++i) {
-      stack_->personality().on_input(tools::to_module_event(events[i]));
+      stack_->module(0).personality().on_input(tools::to_module_event(events[i]));
     }
     if (n < events.size()) return;
   }
@@ -77,22 +77,22 @@ void VirtualMachine::run_until(Nanos t) {
     if (edge == now_) {
       output.execute_one(now_);
       for (unsigned a = 0; a < last_steps_.size(); ++a) {
-        const std::int64_t s = stack_->feedback(a).steps.load();
+        const std::int64_t s = stack_->module(0).feedback(a).steps.load();
         if (s != last_steps_[a]) step_times_[a].push_back(now_);
         last_steps_[a] = s;
       }
       deliver_inputs();
       // An input handler that submitted a command wakes the planner, as in the daemon.
-      if (stack_->planner().wake_counter().load() != planner_wakes_) {
+      if (stack_->module(0).planner().wake_counter().load() != planner_wakes_) {
         next_plan_ = std::min(next_plan_, now_ + kPlannerWake);
       }
     } else if (next_plan_ == now_) {
-      planner_wakes_ = stack_->planner().wake_counter().load();
-      const Nanos want = stack_->planner().service(now_);
+      planner_wakes_ = stack_->module(0).planner().wake_counter().load();
+      const Nanos want = stack_->module(0).planner().service(now_);
       next_plan_ = std::clamp(want, now_ + 1, now_ + kPlannerMaxSleep);
     } else {
       deliver_inputs();
-      stack_->personality().scan(plc_out_, plc_in_, now_);
+      stack_->module(0).personality().scan(plc_out_, plc_in_, now_);
       next_scan_ += options_.scan_ns;
       next_plan_ = std::min(next_plan_, now_ + kPlannerWake);  // a scan may have submitted
     }

@@ -7,9 +7,9 @@
 #include <memory>
 #include <vector>
 
+#include "daemon/stack.hpp"
 #include "gpio/sim_backend.hpp"
 #include "module/personality.hpp"
-#include "daemon/stack.hpp"
 
 namespace stepmod::testing {
 
@@ -42,7 +42,8 @@ class VirtualMachine {
   ImageWords& plc_out() noexcept { return plc_out_; }
   const ImageWords& plc_in() const noexcept { return plc_in_; }
   gpio::SimBackend& sim() noexcept { return *sim_; }
-  tools::Stack& stack() noexcept { return *stack_; }
+  // The module's own stack (the machine is a rack of one).
+  tools::ModuleStack& stack() noexcept { return stack_->module(0); }
 
   // From `from` on, for `length`, the pulse thread is stalled (a vCPU stolen, SIGSTOP): edges due
   // in that window are executed when it ends, late (the late-edge guard's test).
@@ -59,7 +60,7 @@ class VirtualMachine {
   void set_step_count(unsigned axis, std::int64_t steps) {
     // The feedback is the stack's own (non-const) object; only the pulse thread writes it, and
     // in virtual time the pulse thread is this thread.
-    const_cast<rt::AxisFeedback&>(stack_->feedback(axis)).steps.store(steps);
+    const_cast<rt::AxisFeedback&>(stack_->module(0).feedback(axis)).steps.store(steps);
   }
 
   // Step (leading) edges written so far, per axis, and their times.
