@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "tests/support/daemon_process.hpp"
+#include "tests/support/shell.hpp"
 #include "tests/support/sim_config.hpp"
 
 namespace stepmod::testing {
@@ -35,18 +36,6 @@ constexpr bool kTimingChecks = false;
 #else
 constexpr bool kTimingChecks = true;
 #endif
-
-int free_port() {
-  const int s = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t len = sizeof a;
-  const bool ok = ::bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0 &&
-                  ::getsockname(s, reinterpret_cast<sockaddr*>(&a), &len) == 0;
-  ::close(s);
-  return ok ? ntohs(a.sin_port) : -1;
-}
 
 // A raw TCP connection to the server on loopback.
 class Conn {

@@ -27,9 +27,10 @@
 
 #include "ipc/client.hpp"
 #include "ipc/sim_panel.hpp"
-#include "tests/support/daemon_process.hpp"
-#include "tests/support/sim_config.hpp"
 #include "module_types/m3601/words_3601.hpp"
+#include "tests/support/daemon_process.hpp"
+#include "tests/support/shell.hpp"
+#include "tests/support/sim_config.hpp"
 
 namespace stepmod::testing {
 namespace {
@@ -49,23 +50,6 @@ constexpr bool kTimingChecks = true;
 constexpr int kMbpollTimeoutMs = 1000;
 constexpr int kPlcTimeoutMs = 400;
 
-// A TCP port on loopback nobody listens on now (the kernel's choice for port 0).
-int free_port() {
-  const int s = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  a.sin_port = 0;
-  socklen_t len = sizeof a;
-  if (::bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 ||
-      ::getsockname(s, reinterpret_cast<sockaddr*>(&a), &len) != 0) {
-    ::close(s);
-    return -1;
-  }
-  ::close(s);
-  return ntohs(a.sin_port);
-}
-
 std::string modbus_config(int port, bool writes, int plc_timeout_ms, int max_clients = 4) {
   std::string sim = "cw_limit_at = 1000000\nccw_limit_at = -1000000\n";
   sim += "\n[modbus]\nenabled = true\nlisten = \"127.0.0.1:" + std::to_string(port) + "\"\n";
@@ -78,15 +62,7 @@ std::string modbus_config(int port, bool writes, int plc_timeout_ms, int max_cli
 
 // Runs a shell command line (bounded by `timeout`), returns its exit status and output.
 int run(const std::string& cmd, std::string* out = nullptr) {
-  FILE* p = ::popen(("timeout 60 " + cmd + " 2>&1").c_str(), "r");
-  if (p == nullptr) return -1;
-  std::string text;
-  std::array<char, 4096> buf{};
-  for (std::size_t n; (n = std::fread(buf.data(), 1, buf.size(), p)) > 0;)
-    text.append(buf.data(), n);
-  const int st = ::pclose(p);
-  if (out != nullptr) *out = text;
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return run_shell(cmd, out);
 }
 
 // Debian's Modbus clients are tools that scripts/install-deps installs. Without one, a test that

@@ -6,17 +6,11 @@
 // stepmodd --check on the rack's configuration errors.
 #include <gtest/gtest.h>
 
-#include <arpa/inet.h>
 #include <dirent.h>
-#include <netinet/in.h>
 #include <sched.h>
-#include <sys/socket.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
 #include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -32,6 +26,7 @@
 #include "module_types/m3602/words_3602.hpp"
 #include "plc/shm_port.hpp"
 #include "tests/support/daemon_process.hpp"
+#include "tests/support/shell.hpp"
 #include "tests/support/sim_config.hpp"
 #include "tests/support/vcd_reader.hpp"
 
@@ -46,31 +41,6 @@ constexpr plc::Sequencing kSeq{
     .hold_scans = 3, .release_scans = 2, .config_scans = 3, .release_stale_bits = false};
 constexpr plc::Profile kProfile{.speed = 5'000, .accel = 100, .decel = 100};
 constexpr int kStaleMs = 300;  // module a's [module] plc_timeout_ms
-
-// A TCP port on loopback nobody listens on now (the kernel's choice for port 0).
-int free_port() {
-  const int s = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t len = sizeof a;
-  const bool ok = ::bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0 &&
-                  ::getsockname(s, reinterpret_cast<sockaddr*>(&a), &len) == 0;
-  ::close(s);
-  return ok ? ntohs(a.sin_port) : -1;
-}
-
-int run(const std::string& cmd, std::string* out = nullptr) {
-  FILE* p = ::popen(("timeout 60 " + cmd + " 2>&1").c_str(), "r");
-  if (p == nullptr) return -1;
-  std::string text;
-  std::array<char, 4096> buf{};
-  for (std::size_t n; (n = std::fread(buf.data(), 1, buf.size(), p)) > 0;)
-    text.append(buf.data(), n);
-  const int st = ::pclose(p);
-  if (out != nullptr) *out = text;
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
 
 // The module files of the rack, in a directory of their own: a 3602 ("c", unit 1) and two 3601s
 // ("a", unit 2, whose PLC goes stale; "b", unit 3), all serving Modbus on one address.
@@ -251,19 +221,19 @@ TEST_F(DaemonRack, OnePulseThreadAndOnePlannerThread) {
 }
 
 TEST_F(DaemonRack, OneModbusAddressServesEveryModuleByUnitId) {
-  if (run("sh -c 'command -v mbpoll'") != 0) GTEST_SKIP() << "mbpoll is not installed";
+  if (run_shell("sh -c 'command -v mbpoll'") != 0) GTEST_SKIP() << "mbpoll is not installed";
   const std::string base =
       "mbpoll -m tcp -0 -1 -o 2 -t 3 -r 1000 -c 1 -p " + std::to_string(files_.port()) + " -a ";
   const std::map<int, std::string> types = {{1, "3602"}, {2, "3601"}, {3, "3601"}};
   for (const auto& [unit, type] : types) {
     std::string out;
-    ASSERT_EQ(run(base + std::to_string(unit) + " 127.0.0.1", &out), 0) << out;
+    ASSERT_EQ(run_shell(base + std::to_string(unit) + " 127.0.0.1", &out), 0) << out;
     std::smatch m;
     ASSERT_TRUE(std::regex_search(out, m, std::regex(R"(\[1000\]:\s+(\d+))"))) << out;
     EXPECT_EQ(m[1].str(), type) << out;
   }
   std::string out;
-  EXPECT_NE(run(base + "9 127.0.0.1", &out), 0) << out;  // no such unit: exception 0B
+  EXPECT_NE(run_shell(base + "9 127.0.0.1", &out), 0) << out;  // no such unit: exception 0B
 }
 
 // stepmodd --check on the rack's configuration errors: exit status 2, the files and keys named.
