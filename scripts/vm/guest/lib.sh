@@ -38,3 +38,14 @@ expect_check() {
     grep -qF -- "$ec_text" "$ec_cfg.log" || { cat "$ec_cfg.log"; fail "$ec_cfg: no '$ec_text'"; }
   done
 }
+# expect_check_beside PID CONFIG RC TEXT...   expect_check while the background program PID runs
+#                                             (holding lines); PID is ended afterwards either way
+expect_check_beside() {
+  eb_pid=$1
+  shift
+  eb_rc=0
+  (expect_check "$@") || eb_rc=$?
+  kill "$eb_pid"
+  wait "$eb_pid" 2>/dev/null || true
+  [ $eb_rc = 0 ] || exit $eb_rc
+}

@@ -9,12 +9,8 @@ home=$(line 1 home)
 gpiod_check hold "$BOARD_CHIP" "$home" >/tmp/hold.log 2>&1 &
 holder=$!
 wait_for /tmp/hold.log "held: line $home" $holder
-rc=0
-( expect_check /tmp/busy.toml 1 \
-  "GPIO chip $BOARD_CHIP [$BOARD_LABEL], line $home (axis1.home): line busy (used by 'stepmod-vm-test'; \`gpioinfo $BOARD_CHIP\` shows it)" ) || rc=$?
-kill $holder
-wait $holder 2>/dev/null || true
-[ $rc = 0 ] || exit $rc
+expect_check_beside $holder /tmp/busy.toml 1 \
+  "GPIO chip $BOARD_CHIP [$BOARD_LABEL], line $home (axis1.home): line busy (used by 'stepmod-vm-test'; \`gpioinfo $BOARD_CHIP\` shows it)"
 n=$(grep -c "GPIO chip .*, line " /tmp/busy.toml.log)
 [ "$n" = 1 ] || { cat /tmp/busy.toml.log; fail "$n problems reported, expected 1 (axis1.home)"; }
 ok "line $home held by another program: exit 1 naming axis1.home and 'stepmod-vm-test'"
