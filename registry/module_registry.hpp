@@ -16,6 +16,7 @@
 
 #include "core/module_shape.hpp"
 #include "module/axis/axis_io.hpp"
+#include "module/axis/error_reason.hpp"
 #include "module/axis/rules.hpp"
 #include "module/personality.hpp"
 #include "planner/motion_port.hpp"
@@ -32,6 +33,9 @@ struct ModuleTypeRow {
   ModuleShape shape;                       // core/module_shape.hpp
   const module::axis::ModuleRules* rules;  // module_types/mXXXX/rules_XXXX.hpp
   MakePersonality* make_personality;       // module_types/mXXXX/module_XXXX.hpp
+  // The error conditions only this type has, beside the shared ones of module/axis/
+  // error_items.hpp (the console's help on reasons lists both); none by default.
+  std::span<const module::axis::Item* const> own_items{};
 };
 
 // Every row, in kModuleShapes' order.

@@ -3,6 +3,7 @@
 #include <memory>
 #include <span>
 
+#include "module_types/m3602/interpolated_items.hpp"
 #include "module_types/m3602/module_3602.hpp"
 #include "module_types/m3602/rules_3602.hpp"
 #include "registry/module_registry.hpp"
@@ -18,6 +19,7 @@ inline constexpr ModuleTypeRow kRow3602{
         -> std::unique_ptr<module::Personality> {
       return std::make_unique<module::m3602::Module3602>(b, *a[0], *a[1]);
     },
+    .own_items = module::m3602::items::kAll,
 };
 
 }  // namespace stepmod::registry
