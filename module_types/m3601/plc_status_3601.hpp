@@ -35,4 +35,9 @@ inline Status decode_status(const ImageWords& in) {
   return s;
 }
 
+// The status MSW, the word with the error bits (plc/driver.hpp); one axis.
+inline std::uint32_t status_msw(const ImageWords& in, unsigned /*axis*/) {
+  return static_cast<std::uint16_t>(in.w[words::m3601::in_word::kStatusMsw]);
+}
+
 }  // namespace stepmod::plc::m3601

@@ -33,4 +33,9 @@ inline Status decode_status(const ImageWords& in, unsigned axis) {
   return s;
 }
 
+// The status MSW of `axis`, the word with the error bits (plc/driver.hpp).
+inline std::uint32_t status_msw(const ImageWords& in, unsigned axis) {
+  return decode_status(in, axis).msw;
+}
+
 }  // namespace stepmod::plc::m3602
