@@ -1,5 +1,4 @@
 #include "module_types/m3202/module_3202.hpp"
-#include "module_types/m3202/rules_3202.hpp"
 
 #include "module_types/m3202/blend_message_3202.hpp"
 #include "module_types/m3202/config_3202.hpp"

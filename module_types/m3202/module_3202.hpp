@@ -7,6 +7,7 @@
 #include <span>
 
 #include "module_types/m3202/dialect_3202.hpp"
+#include "module_types/m3202/rules_3202.hpp"
 #include "module/shared/axes_personality.hpp"
 
 namespace stepmod::module::m3202 {
@@ -23,6 +24,8 @@ struct Channel3202 {
 
 class Module3202 final : public shared::AxesPersonality<ModuleType::k3202, Channel3202> {
  public:
+  static constexpr const axis::ModuleRules& kRules = kRules3202;  // rules_3202.hpp
+
   Module3202(AxisIo& io, planner::MotionPort& ch1, planner::MotionPort& ch2);
 
   void scan(const ImageWords& out, ImageWords& in, Nanos now) override;

@@ -1,5 +1,4 @@
 #include "module_types/m3601/module_3601.hpp"
-#include "module_types/m3601/rules_3601.hpp"
 
 #include "module_types/m3601/config_3601.hpp"
 #include "module_types/m3601/words_3601.hpp"

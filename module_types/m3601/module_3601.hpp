@@ -5,6 +5,7 @@
 // every module answers alike: module/shared/axes_personality.hpp.
 #include "module/shared/axes_personality.hpp"
 #include "module_types/m3601/dialect_3601.hpp"
+#include "module_types/m3601/rules_3601.hpp"
 
 namespace stepmod::module::m3601 {
 
@@ -16,6 +17,8 @@ struct Channel3601 {
 
 class Module3601 final : public shared::AxesPersonality<ModuleType::k3601, Channel3601> {
  public:
+  static constexpr const axis::ModuleRules& kRules = kRules3601;  // rules_3601.hpp
+
   Module3601(AxisIo& io, planner::MotionPort& motion);
 
   void scan(const ImageWords& out, ImageWords& in, Nanos now) override;

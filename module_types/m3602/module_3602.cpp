@@ -1,5 +1,4 @@
 #include "module_types/m3602/module_3602.hpp"
-#include "module_types/m3602/rules_3602.hpp"
 
 #include "module_types/m3602/config_3602.hpp"
 #include "module_types/m3602/dialect_3602.hpp"

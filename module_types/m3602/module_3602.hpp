@@ -8,6 +8,7 @@
 // verbs every module answers alike: module/shared/axes_personality.hpp.
 #include "module/shared/axes_personality.hpp"
 #include "module_types/m3602/interpolated_move.hpp"
+#include "module_types/m3602/rules_3602.hpp"
 
 namespace stepmod::module::m3602 {
 
@@ -31,6 +32,8 @@ struct Channel3602 {
 
 class Module3602 final : public shared::AxesPersonality<ModuleType::k3602, Channel3602> {
  public:
+  static constexpr const axis::ModuleRules& kRules = kRules3602;  // rules_3602.hpp
+
   Module3602(AxisIo& io, planner::MotionPort& axis1, planner::MotionPort& axis2);
 
   void on_input(const InputEvent& e) override;
