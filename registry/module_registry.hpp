@@ -2,7 +2,7 @@
 // The module types as the daemon sees them, one row each (model: LinuxCNC stepgen.c's
 // master_lut, where a variant is a table row): its number and name, its image shape, its rules
 // value (what the shared axis does differently) and the factory of its personality. Each row is
-// written in its module type's folder (module_types/mXXXX/registry_row_XXXX.hpp) and collected by
+// made from its module type's personality class (registry/module_type_row_of.hpp) and collected by
 // the generated module_types/registry_rows.hpp; stepmodctl's side of a type is its CtlRow
 // (tools/ctl_dialects.hpp), the console's its ModuleView (web/module_views.hpp). Code that needs
 // one of these for a type looks the row up here: nothing else switches on the module type.
