@@ -21,7 +21,9 @@
 #include <thread>
 #include <vector>
 
+#include "config/config.hpp"
 #include "config/rack_config.hpp"
+#include "core/stop_signals.hpp"
 #include "core/version.hpp"
 #include "daemon/daemon.hpp"
 #include "daemon/daemon_log.hpp"
@@ -29,19 +31,6 @@
 #include "rt/cpus_online.hpp"
 
 namespace {
-
-// SIGINT/SIGTERM/SIGHUP are blocked in every thread (the threads created after this inherit the
-// mask) and taken by run_until_signal with sigtimedwait, so no handler ever runs on the pulse
-// thread.
-sigset_t block_stop_signals() {
-  sigset_t signals;
-  sigemptyset(&signals);
-  sigaddset(&signals, SIGINT);
-  sigaddset(&signals, SIGTERM);
-  sigaddset(&signals, SIGHUP);  // the terminal closed: the same clean stop
-  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
-  return signals;
-}
 
 // The daemon on a thread of its own until one of `signals` (or its failure); the exit status.
 int run_until_signal(const stepmod::tools::RackConfig& config,
@@ -163,7 +152,7 @@ int run(int argc, char** argv) {
     return 0;
   }
 
-  const sigset_t signals = block_stop_signals();
+  const sigset_t signals = stepmod::block_stop_signals();
   return run_until_signal(config, trace_path, signals);
 }
 

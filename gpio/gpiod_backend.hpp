@@ -9,14 +9,13 @@
 #include <span>
 #include <string>
 
-#include "gpio/axis_lines.hpp"
-#include "gpio/backend.hpp"
+#include "gpio/wired_backend.hpp"
 
 namespace stepmod::gpio {
 
 struct GpiodShared;
 
-class GpiodBackend final : public Backend {
+class GpiodBackend final : public WiredBackend {
  public:
   // `chip`: name ("gpiochip0"), path ("/dev/gpiochip0"), label or number (libgpiod 1.6's
   // gpiod_chip_open_lookup rules, on both versions). Requests every configured line (consumer
@@ -28,10 +27,7 @@ class GpiodBackend final : public Backend {
   GpiodBackend(const GpiodBackend&) = delete;
   GpiodBackend& operator=(const GpiodBackend&) = delete;
 
-  unsigned axes() const noexcept override;
   void write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept override;
-  bool has_input(unsigned axis, InputLine line) const noexcept override;
-  bool has_output(unsigned axis, OutputLine line) const noexcept override;
   bool read(unsigned axis, InputLine line) override;
   std::size_t wait_events(std::span<InputEvent> out, Nanos deadline) override;
   // Edges lost by the kernel (its per-line FIFO of 16 events overflowed): sequence-number gaps
@@ -40,18 +36,19 @@ class GpiodBackend final : public Backend {
   std::uint64_t lost_events() const noexcept override;
   void idle_outputs() noexcept override;
   void set_enable(unsigned axis, bool asserted) noexcept override;
-  LineOptions line_options(unsigned axis, bool input, unsigned line) const noexcept override;
 
   // Write errors seen by the pulse thread (it cannot report them itself).
   std::uint64_t write_errors() const noexcept;
 
  private:
-  struct Impl;  // keeps libgpiod, liburing and <linux/gpio.h> out of the users' includes
-  std::unique_ptr<Impl> d_;
-  // The Impl's part both libgpiod generations share (gpio/gpiod_shared.hpp): the accessors
-  // that only read the configured lines are defined once, over it.
-  GpiodShared& shared() noexcept;
-  const GpiodShared& shared() const noexcept;
+  // The part both libgpiod generations share (gpio/gpiod_shared.hpp; the members that need no
+  // libgpiod are defined once, over it), made by make_impl as the Impl of the generation whose
+  // source CMake selected: keeps libgpiod, liburing and <linux/gpio.h> out of the users'
+  // includes.
+  std::unique_ptr<GpiodShared> d_;
+  struct Impl;
+  static std::unique_ptr<GpiodShared> make_impl(std::span<const AxisLines> lines);
+  Impl& impl() noexcept;
 };
 
 }  // namespace stepmod::gpio

@@ -31,7 +31,13 @@ GpiodCapabilities gpiod_capabilities() noexcept {
   return {1, false};
 }
 
-struct GpiodBackend::Impl : GpiodShared {
+struct GpiodBackend::Impl final : GpiodShared {
+  explicit Impl(std::span<const AxisLines> lines)
+      : GpiodShared(lines), out_lines(lines.size(), {nullptr, nullptr, nullptr}) {}
+  ~Impl() override { release(); }
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
+
   struct Input {
     gpiod_line* line = nullptr;
     int fd = -1;
@@ -51,11 +57,11 @@ struct GpiodBackend::Impl : GpiodShared {
   // Inputs: one event request per line; their fds are read by `events`.
   std::vector<Input> inputs;
 
-  void open(const std::string& name);
+  std::size_t open(const std::string& name) override;
   gpiod_line* claim_line(unsigned axis, bool input, unsigned line, unsigned offset);
   gpiod_line* request_output(unsigned axis, unsigned line, unsigned offset, const LineOptions& o);
-  void claim_axis(unsigned a);
-  void request_inputs();
+  void claim_axis(unsigned a) override;
+  void request_lines() override;
   std::string input_name(const Input& in) const {
     return where(in.axis, true, static_cast<unsigned>(in.which), in.offset);
   }
@@ -77,10 +83,10 @@ struct GpiodBackend::Impl : GpiodShared {
   }
 };
 
-void GpiodBackend::Impl::open(const std::string& name) {
-  chip_name = name;
+std::size_t GpiodBackend::Impl::open(const std::string& name) {
   chip = gpiod_chip_open_lookup(name.c_str());
   if (chip == nullptr) throw_chip_not_found(name);
+  return gpiod_chip_num_lines(chip);
 }
 
 // One configured line, claimed (once) and checked before requesting so that the message names
@@ -88,22 +94,9 @@ void GpiodBackend::Impl::open(const std::string& name) {
 gpiod_line* GpiodBackend::Impl::claim_line(unsigned axis, bool input, unsigned line,
                                            unsigned offset) {
   claim(axis, input, line, offset);
-  const unsigned n = gpiod_chip_num_lines(chip);
-  if (offset >= n) {
-    throw std::runtime_error(where(axis, input, line, offset) +
-                             ": offset out of range (the chip has " + std::to_string(n) +
-                             " lines, 0.." + std::to_string(n - 1) + ")");
-  }
   gpiod_line* l = gpiod_chip_get_line(chip, offset);
-  if (l == nullptr) {
-    throw std::runtime_error(where(axis, input, line, offset) +
-                             ": cannot get line info: " + std::strerror(errno));
-  }
-  if (gpiod_line_is_used(l)) {
-    const char* who = gpiod_line_consumer(l);
-    throw std::runtime_error(where(axis, input, line, offset) + ": line busy (used by '" +
-                             (who != nullptr ? who : "?") + "')");
-  }
+  if (l == nullptr) throw_no_line_info(axis, input, line, offset);
+  if (gpiod_line_is_used(l)) throw_line_busy(axis, input, line, offset, gpiod_line_consumer(l));
   return l;
 }
 
@@ -121,7 +114,7 @@ gpiod_line* GpiodBackend::Impl::request_output(unsigned axis, unsigned line, uns
 }
 
 // One axis' lines in configuration order: outputs requested at once, inputs claimed (requested
-// by request_inputs()).
+// by request_lines()).
 void GpiodBackend::Impl::claim_axis(unsigned a) {
   const AxisLines& lines = axes[a];
   for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
@@ -143,8 +136,9 @@ void GpiodBackend::Impl::claim_axis(unsigned a) {
   }
 }
 
-// Edge events on every claimed input, and the reader of their fds.
-void GpiodBackend::Impl::request_inputs() {
+// Edge events on every claimed input, and the reader of their fds (the outputs were requested as
+// they were claimed).
+void GpiodBackend::Impl::request_lines() {
   for (Input& in : inputs) {
     const LineOptions& o = axes[in.axis].in_opt[static_cast<unsigned>(in.which)];
     if (o.debounce_us != 0) {
@@ -163,36 +157,16 @@ void GpiodBackend::Impl::request_inputs() {
   start_events(std::move(sources), EdgeRecordFormat::kV1);
 }
 
-GpiodBackend::GpiodBackend(const std::string& chip, std::span<const AxisLines> axes)
-    : d_(std::make_unique<Impl>()) {
-  Impl& d = *d_;
-  d.axes.assign(axes.begin(), axes.end());
-  d.open(chip);
-  try {
-    d.start_claims(gpiod_chip_num_lines(d.chip));
-    d.out_lines.assign(axes.size(), {nullptr, nullptr, nullptr});
-    for (unsigned a = 0; a < axes.size(); ++a) d.claim_axis(a);
-    d.request_inputs();
-  } catch (...) {
-    d.release();
-    throw;
-  }
+std::unique_ptr<GpiodShared> GpiodBackend::make_impl(std::span<const AxisLines> lines) {
+  return std::make_unique<Impl>(lines);
 }
 
-GpiodBackend::~GpiodBackend() {
-  d_->release();
-}
-
-GpiodShared& GpiodBackend::shared() noexcept {
-  return *d_;
-}
-
-const GpiodShared& GpiodBackend::shared() const noexcept {
-  return *d_;
+GpiodBackend::Impl& GpiodBackend::impl() noexcept {
+  return static_cast<Impl&>(*d_);
 }
 
 void GpiodBackend::write(unsigned axis, OutputLine line, bool level, Nanos /*t*/) noexcept {
-  Impl& d = *d_;
+  Impl& d = impl();
   gpiod_line* l = d.out_lines[axis][static_cast<unsigned>(line)];
   if (l == nullptr) return;
   // One ioctl on the line's handle (libgpiod builds its one-line bulk on the stack).
@@ -200,7 +174,7 @@ void GpiodBackend::write(unsigned axis, OutputLine line, bool level, Nanos /*t*/
 }
 
 bool GpiodBackend::read(unsigned axis, InputLine line) {
-  Impl& d = *d_;
+  Impl& d = impl();
   const int i = d.input_index(axis, line);
   if (i < 0) return false;
   const Impl::Input& in = d.inputs[static_cast<std::size_t>(i)];
@@ -211,14 +185,15 @@ bool GpiodBackend::read(unsigned axis, InputLine line) {
 }
 
 void GpiodBackend::set_enable(unsigned axis, bool asserted) noexcept {
-  if (axis >= d_->enable_lines.size() || d_->enable_lines[axis] == nullptr) return;
-  if (gpiod_line_set_value(d_->enable_lines[axis], asserted ? 1 : 0) != 0) {
-    d_->write_errors.fetch_add(1, std::memory_order_relaxed);
+  Impl& d = impl();
+  if (axis >= d.enable_lines.size() || d.enable_lines[axis] == nullptr) return;
+  if (gpiod_line_set_value(d.enable_lines[axis], asserted ? 1 : 0) != 0) {
+    d.write_errors.fetch_add(1, std::memory_order_relaxed);
   }
 }
 
 void GpiodBackend::idle_outputs() noexcept {
-  Impl& d = *d_;
+  Impl& d = impl();
   for (gpiod_line* l : d.outputs_requested) gpiod_line_set_value(l, 0);
 }
 

@@ -27,31 +27,13 @@ namespace stepmod::gpio {
 
 namespace {
 
-gpiod_line_bias to_gpiod(Bias b) {
-  switch (b) {
-    case Bias::kPullUp:
-      return GPIOD_LINE_BIAS_PULL_UP;
-    case Bias::kPullDown:
-      return GPIOD_LINE_BIAS_PULL_DOWN;
-    case Bias::kDisabled:
-      return GPIOD_LINE_BIAS_DISABLED;
-    case Bias::kAsIs:
-      break;
-  }
-  return GPIOD_LINE_BIAS_AS_IS;
-}
-
-gpiod_line_drive to_gpiod(Drive d) {
-  switch (d) {
-    case Drive::kOpenDrain:
-      return GPIOD_LINE_DRIVE_OPEN_DRAIN;
-    case Drive::kOpenSource:
-      return GPIOD_LINE_DRIVE_OPEN_SOURCE;
-    case Drive::kPushPull:
-      break;
-  }
-  return GPIOD_LINE_DRIVE_PUSH_PULL;
-}
+// libgpiod 2's value of each line option, in its enum's order (gpio/line_options.hpp).
+constexpr std::array kBiasOf{GPIOD_LINE_BIAS_AS_IS, GPIOD_LINE_BIAS_PULL_UP,
+                             GPIOD_LINE_BIAS_PULL_DOWN, GPIOD_LINE_BIAS_DISABLED};
+static_assert(kBiasOf.size() == static_cast<std::size_t>(Bias::kDisabled) + 1);
+constexpr std::array kDriveOf{GPIOD_LINE_DRIVE_PUSH_PULL, GPIOD_LINE_DRIVE_OPEN_DRAIN,
+                              GPIOD_LINE_DRIVE_OPEN_SOURCE};
+static_assert(kDriveOf.size() == static_cast<std::size_t>(Drive::kOpenSource) + 1);
 
 // Owners of libgpiod's objects (freed on every path, including a throw).
 struct Settings {
@@ -106,7 +88,15 @@ GpiodCapabilities gpiod_capabilities() noexcept {
   return {2, true};
 }
 
-struct GpiodBackend::Impl : GpiodShared {
+struct GpiodBackend::Impl final : GpiodShared {
+  explicit Impl(std::span<const AxisLines> lines)
+      : GpiodShared(lines),
+        out_offset(lines.size(), {-1, -1, -1}),
+        enable_offset(lines.size(), -1) {}
+  ~Impl() override { release(); }
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
+
   struct Input {
     gpiod_line_request* req = nullptr;
     std::uint8_t axis = 0;
@@ -122,27 +112,15 @@ struct GpiodBackend::Impl : GpiodShared {
   std::vector<int> enable_offset;                                // per axis, -1: none
 
   std::vector<Input> inputs;
-  std::size_t chip_lines = 0;
 
   // One configured line, claimed (once) and checked before requesting so that the message
   // names the line and its present user.
   void claim_line(unsigned axis, bool input, unsigned line, unsigned offset) {
     claim(axis, input, line, offset);
-    const std::size_t n = chip_lines;
-    if (offset >= n) {
-      throw std::runtime_error(where(axis, input, line, offset) +
-                               ": offset out of range (the chip has " + std::to_string(n) +
-                               " lines, 0.." + std::to_string(n - 1) + ")");
-    }
     LineInfo info{gpiod_chip_get_line_info(chip, offset)};
-    if (info.p == nullptr) {
-      throw std::runtime_error(where(axis, input, line, offset) +
-                               ": cannot get line info: " + std::strerror(errno));
-    }
+    if (info.p == nullptr) throw_no_line_info(axis, input, line, offset);
     if (gpiod_line_info_is_used(info.p)) {
-      const char* who = gpiod_line_info_get_consumer(info.p);
-      throw std::runtime_error(where(axis, input, line, offset) + ": line busy (used by '" +
-                               (who != nullptr ? who : "?") + "')");
+      throw_line_busy(axis, input, line, offset, gpiod_line_info_get_consumer(info.p));
     }
   }
 
@@ -160,17 +138,17 @@ struct GpiodBackend::Impl : GpiodShared {
     gpiod_line_settings_set_direction(s.p, GPIOD_LINE_DIRECTION_OUTPUT);
     gpiod_line_settings_set_output_value(s.p, GPIOD_LINE_VALUE_INACTIVE);
     gpiod_line_settings_set_active_low(s.p, o.active_low);
-    gpiod_line_settings_set_drive(s.p, to_gpiod(o.drive));
+    gpiod_line_settings_set_drive(s.p, kDriveOf.at(static_cast<std::size_t>(o.drive)));
     if (gpiod_line_config_add_line_settings(lc, &off, 1, s.p) != 0) {
       throw std::runtime_error(where(a, false, l, off) +
                                ": line settings: " + std::strerror(errno));
     }
   }
-  void open(const std::string& name);
-  void claim_axis(unsigned a);
+  std::size_t open(const std::string& name) override;
+  void claim_axis(unsigned a) override;
   void request_outputs();
   void request_input(Input& in);
-  void request_inputs();
+  void request_lines() override;
   std::string input_name(const Input& in) const {
     return where(in.axis, true, static_cast<unsigned>(in.which), in.offset);
   }
@@ -217,7 +195,7 @@ void GpiodBackend::Impl::request_input(Input& in) {
   gpiod_line_settings_set_direction(s.p, GPIOD_LINE_DIRECTION_INPUT);
   gpiod_line_settings_set_edge_detection(s.p, GPIOD_LINE_EDGE_BOTH);
   gpiod_line_settings_set_event_clock(s.p, GPIOD_LINE_CLOCK_MONOTONIC);
-  gpiod_line_settings_set_bias(s.p, to_gpiod(o.bias));
+  gpiod_line_settings_set_bias(s.p, kBiasOf.at(static_cast<std::size_t>(o.bias)));
   gpiod_line_settings_set_active_low(s.p, o.active_low);
   gpiod_line_settings_set_debounce_period_us(s.p, o.debounce_us);
   LineConfig lc;
@@ -227,14 +205,16 @@ void GpiodBackend::Impl::request_input(Input& in) {
   in.req = request(lc.p, name + ": requesting edge events");
 }
 
-void GpiodBackend::Impl::open(const std::string& name) {
-  chip_name = name;
+std::size_t GpiodBackend::Impl::open(const std::string& name) {
   chip = open_chip(name);
   if (chip == nullptr) throw_chip_not_found(name);
+  gpiod_chip_info* info = gpiod_chip_get_info(chip);
+  const std::size_t lines = info != nullptr ? gpiod_chip_info_get_num_lines(info) : 0;
+  gpiod_chip_info_free(info);
+  return lines;
 }
 
-// One axis' lines in configuration order, claimed; requested by request_outputs() (all outputs
-// in one request) and request_inputs().
+// One axis' lines in configuration order, claimed; requested by request_lines().
 void GpiodBackend::Impl::claim_axis(unsigned a) {
   const AxisLines& lines = axes[a];
   for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
@@ -257,8 +237,10 @@ void GpiodBackend::Impl::claim_axis(unsigned a) {
   }
 }
 
-// Edge events on every claimed input (a request each), and the reader of their fds.
-void GpiodBackend::Impl::request_inputs() {
+// All outputs in one request; edge events on every claimed input (a request each), and the
+// reader of their fds.
+void GpiodBackend::Impl::request_lines() {
+  request_outputs();
   std::vector<LineEventReader::Source> sources;
   for (Input& in : inputs) {
     request_input(in);
@@ -267,41 +249,16 @@ void GpiodBackend::Impl::request_inputs() {
   start_events(std::move(sources), EdgeRecordFormat::kV2);
 }
 
-GpiodBackend::GpiodBackend(const std::string& chip, std::span<const AxisLines> axes)
-    : d_(std::make_unique<Impl>()) {
-  Impl& d = *d_;
-  d.axes.assign(axes.begin(), axes.end());
-  d.open(chip);
-  try {
-    gpiod_chip_info* info = gpiod_chip_get_info(d.chip);
-    d.chip_lines = info != nullptr ? gpiod_chip_info_get_num_lines(info) : 0;
-    gpiod_chip_info_free(info);
-    d.start_claims(d.chip_lines);
-    d.out_offset.assign(axes.size(), {-1, -1, -1});
-    d.enable_offset.assign(axes.size(), -1);
-    for (unsigned a = 0; a < axes.size(); ++a) d.claim_axis(a);
-    d.request_outputs();
-    d.request_inputs();
-  } catch (...) {
-    d.release();
-    throw;
-  }
+std::unique_ptr<GpiodShared> GpiodBackend::make_impl(std::span<const AxisLines> lines) {
+  return std::make_unique<Impl>(lines);
 }
 
-GpiodBackend::~GpiodBackend() {
-  d_->release();
-}
-
-GpiodShared& GpiodBackend::shared() noexcept {
-  return *d_;
-}
-
-const GpiodShared& GpiodBackend::shared() const noexcept {
-  return *d_;
+GpiodBackend::Impl& GpiodBackend::impl() noexcept {
+  return static_cast<Impl&>(*d_);
 }
 
 void GpiodBackend::write(unsigned axis, OutputLine line, bool level, Nanos /*t*/) noexcept {
-  Impl& d = *d_;
+  Impl& d = impl();
   const int off = d.out_offset[axis][static_cast<unsigned>(line)];
   if (off < 0) return;
   if (gpiod_line_request_set_value(d.out_req, static_cast<unsigned>(off),
@@ -312,7 +269,7 @@ void GpiodBackend::write(unsigned axis, OutputLine line, bool level, Nanos /*t*/
 }
 
 bool GpiodBackend::read(unsigned axis, InputLine line) {
-  Impl& d = *d_;
+  Impl& d = impl();
   const int i = d.input_index(axis, line);
   if (i < 0) return false;
   const Impl::Input& in = d.inputs[static_cast<std::size_t>(i)];
@@ -325,7 +282,7 @@ bool GpiodBackend::read(unsigned axis, InputLine line) {
 }
 
 void GpiodBackend::set_enable(unsigned axis, bool asserted) noexcept {
-  Impl& d = *d_;
+  Impl& d = impl();
   if (axis >= d.enable_offset.size() || d.enable_offset[axis] < 0) return;
   if (gpiod_line_request_set_value(
           d.out_req, static_cast<unsigned>(d.enable_offset[axis]),
@@ -335,7 +292,7 @@ void GpiodBackend::set_enable(unsigned axis, bool asserted) noexcept {
 }
 
 void GpiodBackend::idle_outputs() noexcept {
-  Impl& d = *d_;
+  Impl& d = impl();
   if (d.out_req == nullptr) return;
   for (unsigned o : d.out_offsets) {
     gpiod_line_request_set_value(d.out_req, o, GPIOD_LINE_VALUE_INACTIVE);

@@ -1,5 +1,5 @@
-// GpiodShared and the GpiodBackend members that only read the configured lines: one definition
-// for both libgpiod generations (gpio/gpiod_shared.hpp).
+// GpiodShared and the GpiodBackend members that need no libgpiod: one definition for both
+// libgpiod generations (gpio/gpiod_shared.hpp).
 #include "gpio/gpiod_shared.hpp"
 
 #include <cerrno>
@@ -35,12 +35,39 @@ void GpiodShared::throw_chip_not_found(const std::string& chip) {
                            chip_access_hint(e));
 }
 
+void GpiodShared::setup(const std::string& chip) {
+  chip_name = chip;
+  claimed_.assign(open(chip), {});
+  in_index.assign(axes.size(), {});
+  for (auto& index : in_index) index.fill(-1);
+  for (unsigned a = 0; a < axes.size(); ++a) claim_axis(a);
+  request_lines();
+}
+
 void GpiodShared::claim(unsigned axis, bool input, unsigned line, unsigned offset) {
-  if (offset < claimed_.size() && !claimed_[offset].empty()) {
+  const std::size_t n = claimed_.size();  // the chip's lines
+  if (offset >= n) {
+    throw std::runtime_error(where(axis, input, line, offset) +
+                             ": offset out of range (the chip has " + std::to_string(n) +
+                             " lines, 0.." + std::to_string(n - 1) + ")");
+  }
+  if (!claimed_[offset].empty()) {
     throw std::runtime_error(where(axis, input, line, offset) + ": offset already used by " +
                              claimed_[offset]);
   }
-  if (offset < claimed_.size()) claimed_[offset] = line_key(axis, input, line);
+  claimed_[offset] = line_key(axis, input, line);
+}
+
+void GpiodShared::throw_no_line_info(unsigned axis, bool input, unsigned line,
+                                     unsigned offset) const {
+  throw std::runtime_error(where(axis, input, line, offset) +
+                           ": cannot get line info: " + std::strerror(errno));
+}
+
+void GpiodShared::throw_line_busy(unsigned axis, bool input, unsigned line, unsigned offset,
+                                  const char* who) const {
+  throw std::runtime_error(where(axis, input, line, offset) + ": line busy (used by '" +
+                           (who != nullptr ? who : "?") + "')");
 }
 
 void GpiodShared::start_events(std::vector<LineEventReader::Source> sources,
@@ -53,39 +80,27 @@ void GpiodShared::start_events(std::vector<LineEventReader::Source> sources,
   }
 }
 
-unsigned GpiodBackend::axes() const noexcept {
-  return static_cast<unsigned>(shared().axes.size());
+GpiodBackend::GpiodBackend(const std::string& chip, std::span<const AxisLines> axes)
+    : WiredBackend({axes.begin(), axes.end()}), d_(make_impl(lines())) {
+  d_->setup(chip);
 }
 
-LineOptions GpiodBackend::line_options(unsigned axis, bool input, unsigned line) const noexcept {
-  if (axis >= shared().axes.size()) return {};
-  const AxisLines& a = shared().axes[axis];
-  if (input) return line < kInputLinesPerAxis ? a.in_opt[line] : LineOptions{};
-  return line < kOutputLinesPerAxis ? a.out_opt[line] : LineOptions{};
-}
-
-bool GpiodBackend::has_input(unsigned axis, InputLine line) const noexcept {
-  return axis < shared().axes.size() && shared().axes[axis].has_input(line);
-}
-
-bool GpiodBackend::has_output(unsigned axis, OutputLine line) const noexcept {
-  return axis < shared().axes.size() && shared().axes[axis].has_output(line);
-}
+GpiodBackend::~GpiodBackend() = default;
 
 std::size_t GpiodBackend::wait_events(std::span<InputEvent> out, Nanos deadline) {
-  if (!shared().events) {  // no input wired: nothing can arrive
+  if (!d_->events) {  // no input wired: nothing can arrive
     sleep_until(deadline);
     return 0;
   }
-  return shared().events->wait(out, deadline);
+  return d_->events->wait(out, deadline);
 }
 
 std::uint64_t GpiodBackend::lost_events() const noexcept {
-  return shared().events ? shared().events->lost() : 0;
+  return d_->events ? d_->events->lost() : 0;
 }
 
 std::uint64_t GpiodBackend::write_errors() const noexcept {
-  return shared().write_errors.load(std::memory_order_relaxed);
+  return d_->write_errors.load(std::memory_order_relaxed);
 }
 
 }  // namespace stepmod::gpio

@@ -1,13 +1,15 @@
 #pragma once
 // What the two GpiodBackend implementations share (gpiod_backend_v1.cpp for libgpiod 1.6,
 // gpiod_backend_v2.cpp for libgpiod 2; CMake builds one): the configured lines and what is said
-// about them, the check that a configuration names each offset once, the input event reader and
-// the accessors over AxisLines (gpiod_shared.cpp). Each backend's Impl derives from GpiodShared
-// and adds its libgpiod handles. Internal to gpio/: no libgpiod in here.
+// about them, the check that a configuration names each offset once and within the chip, the order
+// in which a backend opens the chip and requests its lines, and the input event reader
+// (gpiod_shared.cpp). Each backend's Impl derives from GpiodShared, adds its libgpiod handles
+// and implements the steps. Internal to gpio/: no libgpiod in here.
 #include <array>
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -24,8 +26,20 @@ inline constexpr unsigned kEnableKeyIndex = kOutputLinesPerAxis;
 std::string line_key(unsigned axis, bool input, unsigned line);
 
 struct GpiodShared {
+  explicit GpiodShared(std::span<const AxisLines> lines) : axes(lines) {}
+  // The generation's Impl releases its lines (GpiodBackend::make_impl made it).
+  virtual ~GpiodShared() = default;
+  GpiodShared(const GpiodShared&) = delete;
+  GpiodShared& operator=(const GpiodShared&) = delete;
+
+  // GpiodBackend's constructor: opens `chip` and requests every configured line, axis by axis
+  // in configuration order: each line claimed (checked) first, then requested. Throws
+  // std::runtime_error naming the chip and the line; the Impl's destructor releases what was
+  // requested.
+  void setup(const std::string& chip);
+
   std::string chip_name;
-  std::vector<AxisLines> axes;
+  std::span<const AxisLines> axes;             // the backend's own (WiredBackend::lines())
   std::atomic<std::uint64_t> write_errors{0};  // by the pulse and control threads' writes
   std::unique_ptr<LineEventReader> events;     // null: no input wired
   // Per axis and InputLine: the index of the input in the backend's own list, -1 unwired.
@@ -38,15 +52,16 @@ struct GpiodShared {
   // The chip could not be opened (errno says why; ENOENT when it does not).
   [[noreturn]] static void throw_chip_not_found(const std::string& chip);
 
-  // Before requesting anything: the chip's line count. Then each configured line once, in
-  // request order: our own use first (the lines are requested as they are claimed, so the
+  // Each configured line once, in request order, before libgpiod is asked about it: within the
+  // chip's lines, and our own use first (the lines are requested as they are claimed, so the
   // kernel would report a line this configuration names twice as busy "used by 'stepmod'").
-  void start_claims(std::size_t chip_lines) {
-    claimed_.assign(chip_lines, {});
-    in_index.assign(axes.size(), {});
-    for (auto& index : in_index) index.fill(-1);
-  }
   void claim(unsigned axis, bool input, unsigned line, unsigned offset);
+  // After claim(): libgpiod could not read the line's info (errno says why), or another
+  // consumer (`who`, null: unknown) holds it.
+  [[noreturn]] void throw_no_line_info(unsigned axis, bool input, unsigned line,
+                                       unsigned offset) const;
+  [[noreturn]] void throw_line_busy(unsigned axis, bool input, unsigned line, unsigned offset,
+                                    const char* who) const;
 
   // The index of a claimed input (read()), -1 when it is not wired.
   int input_index(unsigned axis, InputLine line) const noexcept {
@@ -62,6 +77,13 @@ struct GpiodShared {
   }
 
  private:
+  // The steps of setup(), by the generation: open the chip (throw_chip_not_found when it
+  // cannot) and return its number of lines; claim axis `a`'s lines (claim(), then libgpiod's
+  // view of each); request every claimed line (start_events for the inputs).
+  virtual std::size_t open(const std::string& chip) = 0;
+  virtual void claim_axis(unsigned a) = 0;
+  virtual void request_lines() = 0;
+
   std::vector<std::string> claimed_;  // offset -> "axis1.step"
 };
 

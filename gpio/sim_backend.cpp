@@ -23,10 +23,17 @@ std::uint16_t undriven_inputs(const SimAxisParams& p) {
   }
   return m;
 }
+
+std::vector<AxisLines> lines_of(std::span<const SimAxisSetup> axes) {
+  std::vector<AxisLines> lines;
+  for (const SimAxisSetup& a : axes) lines.push_back(a.lines);
+  return lines;
+}
 }  // namespace
 
 SimBackend::SimBackend(std::span<const SimAxisSetup> axes, std::size_t event_capacity)
-    : enable_wire_(std::make_unique<std::atomic<std::uint32_t>[]>(axes.size())) {
+    : WiredBackend(lines_of(axes)),
+      enable_wire_(std::make_unique<std::atomic<std::uint32_t>[]>(axes.size())) {
   machines_.reserve(axes.size());
   for (std::size_t a = 0; a < axes.size(); ++a) {
     std::uint16_t wired = 0;
@@ -51,15 +58,14 @@ SimBackend::SimBackend(std::span<const SimAxisSetup> axes, std::size_t event_cap
     const std::size_t ring = axes[a].sim.event_ring != 0 ? axes[a].sim.event_ring : event_capacity;
     machines_.push_back(std::make_unique<SimMachine>(static_cast<std::uint8_t>(a), axes[a].sim,
                                                      wired, ring, pulls));
-    lines_.push_back(axes[a].lines);
   }
-  for (unsigned a = 0; a < lines_.size(); ++a) set_enable(a, false);  // released at start
+  for (unsigned a = 0; a < axes.size(); ++a) set_enable(a, false);  // released at start
 }
 
 void SimBackend::write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept {
   // An unwired output (GPO on a module without one) drives nothing; the drive only sees wired
   // step/dir lines, which the config requires anyway.
-  if (!lines_[axis].has_output(line)) return;
+  if (!lines()[axis].has_output(line)) return;
   SimMachine& m = *machines_[axis];
   const std::uint64_t before = m.events_pushed();
   m.write(line, level, t);
@@ -75,14 +81,6 @@ void SimBackend::notify_events() noexcept {
     syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&event_seq_), FUTEX_WAKE_PRIVATE, 1,
             nullptr, nullptr, 0);
   }
-}
-
-bool SimBackend::has_input(unsigned axis, InputLine line) const noexcept {
-  return axis < lines_.size() && lines_[axis].has_input(line);
-}
-
-bool SimBackend::has_output(unsigned axis, OutputLine line) const noexcept {
-  return axis < lines_.size() && lines_[axis].has_output(line);
 }
 
 bool SimBackend::read(unsigned axis, InputLine line) {
@@ -151,16 +149,9 @@ void SimBackend::force(unsigned axis, std::uint32_t mask, std::uint32_t levels,
   if (axis < machines_.size()) machines_[axis]->force(mask, levels, now);
 }
 
-LineOptions SimBackend::line_options(unsigned axis, bool input, unsigned line) const noexcept {
-  if (axis >= lines_.size()) return {};
-  const AxisLines& a = lines_[axis];
-  if (input) return line < kInputLinesPerAxis ? a.in_opt[line] : LineOptions{};
-  return line < kOutputLinesPerAxis ? a.out_opt[line] : LineOptions{};
-}
-
 void SimBackend::set_enable(unsigned axis, bool asserted) noexcept {
-  if (axis >= lines_.size() || !lines_[axis].enable) return;
-  const bool wire = asserted != lines_[axis].enable_opt.active_low;
+  if (axis >= lines().size() || !lines()[axis].enable) return;
+  const bool wire = asserted != lines()[axis].enable_opt.active_low;
   enable_wire_[axis].store(wire ? kEnableLevelBit : 0u, std::memory_order_relaxed);
 }
 

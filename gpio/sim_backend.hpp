@@ -6,9 +6,8 @@
 #include <span>
 #include <vector>
 
-#include "gpio/axis_lines.hpp"
-#include "gpio/backend.hpp"
 #include "gpio/sim_machine.hpp"
+#include "gpio/wired_backend.hpp"
 
 namespace stepmod::gpio {
 
@@ -17,16 +16,13 @@ struct SimAxisSetup {
   SimAxisParams sim;
 };
 
-class SimBackend final : public Backend {
+class SimBackend final : public WiredBackend {
  public:
   // `event_capacity`: per-axis input event ring (power of two).
   explicit SimBackend(std::span<const SimAxisSetup> axes,
                       std::size_t event_capacity = kDefaultSimEventRing);
 
-  unsigned axes() const noexcept override { return static_cast<unsigned>(machines_.size()); }
   void write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept override;
-  bool has_input(unsigned axis, InputLine line) const noexcept override;
-  bool has_output(unsigned axis, OutputLine line) const noexcept override;
   bool read(unsigned axis, InputLine line) override;
   // Drains the machines' events; when there are none, sleeps until some arrive or `deadline`
   // passes. The sim has no file descriptor to block on: the sleep is a futex wait that write()
@@ -36,7 +32,6 @@ class SimBackend final : public Backend {
   std::uint64_t lost_events() const noexcept override;
   void idle_outputs() noexcept override;
   void set_pulse_format(unsigned axis, PulseFormat format) noexcept override;
-  LineOptions line_options(unsigned axis, bool input, unsigned line) const noexcept override;
 
   // Simulator panel. force() on the control thread (the thread calling wait_events).
   // The forced edges are stamped `now` (the daemon: the clock; virtual-time tests: their time).
@@ -72,7 +67,6 @@ class SimBackend final : public Backend {
   std::atomic<bool> waiting_{false};
   Nanos last_events_ = 0;  // consumer: when wait_events last returned events
   std::vector<std::unique_ptr<SimMachine>> machines_;
-  std::vector<AxisLines> lines_;
   std::vector<std::uint32_t> active_low_outputs_;              // per axis, bit per OutputLine
   std::unique_ptr<std::atomic<std::uint32_t>[]> enable_wire_;  // per axis: kEnableLevelBit or 0
   unsigned next_axis_ = 0;  // round-robin start of wait_events, so no axis starves another

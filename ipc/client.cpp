@@ -15,16 +15,10 @@ constexpr std::int64_t kStaleWriterNs = STEPMOD_SEQ_STALE_NS;
 
 Client::Client(const std::string& name) : name_(name) {
   check_name(name);
-  map_ = ShmMapping::open(image_object(name), STEPMOD_IMAGE_SIZE);
-  img_ = static_cast<stepmod_image_t*>(map_.data());
+  img_ = open_checked<stepmod_image_t>(map_, image_object(name), STEPMOD_IMAGE_SIZE,
+                                       {STEPMOD_IMAGE_MAGIC, STEPMOD_LAYOUT_VERSION,
+                                        "a stepmod image", "; daemon still starting?", "layout"});
   const std::string path = "/dev/shm" + image_object(name);
-  if (!stepmod_magic_is(img_->magic, STEPMOD_IMAGE_MAGIC)) {
-    throw IpcError(path + " is not a stepmod image (bad magic; daemon still starting?)");
-  }
-  if (img_->version != STEPMOD_LAYOUT_VERSION) {
-    throw IpcError(path + " has layout version " + std::to_string(img_->version) +
-                   ", this program understands version " + std::to_string(STEPMOD_LAYOUT_VERSION));
-  }
   const auto type = module_type_from_number(img_->module_type);
   if (!type) {
     throw IpcError(path + " names unknown module type " + std::to_string(img_->module_type));

@@ -2,7 +2,7 @@
 
 namespace stepmod::ipc {
 
-std::string health_flag_names(std::uint32_t flags) {
+std::vector<std::string> health_flag_list(std::uint32_t flags) {
   static constexpr struct {
     std::uint32_t bit;
     const char* name;
@@ -16,10 +16,16 @@ std::string health_flag_names(std::uint32_t flags) {
       {STEPMOD_HEALTH_LEASE_EXPIRED, "commissioning lease expired"},
       {STEPMOD_HEALTH_LEASE_CONFLICT, "PLC heartbeat during a commissioning lease"},
   };
-  std::string s;
+  std::vector<std::string> names;
   for (const auto& n : kNames) {
-    if (flags & n.bit) s += (s.empty() ? "" : ", ") + std::string(n.name);
+    if (flags & n.bit) names.emplace_back(n.name);
   }
+  return names;
+}
+
+std::string health_flag_names(std::uint32_t flags) {
+  std::string s;
+  for (const std::string& n : health_flag_list(flags)) s += (s.empty() ? "" : ", ") + n;
   return s.empty() ? "ok" : s;
 }
 

@@ -3,6 +3,7 @@
 // 424), as the control thread publishes them with the input image and clients read them.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "ipc/stepmod_image.h"
 
@@ -18,5 +19,7 @@ struct Health {
 // "late-edge fault, PLC heartbeat stale" ... or "ok": the set flags by name, for logs and
 // stepmodctl.
 std::string health_flag_names(std::uint32_t flags);
+// The same names one by one (none when healthy), for stepmodctl status --json.
+std::vector<std::string> health_flag_list(std::uint32_t flags);
 
 }  // namespace stepmod::ipc

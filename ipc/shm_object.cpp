@@ -10,6 +10,8 @@
 #include <cstring>
 #include <utility>
 
+#include "ipc/stepmod_image.h"
+
 namespace stepmod::ipc {
 namespace {
 
@@ -202,6 +204,18 @@ ShmMapping ShmMapping::open(const std::string& object, std::size_t min_size) {
   m.object_ = object;
   m.writable_ = writable;
   return m;
+}
+
+void check_header(const std::string& object, const char* magic_field, std::uint32_t version,
+                  const ObjectHeader& expect) {
+  const std::string path = "/dev/shm" + object;
+  if (!stepmod_magic_is(magic_field, expect.magic)) {
+    throw IpcError(path + " is not " + expect.what + " (bad magic" + expect.magic_hint + ")");
+  }
+  if (version != expect.version) {
+    throw IpcError(path + " has " + expect.version_name + " version " + std::to_string(version) +
+                   ", this program understands version " + std::to_string(expect.version));
+  }
 }
 
 }  // namespace stepmod::ipc

@@ -79,4 +79,31 @@ class ShmMapping {
   int lock_fd_ = -1;  // create(): the descriptor holding the owner's lock
 };
 
+// What a reader expects at the start of a stepmod object (stepmod_image_t, stepmod_panel_t: an
+// 8-byte magic, published last by the creator, then the layout version), and how its errors name
+// the object.
+struct ObjectHeader {
+  const char* magic;         // STEPMOD_IMAGE_MAGIC, STEPMOD_PANEL_MAGIC
+  std::uint32_t version;     // the version this program understands
+  const char* what;          // "a stepmod image": what an object with another magic is not
+  const char* magic_hint;    // said after "bad magic" ("; daemon still starting?"), or ""
+  const char* version_name;  // "layout": "has layout version N"
+};
+
+// Throws IpcError naming /dev/shm<object> when `magic_field` (read with acquire) or `version`
+// is not what `expect` says.
+void check_header(const std::string& object, const char* magic_field, std::uint32_t version,
+                  const ObjectHeader& expect);
+
+// Opens `object` into `map` (ShmMapping::open) and checks its header (check_header) before the
+// caller trusts anything else in it; the mapping as a Header.
+template <class Header>
+Header* open_checked(ShmMapping& map, const std::string& object, std::size_t size,
+                     const ObjectHeader& expect) {
+  map = ShmMapping::open(object, size);
+  auto* header = static_cast<Header*>(map.data());
+  check_header(object, header->magic, header->version, expect);
+  return header;
+}
+
 }  // namespace stepmod::ipc

@@ -36,18 +36,12 @@ std::uint32_t SimPanelServer::force_levels(unsigned axis) const noexcept {
 
 SimPanelClient::SimPanelClient(const std::string& name) {
   check_name(name);
-  map_ = ShmMapping::open(panel_object(name), STEPMOD_PANEL_SIZE);
-  p_ = static_cast<stepmod_panel_t*>(map_.data());
-  const std::string path = "/dev/shm" + panel_object(name);
-  if (!stepmod_magic_is(p_->magic, STEPMOD_PANEL_MAGIC)) {
-    throw IpcError(path + " is not a stepmod simulator panel (bad magic)");
-  }
-  if (p_->version != STEPMOD_PANEL_VERSION) {
-    throw IpcError(path + " has panel version " + std::to_string(p_->version));
-  }
+  p_ = open_checked<stepmod_panel_t>(
+      map_, panel_object(name), STEPMOD_PANEL_SIZE,
+      {STEPMOD_PANEL_MAGIC, STEPMOD_PANEL_VERSION, "a stepmod simulator panel", "", "panel"});
   axes_ = p_->axes;
   if (axes_ == 0 || axes_ > STEPMOD_PANEL_MAX_AXES) {
-    throw IpcError(path + " has an impossible number of axes");
+    throw IpcError("/dev/shm" + panel_object(name) + " has an impossible number of axes");
   }
 }
 

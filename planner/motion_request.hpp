@@ -15,10 +15,9 @@
 
 namespace stepmod::planner {
 
-// A finite move of `steps` (> 0) steps: jump to vs, ramp to vp (or a lower peak: triangle), ramp
-// down, last step at vs (the manuals' ch. 2). vp <= vs means no ramps (constant speed vs... vp).
-struct MoveSpec {
-  std::int64_t steps = 0;
+// The speeds of a motion from rest: its direction, starting speed vs, programmed speed vp and the
+// two ramps between them (the manuals' ch. 2).
+struct MotionSpeeds {
   Direction dir = Direction::kCw;
   double vs = 1.0;
   double vp = 1.0;
@@ -26,15 +25,15 @@ struct MoveSpec {
   Ramp decel;
 };
 
+// A finite move of `steps` (> 0) steps: jump to vs, ramp to vp (or a lower peak: triangle), ramp
+// down, last step at vs (the manuals' ch. 2). vp <= vs means no ramps (constant speed vs... vp).
+struct MoveSpec : MotionSpeeds {
+  std::int64_t steps = 0;
+};
+
 // A move without an end (manual/jog move, homing search): runs until stopped. With vp <= vs the
 // axis jumps straight to vp ("constant-speed mode", manuals 3601/3202 ch. 4, 3602 ch. 2).
-struct RunSpec {
-  Direction dir = Direction::kCw;
-  double vs = 1.0;
-  double vp = 1.0;
-  Ramp accel;
-  Ramp decel;
-};
+struct RunSpec : MotionSpeeds {};
 
 // One blend segment (manuals 3601/3202 ch. 4-5, 3602 ch. 9): reach `speed` within `length` steps
 // using `ramp`.

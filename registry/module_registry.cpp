@@ -1,8 +1,8 @@
 #include "registry/module_registry.hpp"
 
 #include <stdexcept>
-#include <string>
 
+#include "core/module_rows.hpp"
 #include "module_types/registry_rows.hpp"  // generated: kRegistryRows, one per module type
 
 namespace stepmod::registry {
@@ -12,11 +12,14 @@ using module_types::kRegistryRows;
 
 // ---- the rows agree with the ground list of shapes and with themselves ------------------------
 
-constexpr bool rows_match_shapes() {
-  if (kRegistryRows.size() != kModuleShapes.size()) return false;
+static_assert(rows_follow_shapes(kRegistryRows),
+              "a module type needs one row, in kModuleShapes' order");
+
+// Each row's shape, rules and name agree with its type.
+constexpr bool rows_agree() {
   for (std::size_t i = 0; i < kRegistryRows.size(); ++i) {
     const ModuleTypeRow& r = *kRegistryRows[i];
-    if (r.type != kModuleShapes[i].type || r.shape.axes != kModuleShapes[i].axes) return false;
+    if (r.shape.axes != kModuleShapes[i].axes) return false;
     if (r.rules->type != r.type || module_type_from_name(r.name) != r.type) return false;
     // The config checker's terminals (core/) and the axis code's features (rules) agree.
     const AxisTerminals& io = kModuleShapes[i].terminals;
@@ -25,7 +28,7 @@ constexpr bool rows_match_shapes() {
   }
   return true;
 }
-static_assert(rows_match_shapes(), "a module type needs one row, in kModuleShapes' order");
+static_assert(rows_agree(), "a module type's row disagrees with its shape, rules or name");
 
 }  // namespace
 
@@ -34,10 +37,7 @@ std::span<const ModuleTypeRow* const> module_type_rows() noexcept {
 }
 
 const ModuleTypeRow& row_of(ModuleType type) {
-  for (const ModuleTypeRow* r : kRegistryRows) {
-    if (r->type == type) return *r;
-  }
-  throw std::invalid_argument("unknown module type " + std::to_string(static_cast<unsigned>(type)));
+  return row_of_type(kRegistryRows, type, "unknown module type ");
 }
 
 std::unique_ptr<module::Personality> make_personality(ModuleType type, module::AxisIo& io,

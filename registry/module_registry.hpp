@@ -2,7 +2,7 @@
 // The module types as the daemon sees them, one row each (model: LinuxCNC stepgen.c's
 // master_lut, where a variant is a table row): its number and name, its image shape, its rules
 // value (what the shared axis does differently) and the factory of its personality. Each row is
-// written in its module type's folder (module_types/mXXXX/registry_row_XXXX.hpp) and collected by
+// made from its module type's personality class (registry/module_type_row_of.hpp) and collected by
 // the generated module_types/registry_rows.hpp; stepmodctl's side of a type is its CtlRow
 // (tools/ctl_dialects.hpp), the console's its ModuleView (web/module_views.hpp). Code that needs
 // one of these for a type looks the row up here: nothing else switches on the module type.
@@ -16,6 +16,7 @@
 
 #include "core/module_shape.hpp"
 #include "module/axis/axis_io.hpp"
+#include "module/axis/error_reason.hpp"
 #include "module/axis/rules.hpp"
 #include "module/personality.hpp"
 #include "planner/motion_port.hpp"
@@ -32,6 +33,9 @@ struct ModuleTypeRow {
   ModuleShape shape;                       // core/module_shape.hpp
   const module::axis::ModuleRules* rules;  // module_types/mXXXX/rules_XXXX.hpp
   MakePersonality* make_personality;       // module_types/mXXXX/module_XXXX.hpp
+  // The error conditions only this type has, beside the shared ones of module/axis/
+  // error_items.hpp (the console's help on reasons lists both); none by default.
+  std::span<const module::axis::Item* const> own_items{};
 };
 
 // Every row, in kModuleShapes' order.

@@ -4,8 +4,8 @@
 // the PLC library's calls for the module the image belongs to, which checks every option against
 // its module's words first and throws UsageError before anything is written, then runs the
 // command over `port` and returns its outcome; its status display; its per-axis summary. Each row
-// is written in its module type's folder (module_types/mXXXX/ctl_row_XXXX.hpp, pointing at its
-// ctl_XXXX.cpp and ctl_status_XXXX.cpp) and collected by the generated module_types/ctl_rows.hpp.
+// is kCtlRowOf<T> (tools/ctl_row_of.hpp), pointing at the functions of its type's ctl_XXXX.cpp and
+// ctl_status_XXXX.cpp, and is collected by the generated module_types/ctl_rows.hpp.
 #include <chrono>
 #include <sstream>
 #include <vector>

@@ -32,6 +32,16 @@ std::string json_string(const std::string& s) {
   return o + "\"";
 }
 
+std::string json_strings(const std::vector<std::string>& list) {
+  std::string o = "[";
+  for (const std::string& s : list) {
+    if (o.size() > 1) o += ',';
+    o += json_string(s);
+  }
+  o += ']';
+  return o;
+}
+
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);
   for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
@@ -98,18 +108,13 @@ std::string brief_text(const std::string& name, const ipc::Client& client, const
 
 std::string json_text(const std::string& name, const ipc::Client& client, const Snapshot& s) {
   const auto axes = summarize(client.type(), s.in);
-  std::string o = "{\"module\":";
+  std::string o = "{\"schema\":" + std::to_string(kStatusJsonSchema) + ",\"module\":";
   o += json_string(name);
-  o += ",\"type\":";
-  o += std::to_string(static_cast<unsigned>(client.type()));
-  o += ",\"scan\":";
-  o += std::to_string(s.scan);
-  o += ",\"health\":{\"flags\":";
-  o += std::to_string(s.health.flags);
-  o += ",\"names\":";
-  o += json_string(ipc::health_flag_names(s.health.flags));
-  o += ",\"late_faults\":";
-  o += std::to_string(s.health.late_faults);
+  o += ",\"type\":" + std::to_string(static_cast<unsigned>(client.type()));
+  o += ",\"scan\":" + std::to_string(s.scan);
+  o += ",\"health\":{\"flags\":" + std::to_string(s.health.flags);
+  o += ",\"names\":" + json_strings(ipc::health_flag_list(s.health.flags));
+  o += ",\"late_faults\":" + std::to_string(s.health.late_faults);
   o += "},\"axes\":[";
   for (unsigned u = 0; u < axes.size(); ++u) {
     const AxisSummary& a = axes[u];
@@ -120,16 +125,18 @@ std::string json_text(const std::string& name, const ipc::Client& client, const 
                   u ? "," : "", u + 1, static_cast<long long>(a.position), s.speed[u],
                   s.reasons[u].seq, s.reasons[u].item);
     o += head;
-    o += "\"state\":";
-    o += json_string(a.state());
-    o += ",\"errors\":";
-    o += json_string(a.error_names());
-    o += ",\"reason\":";
-    o += json_string(reason_text(s.reasons[u]));
+    o += "\"state\":" + json_string(a.state());
+    o += ",\"errors\":" + json_strings(a.error_list());
+    o += ",\"reason\":" + json_string(reason_text(s.reasons[u]));
     o += "}";
   }
   o += "]}\n";
   return o;
+}
+
+std::string json_error_text(const std::string& name, const std::string& error) {
+  return "{\"schema\":" + std::to_string(kStatusJsonSchema) + ",\"module\":" + json_string(name) +
+         ",\"error\":" + json_string(error) + "}\n";
 }
 
 std::string reason_lines(const ipc::Client& client) {

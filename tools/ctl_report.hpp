@@ -23,7 +23,12 @@ std::optional<Snapshot> take_snapshot(const ipc::Client& client,
                                       std::chrono::milliseconds interval);
 
 std::string brief_text(const std::string& name, const ipc::Client& client, const Snapshot& s);
+// `status --json`: one object whose shape is docs/status.schema.json (docs/interface.md 1),
+// versioned by its "schema" member; a change of a member's name, type or meaning raises it.
+inline constexpr unsigned kStatusJsonSchema = 1;
 std::string json_text(const std::string& name, const ipc::Client& client, const Snapshot& s);
+// The same schema's error object, printed instead when the module cannot be read (exit 3).
+std::string json_error_text(const std::string& name, const std::string& error);
 // The reason lines under the full status: "axis 1 reason: 3601-CE-05: ..." (none: empty).
 std::string reason_lines(const ipc::Client& client);
 

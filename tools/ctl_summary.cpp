@@ -16,10 +16,10 @@ std::string AxisSummary::state() const {
   return "idle";
 }
 
-std::string AxisSummary::error_names() const {
-  std::string s;
-  const auto add = [&s](bool on, const char* name) {
-    if (on) s += (s.empty() ? "" : ", ") + std::string(name);
+std::vector<std::string> AxisSummary::error_list() const {
+  std::vector<std::string> names;
+  const auto add = [&names](bool on, const char* name) {
+    if (on) names.emplace_back(name);
   };
   add(cfg_error, "Configuration Error");
   add(command_error, "Command Error");
@@ -27,6 +27,12 @@ std::string AxisSummary::error_names() const {
   add(input_error, "Input Error");
   add(home_invalid, "Home Invalid");
   add(position_invalid, "Position Invalid");
+  return names;
+}
+
+std::string AxisSummary::error_names() const {
+  std::string s;
+  for (const std::string& n : error_list()) s += (s.empty() ? "" : ", ") + n;
   return s;
 }
 

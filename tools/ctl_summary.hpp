@@ -41,6 +41,8 @@ struct AxisSummary {
   std::string state() const;
   // "Command Error, Invalid Profile" or "" (the manuals' names).
   std::string error_names() const;
+  // The same names one by one (status --json).
+  std::vector<std::string> error_list() const;
 };
 
 // Every axis/channel of a module of `type` (its registry row's summarize).

@@ -124,10 +124,14 @@ std::string status_text(const std::string& name, ipc::Client& client) {
          format_health(client.read_health());
 }
 
-std::string stalled_text(const std::string& name, const ipc::Client& client) {
-  return "stepmodctl: module '" + name + "' is not scanning (scan counter " +
+std::string stalled_reason(const std::string& name, const ipc::Client& client) {
+  return "module '" + name + "' is not scanning (scan counter " +
          std::to_string(client.scan_counter()) +
-         " unchanged for 1 s): stepmodd is stopped (SIGSTOP?) or hung; its words are stale\n";
+         " unchanged for 1 s): stepmodd is stopped (SIGSTOP?) or hung; its words are stale";
+}
+
+std::string stalled_text(const std::string& name, const ipc::Client& client) {
+  return "stepmodctl: " + stalled_reason(name, client) + "\n";
 }
 
 // `stepmodctl trace recover`: no module needed, only the files.
@@ -175,6 +179,7 @@ int run_status(const CtlOptions& o, ipc::Client& client) {
   if (!snap) {
     // The words as they were left (what a stopped daemon last said), and why not to trust them.
     if (!brief && !json) std::cout << status_text(o.name, client);
+    if (json) std::cout << json_error_text(o.name, stalled_reason(o.name, client));
     std::cerr << stalled_text(o.name, client);
     return kExitUnreachable;
   }
@@ -375,6 +380,8 @@ int main(int argc, char** argv) {
     std::cerr << "stepmodctl: " << e.what() << "\n";
     return kExitUsage;
   } catch (const ipc::IpcError& e) {
+    // No image to read: `status --json` still prints its one object, the error one.
+    if (options.json) std::cout << json_error_text(options.name, e.what());
     std::cerr << "stepmodctl: " << e.what() << "\n";
     return kExitUnreachable;
   }

@@ -2,8 +2,8 @@
 // The console's side of each module type, one row per type (the web counterpart of the registry
 // row in registry/module_registry.hpp, which cannot depend on web/): how the page shows a unit's
 // registers and status words, which configuration bits its form offers, and the controls that
-// turn the page's commands into the module's plc/ calls. Each row is written in its module
-// type's folder (module_types/mXXXX/view_row_XXXX.hpp, pointing at its view_XXXX.cpp) and
+// turn the page's commands into the module's plc/ calls. Each row is kViewOf<T>
+// (web/module_view_of.hpp), pointing at the functions of its type's view_XXXX.cpp, and is
 // collected by the generated module_types/view_rows.hpp. Code in web/ that needs one of these
 // looks the row up here: nothing in web/ switches on the module type.
 #include <memory>

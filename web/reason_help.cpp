@@ -4,7 +4,7 @@
 #include <regex>
 
 #include "module/axis/error_items.hpp"
-#include "module_types/m3602/interpolated_items.hpp"
+#include "registry/module_registry.hpp"
 
 namespace stepmod::web {
 namespace {
@@ -124,9 +124,7 @@ Table table_of(ModuleType type) {
                   Row{module::axis::item_id(type, l, 0), list_name(l), list_fix(l)});
   }
   for (const Item* item : items::kAll) add_item(table, type, item);
-  if (type == ModuleType::k3602) {
-    for (const Item* item : module::m3602::items::kAll) add_item(table, type, item);
-  }
+  for (const Item* item : registry::row_of(type).own_items) add_item(table, type, item);
   return table;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // What the page shows of an error reason beyond the image's 56-byte sentence: the item's
 // condition in full (the item tables the daemon raises them from, module/axis/error_items.hpp
-// and module/m3602/interpolated_items.hpp), what to do about it, and its anchor on the console's
+// and a module type's own, its registry row's own_items), what to do about it, and its anchor on the console's
 // /reasons page (the same table as docs/error-reasons.md). Its sentence's rates are given in the
 // form's unit (steps/ms/s on the 3601 and 3602) rather than the shared code's steps/s².
 #include <cstdint>

@@ -8,8 +8,9 @@
 #include <iostream>
 #include <memory>
 
-#include "ipc/shm_object.hpp"
 #include "config/config.hpp"
+#include "core/stop_signals.hpp"
+#include "ipc/shm_object.hpp"
 #include "web/auth.hpp"
 #include "web/commander.hpp"
 #include "web/image_json.hpp"
@@ -25,11 +26,7 @@
 namespace {
 
 int wait_for_signal() {
-  sigset_t set;
-  sigemptyset(&set);
-  sigaddset(&set, SIGTERM);
-  sigaddset(&set, SIGINT);
-  sigaddset(&set, SIGHUP);
+  const sigset_t set = stepmod::stop_signals();
   int sig = 0;
   sigwait(&set, &sig);
   return sig;
@@ -146,12 +143,7 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   // Every thread started below inherits the blocked set: the main thread alone takes them.
-  sigset_t set;
-  sigemptyset(&set);
-  sigaddset(&set, SIGTERM);
-  sigaddset(&set, SIGINT);
-  sigaddset(&set, SIGHUP);
-  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+  stepmod::block_stop_signals();
   signal(SIGPIPE, SIG_IGN);
   try {
     return run(argc, argv);

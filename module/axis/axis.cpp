@@ -242,21 +242,13 @@ AxisStatus Axis::status() const noexcept {
       s.moving_ccw = true;
     }
   }
-  s.hold = l.hold;
+  static_cast<Latches&>(s) = l;  // as latched, but for Stopped:
   if (st_.rules.stopped_means_idle) {
     s.stopped = !st_.moving();  // 3602-STP-01
   } else {
     // 3601-STP-N1: never together with MC, AH or Hld.
     s.stopped = l.stopped && !l.move_complete && !l.at_home && !l.hold;
   }
-  s.at_home = l.at_home;
-  s.move_complete = l.move_complete;
-  s.home_invalid = l.home_invalid;
-  s.invalid_profile = l.invalid_profile;
-  s.position_invalid = l.position_invalid;
-  s.input_error = l.input_error;
-  s.command_error = l.command_error;
-  s.configuration_error = l.configuration_error;
   // Logical input states (A27: unused inputs read 0) and the proximity echo, which is live
   // whether or not homing is configured (A44).
   s.inputs_active = st_.inputs.active_bits();

@@ -13,6 +13,7 @@
 #include "module/axis/axis_command.hpp"
 #include "module/axis/axis_config.hpp"
 #include "module/axis/axis_io.hpp"
+#include "module/axis/axis_status.hpp"
 #include "module/axis/axis_transitions.hpp"
 #include "module/axis/error_items.hpp"
 #include "module/axis/error_reason.hpp"
@@ -21,20 +22,6 @@
 #include "planner/motion_port.hpp"
 
 namespace stepmod::module::axis {
-
-// Status and error latches, named as in the manuals (written by the table of transitions only).
-struct Latches {
-  bool hold = false;
-  bool stopped = false;
-  bool at_home = false;
-  bool move_complete = false;
-  bool home_invalid = false;
-  bool invalid_profile = false;
-  bool position_invalid = false;
-  bool input_error = false;
-  bool command_error = false;
-  bool configuration_error = false;
-};
 
 // A programmed speed with its two ramps, read from a command.
 struct Profile {

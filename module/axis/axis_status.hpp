@@ -6,16 +6,11 @@
 
 namespace stepmod::module::axis {
 
-struct AxisStatus {
-  bool configuration_mode = false;
-  // Motion: direction of the pulses being output, ramp phase.
-  bool moving_cw = false;
-  bool moving_ccw = false;
-  bool accelerating = false;
-  bool decelerating = false;
-  // Outcome and error latches, named as in the manuals.
+// Status and error latches, named as in the manuals. The axis' own (AxisState::latches()) are
+// written by the table of transitions only.
+struct Latches {
   bool hold = false;
-  bool stopped = false;  // already filtered: never with MC, At Home or Hold on event modules
+  bool stopped = false;
   bool at_home = false;
   bool move_complete = false;
   bool home_invalid = false;
@@ -24,6 +19,17 @@ struct AxisStatus {
   bool input_error = false;
   bool command_error = false;
   bool configuration_error = false;
+};
+
+// The latches as reported, but for `stopped`: already filtered, never with MC, At Home or Hold
+// on event modules (Axis::status()).
+struct AxisStatus : Latches {
+  bool configuration_mode = false;
+  // Motion: direction of the pulses being output, ramp phase.
+  bool moving_cw = false;
+  bool moving_ccw = false;
+  bool accelerating = false;
+  bool decelerating = false;
   // Inputs and feature states.
   std::uint16_t inputs_active = 0;  // bit n = InputLine n active (unused inputs read 0, A27)
   bool proximity_echo = false;      // the backplane proximity bit, echoed

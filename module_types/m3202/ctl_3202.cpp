@@ -4,7 +4,7 @@
 #include "module_types/m3202/plc_3202.hpp"
 #include "tools/ctl_args.hpp"
 #include "tools/ctl_blend.hpp"
-#include "tools/ctl_dialects.hpp"
+#include "tools/ctl_row_of.hpp"
 #include "module_types/m3202/words_3202.hpp"
 
 namespace stepmod::tools::ctl {
@@ -59,8 +59,10 @@ plc::Outcome program_blend(const CtlRequest& c, plc::Plc3202& plc, ipc::Client& 
 
 }  // namespace
 
-plc::Outcome run_3202(const CtlRequest& c, plc::Port& port, ipc::Client& client,
-                      std::chrono::milliseconds timeout) {
+template <>
+plc::Outcome CtlOf<ModuleType::k3202>::run_command(const CtlRequest& c, plc::Port& port,
+                                                  ipc::Client& client,
+                                                  std::chrono::milliseconds timeout) {
   plc::Plc3202 plc(port, timeout);
   const unsigned ch = c.unit;
   switch (c.verb) {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "module_types/m3202/plc_status_3202.hpp"
-#include "tools/ctl_dialects.hpp"
+#include "tools/ctl_row_of.hpp"
 #include "tools/ctl_fields.hpp"
 #include "tools/ctl_status.hpp"
 #include "tools/ctl_summary.hpp"
@@ -14,7 +14,8 @@
 
 namespace stepmod::tools::ctl {
 
-void format_status_3202(std::ostringstream& o, const ImageWords& in) {
+template <>
+void CtlOf<ModuleType::k3202>::format_status(std::ostringstream& o, const ImageWords& in) {
   namespace m = words::m3202;
   constexpr unsigned kStatus = index_of(m::kInputWords, "Status Word");
   constexpr unsigned kPosition = index_of(m::kInputWords, "Position");
@@ -51,7 +52,8 @@ void format_status_3202(std::ostringstream& o, const ImageWords& in) {
   }
 }
 
-std::vector<AxisSummary> summarize_3202(const ImageWords& in) {
+template <>
+std::vector<AxisSummary> CtlOf<ModuleType::k3202>::summarize(const ImageWords& in) {
   constexpr auto kBits = summary_bits_of(words::m3202::kStatusBits);
   std::vector<AxisSummary> out;
   for (unsigned c = 0; c < 2; ++c) {

@@ -1,5 +1,4 @@
 #include "module_types/m3202/module_3202.hpp"
-#include "module_types/m3202/rules_3202.hpp"
 
 #include "module_types/m3202/blend_message_3202.hpp"
 #include "module_types/m3202/config_3202.hpp"
@@ -8,30 +7,18 @@
 namespace stepmod::module::m3202 {
 using namespace words::m3202;  // this module's words: module_types/m3202/words_3202.hpp
 
-namespace {
-constexpr ModuleShape kShape = shape_of(ModuleType::k3202);
-}  // namespace
-
-Module3202::Channel::Channel(AxisIo& io, planner::MotionPort& motion)
+Channel3202::Channel3202(AxisIo& io, planner::MotionPort& motion)
     : axis(kRules3202, io, motion) {}
 
 Module3202::Module3202(AxisIo& io, planner::MotionPort& ch1, planner::MotionPort& ch2)
-    : channels_{Channel(io, ch1), Channel(io, ch2)} {}
-
-const ModuleShape& Module3202::shape() const noexcept {
-  return kShape;
-}
-
-void Module3202::on_input(const InputEvent& e) {
-  if (e.axis < kChannels) channels_[e.axis].axis.on_input(e);
-}
+    : AxesPersonality(io, ch1, ch2) {}
 
 void Module3202::scan(const ImageWords& out, ImageWords& in, Nanos now) {
-  for (unsigned ch = 0; ch < kChannels; ++ch) scan_channel(ch, out, in, now);
+  for (unsigned ch = 0; ch < kAxes; ++ch) scan_channel(ch, out, in, now);
 }
 
 void Module3202::scan_channel(unsigned ch, const ImageWords& out, ImageWords& in, Nanos now) {
-  Channel& c = channels_[ch];
+  Channel3202& c = axes_[ch];
   axis::AxisCommand command = command_from_words(out, ch);
   ConfigCheck check;
   std::optional<axis::AxisConfig> configuration;
@@ -65,39 +52,16 @@ std::int32_t Module3202::on_message(std::span<const std::int32_t> data, Nanos /*
   const BlendMessage m = blend_message_from_dints(data);
   if (m.channel != 1 && m.channel != 2) {
     // 3202-IP-11, A23: no channel is named: Invalid Profile on both, nothing stored.
-    for (Channel& c : channels_) c.axis.set_invalid_profile();
+    for (Channel3202& c : axes_) c.axis.set_invalid_profile();
     return kMessageRefused;
   }
-  Channel& c = channels_[static_cast<unsigned>(m.channel - 1)];
+  Channel3202& c = axes_[static_cast<unsigned>(m.channel - 1)];
   if (c.disabled) {
     c.axis.set_invalid_profile(axis::items::kBlendNotConfigured);  // 3202-IP-15: the channel is not
                                                                    // configured (or disabled)
     return kMessageRefused;
   }
   return c.axis.program_blend(m.first, m.segments) ? kMessageAccepted : kMessageRefused;
-}
-
-void Module3202::plc_stopped(Nanos /*now*/) {
-  for (Channel& c : channels_) c.axis.plc_stopped();
-}
-
-void Module3202::shutdown() {
-  for (Channel& c : channels_) c.axis.plc_stopped();  // immediate stop of motions under way
-}
-
-void Module3202::stop_every_axis(const axis::Item& why, Nanos /*now*/) {
-  for (Channel& c : channels_) c.axis.plc_stopped(why);
-}
-
-axis::ErrorReason Module3202::reason(unsigned axis) const {
-  return axis < channels_.size() ? channels_[axis].axis.reason() : axis::ErrorReason{};
-}
-
-Personality::DriveState Module3202::drive_state(unsigned axis) const noexcept {
-  if (axis >= channels_.size()) return {};
-  const Channel& c = channels_[axis];
-  const auto d = c.axis.drive_state();
-  return {d.configured && !c.disabled, d.configuration_mode, d.estop};
 }
 
 }  // namespace stepmod::module::m3202

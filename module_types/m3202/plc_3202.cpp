@@ -12,33 +12,13 @@ namespace m = words::m3202;
 using m3202::ChannelWords;
 
 namespace {
-constexpr ErrorBitSet kErrorBits = error_bits_of(m::kStatusBits);
-constexpr std::uint32_t kCommandErrors = command_errors(kErrorBits);
-constexpr std::uint32_t kHomeErrors = kCommandErrors | m::status_bit::kHomeInvalid;
 constexpr std::uint32_t kCommandBits = 0x3FFFu;  // bits 0..13
 }  // namespace
-
-Plc3202::Plc3202(Port& port, std::chrono::milliseconds timeout, Sequencing seq)
-    : port_(port_of_type(port, ModuleType::k3202)),
-      timeout_(timeout),
-      seq_(seq),
-      verdict_(port, shape_of(port.type()).axes) {}
 
 void Plc3202::write_channel(unsigned ch, const ChannelWords& words) {
   port_.update_outputs([&](ImageWords& w) {
     for (unsigned i = 0; i < m::kWordsPerChannel; ++i) w.w[m::channel_base(ch) + i] = words[i];
   });
-}
-
-Outcome Plc3202::finish(unsigned ch, std::uint32_t error_mask, bool timed_out,
-                        const std::string& what) {
-  Outcome o;
-  if (!read_answer(port_, timed_out, what, timeout_, o)) return o;
-  const std::uint32_t word = m3202::decode_status(o.in, ch).word;
-  const std::uint32_t errors = word & error_mask;
-  verdict_.judge(o, ch, errors, set_bit_names(errors, m::kStatusBits),
-                 lists_of(error_mask, kErrorBits), what, stale_);
-  return o;
 }
 
 Outcome Plc3202::edge_command(unsigned ch, const ChannelWords& words, std::uint32_t edge_bit,
@@ -114,7 +94,7 @@ Outcome Plc3202::home(unsigned ch, bool cw, const Profile& p) {
   const auto prox = static_cast<std::uint32_t>(port_.outputs().w[m::channel_base(ch)]) &
                     m::cmd_bit::kBackplaneProximity;
   return edge_command(ch, m3202::command_words(bit | prox, 0, p.speed, p.accel, p.decel), bit,
-                      kHomeErrors);
+                      kCommandErrors | m::status_bit::kHomeInvalid);
 }
 
 Outcome Plc3202::hold(unsigned ch) {
@@ -173,13 +153,11 @@ Outcome Plc3202::blend_run(unsigned ch, bool cw) {
 }
 
 Outcome Plc3202::wait_idle(unsigned ch, std::chrono::nanoseconds timeout) {
-  const bool idle = port_.wait_inputs(
-      [ch](const ImageWords& in) {
-        const m3202::Status s = m3202::decode_status(in, ch);
-        return !s.moving() && !s.has(m::status_bit::kBlendRunning);
-      },
-      timeout);
-  return finish(ch, 0, !idle, "wait-idle");
+  const auto idle = [ch](const ImageWords& in) {
+    const m3202::Status s = m3202::decode_status(in, ch);
+    return !s.moving() && !s.has(m::status_bit::kBlendRunning);
+  };
+  return wait_until(ch, idle, timeout, "wait-idle");
 }
 
 Outcome Plc3202::status(unsigned ch) {

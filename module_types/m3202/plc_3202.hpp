@@ -10,18 +10,16 @@
 
 #include "module_types/m3202/plc_status_3202.hpp"
 #include "module_types/m3202/plc_words_3202.hpp"
-#include "module_types/m3601/plc_3601.hpp"  // Sequencing
+#include "plc/driver.hpp"
 #include "plc/move_profile.hpp"
 #include "plc/port.hpp"
-#include "plc/verdict.hpp"
 
 namespace stepmod::plc {
 
-class Plc3202 {
+class Plc3202 : public Driver<ModuleType::k3202, words::m3202::kStatusBits, m3202::status_word> {
  public:
-  // Throws std::invalid_argument if the port's module is not a 3202.
-  explicit Plc3202(Port& port, std::chrono::milliseconds timeout = std::chrono::milliseconds(2000),
-                   Sequencing seq = {});
+  // Throws std::invalid_argument if the port's module is not a 3202 (plc/driver.hpp).
+  using Driver::Driver;
 
   // Configuration mode with these configuration bits (bit 31 is added) and starting speed, then
   // command mode (the channel's DINTs 0). Error: Configuration Error.
@@ -50,14 +48,7 @@ class Plc3202 {
  private:
   Outcome edge_command(unsigned ch, const m3202::ChannelWords& words, std::uint32_t edge_bit,
                        std::uint32_t error_mask);
-  Outcome finish(unsigned ch, std::uint32_t error_mask, bool timed_out, const std::string& what);
   void write_channel(unsigned ch, const m3202::ChannelWords& words);
-
-  Port& port_;
-  std::chrono::milliseconds timeout_;
-  Sequencing seq_;
-  Verdict verdict_;                // was THIS command refused (plc/verdict.hpp)
-  Stale stale_ = Stale::kRefused;  // what an earlier error bit means for the running command
 };
 
 }  // namespace stepmod::plc

@@ -33,4 +33,9 @@ inline Status decode_status(const ImageWords& in, unsigned channel) {
   return s;
 }
 
+// The status word of `channel`, with the error bits (plc/driver.hpp).
+inline std::uint32_t status_word(const ImageWords& in, unsigned channel) {
+  return decode_status(in, channel).word;
+}
+
 }  // namespace stepmod::plc::m3202

@@ -2,11 +2,11 @@
 #include "module_types/m3202/plc_3202.hpp"
 #include "module_types/m3202/plc_status_3202.hpp"
 #include "web/bit_json.hpp"
-#include "web/module_views.hpp"
+#include "web/module_view_of.hpp"
 #include "web/two_unit_controls.hpp"
 #include "module_types/m3202/words_3202.hpp"
 
-namespace stepmod::web::view3202 {
+namespace stepmod::web {
 namespace {
 
 // The 3202's two channels: steps/s^2 rates, one configuration DINT (bit 31, the mode, is added
@@ -26,23 +26,27 @@ class Controls3202 final : public TwoUnitControls<plc::Plc3202> {
 
 }  // namespace
 
-UnitRegisters registers(const ImageWords& in, unsigned unit) {
+template <>
+UnitRegisters ViewOf<ModuleType::k3202>::registers(const ImageWords& in, unsigned unit) {
   const auto s = plc::m3202::decode_status(in, unit);
   return {s.position, s.encoder, s.capture};
 }
 
-nlohmann::json status_words(const ImageWords& in, unsigned unit) {
+template <>
+nlohmann::json ViewOf<ModuleType::k3202>::status_words(const ImageWords& in, unsigned unit) {
   const auto s = plc::m3202::decode_status(in, unit);
   return nlohmann::json::array({word_json("Status", s.word, words::m3202::kStatusBits)});
 }
 
 // One configuration DINT per channel: the page sends it whole ("bits").
-nlohmann::json config_bits() {
+template <>
+nlohmann::json ViewOf<ModuleType::k3202>::config_bits() {
   return {{"dint", table_json(words::m3202::kConfigBits)}};
 }
 
-std::unique_ptr<Controls> make_controls(plc::Port& port) {
+template <>
+std::unique_ptr<Controls> ViewOf<ModuleType::k3202>::make_controls(plc::Port& port) {
   return std::make_unique<Controls3202>(port);
 }
 
-}  // namespace stepmod::web::view3202
+}  // namespace stepmod::web

@@ -3,7 +3,7 @@
 #include "module_types/m3601/plc_3601.hpp"
 #include "tools/ctl_args.hpp"
 #include "tools/ctl_blend.hpp"
-#include "tools/ctl_dialects.hpp"
+#include "tools/ctl_row_of.hpp"
 #include "module_types/m3601/words_3601.hpp"
 
 namespace stepmod::tools::ctl {
@@ -61,7 +61,10 @@ plc::BlendProfile blend_profile(const CtlRequest& c) {
 
 }  // namespace
 
-plc::Outcome run_3601(const CtlRequest& c, plc::Port& port, std::chrono::milliseconds timeout) {
+template <>
+plc::Outcome CtlOf<ModuleType::k3601>::run_command(const CtlRequest& c, plc::Port& port,
+                                                  ipc::Client& /*client*/,
+                                                  std::chrono::milliseconds timeout) {
   if (c.unit != 0) throw UsageError("the 3601 has one axis: --axis 1");
   plc::Plc3601 plc(port, timeout);
   switch (c.verb) {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "module_types/m3601/plc_status_3601.hpp"
-#include "tools/ctl_dialects.hpp"
+#include "tools/ctl_row_of.hpp"
 #include "tools/ctl_fields.hpp"
 #include "tools/ctl_status.hpp"
 #include "tools/ctl_summary.hpp"
@@ -14,7 +14,8 @@
 
 namespace stepmod::tools::ctl {
 
-void format_status_3601(std::ostringstream& o, const ImageWords& in) {
+template <>
+void CtlOf<ModuleType::k3601>::format_status(std::ostringstream& o, const ImageWords& in) {
   namespace m = words::m3601;
   const std::uint16_t w0 = u16(in.w[m::in_word::kStatusMsw]);
   const std::uint16_t w1 = u16(in.w[m::in_word::kStatusLsw]);
@@ -57,7 +58,8 @@ void format_status_3601(std::ostringstream& o, const ImageWords& in) {
   o << "  capture  = " << decode_3601_report(in.w[iw::kCaptureMsw], in.w[iw::kCaptureLsw]) << "\n";
 }
 
-std::vector<AxisSummary> summarize_3601(const ImageWords& in) {
+template <>
+std::vector<AxisSummary> CtlOf<ModuleType::k3601>::summarize(const ImageWords& in) {
   constexpr auto kBits = summary_bits_of(words::m3601::kStatusMswBits);
   const plc::m3601::Status st = plc::m3601::decode_status(in);
   AxisSummary s = summary_from_word(st.msw, kBits);

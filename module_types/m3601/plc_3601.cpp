@@ -14,20 +14,10 @@ using m3601::put_profile;
 using m3601::put_split;
 
 namespace {
-constexpr ErrorBitSet kErrorBits = error_bits_of(m::kStatusMswBits);
-constexpr auto kCommandErrors = static_cast<std::uint16_t>(command_errors(kErrorBits));
-constexpr std::uint16_t kHomeErrors = kCommandErrors | m::status_msw::kHomeInvalid;
-
 std::uint16_t lsw_of(const ImageWords& in) {
   return static_cast<std::uint16_t>(in.w[m::in_word::kStatusLsw]);
 }
 }  // namespace
-
-Plc3601::Plc3601(Port& port, std::chrono::milliseconds timeout, Sequencing seq)
-    : port_(port_of_type(port, ModuleType::k3601)),
-      timeout_(timeout),
-      seq_(seq),
-      verdict_(port, shape_of(port.type()).axes) {}
 
 bool Plc3601::release_bits(unsigned word, std::uint16_t bits) {
   if ((static_cast<std::uint16_t>(port_.outputs().w[word]) & bits) == 0) return true;
@@ -39,18 +29,8 @@ bool Plc3601::release_stale() {
   return !seq_.release_stale_bits || release_bits(m::out_word::kMsw, m::cmd_msw::kCommandMask);
 }
 
-Outcome Plc3601::finish(std::uint16_t error_mask, bool timed_out, const std::string& what) {
-  Outcome o;
-  if (!read_answer(port_, timed_out, what, timeout_, o)) return o;
-  const auto msw = static_cast<std::uint16_t>(o.in.w[m::in_word::kStatusMsw]);
-  const std::uint16_t errors = msw & error_mask;
-  verdict_.judge(o, 0, errors, set_bit_names(errors, m::kStatusMswBits),
-                 lists_of(error_mask, kErrorBits), what, stale_);
-  return o;
-}
-
 Outcome Plc3601::edge_command(const ImageWords& words, std::uint16_t edge_bit,
-                              std::uint16_t error_mask) {
+                              std::uint32_t error_mask) {
   if (!release_stale()) return finish(error_mask, true, "release");
   port_.write_outputs(words);
   const bool seen = port_.wait_scans(seq_.hold_scans);
@@ -137,7 +117,7 @@ Outcome Plc3601::home(bool cw, const Profile& p) {
   put_profile(w, p);
   // Keep the backplane proximity bit as the PLC left it: it is the PLC's input to homing.
   w.w[m::out_word::kLsw] = port_.outputs().w[m::out_word::kLsw] & m::cmd_lsw::kBackplaneProximity;
-  return edge_command(w, bit, kHomeErrors);
+  return edge_command(w, bit, kCommandErrors | m::status_msw::kHomeInvalid);
 }
 
 Outcome Plc3601::hold() {

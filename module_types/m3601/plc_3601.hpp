@@ -9,31 +9,16 @@
 
 #include "module_types/m3601/plc_status_3601.hpp"
 #include "module_types/m3601/plc_words_3601.hpp"
+#include "plc/driver.hpp"
 #include "plc/move_profile.hpp"
 #include "plc/port.hpp"
-#include "plc/verdict.hpp"
 
 namespace stepmod::plc {
 
-// How many module scans each step of a command waits. Any count >= 2 is correct (a whole scan
-// then saw the write); the test fixtures pin the counts their timing assertions were written for.
-struct Sequencing {
-  unsigned hold_scans = 2;     // a command's words stay this long before its bit is released
-  unsigned release_scans = 2;  // and this long after
-  unsigned config_scans = 2;   // in configuration mode, then again back in command mode
-  // A command bit left at 1 (by an earlier PLC program or an interrupted stepmodctl) would hide
-  // the next 0->1 edge: release it first. Tests that set bits on purpose turn this off.
-  bool release_stale_bits = true;
-};
-
-class Plc3601 {
+class Plc3601 : public Driver<ModuleType::k3601, words::m3601::kStatusMswBits, m3601::status_msw> {
  public:
-  // `timeout` bounds each handshake wait (blend acknowledge) and is named in timeout messages.
-  // Throws std::invalid_argument if the port's module is not a 3601.
-  explicit Plc3601(Port& port, std::chrono::milliseconds timeout = std::chrono::milliseconds(2000),
-                   Sequencing seq = {});
-
-  Port& port() noexcept { return port_; }
+  // Throws std::invalid_argument if the port's module is not a 3601 (plc/driver.hpp).
+  using Driver::Driver;
 
   // Configuration mode: config bits MSW (bit 15 is added), active levels LSW and starting speed;
   // then back to command mode (all words 0). Error: Configuration Error. `in_config` receives the
@@ -86,14 +71,11 @@ class Plc3601 {
   // Makes sure none of `bits` is set in output word `word` (so the next set is a 0->1 edge).
   bool release_bits(unsigned word, std::uint16_t bits);
   bool release_stale();
-  Outcome edge_command(const ImageWords& words, std::uint16_t edge_bit, std::uint16_t error_mask);
-  Outcome finish(std::uint16_t error_mask, bool timed_out, const std::string& what);
-
-  Port& port_;
-  std::chrono::milliseconds timeout_;
-  Sequencing seq_;
-  Verdict verdict_;                // was THIS command refused (plc/verdict.hpp)
-  Stale stale_ = Stale::kRefused;  // what an earlier error bit means for the running command
+  Outcome edge_command(const ImageWords& words, std::uint16_t edge_bit, std::uint32_t error_mask);
+  // The answer of the one axis (plc/driver.hpp).
+  Outcome finish(std::uint32_t error_mask, bool timed_out, const std::string& what) {
+    return Driver::finish(0, error_mask, timed_out, what);
+  }
 };
 
 }  // namespace stepmod::plc

@@ -5,22 +5,15 @@
 
 #include "core/module_shape.hpp"
 #include "module_types/m3601/words_3601.hpp"
+#include "plc/status_words16.hpp"
 
 namespace stepmod::plc::m3601 {
 
-struct Status {
-  std::uint16_t msw = 0;
-  std::uint16_t lsw = 0;
+struct Status : StatusWords16<words::m3601::status_msw::kMovingCw |
+                               words::m3601::status_msw::kMovingCcw> {
   std::int64_t position = 0;  // command mode only
   std::int64_t encoder = 0;
   std::int64_t capture = 0;
-
-  bool has(std::uint16_t msw_bit) const { return (msw & msw_bit) != 0; }
-  bool has_lsw(std::uint16_t lsw_bit) const { return (lsw & lsw_bit) != 0; }
-  // "Pulses being output" (Moving CW or CCW).
-  bool moving() const {
-    return has(words::m3601::status_msw::kMovingCw | words::m3601::status_msw::kMovingCcw);
-  }
 };
 
 inline Status decode_status(const ImageWords& in) {
@@ -33,6 +26,11 @@ inline Status decode_status(const ImageWords& in) {
   s.encoder = decode_3601_report(in.w[iw::kEncoderMsw], in.w[iw::kEncoderLsw]);
   s.capture = decode_3601_report(in.w[iw::kCaptureMsw], in.w[iw::kCaptureLsw]);
   return s;
+}
+
+// The status MSW, the word with the error bits (plc/driver.hpp); one axis.
+inline std::uint32_t status_msw(const ImageWords& in, unsigned /*axis*/) {
+  return static_cast<std::uint16_t>(in.w[words::m3601::in_word::kStatusMsw]);
 }
 
 }  // namespace stepmod::plc::m3601

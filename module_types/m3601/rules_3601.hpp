@@ -1,7 +1,7 @@
 #pragma once
 // The 3601's rules value: what the shared axis code (module/axis/) does differently for this
 // module, as data (the fields are explained in module/axis/rules.hpp). Written down here, with its
-// module; its registry row (registry_row_3601.hpp) points at it.
+// module; Module3601 (module_3601.hpp) names it as its kRules, which the registry's row reads.
 #include "module/axis/rules.hpp"
 
 namespace stepmod::module::m3601 {

@@ -2,10 +2,10 @@
 #include "module_types/m3601/plc_3601.hpp"
 #include "module_types/m3601/plc_status_3601.hpp"
 #include "web/bit_json.hpp"
-#include "web/module_views.hpp"
+#include "web/module_view_of.hpp"
 #include "module_types/m3601/words_3601.hpp"
 
-namespace stepmod::web::view3601 {
+namespace stepmod::web {
 namespace {
 
 class Controls3601 final : public Controls {
@@ -39,24 +39,28 @@ class Controls3601 final : public Controls {
 
 }  // namespace
 
-UnitRegisters registers(const ImageWords& in, unsigned) {
+template <>
+UnitRegisters ViewOf<ModuleType::k3601>::registers(const ImageWords& in, unsigned) {
   const auto s = plc::m3601::decode_status(in);
   return {s.position, s.encoder, s.capture};
 }
 
-nlohmann::json status_words(const ImageWords& in, unsigned) {
+template <>
+nlohmann::json ViewOf<ModuleType::k3601>::status_words(const ImageWords& in, unsigned) {
   const auto s = plc::m3601::decode_status(in);
   return nlohmann::json::array({word_json("Status Word MSW", s.msw, words::m3601::kStatusMswBits),
                                 word_json("Status Word LSW", s.lsw, words::m3601::kStatusLswBits)});
 }
 
-nlohmann::json config_bits() {
+template <>
+nlohmann::json ViewOf<ModuleType::k3601>::config_bits() {
   return {{"msw", table_json(words::m3601::kConfigMswBits)},
           {"lsw", table_json(words::m3601::kConfigLswBits)}};
 }
 
-std::unique_ptr<Controls> make_controls(plc::Port& port) {
+template <>
+std::unique_ptr<Controls> ViewOf<ModuleType::k3601>::make_controls(plc::Port& port) {
   return std::make_unique<Controls3601>(port);
 }
 
-}  // namespace stepmod::web::view3601
+}  // namespace stepmod::web

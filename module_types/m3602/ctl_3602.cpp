@@ -5,7 +5,7 @@
 #include "module_types/m3602/plc_3602.hpp"
 #include "tools/ctl_args.hpp"
 #include "tools/ctl_blend.hpp"
-#include "tools/ctl_dialects.hpp"
+#include "tools/ctl_row_of.hpp"
 #include "module_types/m3602/ctl_path_3602.hpp"
 #include "module_types/m3602/words_3602.hpp"
 
@@ -64,7 +64,10 @@ plc::BlendProfile blend_profile(const CtlRequest& c) {
 
 }  // namespace
 
-plc::Outcome run_3602(const CtlRequest& c, plc::Port& port, std::chrono::milliseconds timeout) {
+template <>
+plc::Outcome CtlOf<ModuleType::k3602>::run_command(const CtlRequest& c, plc::Port& port,
+                                                  ipc::Client& /*client*/,
+                                                  std::chrono::milliseconds timeout) {
   plc::Plc3602 plc(port, timeout);
   const unsigned ax = c.unit;
   switch (c.verb) {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "module_types/m3602/plc_status_3602.hpp"
-#include "tools/ctl_dialects.hpp"
+#include "tools/ctl_row_of.hpp"
 #include "tools/ctl_fields.hpp"
 #include "tools/ctl_status.hpp"
 #include "tools/ctl_summary.hpp"
@@ -15,7 +15,8 @@
 
 namespace stepmod::tools::ctl {
 
-void format_status_3602(std::ostringstream& o, const ImageWords& in) {
+template <>
+void CtlOf<ModuleType::k3602>::format_status(std::ostringstream& o, const ImageWords& in) {
   namespace m = words::m3602;
   constexpr unsigned kMsw = index_of(m::kInputWords, "Status Bits MSW");
   constexpr unsigned kLsw = index_of(m::kInputWords, "Status Bits LSW");
@@ -55,7 +56,8 @@ void format_status_3602(std::ostringstream& o, const ImageWords& in) {
   }
 }
 
-std::vector<AxisSummary> summarize_3602(const ImageWords& in) {
+template <>
+std::vector<AxisSummary> CtlOf<ModuleType::k3602>::summarize(const ImageWords& in) {
   constexpr auto kBits = summary_bits_of(words::m3602::kStatusMswBits);
   std::vector<AxisSummary> out;
   for (unsigned a = 0; a < 2; ++a) {

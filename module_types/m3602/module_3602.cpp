@@ -1,5 +1,4 @@
 #include "module_types/m3602/module_3602.hpp"
-#include "module_types/m3602/rules_3602.hpp"
 
 #include "module_types/m3602/config_3602.hpp"
 #include "module_types/m3602/dialect_3602.hpp"
@@ -9,8 +8,6 @@ namespace stepmod::module::m3602 {
 using namespace words::m3602;  // this module's words: module_types/m3602/words_3602.hpp
 
 namespace {
-constexpr ModuleShape kShape = shape_of(ModuleType::k3602);
-
 // One axis' eight words of the module's sixteen (b = 8 * axis).
 ImageWords axis_words(const ImageWords& image, unsigned axis) noexcept {
   ImageWords w;
@@ -22,15 +19,15 @@ void put_axis_words(const ImageWords& w, unsigned axis, ImageWords& image) noexc
 }
 }  // namespace
 
-Module3602::Channel::Channel(AxisIo& io, planner::MotionPort& m)
+Channel3602::Channel3602(AxisIo& io, planner::MotionPort& m)
     : motion(m), axis(kRules3602, io, m) {}
 
-void Module3602::Channel::set_gpo(bool level) {
+void Channel3602::set_gpo(bool level) {
   if (level == gpo) return;
   if (motion.set_gpo(level)) gpo = level;  // a full command queue: tried again next scan
 }
 
-void Module3602::Channel::scan(const ImageWords& out, const axis::AxisCommand& c, Nanos now) {
+void Channel3602::scan(const ImageWords& out, const axis::AxisCommand& c, Nanos now) {
   const bool was_config = axis.in_configuration_mode();
   // The image read as configuration words matters only with the mode bit set.
   std::optional<axis::AxisConfig> configuration;
@@ -50,7 +47,7 @@ void Module3602::Channel::scan(const ImageWords& out, const axis::AxisCommand& c
   }
 }
 
-void Module3602::Channel::publish(const ImageWords& out, bool interpolating, ImageWords& in) {
+void Channel3602::publish(const ImageWords& out, bool interpolating, ImageWords& in) {
   const axis::AxisStatus s = axis.status();
   // 3602-EN-01 / A19: enabled = configured (no CfgE) and not disabled.
   const bool enabled = !s.configuration_error && !disabled;
@@ -69,18 +66,14 @@ void Module3602::Channel::publish(const ImageWords& out, bool interpolating, Ima
 
 Module3602::Module3602(AxisIo& io, planner::MotionPort& axis1,
                        planner::MotionPort& axis2)
-    : axes_{Channel(io, axis1), Channel(io, axis2)},
+    : AxesPersonality(io, axis1, axis2),
       interpolated_(axes_[0].axis, axis1, axes_[1].axis, axis2) {}
 
-const ModuleShape& Module3602::shape() const noexcept {
-  return kShape;
-}
-
 void Module3602::on_input(const InputEvent& e) {
-  if (e.axis >= axes_.size()) return;
-  axes_[e.axis].axis.on_input(e);
+  if (e.axis >= kAxes) return;
+  AxesPersonality::on_input(e);
   interpolated_.after_input();  // a limit on one axis of a path stops the other at once
-  for (Channel& c : axes_) c.axis.explain_new_errors();
+  for (Channel3602& c : axes_) c.axis.explain_new_errors();
 }
 
 void Module3602::scan(const ImageWords& out, ImageWords& in, Nanos now) {
@@ -93,7 +86,7 @@ void Module3602::scan(const ImageWords& out, ImageWords& in, Nanos now) {
   interpolated_.scan(interpolated_from_words(out));
   // The path acts on the axes after their scans (a refusal, a stop carried over): the reasons
   // of this scan are complete only now, before the status that shows their bits.
-  for (Channel& c : axes_) c.axis.explain_new_errors();
+  for (Channel3602& c : axes_) c.axis.explain_new_errors();
   for (unsigned a = 0; a < axes_.size(); ++a) {
     ImageWords axis_in;
     axes_[a].publish(words[a], a == 0 && interpolated_.running(), axis_in);
@@ -101,30 +94,9 @@ void Module3602::scan(const ImageWords& out, ImageWords& in, Nanos now) {
   }
 }
 
-void Module3602::plc_stopped(Nanos /*now*/) {
-  for (Channel& c : axes_) c.axis.plc_stopped();
-}
-
 void Module3602::shutdown() {
-  for (Channel& c : axes_) {
-    c.axis.plc_stopped();  // immediate stop of a motion under way
-    c.set_gpo(false);      // idle-low at shutdown
-  }
-}
-
-void Module3602::stop_every_axis(const axis::Item& why, Nanos /*now*/) {
-  for (Channel& c : axes_) c.axis.plc_stopped(why);
-}
-
-axis::ErrorReason Module3602::reason(unsigned axis) const {
-  return axis < axes_.size() ? axes_[axis].axis.reason() : axis::ErrorReason{};
-}
-
-Personality::DriveState Module3602::drive_state(unsigned axis) const noexcept {
-  if (axis >= axes_.size()) return {};
-  const Channel& c = axes_[axis];
-  const auto d = c.axis.drive_state();
-  return {d.configured && !c.disabled, d.configuration_mode, d.estop};
+  AxesPersonality::shutdown();
+  for (Channel3602& c : axes_) c.set_gpo(false);  // idle-low at shutdown
 }
 
 }  // namespace stepmod::module::m3602

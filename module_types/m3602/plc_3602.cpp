@@ -12,31 +12,10 @@ namespace stepmod::plc {
 
 namespace m = words::m3602;
 
-namespace {
-constexpr ErrorBitSet kErrorBits = error_bits_of(m::kStatusMswBits);
-constexpr auto kCommandErrors = static_cast<std::uint16_t>(command_errors(kErrorBits));
-}  // namespace
-
-Plc3602::Plc3602(Port& port, std::chrono::milliseconds timeout, Sequencing seq)
-    : port_(port_of_type(port, ModuleType::k3602)),
-      timeout_(timeout),
-      seq_(seq),
-      verdict_(port, shape_of(port.type()).axes) {}
-
 std::uint16_t Plc3602::gpo_bit(unsigned axis) const {
   const auto lsw =
       static_cast<std::uint16_t>(port_.outputs().w[m3602::base(axis) + m::out_word::kLsw]);
   return lsw & m::cmd_lsw::kGpo;
-}
-
-Outcome Plc3602::finish(unsigned axis, std::uint16_t error_mask, bool timed_out, const char* what) {
-  Outcome o;
-  if (!read_answer(port_, timed_out, what, timeout_, o)) return o;
-  const std::uint16_t msw = m3602::decode_status(o.in, axis).msw;
-  const auto errors = static_cast<std::uint16_t>(msw & error_mask);
-  verdict_.judge(o, axis, errors, set_bit_names(errors, m::kStatusMswBits),
-                 lists_of(error_mask, kErrorBits), what, stale_);
-  return o;
 }
 
 bool Plc3602::release_msw(unsigned axis) {
@@ -53,7 +32,7 @@ bool Plc3602::set_lsw(unsigned axis, std::uint16_t lsw) {
   return port_.wait_scans(seq_.release_scans);
 }
 
-Outcome Plc3602::edge(unsigned axis, std::uint16_t msw, std::uint16_t error_mask, const char* what,
+Outcome Plc3602::edge(unsigned axis, std::uint16_t msw, std::uint32_t error_mask, const char* what,
                       const std::function<void(ImageWords&, unsigned)>& edit) {
   if (!release_msw(axis)) return finish(axis, error_mask, true, "release");
   const unsigned b = m3602::base(axis);
@@ -244,13 +223,11 @@ Outcome Plc3602::set_gpo(unsigned axis, bool on) {
 }
 
 Outcome Plc3602::wait_idle(unsigned axis, std::chrono::nanoseconds timeout) {
-  const bool idle = port_.wait_inputs(
-      [axis](const ImageWords& in) {
-        const m3602::Status s = m3602::decode_status(in, axis);
-        return !s.moving() && !s.has_lsw(m::status_lsw::kBlendRunning);
-      },
-      timeout);
-  return finish(axis, 0, !idle, "wait-idle");
+  const auto idle = [axis](const ImageWords& in) {
+    const m3602::Status s = m3602::decode_status(in, axis);
+    return !s.moving() && !s.has_lsw(m::status_lsw::kBlendRunning);
+  };
+  return wait_until(axis, idle, timeout, "wait-idle");
 }
 
 }  // namespace stepmod::plc

@@ -8,20 +8,18 @@
 #include <functional>
 #include <optional>
 
-#include "module_types/m3601/plc_3601.hpp"  // Sequencing
 #include "module_types/m3602/plc_status_3602.hpp"
 #include "module_types/m3602/plc_words_3602.hpp"
+#include "plc/driver.hpp"
 #include "plc/move_profile.hpp"
 #include "plc/port.hpp"
-#include "plc/verdict.hpp"
 
 namespace stepmod::plc {
 
-class Plc3602 {
+class Plc3602 : public Driver<ModuleType::k3602, words::m3602::kStatusMswBits, m3602::status_msw> {
  public:
-  // Throws std::invalid_argument if the port's module is not a 3602.
-  explicit Plc3602(Port& port, std::chrono::milliseconds timeout = std::chrono::milliseconds(2000),
-                   Sequencing seq = {});
+  // Throws std::invalid_argument if the port's module is not a 3602 (plc/driver.hpp).
+  using Driver::Driver;
 
   // Configuration mode for `axis`, then back to command mode (the axis' words 0). Error:
   // Configuration Error.
@@ -64,19 +62,12 @@ class Plc3602 {
                 std::int32_t w45, std::int16_t w6, std::int16_t w7);
 
  private:
-  Outcome finish(unsigned axis, std::uint16_t error_mask, bool timed_out, const char* what);
   // An edge-triggered MSW bit with the axis' other words edited by `edit` (GPO bit kept).
-  Outcome edge(unsigned axis, std::uint16_t msw, std::uint16_t error_mask, const char* what,
+  Outcome edge(unsigned axis, std::uint16_t msw, std::uint32_t error_mask, const char* what,
                const std::function<void(ImageWords&, unsigned base)>& edit);
   bool release_msw(unsigned axis);
   bool set_lsw(unsigned axis, std::uint16_t lsw);
   std::uint16_t gpo_bit(unsigned axis) const;
-
-  Port& port_;
-  std::chrono::milliseconds timeout_;
-  Sequencing seq_;
-  Verdict verdict_;                // was THIS command refused (plc/verdict.hpp)
-  Stale stale_ = Stale::kRefused;  // what an earlier error bit means for the running command
 };
 
 }  // namespace stepmod::plc

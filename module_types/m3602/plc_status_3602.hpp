@@ -5,19 +5,14 @@
 
 #include "core/module_shape.hpp"
 #include "module_types/m3602/words_3602.hpp"
+#include "plc/status_words16.hpp"
 
 namespace stepmod::plc::m3602 {
 
-struct Status {
-  std::uint16_t msw = 0;
-  std::uint16_t lsw = 0;
+struct Status : StatusWords16<words::m3602::status_msw::kMovingCw |
+                               words::m3602::status_msw::kMovingCcw> {
   std::int32_t position = 0;  // command mode only
   std::int32_t capture = 0;
-  bool has(std::uint16_t msw_bit) const { return (msw & msw_bit) != 0; }
-  bool has_lsw(std::uint16_t lsw_bit) const { return (lsw & lsw_bit) != 0; }
-  bool moving() const {
-    return has(words::m3602::status_msw::kMovingCw | words::m3602::status_msw::kMovingCcw);
-  }
 };
 
 // The status of `axis` (0 or 1) in the input image.
@@ -31,6 +26,11 @@ inline Status decode_status(const ImageWords& in, unsigned axis) {
   s.position = decode_3602(in.w[b + iw::kPositionMsw], in.w[b + iw::kPositionMsw + 1]);
   s.capture = decode_3602(in.w[b + iw::kCaptureMsw], in.w[b + iw::kCaptureMsw + 1]);
   return s;
+}
+
+// The status MSW of `axis`, the word with the error bits (plc/driver.hpp).
+inline std::uint32_t status_msw(const ImageWords& in, unsigned axis) {
+  return decode_status(in, axis).msw;
 }
 
 }  // namespace stepmod::plc::m3602

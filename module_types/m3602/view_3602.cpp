@@ -5,12 +5,12 @@
 #include "module_types/m3602/plc_interp_3602.hpp"
 #include "module_types/m3602/plc_status_3602.hpp"
 #include "web/bit_json.hpp"
-#include "web/module_views.hpp"
+#include "web/module_view_of.hpp"
 #include "web/path_request.hpp"
 #include "web/two_unit_controls.hpp"
 #include "module_types/m3602/words_3602.hpp"
 
-namespace stepmod::web::view3602 {
+namespace stepmod::web {
 namespace {
 
 class Controls3602 final : public TwoUnitControls<plc::Plc3602> {
@@ -40,24 +40,28 @@ class Controls3602 final : public TwoUnitControls<plc::Plc3602> {
 
 }  // namespace
 
-UnitRegisters registers(const ImageWords& in, unsigned unit) {
+template <>
+UnitRegisters ViewOf<ModuleType::k3602>::registers(const ImageWords& in, unsigned unit) {
   const auto s = plc::m3602::decode_status(in, unit);
   return {s.position, 0, s.capture};  // the 3602 has no encoder input
 }
 
-nlohmann::json status_words(const ImageWords& in, unsigned unit) {
+template <>
+nlohmann::json ViewOf<ModuleType::k3602>::status_words(const ImageWords& in, unsigned unit) {
   const auto s = plc::m3602::decode_status(in, unit);
   return nlohmann::json::array({word_json("Status Bits MSW", s.msw, words::m3602::kStatusMswBits),
                                 word_json("Status Bits LSW", s.lsw, words::m3602::kStatusLswBits)});
 }
 
-nlohmann::json config_bits() {
+template <>
+nlohmann::json ViewOf<ModuleType::k3602>::config_bits() {
   return {{"msw", table_json(words::m3602::kConfigMswBits)},
           {"lsw", table_json(words::m3602::kConfigLswBits)}};
 }
 
-std::unique_ptr<Controls> make_controls(plc::Port& port) {
+template <>
+std::unique_ptr<Controls> ViewOf<ModuleType::k3602>::make_controls(plc::Port& port) {
   return std::make_unique<Controls3602>(port);
 }
 
-}  // namespace stepmod::web::view3602
+}  // namespace stepmod::web

@@ -44,18 +44,6 @@ TEST(DoctorWakeLatencies, PercentilesAndWorst) {
   EXPECT_EQ(l.percentile(1.0), 60 * kNsPerSec);
 }
 
-TEST(DoctorWakeProbe, MeasuresWakeUpsThroughThePulseThreadsSleep) {
-  WakeProbeOptions o;
-  o.thread.priority = 0;  // SCHED_OTHER: runs unprivileged
-  o.thread.lock_memory = false;
-  o.duration = 50 * kNsPerMs;
-  o.interval = kNsPerMs;
-  const WakeProbeResult r = run_wake_probe(o);
-  EXPECT_TRUE(r.status.started);
-  EXPECT_GT(r.late.count(), 10u);
-  EXPECT_LE(r.late.count(), 50u);
-}
-
 BoardFacts quiet_board() {
   BoardFacts f;
   f.pulse_cpu = 3;

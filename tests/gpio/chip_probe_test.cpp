@@ -1,5 +1,5 @@
 // The chip probe's decisions over a fake chip list (the kernel's own chips: tests/vm's
-// check_hardware case): which chip a `chip` value names, what a missing chip's message lists,
+// check_hardware_* cases): which chip a `chip` value names, what a missing chip's message lists,
 // which configured lines are past the chip's end or busy.
 #include "gpio/chip_probe.hpp"
 

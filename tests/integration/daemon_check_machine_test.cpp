@@ -2,7 +2,7 @@
 // machine has not is a configuration error (exit 2), and with the gpiod backend a chip that is
 // not there is refused (exit 1) listing the chips there are and naming gpiodetect. Before, both
 // passed --check: the first ran unpinned after a warning, the second failed only at start. (The
-// gpio-sim VM's check_hardware case runs the same against a real kernel chip.)
+// gpio-sim VM's check_hardware_* cases run the same against a real kernel chip.)
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>

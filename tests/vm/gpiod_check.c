@@ -7,6 +7,8 @@
 //   gpiod_check edge CHIP SIMDIR OFFSET        pull changes give rising/falling edge events with
 //                                              CLOCK_MONOTONIC timestamps close to clock_gettime
 //   gpiod_check busy CHIP OFFSET               a line in use gives EBUSY to a second request
+//   gpiod_check hold CHIP OFFSET               holds the line as an input (consumer
+//                                              "stepmod-vm-test"), prints "held", waits to be killed
 //   gpiod_check errors CHIP                    missing chip and out-of-range offset fail cleanly
 //   gpiod_check burst CHIP SIMDIR OFFSET N MODE   N pull toggles as fast as possible, the reader
 //                                              idle or reading meanwhile: count the events
@@ -233,6 +235,17 @@ static int cmd_busy(const char* chipname, const char* offstr) {
   return 0;
 }
 
+// Another program holding one line, for the cases that need a busy line (check_hardware_*).
+static int cmd_hold(const char* chipname, const char* offset) {
+  const unsigned off = parse_offset(offset);
+  struct gpiod_chip* chip = open_chip(chipname);
+  struct gpiod_line* line = get_line(chip, off);
+  if (gpiod_line_request_input(line, kConsumer) < 0)
+    fail("request of line %u: %s", off, strerror(errno));
+  printf("held: line %u as '%s'\n", off, kConsumer);
+  for (;;) pause();
+}
+
 static int cmd_errors(const char* chipname) {
   errno = 0;
   if (gpiod_chip_open_by_name("gpiochip99")) fail("gpiochip99 opened");
@@ -340,11 +353,13 @@ int main(int argc, char** argv) {
   if (!strcmp(cmd, "edge") && argc == 5) return cmd_edge(argv[2], argv[3], argv[4]);
   if (!strcmp(cmd, "busy") && argc == 4) return cmd_busy(argv[2], argv[3]);
   if (!strcmp(cmd, "errors") && argc == 3) return cmd_errors(argv[2]);
+  if (!strcmp(cmd, "hold") && argc == 4) return cmd_hold(argv[2], argv[3]);
   if (!strcmp(cmd, "burst") && argc == 7)
     return cmd_burst(argv[2], argv[3], argv[4], argv[5], argv[6]);
   fprintf(stderr,
           "usage: gpiod_check outputs CHIP SIMDIR OFFSET... | edge CHIP SIMDIR OFFSET | busy CHIP "
           "OFFSET |\n"
+          "                   hold CHIP OFFSET |\n"
           "                   errors CHIP | burst CHIP SIMDIR OFFSET N idle|reading\n");
   return 2;
 }
