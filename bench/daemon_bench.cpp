@@ -41,7 +41,9 @@
 #include <vector>
 
 #include "bench/daemon_log.hpp"
+#include "bench/path_plan.hpp"
 #include "bench/path_slip.hpp"
+#include "bench/proc_cpu.hpp"
 #include "bench/slip_judge.hpp"
 #include "core/clock.hpp"
 #include "ipc/client.hpp"
@@ -219,32 +221,6 @@ int latency(int argc, char** argv) {
     return 1;
   }
   return 0;
-}
-
-// CPU ns of every thread of `pid` (schedstat: time on CPU), by thread name.
-std::map<std::string, double> thread_cpu(pid_t pid) {
-  std::map<std::string, double> out;
-  const std::string base = "/proc/" + std::to_string(pid) + "/task";
-  DIR* dir = opendir(base.c_str());
-  if (dir == nullptr) return out;
-  while (dirent* e = readdir(dir)) {
-    if (e->d_name[0] == '.') continue;
-    const std::string t = base + "/" + e->d_name;
-    std::string comm = slurp(t + "/comm");
-    if (!comm.empty() && comm.back() == '\n') comm.pop_back();
-    std::istringstream s(slurp(t + "/schedstat"));
-    double ns = 0;
-    s >> ns;
-    out[comm + "/" + e->d_name] += ns;
-  }
-  closedir(dir);
-  return out;
-}
-
-double total(const std::map<std::string, double>& m) {
-  double s = 0;
-  for (auto& [k, v] : m) s += v;
-  return s;
 }
 
 long vm_rss_kb(pid_t pid) {
@@ -471,32 +447,6 @@ int guard(int argc, char** argv) {
   return 0;
 }
 
-// Issue 18: the planned step times of a single-axis move, from the planner itself (the
-// manuals' profile equations, ch. 2), in virtual time.
-std::vector<Nanos> planned_steps(const planner::MoveSpec& spec) {
-  SpscRing<rt::Edge> ring(1u << 16);
-  rt::AxisControl control;
-  const planner::PlannerAxis axis{&ring, &control, {}};
-  planner::Planner p(std::span<const planner::PlannerAxis>(&axis, 1));
-  planner::Command c;
-  c.axis = 0;
-  c.epoch = 1;
-  c.what = spec;
-  p.submit(c);
-  std::vector<Nanos> t;
-  bool last = false;
-  for (Nanos now = 0; !last && now < 3'600 * kNsPerSec;) {
-    const Nanos next = p.service(now);
-    rt::Edge e;
-    while (ring.try_pop(e)) {
-      if (e.dpos != 0) t.push_back(e.t);
-      last = last || (e.flags & rt::edge_flag::kLast) != 0;
-    }
-    now = std::max(now + kNsPerUs, std::min(next, now + kNsPerMs));
-  }
-  return t;
-}
-
 // Step trains of consecutive moves, split where the line rested longer than `gap`.
 std::vector<std::vector<Nanos>> split_moves(const std::vector<Nanos>& rising, Nanos gap) {
   std::vector<std::vector<Nanos>> moves;
@@ -518,7 +468,7 @@ void report_slip(const std::vector<SlipCase>& cases, const std::vector<planner::
   std::size_t compressed = 0, unfaulted = 0, late_ends = 0, inexact = 0;
   int at_vs = 0, at_vs_faulted = 0;  // constant moves: the whole move at Vs
   for (std::size_t i = 0; i < cases.size(); ++i) {
-    const std::vector<Nanos> plan = planned_steps(specs[i]);
+    const std::vector<Nanos> plan = plan_move(specs[i]);
     const std::vector<Nanos> wire = i < moves.size() ? moves[i] : std::vector<Nanos>{};
     const SlipVerdict v = judge_move(wire, plan, specs[i].vs, faulted[i]);
     compressed += v.compressed;

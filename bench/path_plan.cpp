@@ -133,4 +133,28 @@ HeldPlan plan_held_path(const planner::PathSpec& spec, const planner::Ramp& hold
   return plan;
 }
 
+std::vector<Nanos> plan_move(const planner::MoveSpec& spec) {
+  SpscRing<rt::Edge> ring(1u << 16);
+  rt::AxisControl control;
+  const planner::PlannerAxis axis{&ring, &control, {}};
+  planner::Planner p(std::span<const planner::PlannerAxis>(&axis, 1));
+  planner::Command c;
+  c.axis = 0;
+  c.epoch = 1;
+  c.what = spec;
+  p.submit(c);
+  std::vector<Nanos> t;
+  bool last = false;
+  for (Nanos now = 0; !last && now < 3'600 * kNsPerSec;) {
+    const Nanos next = p.service(now);
+    rt::Edge e;
+    while (ring.try_pop(e)) {
+      if (e.dpos != 0) t.push_back(e.t);
+      last = last || (e.flags & rt::edge_flag::kLast) != 0;
+    }
+    now = std::max(now + kNsPerUs, std::min(next, now + kNsPerMs));
+  }
+  return t;
+}
+
 }  // namespace stepmod::bench

@@ -1,17 +1,21 @@
 #pragma once
-// Benchmark 12's plan of a 3602 path, from the planner itself in virtual time (the manual's
-// profile on the path length, both axes on one time base): the times of each axis' steps, the
-// plan the VCD's step trains are judged against (bench/path_slip.cpp). A held-and-resumed path
-// is planned with its hold at the point the wire shows it stopped.
+// The plans the VCD's step trains are judged against, from the planner itself in virtual time:
+// a single-axis move (the manuals' profile equations, ch. 2), and benchmark 12's 3602 path (the
+// manual's profile on the path length, both axes on one time base; bench/path_slip.cpp). A
+// held-and-resumed path is planned with its hold at the point the wire shows it stopped.
 #include <array>
 #include <cstddef>
 #include <vector>
 
 #include "core/clock.hpp"
+#include "planner/motion_request.hpp"
 #include "planner/path_spec.hpp"
 #include "planner/ramp.hpp"
 
 namespace stepmod::bench {
+
+// The planned times of the steps of a single-axis move.
+std::vector<Nanos> plan_move(const planner::MoveSpec& spec);
 
 // Per axis (0 = X, 1 = Y): the planned times of its steps.
 using AxisSteps = std::array<std::vector<Nanos>, 2>;
