@@ -3,7 +3,9 @@
 # Debian release (scripts/install-check puts it there, with /proc and /dev): installs the .deb
 # with apt, which must resolve its Depends from that release's archive alone (libgpiod3 on
 # Debian 13, libgpiod2 on Debian 12); runs a move on the simulated machine with the installed
-# example config and the installed stepmodctl; purges the package and checks nothing is left.
+# example config and the installed stepmodctl; gives the pulse thread a CPU of its own with
+# `stepmodctl isolate` and takes it back (its files written, then removed); purges the package
+# and checks nothing is left.
 #   install_in_root.sh /path/in/root/stepmod_<version>_<arch>.deb     -> "PKGTEST_PASS", exit 0
 set -euo pipefail
 deb=$1
@@ -37,6 +39,36 @@ $ctl wait-idle --max 20 >/dev/null
 $ctl status | grep -Eq '^  position = 1500$' || { $ctl status; cat /tmp/daemon.log; fail "position after the move"; }
 kill -TERM "$pid"
 wait "$pid" || { cat /tmp/daemon.log; fail "stepmodd did not end cleanly on SIGTERM"; }
+
+# stepmodctl isolate as on a board (docs/performance.md, "A CPU of its own"): the systemd
+# drop-ins, stepmod.slice and the sysctl written (each marked), [rt] cpu set in the config;
+# idempotent; --off removes exactly those and the config line, leaving the config as it was.
+cpu=$(awk -F'[-,]' '{print $NF}' /sys/devices/system/cpu/online)
+[ "$cpu" -ge 1 ] || fail "a one-CPU machine: isolate needs two"
+marker='# Written by stepmodctl isolate'
+isolated=(/etc/systemd/system/system.slice.d/50-stepmod-cpu.conf
+          /etc/systemd/system/user.slice.d/50-stepmod-cpu.conf
+          /etc/systemd/system/init.scope.d/50-stepmod-cpu.conf /etc/systemd/system/stepmod.slice
+          /etc/systemd/system/stepmodd@.service.d/50-cpu.conf /etc/sysctl.d/50-stepmod.conf)
+cp /tmp/3601.toml /tmp/3601.before
+for pass in 1 2; do
+  stepmodctl isolate --cpu "$cpu" --config /tmp/3601.toml >/tmp/isolate.log 2>&1 ||
+    { cat /tmp/isolate.log; fail "stepmodctl isolate --cpu $cpu (pass $pass)"; }
+done
+for f in "${isolated[@]}"; do
+  head -n 1 "$f" 2>/dev/null | grep -qF "$marker --cpu $cpu " || fail "isolate did not write $f"
+done
+grep -q '^kernel.sched_rt_runtime_us = -1$' /etc/sysctl.d/50-stepmod.conf || fail "the sysctl"
+[ "$(grep -c "^cpu = $cpu" /tmp/3601.toml)" -eq 1 ] || fail "[rt] cpu = $cpu once in the config"
+stepmodd --check --config /tmp/3601.toml >/dev/null 2>&1 || fail "the pinned config fails --check"
+stepmodctl isolate --off --config /tmp/3601.toml >/tmp/isolate.log 2>&1 ||
+  { cat /tmp/isolate.log; fail "stepmodctl isolate --off"; }
+for f in "${isolated[@]}"; do [ ! -e "$f" ] || fail "isolate --off left $f"; done
+for d in system.slice.d user.slice.d init.scope.d stepmodd@.service.d; do
+  [ ! -e "/etc/systemd/system/$d" ] || fail "isolate --off left /etc/systemd/system/$d"
+done
+cmp -s /tmp/3601.toml /tmp/3601.before || { diff /tmp/3601.before /tmp/3601.toml; fail "--off changed the config"; }
+echo "stepmodctl isolate --cpu $cpu: ${#isolated[@]} files written, then removed"
 
 DEBIAN_FRONTEND=noninteractive apt-get purge -y -q stepmod >/tmp/purge.log 2>&1 ||
   { cat /tmp/purge.log; fail "apt-get purge stepmod"; }
