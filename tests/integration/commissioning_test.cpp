@@ -162,8 +162,9 @@ TEST_F(Commissioning, WaitEndsInMoveCompleteOrSaysWhyNot) {
   const CtlRun ok = ctl("move rel 3000 -s 20000 -a 100 -d 100 --wait", 0);
   EXPECT_NE(ok.out.find("move complete at 3000"), std::string::npos) << ok.out;
   ctl("wait-idle", 0);
-  // A move cut by the E-stop: wait-idle says so (issue 20: it returned 0 after a fault).
-  const pid_t mover = ctl_background("move rel 60000 -s 20000 -a 100 -d 100");
+  // A move cut by the E-stop: wait-idle says so (issue 20: it returned 0 after a fault). Long
+  // (30 s): a loaded machine may take seconds to start the stepmodctl that forces the E-stop.
+  const pid_t mover = ctl_background("move rel 600000 -s 20000 -a 100 -d 100");
   ASSERT_TRUE(eventually([&] { return moving(); }, milliseconds(5000)));
   ctl("panel force 1 estop 1", 0);
   const CtlRun w = ctl("wait-idle", 1);
