@@ -29,11 +29,11 @@ struct Rig {
 
   explicit Rig(bool active_low = false) {
     gpio::SimAxisSetup s;
-    s.lines.out[0] = 1;
-    s.lines.out[1] = 2;
+    s.sim.encoder_ratio = 0;  // nothing simulated but the wires
     s.lines.charge_pump = 3;
-    s.lines.charge_pump_opt.active_low = active_low;
-    s.sim.encoder_ratio = 0;
+    s.lines.charge_pump_opt = gpio::LineOptions{.active_low = active_low};
+    s.lines.out[0] = 1;  // step and dir, which every axis has
+    s.lines.out[1] = 2;
     setups = {s};
     sim = std::make_unique<gpio::SimBackend>(setups);
     pump = std::make_unique<ChargePump>(*sim, ChargePump::Setup{0, kHalf, 100});
