@@ -49,8 +49,11 @@ class Parser : ConfigReader {
     parse_module(module, c);
     parse_gpio(sub_table(root, "", "gpio"), c);
     parse_rt(sub_table(root, "", "rt"), c);
-    parse_axes(root, module, c);
+    // Line offset -> key that uses it, for the uniqueness check across the whole file.
+    std::map<int64_t, std::string> used;
+    parse_axes(root, module, c, used);
     parse_modbus(sub_table(root, "", "modbus"), c);
+    parse_charge_pump(sub_table(root, "", "charge_pump"), c, used);
     return c;
   }
 
@@ -191,7 +194,8 @@ class Parser : ConfigReader {
     if (r != nullptr) c.rt_table_line = std::max(1u, r->source().begin.line);
   }
 
-  void parse_axes(const toml::table& root, const toml::table* module, Config& c) const {
+  void parse_axes(const toml::table& root, const toml::table* module, Config& c,
+                  std::map<int64_t, std::string>& used) const {
     const unsigned shape = shape_of(c.type).axes;
     const toml::node* n = root.get("axis");
     const toml::array* arr = nullptr;
@@ -214,8 +218,6 @@ class Parser : ConfigReader {
                std::to_string(shape) + " [[axis]] table" + (shape == 1 ? "" : "s") + ", found " +
                std::to_string(count));
     }
-    // Line offset -> key that uses it, for the uniqueness check across the whole file.
-    std::map<int64_t, std::string> used;
     for (std::size_t i = 0; i < count; ++i) {
       c.axes.push_back(
           parse_axis(*(*arr)[i].as_table(), i, c.type, c.backend == Config::Backend::kGpiod, used));
@@ -228,16 +230,8 @@ class Parser : ConfigReader {
     const std::string p = "axis[" + std::to_string(index + 1) + "]";
     check_keys(t, p, "axis");
     AxisSection a;
-    auto line = [&](std::string_view key, bool input,
-                    gpio::LineOptions& opt) -> std::optional<unsigned> {
-      const auto v = line_entry(t, p, key, input, gpiod, opt);
-      if (!v) return std::nullopt;
-      const auto [it, fresh] = used.emplace(*v, join(p, key));
-      if (!fresh) {
-        fail(t.get(key)->source(), join(p, key),
-             "line offset " + std::to_string(*v) + " is already used by '" + it->second + "'");
-      }
-      return static_cast<unsigned>(*v);
+    auto line = [&](std::string_view key, bool input, gpio::LineOptions& opt) {
+      return unique_line(t, p, key, {input, gpiod, "axis"}, opt, used);
     };
     for (unsigned o = 0; o < kOutputLinesPerAxis; ++o) {
       a.out[o] = line(kOutputKeys[o], false, a.out_opt[o]);
@@ -305,19 +299,44 @@ class Parser : ConfigReader {
     }
   }
 
+  // What a line key is: its direction, whether the chip is real (gpiod), and the table of its
+  // row in config/config_keys.hpp.
+  struct LineKind {
+    bool input = false;
+    bool gpiod = false;
+    std::string_view table;
+  };
+
+  // A line key (line_entry) whose offset no other line key of the file has (`used`: offset ->
+  // key, filled as the keys are read).
+  std::optional<unsigned> unique_line(const toml::table& t, const std::string& p,
+                                      std::string_view key, const LineKind& kind,
+                                      gpio::LineOptions& opt,
+                                      std::map<int64_t, std::string>& used) const {
+    const auto v = line_entry(t, p, key, kind, opt);
+    if (!v) return std::nullopt;
+    const auto [it, fresh] = used.emplace(*v, join(p, key));
+    if (!fresh) {
+      fail(t.get(key)->source(), join(p, key),
+           "line offset " + std::to_string(*v) + " is already used by '" + it->second + "'");
+    }
+    return static_cast<unsigned>(*v);
+  }
+
   // A line key: its offset (`home = 5`), or the offset with electrical options
   // (`home = { offset = 5, bias = "pull-up", active_low = true, debounce_us = 2000 }`). The
   // options a plain offset leaves out, and those a table leaves out, get their defaults.
   std::optional<int64_t> line_entry(const toml::table& t, const std::string& p,
-                                    std::string_view key, bool input, bool gpiod,
+                                    std::string_view key, const LineKind& kind,
                                     gpio::LineOptions& opt) const {
+    const bool input = kind.input;
     const toml::node* n = t.get(key);
     if (n == nullptr) return std::nullopt;
     const toml::table* o = n->as_table();
     const std::string q = join(p, key);
     std::optional<int64_t> off;
     if (o == nullptr) {
-      off = opt_int(&t, p, *find_config_key("axis", key));
+      off = opt_int(&t, p, *find_config_key(kind.table, key));
     } else {
       if (input) {
         check_keys(*o, q, {"offset", "active_low", "bias", "debounce_us"});
@@ -329,7 +348,7 @@ class Parser : ConfigReader {
     }
     opt.active_low = get_bool(o, q, config_key("line", "active_low"));
     if (input) {
-      line_input_options(o, q, gpiod, opt);
+      line_input_options(o, q, kind.gpiod, opt);
     } else {
       const std::string d = get_choice(o, q, config_key("line", "drive"));
       opt.drive = d == "open-drain"    ? gpio::Drive::kOpenDrain
@@ -354,6 +373,51 @@ class Parser : ConfigReader {
                std::to_string(gpio::gpiod_capabilities().libgpiod_major) +
                ".x (v1 uAPI, no debounce): debounce in hardware (RC filter) or remove the key");
     }
+  }
+
+  // [charge_pump] (an extension, docs/safety.md "Charge pump"): off unless `line` names a line;
+  // the control thread toggles it every half_period_scans scans, so the frequency must give a
+  // whole number of scans per half period.
+  void parse_charge_pump(const toml::table* t, Config& c,
+                         std::map<int64_t, std::string>& used) const {
+    if (t == nullptr) return;
+    const std::string p = "charge_pump";
+    check_keys(*t, p, "charge_pump");
+    ChargePumpSection& cp = c.charge_pump;
+    cp.line = unique_line(*t, p, "line", {false, c.backend == Config::Backend::kGpiod, p},
+                          cp.line_opt, used);
+    const ConfigKey& k = config_key("charge_pump", "frequency_hz");
+    const toml::node* n = t->get(k.key);
+    if (!cp.line) {
+      if (n != nullptr) fail(n->source(), join(p, k.key), "needs a line (key 'charge_pump.line')");
+      return;
+    }
+    cp.frequency_hz = static_cast<unsigned>(get_int(t, p, k));
+    const int64_t scan_us = c.scan_ns / kNsPerUs;
+    constexpr int64_t kHalfSecondUs = 500'000;  // half a period of 1 Hz
+    if (kHalfSecondUs % cp.frequency_hz != 0 || (kHalfSecondUs / cp.frequency_hz) % scan_us != 0) {
+      fail(n != nullptr ? n->source() : t->source(), join(p, k.key),
+           std::string(n != nullptr ? "" : "the default ") + std::to_string(cp.frequency_hz) +
+               " Hz is not a whole number of scans per half period at module.scan_us = " +
+               std::to_string(scan_us) + ": use " + whole_scan_frequencies(k, scan_us) +
+               ", or change module.scan_us");
+    }
+    cp.half_period_scans = static_cast<unsigned>(kHalfSecondUs / cp.frequency_hz / scan_us);
+  }
+
+  // The frequencies within `k`'s range whose half period is a whole number of `scan_us` scans,
+  // highest first: "500, 250, 125 or 100 Hz".
+  static std::string whole_scan_frequencies(const ConfigKey& k, int64_t scan_us) {
+    std::vector<int64_t> hz;
+    for (int64_t half = scan_us; half <= 500'000 / k.min; half += scan_us) {
+      if (500'000 % half == 0 && 500'000 / half <= k.max) hz.push_back(500'000 / half);
+    }
+    if (hz.empty()) return "no frequency in " + std::to_string(k.min) + ".." + std::to_string(k.max);
+    std::string text;
+    for (std::size_t i = 0; i < hz.size(); ++i) {
+      text += (i == 0 ? "" : i + 1 == hz.size() ? " or " : ", ") + std::to_string(hz[i]);
+    }
+    return text + " Hz";
   }
 
   // The drive-enable output's keys (an extension: off unless `enable` names a line).

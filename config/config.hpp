@@ -46,6 +46,16 @@ struct AxisSection : gpio::AxisLines {
   SimAxisConfig sim;
 };
 
+// The [charge_pump] table (an extension, docs/safety.md "Charge pump"): a line that toggles every
+// `half_period_scans` scans while the module is healthy, for a watchdog relay board. No line: no
+// charge pump.
+struct ChargePumpSection {
+  std::optional<unsigned> line;
+  gpio::LineOptions line_opt;
+  unsigned frequency_hz = static_cast<unsigned>(config_key("charge_pump", "frequency_hz").def);
+  unsigned half_period_scans = 0;  // set by the parser: 1e6 / (2 frequency_hz scan_us)
+};
+
 // Initial values: as AxisSection's.
 struct Config {
   std::string file;  // the path it was read from
@@ -65,6 +75,7 @@ struct Config {
   unsigned rt_table_line = 0;
   std::vector<AxisSection> axes;
   ipc::ModbusOptions modbus;  // [modbus] (docs/interface.md 6), every field set by the parser
+  ChargePumpSection charge_pump;
 };
 
 // Thrown for a bad file: what() is the whole message ("FILE:LINE: key 'axis[1].step': ...").

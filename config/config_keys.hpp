@@ -109,6 +109,7 @@ inline constexpr ConfigKey kConfigKeys[] = {
     table("", "rt"),
     table("", "axis"),
     table("", "modbus"),
+    table("", "charge_pump"),
     // [module]
     {.table = "module", .key = "type", .type = kChoice, .absent = kRequired,
      .choices = {"3601", "3602", "3202"},
@@ -223,6 +224,20 @@ inline constexpr ConfigKey kConfigKeys[] = {
             "slowest master's poll period"},
     {.table = "modbus", .key = "allow", .type = kList, .absent = kUnset, .text = "any source",
      .doc = "a connection from elsewhere is closed at once (docs/hardening.md)"},
+    // [charge_pump] (docs/safety.md "Charge pump"): an extension, off unless `line` names a line.
+    {.table = "charge_pump", .key = "line", .type = kLine, .absent = kUnset, .min = 0,
+     .max = kMaxLineOffset, .text = "not wired",
+     .doc = "extension: the charge-pump (watchdog) output, a square wave while the module is "
+            "healthy and scanning, for a relay board in the E-stop chain "
+            "([safety.md](safety.md))"},
+    // 100 Hz: a half period of 5 scans at the default scan_us, well inside what a retriggerable
+    // monostable relay board is set for (tens of ms). At least 10 Hz: slower would need a
+    // drop-out time so long that the chain opened late; at most 2000 Hz: one scan per half period
+    // at the shortest scan_us (250 us).
+    {.table = "charge_pump", .key = "frequency_hz", .type = kInt, .def = 100, .min = 10,
+     .max = 2000,
+     .doc = "with `line`: the square wave's frequency; its half period must be a whole number of "
+            "scans (`module.scan_us`)"},
 };
 
 // clang-format on

@@ -43,6 +43,7 @@ std::map<std::string, unsigned> lines_of(const Config& m) {
     }
     if (s.enable) lines[p + "enable"] = *s.enable;
   }
+  if (m.charge_pump.line) lines["charge_pump.line"] = *m.charge_pump.line;
   return lines;
 }
 

@@ -24,6 +24,7 @@ ControlLoop::ControlLoop(const Parts& parts)
       lost_inputs_(parts.stack),
       enables_(parts.stack, parts.config, lost_inputs_, parts.trace),
       health_(parts.stack, parts.config, lost_inputs_, parts.trace),
+      pump_(parts.stack, parts.config, parts.trace),
       cpu_notice_(parts.stack, parts.config, parts.output),
       doorbell_(parts.stack.planner(), parts.output) {}
 
@@ -37,6 +38,8 @@ void ControlLoop::run(const std::atomic<bool>& stop, const std::atomic<bool>* ha
     next_scan_ += parts_.config.scan_ns;
     if (next_scan_ <= now) next_scan_ = now + parts_.config.scan_ns;  // overrun: skip, never burst
   }
+  // Within a scan of the stop: the watchdog relay drops while the axes stop.
+  pump_.stop(monotonic_now());
 }
 
 Nanos ControlLoop::take_events() {
@@ -100,7 +103,9 @@ void ControlLoop::scan(Nanos now) {
   // The machine as of this scan, before the status: a reader that sees "stopped" in the status
   // finds the panel showing the motor's last step, not the one of the loop's top.
   if (parts_.panel != nullptr) parts_.panel->publish();
-  image.publish_inputs(in_, health_.scan(supervisor_.flags() | lease_.flags()));
+  const ipc::Health health = health_.scan(supervisor_.flags() | lease_.flags());
+  pump_.scan(health.flags, now);
+  image.publish_inputs(in_, health);
   note_scan_published();
   // Done only once the status that shows the message's effect is published: a PLC that reads
   // the status bits when its message is done (docs/interface.md 3: an error is in the status
@@ -117,6 +122,7 @@ void ControlLoop::note_scan_published() noexcept {
 }
 
 void ControlLoop::stop_motion() {
+  pump_.stop(monotonic_now());
   parts_.stack.personality().shutdown();
   doorbell_.ring_if_submitted();
   const Nanos deadline = monotonic_now() + kStopAckTimeout;

@@ -3,12 +3,14 @@
 // on real lines): input events as they come, the PLC image once per scan. Each scan: the PLC
 // supervision and the lease decide which words the module gets, the module scans them, and its
 // followers run in order (drive enables, the pulse thread's doorbell, the CPU notice, reasons,
-// panel), before the input image and health words are published.
+// panel, and with the health words the charge pump), before the input image and health words
+// are published.
 #include <array>
 #include <atomic>
 #include <optional>
 
 #include "config/config.hpp"
+#include "daemon/charge_pump_feed.hpp"
 #include "daemon/cpu_notice.hpp"
 #include "daemon/drive_enable_feed.hpp"
 #include "daemon/health_words.hpp"
@@ -43,8 +45,8 @@ class ControlLoop {
   // Until `stop` or `halt` (null: none; a rack halts its modules when one of them fails): input
   // events as they come, a scan every [module] scan_us.
   void run(const std::atomic<bool>& stop, const std::atomic<bool>* halt = nullptr);
-  // After run(): immediate stop of every axis, and a bounded wait until the pulse thread has
-  // acknowledged it.
+  // After run(): the charge pump stopped (if run() could not), immediate stop of every axis, and
+  // a bounded wait until the pulse thread has acknowledged it.
   void stop_motion();
   // After the pulse thread has stopped, as the daemon idles every output.
   void trace_enable_release(Nanos now) noexcept { enables_.trace_release(now); }
@@ -71,6 +73,7 @@ class ControlLoop {
   LostInputWatch lost_inputs_;
   DriveEnableFeed enables_;
   HealthWords health_;
+  ChargePumpFeed pump_;  // docs/safety.md "Charge pump"
   CpuNotice cpu_notice_;
   PulseDoorbell doorbell_;
   systemd::Watchdog watchdog_;  // WatchdogSec=: petted per scan while the pulse thread loops

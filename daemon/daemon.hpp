@@ -11,8 +11,9 @@
 //   daemon_trace      the --trace VCD: rings, writer, losses
 //   sim_panel_link    the simulator panel wired to the simulated machine
 //   control_loop      the control thread: events, scans and what follows each scan
-//                     (lost_input_watch, drive_enable_feed, health_words, cpu_notice,
-//                     pulse_doorbell, supervision_log, lease_keeper, reason_publisher)
+//                     (lost_input_watch, drive_enable_feed, health_words, charge_pump_feed,
+//                     cpu_notice, pulse_doorbell, supervision_log, lease_keeper,
+//                     reason_publisher)
 //   realtime_setup    the threads' priorities and what the system refused
 #include <atomic>
 #include <memory>

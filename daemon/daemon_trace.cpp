@@ -52,6 +52,11 @@ void DaemonTrace::open(const std::string& path, Nanos start, std::span<const Con
             gpio::enable_trace_wire(stack.first_axis(k) + a, axes[a].enable_opt.active_low));
       }
     }
+    const ChargePumpSection& pump = modules[k].charge_pump;
+    if (pump.line) {
+      wires.push_back(
+          gpio::charge_pump_trace_wire(stack.first_axis(k), pump.line_opt.active_low));
+    }
   }
   writer_ = std::make_unique<gpio::TraceWriter>(path, wires, start, *output_, *input_);
   if (rack_file) writer_->name_axes(axis_names(modules, stack));

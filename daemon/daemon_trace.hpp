@@ -36,7 +36,7 @@ class DaemonTrace {
 
   SpscRing<TraceRecord>* output_ring() noexcept { return output_.get(); }
   // Main thread, once the stack exists: the writer of `path` with a wire for every configured
-  // line and drive enable; #0 is `start` (CLOCK_MONOTONIC).
+  // line, drive enable and charge pump; #0 is `start` (CLOCK_MONOTONIC).
   // `rack_file`: the wires are named after their modules ("x.axis1.step"; docs/interface.md
   // section 7), as in a rack file, else as of a lone module (section 5: "axis1.step").
   void open(const std::string& path, Nanos start, std::span<const Config> modules, bool rack_file,

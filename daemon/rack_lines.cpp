@@ -41,6 +41,10 @@ void RackLines::set_enable(unsigned axis, bool asserted) noexcept {
   axes_[axis].backend->set_enable(axes_[axis].local, asserted);
 }
 
+void RackLines::set_charge_pump(unsigned axis, bool active) noexcept {
+  axes_[axis].backend->set_charge_pump(axes_[axis].local, active);
+}
+
 gpio::LineOptions RackLines::line_options(unsigned axis, bool input, unsigned line) const noexcept {
   return axes_[axis].backend->line_options(axes_[axis].local, input, line);
 }

@@ -29,6 +29,7 @@ class RackLines final : public gpio::Backend {
   std::uint64_t lost_events() const noexcept override;
   void idle_outputs() noexcept override;
   void set_enable(unsigned axis, bool asserted) noexcept override;
+  void set_charge_pump(unsigned axis, bool active) noexcept override;
   gpio::LineOptions line_options(unsigned axis, bool input, unsigned line) const noexcept override;
   void set_pulse_format(unsigned axis, gpio::PulseFormat format) noexcept override;
 

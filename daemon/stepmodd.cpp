@@ -25,6 +25,7 @@
 #include "config/rack_config.hpp"
 #include "core/stop_signals.hpp"
 #include "core/version.hpp"
+#include "daemon/backend_factory.hpp"
 #include "daemon/daemon.hpp"
 #include "daemon/daemon_log.hpp"
 #include "gpio/chip_probe.hpp"
@@ -85,7 +86,7 @@ int check_module_here(const stepmod::tools::Config& config) {
   }
   if (config.backend != stepmod::tools::Config::Backend::kGpiod) return 0;
   try {
-    const std::vector<stepmod::gpio::AxisLines> lines(config.axes.begin(), config.axes.end());
+    const std::vector<stepmod::gpio::AxisLines> lines = stepmod::tools::module_lines(config);
     const stepmod::gpio::ChipInfo chip = stepmod::gpio::probe_chip(config.chip, lines);
     spdlog::info("GPIO chip '{}': {} [{}], {} lines; the configured lines are there and free",
                  config.chip, chip.path, chip.label, chip.lines);

@@ -18,6 +18,11 @@ struct AxisLines {
   // thread (Backend::set_enable), never by the pulse thread.
   std::optional<unsigned> enable;
   LineOptions enable_opt;
+  // The module's charge-pump output (an extension, [charge_pump] line): one per module, carried
+  // by its first axis' lines (the backends request lines axis by axis). Written by the control
+  // thread (Backend::set_charge_pump).
+  std::optional<unsigned> charge_pump;
+  LineOptions charge_pump_opt;
 
   bool has_output(OutputLine l) const noexcept { return out[static_cast<unsigned>(l)].has_value(); }
   bool has_input(InputLine l) const noexcept { return in[static_cast<unsigned>(l)].has_value(); }

@@ -59,12 +59,15 @@ class Backend {
   virtual std::uint64_t lost_events() const noexcept = 0;
 
   // Any thread, while the pulse thread is stopped: drive every output to its idle level (low).
-  // The drive-enable outputs are released too.
+  // The drive-enable outputs are released too, and the charge pump is inactive.
   virtual void idle_outputs() noexcept = 0;
 
   // Control thread: assert (true) or release the axis' drive-enable output, if it has one
   // (AxisLines::enable; `active_low` gives its polarity). No-op without one.
   virtual void set_enable(unsigned /*axis*/, bool /*asserted*/) noexcept {}
+  // Control thread: drive the charge-pump output carried by the axis' lines
+  // (AxisLines::charge_pump) to its active (true) or inactive level. No-op without one.
+  virtual void set_charge_pump(unsigned /*axis*/, bool /*active*/) noexcept {}
 
   // Any thread: the electrical options of a configured line (`line`: an OutputLine or InputLine
   // value as `input` says). Levels everywhere else are logical; the VCD shows the wire, which is

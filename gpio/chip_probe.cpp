@@ -142,6 +142,10 @@ std::vector<LineState> configured_lines(std::span<const AxisLines> axes) {
     if (axes[a].enable) {
       lines.push_back({line_key(a, false, kEnableKeyIndex), *axes[a].enable, false, ""});
     }
+    if (axes[a].charge_pump) {
+      lines.push_back(
+          {line_key(a, false, kChargePumpKeyIndex), *axes[a].charge_pump, false, ""});
+    }
     for (unsigned l = 0; l < kInputLinesPerAxis; ++l) {
       if (axes[a].in[l]) lines.push_back({line_key(a, true, l), *axes[a].in[l], false, ""});
     }

@@ -36,6 +36,7 @@ class GpiodBackend final : public WiredBackend {
   std::uint64_t lost_events() const noexcept override;
   void idle_outputs() noexcept override;
   void set_enable(unsigned axis, bool asserted) noexcept override;
+  void set_charge_pump(unsigned axis, bool active) noexcept override;
 
   // Write errors seen by the pulse thread (it cannot report them itself).
   std::uint64_t write_errors() const noexcept;

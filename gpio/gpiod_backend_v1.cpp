@@ -53,6 +53,7 @@ struct GpiodBackend::Impl final : GpiodShared {
   std::vector<std::array<gpiod_line*, kOutputLinesPerAxis>> out_lines;  // null: unwired
   std::vector<gpiod_line*> outputs_requested;
   std::vector<gpiod_line*> enable_lines;  // per axis, null: none
+  std::vector<gpiod_line*> pump_lines;    // per axis (the first's at most), null: none
 
   // Inputs: one event request per line; their fds are read by `events`.
   std::vector<Input> inputs;
@@ -124,6 +125,11 @@ void GpiodBackend::Impl::claim_axis(unsigned a) {
   if (lines.enable) {
     enable_lines.back() = request_output(a, kEnableKeyIndex, *lines.enable, lines.enable_opt);
   }
+  pump_lines.push_back(nullptr);
+  if (lines.charge_pump) {
+    pump_lines.back() =
+        request_output(a, kChargePumpKeyIndex, *lines.charge_pump, lines.charge_pump_opt);
+  }
   for (unsigned l = 0; l < kInputLinesPerAxis; ++l) {
     if (!lines.in[l]) continue;
     Input in;
@@ -184,12 +190,23 @@ bool GpiodBackend::read(unsigned axis, InputLine line) {
   return v != 0;
 }
 
-void GpiodBackend::set_enable(unsigned axis, bool asserted) noexcept {
-  Impl& d = impl();
-  if (axis >= d.enable_lines.size() || d.enable_lines[axis] == nullptr) return;
-  if (gpiod_line_set_value(d.enable_lines[axis], asserted ? 1 : 0) != 0) {
+namespace {
+// A control-thread output (drive enable, charge pump) of `lines`, by axis; null: none.
+void set_control_line(GpiodShared& d, const std::vector<gpiod_line*>& lines, unsigned axis,
+                      bool active) noexcept {
+  if (axis >= lines.size() || lines[axis] == nullptr) return;
+  if (gpiod_line_set_value(lines[axis], active ? 1 : 0) != 0) {
     d.write_errors.fetch_add(1, std::memory_order_relaxed);
   }
+}
+}  // namespace
+
+void GpiodBackend::set_enable(unsigned axis, bool asserted) noexcept {
+  set_control_line(impl(), impl().enable_lines, axis, asserted);
+}
+
+void GpiodBackend::set_charge_pump(unsigned axis, bool active) noexcept {
+  set_control_line(impl(), impl().pump_lines, axis, active);
 }
 
 void GpiodBackend::idle_outputs() noexcept {

@@ -92,7 +92,8 @@ struct GpiodBackend::Impl final : GpiodShared {
   explicit Impl(std::span<const AxisLines> lines)
       : GpiodShared(lines),
         out_offset(lines.size(), {-1, -1, -1}),
-        enable_offset(lines.size(), -1) {}
+        enable_offset(lines.size(), -1),
+        pump_offset(lines.size(), -1) {}
   ~Impl() override { release(); }
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;
@@ -110,6 +111,7 @@ struct GpiodBackend::Impl final : GpiodShared {
   std::vector<std::array<int, kOutputLinesPerAxis>> out_offset;  // -1: unwired
   std::vector<unsigned> out_offsets;                             // as requested
   std::vector<int> enable_offset;                                // per axis, -1: none
+  std::vector<int> pump_offset;  // per axis (the first's at most), -1: none
 
   std::vector<Input> inputs;
 
@@ -179,6 +181,10 @@ void GpiodBackend::Impl::request_outputs() {
       add_output(lc.p, a, kEnableKeyIndex, static_cast<unsigned>(enable_offset[a]),
                  axes[a].enable_opt);
     }
+    if (pump_offset[a] >= 0) {
+      add_output(lc.p, a, kChargePumpKeyIndex, static_cast<unsigned>(pump_offset[a]),
+                 axes[a].charge_pump_opt);
+    }
     for (unsigned l = 0; l < kOutputLinesPerAxis; ++l) {
       if (out_offset[a][l] < 0) continue;
       add_output(lc.p, a, l, static_cast<unsigned>(out_offset[a][l]), axes[a].out_opt[l]);
@@ -227,6 +233,11 @@ void GpiodBackend::Impl::claim_axis(unsigned a) {
     claim_line(a, false, kEnableKeyIndex, *lines.enable);
     enable_offset[a] = static_cast<int>(*lines.enable);
     out_offsets.push_back(*lines.enable);
+  }
+  if (lines.charge_pump) {
+    claim_line(a, false, kChargePumpKeyIndex, *lines.charge_pump);
+    pump_offset[a] = static_cast<int>(*lines.charge_pump);
+    out_offsets.push_back(*lines.charge_pump);
   }
   for (unsigned l = 0; l < kInputLinesPerAxis; ++l) {
     if (!lines.in[l]) continue;
@@ -281,14 +292,25 @@ bool GpiodBackend::read(unsigned axis, InputLine line) {
   return v == GPIOD_LINE_VALUE_ACTIVE;
 }
 
-void GpiodBackend::set_enable(unsigned axis, bool asserted) noexcept {
-  Impl& d = impl();
-  if (axis >= d.enable_offset.size() || d.enable_offset[axis] < 0) return;
-  if (gpiod_line_request_set_value(
-          d.out_req, static_cast<unsigned>(d.enable_offset[axis]),
-          asserted ? GPIOD_LINE_VALUE_ACTIVE : GPIOD_LINE_VALUE_INACTIVE) != 0) {
+namespace {
+// A control-thread output (drive enable, charge pump) at `offsets` (by axis; -1: none).
+void set_control_line(GpiodShared& d, gpiod_line_request* req, const std::vector<int>& offsets,
+                      unsigned axis, bool active) noexcept {
+  if (axis >= offsets.size() || offsets[axis] < 0) return;
+  if (gpiod_line_request_set_value(req, static_cast<unsigned>(offsets[axis]),
+                                   active ? GPIOD_LINE_VALUE_ACTIVE
+                                          : GPIOD_LINE_VALUE_INACTIVE) != 0) {
     d.write_errors.fetch_add(1, std::memory_order_relaxed);
   }
+}
+}  // namespace
+
+void GpiodBackend::set_enable(unsigned axis, bool asserted) noexcept {
+  set_control_line(impl(), impl().out_req, impl().enable_offset, axis, asserted);
+}
+
+void GpiodBackend::set_charge_pump(unsigned axis, bool active) noexcept {
+  set_control_line(impl(), impl().out_req, impl().pump_offset, axis, active);
 }
 
 void GpiodBackend::idle_outputs() noexcept {

@@ -12,6 +12,7 @@
 namespace stepmod::gpio {
 
 std::string line_key(unsigned axis, bool input, unsigned line) {
+  if (!input && line == kChargePumpKeyIndex) return "charge_pump.line";
   const std::string_view k = input                     ? input_key(static_cast<InputLine>(line))
                              : line == kEnableKeyIndex ? std::string_view("enable")
                                                        : output_key(static_cast<OutputLine>(line));

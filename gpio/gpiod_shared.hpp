@@ -19,10 +19,13 @@
 namespace stepmod::gpio {
 
 inline constexpr const char* kGpiodConsumer = "stepmod";
-// The line index that stands for the drive-enable output in line_key() and where().
+// The line indexes that stand for the drive-enable and charge-pump outputs in line_key() and
+// where().
 inline constexpr unsigned kEnableKeyIndex = kOutputLinesPerAxis;
+inline constexpr unsigned kChargePumpKeyIndex = kOutputLinesPerAxis + 1;
 
-// The config key of a line: "axis1.step", "axis1.enable".
+// The config key of a line: "axis1.step", "axis1.enable", "charge_pump.line" (the module's, on
+// its first axis' lines).
 std::string line_key(unsigned axis, bool input, unsigned line);
 
 struct GpiodShared {
@@ -71,7 +74,8 @@ struct GpiodShared {
   // The reader of the requested input lines' event fds (none: no reader).
   void start_events(std::vector<LineEventReader::Source> sources, EdgeRecordFormat format);
 
-  // Pulse thread (write) and control thread (set_enable): one failed line write, counted.
+  // Pulse thread (write) and control thread (set_enable, set_charge_pump): one failed line
+  // write, counted.
   void count_write_error() noexcept {
     write_errors.store(write_errors.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
   }

@@ -33,7 +33,7 @@ std::vector<AxisLines> lines_of(std::span<const SimAxisSetup> axes) {
 
 SimBackend::SimBackend(std::span<const SimAxisSetup> axes, std::size_t event_capacity)
     : WiredBackend(lines_of(axes)),
-      enable_wire_(std::make_unique<std::atomic<std::uint32_t>[]>(axes.size())) {
+      control_wires_(std::make_unique<std::atomic<std::uint32_t>[]>(axes.size())) {
   machines_.reserve(axes.size());
   for (std::size_t a = 0; a < axes.size(); ++a) {
     std::uint16_t wired = 0;
@@ -59,7 +59,10 @@ SimBackend::SimBackend(std::span<const SimAxisSetup> axes, std::size_t event_cap
     machines_.push_back(std::make_unique<SimMachine>(static_cast<std::uint8_t>(a), axes[a].sim,
                                                      wired, ring, pulls));
   }
-  for (unsigned a = 0; a < axes.size(); ++a) set_enable(a, false);  // released at start
+  for (unsigned a = 0; a < axes.size(); ++a) {  // released and inactive at start
+    set_enable(a, false);
+    set_charge_pump(a, false);
+  }
 }
 
 void SimBackend::write(unsigned axis, OutputLine line, bool level, Nanos t) noexcept {
@@ -137,6 +140,7 @@ void SimBackend::idle_outputs() noexcept {
       write(a, static_cast<OutputLine>(l), false, now);
     }
     set_enable(a, false);
+    set_charge_pump(a, false);
   }
 }
 
@@ -149,10 +153,19 @@ void SimBackend::force(unsigned axis, std::uint32_t mask, std::uint32_t levels,
   if (axis < machines_.size()) machines_[axis]->force(mask, levels, now);
 }
 
+void SimBackend::set_control_wire(unsigned axis, std::uint32_t bit, bool wire) noexcept {
+  const std::uint32_t was = control_wires_[axis].load(std::memory_order_relaxed);
+  control_wires_[axis].store(wire ? was | bit : was & ~bit, std::memory_order_relaxed);
+}
+
 void SimBackend::set_enable(unsigned axis, bool asserted) noexcept {
   if (axis >= lines().size() || !lines()[axis].enable) return;
-  const bool wire = asserted != lines()[axis].enable_opt.active_low;
-  enable_wire_[axis].store(wire ? kEnableLevelBit : 0u, std::memory_order_relaxed);
+  set_control_wire(axis, kEnableLevelBit, asserted != lines()[axis].enable_opt.active_low);
+}
+
+void SimBackend::set_charge_pump(unsigned axis, bool active) noexcept {
+  if (axis >= lines().size() || !lines()[axis].charge_pump) return;
+  set_control_wire(axis, kChargePumpLevelBit, active != lines()[axis].charge_pump_opt.active_low);
 }
 
 }  // namespace stepmod::gpio

@@ -42,13 +42,16 @@ class SimBackend final : public WiredBackend {
   std::int64_t position(unsigned axis) const noexcept { return machines_[axis]->position(); }
   std::int64_t encoder(unsigned axis) const noexcept { return machines_[axis]->encoder(); }
   // Wire levels (an active-low output's level inverted), as the panel shows them; bit 3 is the
-  // drive-enable output (kEnableLevelBit).
+  // drive-enable output (kEnableLevelBit), bit 4 the module's charge pump on the axis that
+  // carries it (kChargePumpLevelBit).
   std::uint32_t output_levels(unsigned axis) const noexcept {
     return (machines_[axis]->output_levels() ^ active_low_outputs_[axis]) |
-           enable_wire_[axis].load(std::memory_order_relaxed);
+           control_wires_[axis].load(std::memory_order_relaxed);
   }
   static constexpr std::uint32_t kEnableLevelBit = 1u << 3;
+  static constexpr std::uint32_t kChargePumpLevelBit = 1u << 4;
   void set_enable(unsigned axis, bool asserted) noexcept override;
+  void set_charge_pump(unsigned axis, bool active) noexcept override;
   SimMachine& machine(unsigned axis) noexcept { return *machines_[axis]; }
 
   // Events closer together than this are polled for at this period instead of each waking the
@@ -68,7 +71,10 @@ class SimBackend final : public WiredBackend {
   Nanos last_events_ = 0;  // consumer: when wait_events last returned events
   std::vector<std::unique_ptr<SimMachine>> machines_;
   std::vector<std::uint32_t> active_low_outputs_;              // per axis, bit per OutputLine
-  std::unique_ptr<std::atomic<std::uint32_t>[]> enable_wire_;  // per axis: kEnableLevelBit or 0
+  // Per axis: the control thread's wires, kEnableLevelBit | kChargePumpLevelBit (one writer at a
+  // time: the control thread, or the main thread once it has ended).
+  std::unique_ptr<std::atomic<std::uint32_t>[]> control_wires_;
+  void set_control_wire(unsigned axis, std::uint32_t bit, bool wire) noexcept;
   unsigned next_axis_ = 0;  // round-robin start of wait_events, so no axis starves another
 };
 

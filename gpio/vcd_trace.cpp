@@ -37,7 +37,20 @@ TraceWire enable_trace_wire(unsigned axis, bool active_low) {
   return {static_cast<std::uint8_t>(axis), false, kEnableTraceLine, false, active_low};
 }
 
+TraceWire charge_pump_trace_wire(unsigned first_axis, bool active_low) {
+  return {static_cast<std::uint8_t>(first_axis), false, kChargePumpTraceLine, false, active_low};
+}
+
 std::string wire_name(const TraceWire& w, std::span<const std::string> axis_names) {
+  if (!w.is_input && w.line == kChargePumpTraceLine) {
+    constexpr std::string_view kPump = "charge_pump";
+    if (w.axis < axis_names.size()) {
+      const std::string& a = axis_names[w.axis];  // "x.axis1": the module's name before the dot
+      return a.substr(0, a.rfind('.') + 1) + std::string(kPump);
+    }
+    if (w.axis == 0) return std::string(kPump);
+    return "axis" + std::to_string(unsigned{w.axis} + 1) + "." + std::string(kPump);
+  }
   const std::string_view key = w.is_input ? input_key(static_cast<InputLine>(w.line))
                                : w.line == kEnableTraceLine
                                    ? std::string_view("enable")

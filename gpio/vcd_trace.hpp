@@ -35,10 +35,16 @@ std::vector<TraceWire> trace_wires(Backend& backend);
 inline constexpr std::uint8_t kEnableTraceLine = kOutputLinesPerAxis;
 // The enable wire of `axis`, released (logically low) at #0: the daemon releases it at start.
 TraceWire enable_trace_wire(unsigned axis, bool active_low);
+// The module's charge pump (an extension, written by the control thread) likewise: line
+// kChargePumpTraceLine of the module's first axis, wire "charge_pump", inactive at #0.
+inline constexpr std::uint8_t kChargePumpTraceLine = kOutputLinesPerAxis + 1;
+TraceWire charge_pump_trace_wire(unsigned first_axis, bool active_low);
 
 // The VCD name of a line: "axis1.step", "axis2.cw_limit", "axis1.enable", ...; with
 // `axis_names` (a rack, docs/interface.md section 7: by trace axis, "x.axis1") the axis part is
-// its name: "x.axis1.step".
+// its name: "x.axis1.step". The charge pump is the module's: "charge_pump", in a rack
+// "x.charge_pump" (without names, on a module's first axis past the rack's first:
+// "axis3.charge_pump").
 std::string wire_name(const TraceWire& w, std::span<const std::string> axis_names = {});
 
 class VcdTrace {

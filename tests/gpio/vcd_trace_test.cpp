@@ -299,6 +299,17 @@ TEST(GpioTraceWires, FromTheBackendsConfiguredLinesWithInputLevels) {
   EXPECT_TRUE(wires[3].initial);
 }
 
+// The charge pump is the module's, not an axis': "charge_pump", in a rack "x.charge_pump" (on its
+// module's first axis), and without the rack's names on a later module "axis3.charge_pump".
+TEST(GpioTraceWires, TheChargePumpIsNamedAfterItsModule) {
+  EXPECT_EQ(wire_name(charge_pump_trace_wire(0, false)), "charge_pump");
+  const std::vector<std::string> rack = {"x.axis1", "y.axis1", "y.axis2"};
+  EXPECT_EQ(wire_name(charge_pump_trace_wire(0, false), rack), "x.charge_pump");
+  EXPECT_EQ(wire_name(charge_pump_trace_wire(1, false), rack), "y.charge_pump");
+  EXPECT_EQ(wire_name(charge_pump_trace_wire(2, false)), "axis3.charge_pump");
+  EXPECT_EQ(wire_name(enable_trace_wire(1, false), rack), "y.axis1.enable");
+}
+
 TEST(GpioVcdTrace, ActiveLowWiresShowTheInvertedLevel) {
   const std::string path = temp_path("active_low.vcd");
   const TraceWire wires[] = {

@@ -146,6 +146,9 @@ writes = false
 max_clients = 4
 idle_timeout_ms = 5000
 allow = ["127.0.0.1"]
+[charge_pump]
+line = 13
+frequency_hz = 100
 )";
   EXPECT_EQ(parse_config(every_key, "keys.toml").name, "keys");
   std::set<std::string> written;

@@ -46,6 +46,7 @@ const std::map<std::string, Read>& readers() {
       {"modbus.unit_id", [](const Config& c) { return c.modbus.unit_id; }},
       {"modbus.max_clients", [](const Config& c) { return c.modbus.max_clients; }},
       {"modbus.idle_timeout_ms", [](const Config& c) { return c.modbus.idle_timeout_ms; }},
+      {"charge_pump.frequency_hz", [](const Config& c) { return c.charge_pump.frequency_hz; }},
   };
   return r;
 }
@@ -59,6 +60,11 @@ std::string file_with(const ConfigKey& k, std::int64_t value) {
   const std::string v = std::to_string(value);
   const std::string kv = std::string(k.key) + " = " + v + "\n";
   if (k.table == "module") return kModule + kv + kAxis;
+  // The pump's frequency needs its line, and a scan its bounds' half periods are whole ones of.
+  if (k.table == "charge_pump") {
+    const std::string line = k.key == "line" ? "" : "line = 3\n";
+    return kModule + std::string("scan_us = 250\n") + kAxis + "[charge_pump]\n" + line + kv;
+  }
   if (k.table != "axis" && k.table != "axis.sim") {
     return std::string(kMinimal) + "[" + std::string(k.table) + "]\n" + kv;
   }
