@@ -27,13 +27,25 @@ ChargePump::Conditions ChargePumpFeed::conditions(std::uint32_t health_flags,
   return c;
 }
 
-void ChargePumpFeed::scan(std::uint32_t health_flags, Nanos now) {
+bool ChargePumpFeed::FaultDrop::stops(const ipc::Health& health, Nanos now) noexcept {
+  const std::uint32_t bits =
+      health.flags & (STEPMOD_HEALTH_LATE_EDGE | STEPMOD_HEALTH_INPUT_LOST);
+  // A new fault: a bit rising, or one more late-edge fault while bit 0 stands.
+  if (bits != 0 && ((bits & ~bits_) != 0 || health.late_faults != late_faults_)) at_ = now;
+  bits_ = bits;
+  late_faults_ = health.late_faults;
+  return bits != 0 && now - at_ < kDrop;
+}
+
+void ChargePumpFeed::scan(const ipc::Health& health, Nanos now) {
   if (!pump_) return;
   bool estop = false;
   for (unsigned a = 0; a < stack_.shape().axes; ++a) {
     estop = estop || stack_.personality().drive_state(a).estop;
   }
-  if (pump_->scan(conditions(health_flags, estop), now)) record_change();
+  ChargePump::Conditions c = conditions(health.flags, estop);
+  c.fault = fault_.stops(health, now);
+  if (pump_->scan(c, now)) record_change();
 }
 
 void ChargePumpFeed::stop(Nanos now) {

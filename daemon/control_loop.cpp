@@ -104,7 +104,7 @@ void ControlLoop::scan(Nanos now) {
   // finds the panel showing the motor's last step, not the one of the loop's top.
   if (parts_.panel != nullptr) parts_.panel->publish();
   const ipc::Health health = health_.scan(supervisor_.flags() | lease_.flags());
-  pump_.scan(health.flags, now);
+  pump_.scan(health, now);
   image.publish_inputs(in_, health);
   note_scan_published();
   // Done only once the status that shows the message's effect is published: a PLC that reads

@@ -158,5 +158,29 @@ TEST(ChargePumpFeed, EveryHealthFlagThatStopsTheAxesStopsThePumpAndALostTraceToo
   EXPECT_FALSE(stops(STEPMOD_HEALTH_LEASE_CONFLICT));
 }
 
+// docs/safety.md "Charge pump", restart rule: a late-edge fault or lost input events stop the
+// pump for FaultDrop::kDrop from each new fault, then it runs although the health bit stands
+// (cleared only by the PLC's next accepted motion): the chain's Reset, not a move, re-enables.
+TEST(ChargePumpFeed, AFaultStopsThePumpForTheDropTimeThenItRunsWithTheBitStanding) {
+  using Drop = ChargePumpFeed::FaultDrop;
+  constexpr Nanos kT0 = 5 * kNsPerSec;
+  Drop d;
+  EXPECT_FALSE(d.stops(ipc::Health{}, kT0));
+  const ipc::Health late{.flags = STEPMOD_HEALTH_LATE_EDGE, .late_faults = 1};
+  EXPECT_TRUE(d.stops(late, kT0));
+  EXPECT_TRUE(d.stops(late, kT0 + Drop::kDrop - 1));
+  EXPECT_FALSE(d.stops(late, kT0 + Drop::kDrop)) << "the bit stands, the drop time is over";
+  // One more late-edge fault while bit 0 stands: a new drop.
+  const ipc::Health again{.flags = STEPMOD_HEALTH_LATE_EDGE, .late_faults = 2};
+  EXPECT_TRUE(d.stops(again, kT0 + 2 * Drop::kDrop));
+  EXPECT_FALSE(d.stops(again, kT0 + 3 * Drop::kDrop));
+  // Lost input events rising beside it: a new drop too.
+  const ipc::Health lost{.flags = STEPMOD_HEALTH_LATE_EDGE | STEPMOD_HEALTH_INPUT_LOST,
+                         .late_faults = 2};
+  EXPECT_TRUE(d.stops(lost, kT0 + 3 * Drop::kDrop + 1));
+  // The PLC's next accepted motion clears the bits: nothing stops it.
+  EXPECT_FALSE(d.stops(ipc::Health{.late_faults = 2}, kT0 + 3 * Drop::kDrop + 2));
+}
+
 }  // namespace
 }  // namespace stepmod::tools

@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "core/clock.hpp"
+#include "daemon/charge_pump_feed.hpp"
 #include "ipc/lease.hpp"
 #include "ipc/sim_panel.hpp"
 #include "tests/support/daemon_process.hpp"
@@ -226,8 +227,9 @@ TEST(DaemonChargePump, AnExpiredLeaseStopsItUntilTheNextTake) {
 }
 
 // A fault: input events lost (the simulated FIFO of 2 events overflows at the first step, as in
-// daemon_lost_input_test.cpp). It stands until the PLC's next accepted motion.
-TEST(DaemonChargePump, LostInputEventsStopIt) {
+// daemon_lost_input_test.cpp). Its health bit stands until the PLC's next accepted motion; the
+// pump stops for the drop time (ChargePumpFeed::FaultDrop) and then runs with the bit standing.
+TEST(DaemonChargePump, LostInputEventsStopItForTheDropTime) {
   DaemonProcess daemon(config("", "encoder_ratio = 4\nevent_ring = 2\n"));
   ASSERT_TRUE(daemon.wait_ready()) << daemon.log();
   RawShmPlc plc(daemon.name());
@@ -240,11 +242,16 @@ TEST(DaemonChargePump, LostInputEventsStopIt) {
       milliseconds(5'000)))
       << daemon.log();
   const Nanos lost = monotonic_now();  // seen by the test: at least a scan after the daemon
-  sleep_ns(kHold);
+  constexpr Nanos kDrop = tools::ChargePumpFeed::FaultDrop::kDrop;
+  sleep_ns(kDrop + kHold);
   const Nanos end = monotonic_now();
+  EXPECT_NE(plc.client().read_health().flags & STEPMOD_HEALTH_INPUT_LOST, 0u) << "bit 5 stands";
   ASSERT_EQ(daemon.terminate(), 0) << daemon.log();
   const PumpWire w = pump_wire(daemon);
-  expect_stopped_between(w, cause, lost - cause, end, end, false);
+  // Stopped from the fault until the drop time after it at the earliest (the fault came after
+  // `cause`), running again from the drop time after the test saw it.
+  expect_stopped_between(w, cause, lost - cause, cause + kDrop, end, false);
+  EXPECT_GT(w.edges(lost + kDrop + kReact, end), 20u) << "running again after the drop time";
   EXPECT_NE(daemon.log().find("charge pump stopped (fault: a late edge or lost input events"),
             std::string::npos)
       << daemon.log();
