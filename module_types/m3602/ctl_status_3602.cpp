@@ -1,17 +1,17 @@
 // How stepmodctl shows a 3602's input image: the decoded status display of both axes (stepmodctl
 // status) and the axis summaries (--brief, --json, wait-idle, --wait). Names from the 3602's bit
-// tables, numbers in its binary split (module_types/m3602/words_3602.hpp). Both are columns of its registry
-// row.
+// tables, numbers in its binary split (module_types/m3602/words_3602.hpp). Both are columns of its
+// registry row.
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "module_types/m3602/ctl_3602.hpp"
 #include "module_types/m3602/plc_status_3602.hpp"
-#include "tools/ctl_row_of.hpp"
+#include "module_types/m3602/words_3602.hpp"
 #include "tools/ctl_fields.hpp"
 #include "tools/ctl_status.hpp"
 #include "tools/ctl_summary.hpp"
-#include "module_types/m3602/words_3602.hpp"
 
 namespace stepmod::tools::ctl {
 
