@@ -49,7 +49,12 @@ class GpiodBackend final : public WiredBackend {
   std::unique_ptr<GpiodShared> d_;
   struct Impl;
   static std::unique_ptr<GpiodShared> make_impl(std::span<const AxisLines> lines);
-  Impl& impl() noexcept;
+  // The generation's Impl behind d_. A template, so that this one definition serves both
+  // generations: it is instantiated only in the source that defines Impl (where I is complete).
+  template <typename I = Impl>
+  I& impl() noexcept {
+    return static_cast<I&>(*d_);
+  }
 };
 
 }  // namespace stepmod::gpio

@@ -27,16 +27,10 @@ int request_flags(const LineOptions& o) {
 }
 }  // namespace
 
-GpiodCapabilities gpiod_capabilities() noexcept {
-  return {1, false};
-}
-
 struct GpiodBackend::Impl final : GpiodShared {
   explicit Impl(std::span<const AxisLines> lines)
       : GpiodShared(lines), out_lines(lines.size(), {nullptr, nullptr, nullptr}) {}
-  ~Impl() override { release(); }
-  Impl(const Impl&) = delete;
-  Impl& operator=(const Impl&) = delete;
+  ~Impl() override { release(); }  // not copyable: GpiodShared is not
 
   struct Input {
     gpiod_line* line = nullptr;
@@ -165,10 +159,6 @@ void GpiodBackend::Impl::request_lines() {
 
 std::unique_ptr<GpiodShared> GpiodBackend::make_impl(std::span<const AxisLines> lines) {
   return std::make_unique<Impl>(lines);
-}
-
-GpiodBackend::Impl& GpiodBackend::impl() noexcept {
-  return static_cast<Impl&>(*d_);
 }
 
 void GpiodBackend::write(unsigned axis, OutputLine line, bool level, Nanos /*t*/) noexcept {

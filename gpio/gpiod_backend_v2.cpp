@@ -84,19 +84,13 @@ gpiod_chip* open_chip(const std::string& chip) {
 }
 }  // namespace
 
-GpiodCapabilities gpiod_capabilities() noexcept {
-  return {2, true};
-}
-
 struct GpiodBackend::Impl final : GpiodShared {
   explicit Impl(std::span<const AxisLines> lines)
       : GpiodShared(lines),
         out_offset(lines.size(), {-1, -1, -1}),
         enable_offset(lines.size(), -1),
         pump_offset(lines.size(), -1) {}
-  ~Impl() override { release(); }
-  Impl(const Impl&) = delete;
-  Impl& operator=(const Impl&) = delete;
+  ~Impl() override { release(); }  // not copyable: GpiodShared is not
 
   struct Input {
     gpiod_line_request* req = nullptr;
@@ -262,10 +256,6 @@ void GpiodBackend::Impl::request_lines() {
 
 std::unique_ptr<GpiodShared> GpiodBackend::make_impl(std::span<const AxisLines> lines) {
   return std::make_unique<Impl>(lines);
-}
-
-GpiodBackend::Impl& GpiodBackend::impl() noexcept {
-  return static_cast<Impl&>(*d_);
 }
 
 void GpiodBackend::write(unsigned axis, OutputLine line, bool level, Nanos /*t*/) noexcept {

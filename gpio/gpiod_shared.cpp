@@ -8,8 +8,15 @@
 
 #include "gpio/chip_probe.hpp"
 #include "gpio/gpiod_backend.hpp"
+#include "gpio/line_options.hpp"
 
 namespace stepmod::gpio {
+
+// The generation CMake selected (STEPMOD_LIBGPIOD_MAJOR, gpio/CMakeLists.txt): only libgpiod 2's
+// v2 uAPI has per-line debounce.
+GpiodCapabilities gpiod_capabilities() noexcept {
+  return {STEPMOD_LIBGPIOD_MAJOR, STEPMOD_LIBGPIOD_MAJOR >= 2};
+}
 
 std::string line_key(unsigned axis, bool input, unsigned line) {
   if (!input && line == kChargePumpKeyIndex) return "charge_pump.line";

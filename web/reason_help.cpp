@@ -16,47 +16,25 @@ constexpr ErrorList kLists[] = {ErrorList::kConfiguration,  ErrorList::kCommand,
                                 ErrorList::kInvalidProfile, ErrorList::kInput,
                                 ErrorList::kHomeInvalid,    ErrorList::kPositionInvalid};
 
-const char* list_name(ErrorList l) {
-  switch (l) {
-    case ErrorList::kConfiguration:
-      return "Configuration Error";
-    case ErrorList::kCommand:
-      return "Command Error";
-    case ErrorList::kInvalidProfile:
-      return "Invalid Profile";
-    case ErrorList::kInput:
-      return "Input Error";
-    case ErrorList::kHomeInvalid:
-      return "Home Invalid";
-    case ErrorList::kPositionInvalid:
-      return "Position Invalid";
-  }
-  return "";
-}
+// What to do, for a list as a whole: the manuals' way out of each error bit (ErrorList order).
+constexpr const char* kListFixes[] = {
+    "Correct the configuration (the form's Configuration: the bits and the starting speed within "
+    "its range) and write it again.",
+    "Reset Errors, then send the command again with its fields in range; while Command Error is "
+    "set the module takes no command but Reset Errors.",
+    "Bring speed, acceleration and deceleration into the ranges under the form (the speed at "
+    "least the starting speed), Reset Errors, then move again.",
+    "Check the input: release the E-stop or jog away from the end limit in the other direction, "
+    "then Reset Errors.",
+    "Check the home switch and its configuration (Home Input Used, its active level), Reset "
+    "Errors and home again.",
+    "The position is no longer known: Reset Errors, then home the axis or preset its position "
+    "before an absolute move.",
+};
+static_assert(std::size(kListFixes) == static_cast<std::size_t>(ErrorList::kPositionInvalid));
 
-// What to do, for a list as a whole: the manuals' way out of each error bit.
 const char* list_fix(ErrorList l) {
-  switch (l) {
-    case ErrorList::kConfiguration:
-      return "Correct the configuration (the form's Configuration: the bits and the starting "
-             "speed within its range) and write it again.";
-    case ErrorList::kCommand:
-      return "Reset Errors, then send the command again with its fields in range; while Command "
-             "Error is set the module takes no command but Reset Errors.";
-    case ErrorList::kInvalidProfile:
-      return "Bring speed, acceleration and deceleration into the ranges under the form (the "
-             "speed at least the starting speed), Reset Errors, then move again.";
-    case ErrorList::kInput:
-      return "Check the input: release the E-stop or jog away from the end limit in the other "
-             "direction, then Reset Errors.";
-    case ErrorList::kHomeInvalid:
-      return "Check the home switch and its configuration (Home Input Used, its active level), "
-             "Reset Errors and home again.";
-    case ErrorList::kPositionInvalid:
-      return "The position is no longer known: Reset Errors, then home the axis or preset its "
-             "position before an absolute move.";
-  }
-  return "";
+  return kListFixes[static_cast<unsigned>(l) - 1];
 }
 
 struct Fix {
@@ -120,8 +98,9 @@ void add_item(Table& table, ModuleType type, const Item* item) {
 Table table_of(ModuleType type) {
   Table table;
   for (const ErrorList l : kLists) {
-    table.emplace(module::axis::item_code(type, l, 0),
-                  Row{module::axis::item_id(type, l, 0), list_name(l), list_fix(l)});
+    table.emplace(
+        module::axis::item_code(type, l, 0),
+        Row{module::axis::item_id(type, l, 0), module::axis::list_bit_name(l), list_fix(l)});
   }
   for (const Item* item : items::kAll) add_item(table, type, item);
   for (const Item* item : registry::row_of(type).own_items) add_item(table, type, item);

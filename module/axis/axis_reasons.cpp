@@ -12,15 +12,14 @@ namespace {
 struct LatchBit {
   bool Latches::*bit;
   ErrorList list;
-  const char* name;
 };
 constexpr LatchBit kErrorBits[] = {
-    {&Latches::configuration_error, ErrorList::kConfiguration, "Configuration Error"},
-    {&Latches::command_error, ErrorList::kCommand, "Command Error"},
-    {&Latches::invalid_profile, ErrorList::kInvalidProfile, "Invalid Profile"},
-    {&Latches::input_error, ErrorList::kInput, "Input Error"},
-    {&Latches::home_invalid, ErrorList::kHomeInvalid, "Home Invalid"},
-    {&Latches::position_invalid, ErrorList::kPositionInvalid, "Position Invalid"},
+    {&Latches::configuration_error, ErrorList::kConfiguration},
+    {&Latches::command_error, ErrorList::kCommand},
+    {&Latches::invalid_profile, ErrorList::kInvalidProfile},
+    {&Latches::input_error, ErrorList::kInput},
+    {&Latches::home_invalid, ErrorList::kHomeInvalid},
+    {&Latches::position_invalid, ErrorList::kPositionInvalid},
 };
 }  // namespace
 
@@ -76,7 +75,8 @@ void AxisState::explain_new_errors() noexcept {
   if (!noted_since_) {
     for (const LatchBit& b : kErrorBits) {
       if (latches().*(b.bit) && !(explained_.*(b.bit))) {
-        record(b.list, 0, b.name);  // the first new bit names the list; no item is known
+        // The first new bit names the list; no item is known.
+        record(b.list, 0, list_bit_name(b.list));
         break;
       }
     }

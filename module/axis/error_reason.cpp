@@ -11,11 +11,19 @@ namespace {
 constexpr std::array<std::string_view, 6> kListAbbreviations = {"CFG", "CE", "IP",
                                                                 "IE",  "HI", "PI"};
 static_assert(static_cast<std::size_t>(ErrorList::kPositionInvalid) == kListAbbreviations.size());
+constexpr std::array<std::string_view, 6> kListBitNames = {
+    "Configuration Error", "Command Error", "Invalid Profile",
+    "Input Error",         "Home Invalid",  "Position Invalid"};
+static_assert(kListBitNames.size() == kListAbbreviations.size());
 }  // namespace
 
 const char* list_abbreviation(ErrorList list) noexcept {
   // The table's views are of literals, so data() is NUL-terminated.
   return enum_name(list, kListAbbreviations, 1).data();
+}
+
+const char* list_bit_name(ErrorList list) noexcept {
+  return enum_name(list, kListBitNames, 1).data();  // of literals: NUL-terminated
 }
 
 std::uint32_t item_code(ModuleType t, ErrorList list, unsigned number) noexcept {

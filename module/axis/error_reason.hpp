@@ -50,6 +50,8 @@ void format_item_id(char* out, std::size_t size, ModuleType t, ErrorList list,
 // The same from a code; empty for 0 or a code that is not well-formed.
 std::string item_id_of_code(std::uint32_t code);
 const char* list_abbreviation(ErrorList list) noexcept;
+// The name of the list's error bit, as the manuals write it: "Configuration Error", ...
+const char* list_bit_name(ErrorList list) noexcept;
 
 inline constexpr std::size_t kReasonTextSize = 56;  // with its NUL (the image's char[56])
 

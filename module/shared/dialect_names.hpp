@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "core/bit_table.hpp"
+#include "core/module_shape.hpp"
 #include "module/axis/axis_command.hpp"
 #include "module/axis/axis_status.hpp"
 #include "planner/ramp.hpp"
@@ -208,6 +209,15 @@ axis::AxisCommand decode_command_bits(const CommandWords<Word, NC, NO>& t, Word 
   c.shape = accel_shape(t.shape, option_word);
   word_to_flags(t.options, option_word, c);
   return c;
+}
+
+// The same from a 16-bit module's output image (3601, 3602): the command MSW at word `msw` and
+// its options LSW right after it, as both manuals place them.
+template <std::size_t NC, std::size_t NO>
+axis::AxisCommand decode_command_words16(const CommandWords<std::uint16_t, NC, NO>& t,
+                                         const ImageWords& out, unsigned msw) noexcept {
+  return decode_command_bits(t, static_cast<std::uint16_t>(out.w[msw]),
+                             static_cast<std::uint16_t>(out.w[msw + 1]));
 }
 
 }  // namespace stepmod::module::shared

@@ -1,11 +1,11 @@
 // stepmodctl's 3202 dialect: two channels (--channel 1|2), native DINTs (3202 manual ch. 5) and
 // rates in steps/s^2 (A31): the options are passed as given and the module judges them. The blend
 // profile is a 52-DINT message through the image's mailbox (docs/interface.md 3).
+#include "module_types/m3202/ctl_3202.hpp"
 #include "module_types/m3202/plc_3202.hpp"
+#include "module_types/m3202/words_3202.hpp"
 #include "tools/ctl_args.hpp"
 #include "tools/ctl_blend.hpp"
-#include "tools/ctl_row_of.hpp"
-#include "module_types/m3202/words_3202.hpp"
 
 namespace stepmod::tools::ctl {
 
@@ -61,8 +61,8 @@ plc::Outcome program_blend(const CtlRequest& c, plc::Plc3202& plc, ipc::Client& 
 
 template <>
 plc::Outcome CtlOf<ModuleType::k3202>::run_command(const CtlRequest& c, plc::Port& port,
-                                                  ipc::Client& client,
-                                                  std::chrono::milliseconds timeout) {
+                                                   ipc::Client& client,
+                                                   std::chrono::milliseconds timeout) {
   plc::Plc3202 plc(port, timeout);
   const unsigned ch = c.unit;
   switch (c.verb) {

@@ -5,12 +5,12 @@
 #include <string>
 #include <vector>
 
+#include "module_types/m3202/ctl_3202.hpp"
 #include "module_types/m3202/plc_status_3202.hpp"
-#include "tools/ctl_row_of.hpp"
+#include "module_types/m3202/words_3202.hpp"
 #include "tools/ctl_fields.hpp"
 #include "tools/ctl_status.hpp"
 #include "tools/ctl_summary.hpp"
-#include "module_types/m3202/words_3202.hpp"
 
 namespace stepmod::tools::ctl {
 

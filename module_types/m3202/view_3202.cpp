@@ -1,10 +1,10 @@
 // The 3202 on the console: two channels, one status DINT and one configuration DINT each.
+#include "module_types/m3202/view_3202.hpp"
 #include "module_types/m3202/plc_3202.hpp"
 #include "module_types/m3202/plc_status_3202.hpp"
-#include "web/bit_json.hpp"
-#include "web/module_view_of.hpp"
-#include "web/two_unit_controls.hpp"
 #include "module_types/m3202/words_3202.hpp"
+#include "web/bit_json.hpp"
+#include "web/two_unit_controls.hpp"
 
 namespace stepmod::web {
 namespace {

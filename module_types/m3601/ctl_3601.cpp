@@ -1,10 +1,10 @@
 // stepmodctl's 3601 dialect: one axis, numbers as the decimal split of two 16-bit words (3601
 // manual ch. 5), accelerations in steps/ms/s in one 16-bit word each.
+#include "module_types/m3601/ctl_3601.hpp"
 #include "module_types/m3601/plc_3601.hpp"
+#include "module_types/m3601/words_3601.hpp"
 #include "tools/ctl_args.hpp"
 #include "tools/ctl_blend.hpp"
-#include "tools/ctl_row_of.hpp"
-#include "module_types/m3601/words_3601.hpp"
 
 namespace stepmod::tools::ctl {
 
@@ -63,8 +63,8 @@ plc::BlendProfile blend_profile(const CtlRequest& c) {
 
 template <>
 plc::Outcome CtlOf<ModuleType::k3601>::run_command(const CtlRequest& c, plc::Port& port,
-                                                  ipc::Client& /*client*/,
-                                                  std::chrono::milliseconds timeout) {
+                                                   ipc::Client& /*client*/,
+                                                   std::chrono::milliseconds timeout) {
   if (c.unit != 0) throw UsageError("the 3601 has one axis: --axis 1");
   plc::Plc3601 plc(port, timeout);
   switch (c.verb) {

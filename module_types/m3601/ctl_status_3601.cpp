@@ -5,12 +5,12 @@
 #include <string>
 #include <vector>
 
+#include "module_types/m3601/ctl_3601.hpp"
 #include "module_types/m3601/plc_status_3601.hpp"
-#include "tools/ctl_row_of.hpp"
+#include "module_types/m3601/words_3601.hpp"
 #include "tools/ctl_fields.hpp"
 #include "tools/ctl_status.hpp"
 #include "tools/ctl_summary.hpp"
-#include "module_types/m3601/words_3601.hpp"
 
 namespace stepmod::tools::ctl {
 

@@ -50,8 +50,8 @@ axis::BlendFirstBlock blend_first_block(const ImageWords& out) noexcept {
 
 // The word rules of the command table for the one command set, or for the minimum-registration
 // store when none is (true = broken: Command Error).
-bool word_rules_broken(const ImageWords& out, const axis::AxisCommand& c,
-                       std::uint16_t lsw) noexcept {
+bool word_rules_broken(const ImageWords& out, const axis::AxisCommand& c) noexcept {
+  const auto lsw = static_cast<std::uint16_t>(out.w[out_word::kLsw]);
   const auto only = c.commands.single();
   if (!only) {
     // Store minimum registration distance: word 1 exactly bit 10 and words 4..7 zero.
@@ -82,9 +82,7 @@ constexpr auto kCommandWords =
 }  // namespace
 
 axis::AxisCommand command_from_words(const ImageWords& out) noexcept {
-  const auto msw = static_cast<std::uint16_t>(out.w[out_word::kMsw]);
-  const auto lsw = static_cast<std::uint16_t>(out.w[out_word::kLsw]);
-  axis::AxisCommand c = shared::decode_command_bits(kCommandWords, msw, lsw);
+  axis::AxisCommand c = shared::decode_command_words16(kCommandWords, out, out_word::kMsw);
   // Words 2-3: target / preset value / registration count / distance / blend segment length
   // (decimal split, LSW -999..999, both words of one sign); words 4-5: speed (never negative).
   c.target = words::decode_3601(out.w[out_word::kTargetMsw], out.w[out_word::kTargetLsw]);
@@ -96,7 +94,7 @@ axis::AxisCommand command_from_words(const ImageWords& out) noexcept {
   c.ratio_divisor = word(out, out_word::kTargetLsw);
   c.blend_first = blend_first_block(out);
   c.blend_segment = blend_segment_16bit(c, out.w[out_word::kDecel] == 0);
-  c.words_invalid = word_rules_broken(out, c, lsw);
+  c.words_invalid = word_rules_broken(out, c);
   return c;
 }
 

@@ -1,9 +1,9 @@
 // The 3601 on the console: one axis, MSW/LSW status and configuration words, an encoder.
+#include "module_types/m3601/view_3601.hpp"
 #include "module_types/m3601/plc_3601.hpp"
 #include "module_types/m3601/plc_status_3601.hpp"
-#include "web/bit_json.hpp"
-#include "web/module_view_of.hpp"
 #include "module_types/m3601/words_3601.hpp"
+#include "web/bit_json.hpp"
 
 namespace stepmod::web {
 namespace {

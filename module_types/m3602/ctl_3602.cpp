@@ -2,12 +2,12 @@
 // words (3602 manual ch. 9: every int32 fits, the module refuses what is out of its ranges),
 // accelerations in steps/ms/s in one 16-bit word each. Interpolated moves (`path`) are
 // module_types/m3602/ctl_path_3602.cpp's.
+#include "module_types/m3602/ctl_3602.hpp"
+#include "module_types/m3602/ctl_path_3602.hpp"
 #include "module_types/m3602/plc_3602.hpp"
+#include "module_types/m3602/words_3602.hpp"
 #include "tools/ctl_args.hpp"
 #include "tools/ctl_blend.hpp"
-#include "tools/ctl_row_of.hpp"
-#include "module_types/m3602/ctl_path_3602.hpp"
-#include "module_types/m3602/words_3602.hpp"
 
 namespace stepmod::tools::ctl {
 
@@ -66,8 +66,8 @@ plc::BlendProfile blend_profile(const CtlRequest& c) {
 
 template <>
 plc::Outcome CtlOf<ModuleType::k3602>::run_command(const CtlRequest& c, plc::Port& port,
-                                                  ipc::Client& /*client*/,
-                                                  std::chrono::milliseconds timeout) {
+                                                   ipc::Client& /*client*/,
+                                                   std::chrono::milliseconds timeout) {
   plc::Plc3602 plc(port, timeout);
   const unsigned ax = c.unit;
   switch (c.verb) {

@@ -1,46 +1,40 @@
 // How stepmodctl shows a 3602's input image: the decoded status display of both axes (stepmodctl
 // status) and the axis summaries (--brief, --json, wait-idle, --wait). Names from the 3602's bit
-// tables, numbers in its binary split (module_types/m3602/words_3602.hpp). Both are columns of its registry
-// row.
+// tables, numbers in its binary split (module_types/m3602/words_3602.hpp). Both are columns of its
+// registry row.
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "module_types/m3602/ctl_3602.hpp"
 #include "module_types/m3602/plc_status_3602.hpp"
-#include "tools/ctl_row_of.hpp"
+#include "module_types/m3602/words_3602.hpp"
 #include "tools/ctl_fields.hpp"
 #include "tools/ctl_status.hpp"
 #include "tools/ctl_summary.hpp"
-#include "module_types/m3602/words_3602.hpp"
 
 namespace stepmod::tools::ctl {
 
 template <>
 void CtlOf<ModuleType::k3602>::format_status(std::ostringstream& o, const ImageWords& in) {
   namespace m = words::m3602;
-  constexpr unsigned kMsw = index_of(m::kInputWords, "Status Bits MSW");
-  constexpr unsigned kLsw = index_of(m::kInputWords, "Status Bits LSW");
-  constexpr unsigned kPosition = index_of(m::kInputWords, "Position MSW");
-  constexpr unsigned kCapture = index_of(m::kInputWords, "Capture MSW");
-  constexpr unsigned kSpeed = index_of(m::kInputWords, "Starting Speed MSW");
-  constexpr unsigned kTimeout = index_of(m::kInputWords, "Homing Timeout");
-  constexpr auto kConfigMode = mask_of<std::uint16_t>(m::kStatusMswBits, "Configuration Mode");
-  constexpr auto kCfgError = mask_of<std::uint16_t>(m::kStatusMswBits, "Configuration Error");
-  constexpr auto kEnabled = mask_of<std::uint16_t>(m::kStatusMswBits, "Axis Enabled");
+  namespace iw = m::in_word;
+  namespace sm = m::status_msw;
   for (unsigned ax = 0; ax < 2; ++ax) {
     const unsigned b = m::kWordsPerAxis * ax;
-    const std::uint16_t w0 = u16(in.w[b + kMsw]);
-    const std::uint16_t w1 = u16(in.w[b + kLsw]);
+    const std::uint16_t w0 = u16(in.w[b + iw::kStatusMsw]);
+    const std::uint16_t w1 = u16(in.w[b + iw::kStatusLsw]);
     o << "3602 axis " << ax + 1;
-    if (w0 & kConfigMode) {
+    if (w0 & sm::kConfigMode) {
       o << " in CONFIGURATION mode\n";
       o << "  configuration bits MSW (echo) = 16#" << hex(w0, 4)
-        << "  Configuration Error=" << ((w0 & kCfgError) != 0)
-        << "  axis enabled=" << ((w0 & kEnabled) != 0) << "\n";
+        << "  Configuration Error=" << ((w0 & sm::kConfigurationError) != 0)
+        << "  axis enabled=" << ((w0 & sm::kAxisEnabled) != 0) << "\n";
       o << "  configuration bits LSW (echo) = 16#" << hex(w1, 4) << "\n";
-      o << "  starting speed = " << words::decode_3602(in.w[b + kSpeed], in.w[b + kSpeed + 1])
+      o << "  starting speed = "
+        << words::decode_3602(in.w[b + iw::kStartingSpeedMsw], in.w[b + iw::kStartingSpeedMsw + 1])
         << " steps/s\n";
-      o << "  homing timeout = " << in.w[b + kTimeout] << " s\n";
+      o << "  homing timeout = " << in.w[b + iw::kHomingTimeout] << " s\n";
       continue;
     }
     o << " in COMMAND mode\n";
@@ -50,9 +44,10 @@ void CtlOf<ModuleType::k3602>::format_status(std::ostringstream& o, const ImageW
     o << "  status LSW = 16#" << hex(w1, 4) << "  [" << set_bit_names(w1, m::kStatusLswBits)
       << "]\n";
     all_bits(o, w1, m::kStatusLswBits);
-    o << "  position = " << words::decode_3602(in.w[b + kPosition], in.w[b + kPosition + 1])
-      << "\n";
-    o << "  capture  = " << words::decode_3602(in.w[b + kCapture], in.w[b + kCapture + 1]) << "\n";
+    o << "  position = "
+      << words::decode_3602(in.w[b + iw::kPositionMsw], in.w[b + iw::kPositionMsw + 1]) << "\n";
+    o << "  capture  = "
+      << words::decode_3602(in.w[b + iw::kCaptureMsw], in.w[b + iw::kCaptureMsw + 1]) << "\n";
   }
 }
 

@@ -176,9 +176,8 @@ constexpr auto kCommandWords =
 }  // namespace
 
 axis::AxisCommand command_from_words(const ImageWords& out) noexcept {
-  const auto msw = static_cast<std::uint16_t>(out.w[out_word::kMsw]);
+  axis::AxisCommand c = shared::decode_command_words16(kCommandWords, out, out_word::kMsw);
   const auto lsw = static_cast<std::uint16_t>(out.w[out_word::kLsw]);
-  axis::AxisCommand c = shared::decode_command_bits(kCommandWords, msw, lsw);
   // Words 2-3: target / offset / preset value / registration offset / minimum distance / blend
   // segment length; 4-5 the programmed speed. Binary split: every bit pattern is a number, the
   // axis checks its range (3602-CE-05: +-1,073,741,823).

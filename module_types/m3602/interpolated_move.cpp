@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/enum_names.hpp"
 #include "module/axis/rules.hpp"
 #include "module_types/m3602/circle_methods.hpp"
 #include "module_types/m3602/interpolated_items.hpp"
@@ -46,6 +47,16 @@ StartDirections start_directions(const planner::PathSpec& p) noexcept {
 bool external_active(const axis::Axis& a) noexcept {
   return (a.status().inputs_active >> static_cast<unsigned>(InputLine::kExternal)) & 1u;
 }
+
+// The reason's sentence of each circle fault (3602-CE-I7), in GeometryFault order from
+// kRadiiDiffer.
+constexpr auto kFirstCircleFault = static_cast<std::size_t>(GeometryFault::kRadiiDiffer);
+constexpr std::array<std::string_view, 5> kCircleFaultTexts = {
+    "circle: start and end radii differ", "circle: end point = start point",
+    "circle: the three points are on a line", "circle: radius below half the chord",
+    "circle: radius above 2,147,483,647"};
+static_assert(static_cast<std::size_t>(GeometryFault::kRadiusTooLarge) + 1 ==
+              kFirstCircleFault + kCircleFaultTexts.size());
 
 }  // namespace
 
@@ -167,30 +178,13 @@ std::optional<planner::PathSpec> InterpolatedMove::path_of(const InterpolatedCom
 }
 
 bool InterpolatedMove::geometry_ok(GeometryFault fault) noexcept {
-  const char* text = nullptr;
-  switch (fault) {
-    case GeometryFault::kNone:
-      return true;
-    case GeometryFault::kOverflow:
-      reject_profile(axis::items::kProfileOverflow, "the path does not fit 32-bit registers");
-      return false;
-    case GeometryFault::kRadiiDiffer:
-      text = "circle: start and end radii differ";
-      break;
-    case GeometryFault::kStartIsEnd:
-      text = "circle: end point = start point";
-      break;
-    case GeometryFault::kCollinear:
-      text = "circle: the three points are on a line";
-      break;
-    case GeometryFault::kRadiusTooSmall:
-      text = "circle: radius below half the chord";
-      break;
-    case GeometryFault::kRadiusTooLarge:
-      text = "circle: radius above 2,147,483,647";
-      break;
+  if (fault == GeometryFault::kNone) return true;
+  if (fault == GeometryFault::kOverflow) {
+    reject_profile(axis::items::kProfileOverflow, "the path does not fit 32-bit registers");
+  } else {
+    const std::string_view text = enum_name(fault, kCircleFaultTexts, kFirstCircleFault);
+    reject_profile(items::kPathGeometry, text.data());  // of a literal: NUL-terminated
   }
-  reject_profile(items::kPathGeometry, text);
   return false;
 }
 

@@ -4,11 +4,11 @@
 #include "module_types/m3602/plc_3602.hpp"
 #include "module_types/m3602/plc_interp_3602.hpp"
 #include "module_types/m3602/plc_status_3602.hpp"
+#include "module_types/m3602/view_3602.hpp"
+#include "module_types/m3602/words_3602.hpp"
 #include "web/bit_json.hpp"
-#include "web/module_view_of.hpp"
 #include "web/path_request.hpp"
 #include "web/two_unit_controls.hpp"
-#include "module_types/m3602/words_3602.hpp"
 
 namespace stepmod::web {
 namespace {
