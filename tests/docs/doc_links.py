@@ -15,6 +15,7 @@ The installed package's side (the same references where the package puts them) i
 tests/package/doc_refs.sh. Usage: doc_links.py SOURCE_DIR
 """
 import re
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -23,11 +24,12 @@ ROOT = Path(sys.argv[1] if len(sys.argv) > 1 else ".").resolve()
 
 
 def tree_files():
-    """The tree's files: git's list, or (a copy without .git, scripts/test-in-root) every file
-    but build trees."""
-    git = subprocess.run(["git", "-C", str(ROOT), "ls-files"], capture_output=True, text=True)
-    if git.returncode == 0 and git.stdout:
-        return git.stdout.split()
+    """The tree's files: git's list, or (no git, or a copy without .git: scripts/test-in-root)
+    every file but build trees."""
+    if shutil.which("git"):
+        git = subprocess.run(["git", "-C", str(ROOT), "ls-files"], capture_output=True, text=True)
+        if git.returncode == 0 and git.stdout:
+            return git.stdout.split()
     return [str(p.relative_to(ROOT)) for p in ROOT.rglob("*")
             if p.is_file() and not p.relative_to(ROOT).parts[0].startswith(("build", ".git"))]
 
