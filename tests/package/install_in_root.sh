@@ -4,7 +4,7 @@
 # with apt, which must resolve its Depends from that release's archive alone (libgpiod3 on
 # Debian 13, libgpiod2 on Debian 12); runs a move on the simulated machine with the installed
 # example config and the installed stepmodctl; purges the package and checks nothing is left.
-#   install_in_root.sh /path/in/root/stepmod_<version>+deb<release>_<arch>.deb     -> "PKGTEST_PASS", exit 0
+#   install_in_root.sh /path/in/root/stepmod_<version>_<arch>.deb     -> "PKGTEST_PASS", exit 0
 set -euo pipefail
 deb=$1
 fail() { echo "FAIL: $*" >&2; exit 1; }
