@@ -2,7 +2,7 @@
 #   dpkg --add-architecture arm64; apt-get install crossbuild-essential-arm64 libgpiod-dev:arm64 ...
 #   cmake -S . -B build/arm64 -G Ninja -DCMAKE_TOOLCHAIN_FILE=cmake/aarch64-linux-gnu.cmake
 # Tests run through qemu-user (CMAKE_CROSSCOMPILING_EMULATOR; no binfmt_misc needed), and
-# `cpack -G DEB` in that tree gives stepmod_<version>_arm64.deb.
+# `cpack -G DEB` in that tree gives stepmod_<version>+deb<release>_arm64.deb.
 set(CMAKE_SYSTEM_NAME Linux)
 set(CMAKE_SYSTEM_PROCESSOR aarch64)
 set(CMAKE_C_COMPILER aarch64-linux-gnu-gcc)

@@ -68,8 +68,8 @@ const Fix kFixes[] = {
      "The console's keep-alives stopped (tab hidden, focus lost, network or a stalled "
      "browser): take control again, Reset Errors, then home or preset."},
     {&items::kPiLateEdge,
-     "The pulse thread fell behind (a loaded machine, see docs/rt-tuning.md): lower the speed "
-     "or the load, Reset Errors, home or preset."},
+     "The pulse thread fell behind (a loaded machine): lower the speed or the load, Reset "
+     "Errors, home or preset; see docs/performance.md \"A CPU of its own\"."},
 };
 
 const char* fix_of(const Item* item) {

@@ -72,7 +72,9 @@ for f in ./usr/share/doc/stepmod/copyright ./usr/share/doc/stepmod/changelog.gz 
   grep -qx "$f" "$tmp/files" || fail "$f not in the package"
 done
 dpkg-deb -x "$deb" "$tmp/root"
+# The changelog names the upstream version; the package's adds the Debian release (+deb12).
 version=$(dpkg-deb -f "$deb" Version)
+version=${version%+deb[0-9]*}
 zcat "$tmp/root/usr/share/doc/stepmod/changelog.gz" | head -n 1 | grep -q "^stepmod ($version) " ||
   fail "the changelog's newest entry is not $version: $(zcat "$tmp/root/usr/share/doc/stepmod/changelog.gz" | head -n 1)"
 head -n 1 "$tmp/root/usr/share/doc/stepmod/copyright" |

@@ -1,6 +1,6 @@
 // The 3602's interpolated moves from the page (line, arc by centre, radius or via point, full
 // circle: a centre with the end at the start), each one "path" request that stepmod-web sends
-// through plc/interp_3602 as stepmodctl's `path` does, under the lease; the GPO of each axis;
+// through module_types/m3602/plc_interp_3602 as stepmodctl's `path` does, under the lease; the GPO of each axis;
 // and a live XY plot of both axes' positions (the samples of the batches, 1 ms apart) with the
 // planned path drawn beside it, on a grid with its scales.
 "use strict";
