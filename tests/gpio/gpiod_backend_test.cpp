@@ -168,20 +168,22 @@ TEST(GpioGpiodBackend, SimChipChargePumpAndEnableFollowTheControlThread) {
   a.enable = 2;
   a.charge_pump = 3;
   a.charge_pump_opt.active_low = true;
-  const std::vector<AxisLines> axes = {a};
-  GpiodBackend b(sim.chip, axes);
-  EXPECT_EQ(sim.value(3), 1) << "inactive, active low: a high wire";
-  b.set_charge_pump(0, true);
-  EXPECT_EQ(sim.value(3), 0);
-  EXPECT_EQ(sim.value(2), 0) << "the enable keeps its level";
-  b.set_enable(0, true);
-  b.set_charge_pump(0, false);
-  EXPECT_EQ(sim.value(2), 1);
-  EXPECT_EQ(sim.value(3), 1);
-  b.set_charge_pump(0, true);
-  b.idle_outputs();
-  EXPECT_EQ(sim.value(3), 1) << "idle: inactive";
-  EXPECT_EQ(b.write_errors(), 0u);
+  {  // the backend releases its lines before the second request below
+    const std::vector<AxisLines> axes = {a};
+    GpiodBackend b(sim.chip, axes);
+    EXPECT_EQ(sim.value(3), 1) << "inactive, active low: a high wire";
+    b.set_charge_pump(0, true);
+    EXPECT_EQ(sim.value(3), 0);
+    EXPECT_EQ(sim.value(2), 0) << "the enable keeps its level";
+    b.set_enable(0, true);
+    b.set_charge_pump(0, false);
+    EXPECT_EQ(sim.value(2), 1);
+    EXPECT_EQ(sim.value(3), 1);
+    b.set_charge_pump(0, true);
+    b.idle_outputs();
+    EXPECT_EQ(sim.value(3), 1) << "idle: inactive";
+    EXPECT_EQ(b.write_errors(), 0u);
+  }
   AxisLines twice = lines(0, 1);
   twice.charge_pump = 1;
   const std::string msg = error_of(sim.chip, {twice});

@@ -213,10 +213,21 @@ TEST_F(DaemonRack, OnePulseThreadAndOnePlannerThread) {
   EXPECT_EQ(names.count("stepmod-ctl") ? names.at("stepmod-ctl") : 0, 2);  // modules 2 and 3
   // SCHED_FIFO where the system grants it; an unprivileged run says it was refused.
   const int policy = ::sched_getscheduler(tid["stepmod-pulse"]);
+  // Every thread's policy and priority, from /proc: one thread runs at the pulse priority (the
+  // planner and the trace writer are SCHED_FIFO too, below it: docs/ARCHITECTURE.md "Threads").
+  int at_pulse_priority = 0;
+  for (const auto& e : fs::directory_iterator("/proc/" + std::to_string(daemon_->pid()) + "/task")) {
+    const pid_t t = std::stoi(e.path().filename().string());
+    sched_param sp{};
+    const bool fifo = ::sched_getscheduler(t) == SCHED_FIFO && ::sched_getparam(t, &sp) == 0;
+    at_pulse_priority += fifo && sp.sched_priority == 80 ? 1 : 0;
+  }
   if (daemon_->log().find("SCHED_FIFO priority 80 refused") == std::string::npos) {
     EXPECT_EQ(policy, SCHED_FIFO) << daemon_->log();
+    EXPECT_EQ(at_pulse_priority, 1) << "exactly one SCHED_FIFO pulse thread";
   } else {
     EXPECT_NE(policy, SCHED_FIFO);
+    EXPECT_EQ(at_pulse_priority, 0);
   }
 }
 
