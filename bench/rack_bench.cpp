@@ -183,7 +183,8 @@ class ModulePlc {
   }
   void move(std::int32_t steps, const plc::Profile& p) {
     for (unsigned a = 0; a < spec_.axes(); ++a) {
-      const plc::Outcome o = p3602_ ? p3602_->move(a, false, steps, p) : p3601_->move(false, steps, p);
+      const plc::Outcome o =
+          p3602_ ? p3602_->move(a, false, steps, p) : p3601_->move(false, steps, p);
       if (o.timed_out) throw std::runtime_error(spec_.name + " not scanning");
     }
   }
@@ -234,7 +235,8 @@ planner::MoveSpec move_spec(std::int32_t steps, int rate, std::int32_t accel_wor
   s.steps = steps;
   s.vs = kStartSpeed;
   s.vp = rate;
-  s.accel = planner::Ramp{static_cast<double>(accel_word) * 1'000.0, planner::AccelShape::kConstant};
+  s.accel =
+      planner::Ramp{static_cast<double>(accel_word) * 1'000.0, planner::AccelShape::kConstant};
   s.decel = s.accel;
   return s;
 }
@@ -265,8 +267,9 @@ int run(int argc, char** argv) {
   const int rate = std::atoi(arg(argc, argv, "--rate", "20000"));
   const int runs = std::atoi(arg(argc, argv, "--runs", "3"));
   if (mode != "rack" && mode != "daemons") {
-    std::fprintf(stderr, "usage: rack_bench rack|daemons --stepmodd PATH [--steps N] [--rate "
-                         "STEPS_PER_S] [--runs N]\n");
+    std::fprintf(stderr,
+                 "usage: rack_bench rack|daemons --stepmodd PATH [--steps N] [--rate "
+                 "STEPS_PER_S] [--runs N]\n");
     return 2;
   }
   const auto accel = static_cast<std::int32_t>(std::max(1, rate / 500));  // ~0.5 s ramps

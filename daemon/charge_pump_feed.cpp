@@ -16,8 +16,7 @@ ChargePumpFeed::ChargePumpFeed(ModuleStack& stack, const Config& config, ModuleT
                 &monotonic_now);
 }
 
-ChargePump::Conditions ChargePumpFeed::conditions(std::uint32_t health_flags,
-                                                  bool estop) noexcept {
+ChargePump::Conditions ChargePumpFeed::conditions(std::uint32_t health_flags, bool estop) noexcept {
   ChargePump::Conditions c;
   c.estop = estop;
   c.fault = (health_flags & (STEPMOD_HEALTH_LATE_EDGE | STEPMOD_HEALTH_INPUT_LOST)) != 0;
@@ -28,8 +27,7 @@ ChargePump::Conditions ChargePumpFeed::conditions(std::uint32_t health_flags,
 }
 
 bool ChargePumpFeed::FaultDrop::stops(const ipc::Health& health, Nanos now) noexcept {
-  const std::uint32_t bits =
-      health.flags & (STEPMOD_HEALTH_LATE_EDGE | STEPMOD_HEALTH_INPUT_LOST);
+  const std::uint32_t bits = health.flags & (STEPMOD_HEALTH_LATE_EDGE | STEPMOD_HEALTH_INPUT_LOST);
   // A new fault: a bit rising, or one more late-edge fault while bit 0 stands.
   if (bits != 0 && ((bits & ~bits_) != 0 || health.late_faults != late_faults_)) at_ = now;
   bits_ = bits;

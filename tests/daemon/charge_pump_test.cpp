@@ -38,9 +38,7 @@ struct Rig {
     sim = std::make_unique<gpio::SimBackend>(setups);
     pump = std::make_unique<ChargePump>(*sim, ChargePump::Setup{0, kHalf, 100});
   }
-  bool wire() const {
-    return (sim->output_levels(0) & gpio::SimBackend::kChargePumpLevelBit) != 0;
-  }
+  bool wire() const { return (sim->output_levels(0) & gpio::SimBackend::kChargePumpLevelBit) != 0; }
   // `n` scans under `c`; the line changes they made.
   unsigned scans(unsigned n, const ChargePump::Conditions& c = {}) {
     unsigned made = 0;

@@ -43,8 +43,7 @@ constexpr Nanos kReact = 50 * kNsPerMs;
 constexpr Nanos kHold = 600 * kNsPerMs;  // how long each cause is held
 
 std::string config(const std::string& module_extra = "", const std::string& sim = "") {
-  return sim_3601_config(module_extra,
-                         "cw_limit_at = 10000000\nccw_limit_at = -10000000\n" + sim) +
+  return sim_3601_config(module_extra, "cw_limit_at = 10000000\nccw_limit_at = -10000000\n" + sim) +
          "\n[charge_pump]\nline = 22\nfrequency_hz = 100\n";
 }
 
@@ -66,9 +65,8 @@ struct PumpWire {
 
   // Changes in [from, to).
   std::size_t edges(Nanos from, Nanos to) const {
-    return static_cast<std::size_t>(std::count_if(changes.begin(), changes.end(), [&](const auto& c) {
-      return c.t >= from && c.t < to;
-    }));
+    return static_cast<std::size_t>(std::count_if(
+        changes.begin(), changes.end(), [&](const auto& c) { return c.t >= from && c.t < to; }));
   }
   int level_at(Nanos t) const {
     int level = initial;
@@ -96,8 +94,8 @@ PumpWire pump_wire(DaemonProcess& daemon) {
 // A stop of the pump held from `cause` (+ `latency`, the daemon's own detection time) to `gone`:
 // no edge from kReact after it until the cause is gone, the wire low; running before; running
 // again after `gone` when `restarts`.
-void expect_stopped_between(const PumpWire& w, Nanos cause, Nanos latency, Nanos gone,
-                            Nanos end, bool restarts) {
+void expect_stopped_between(const PumpWire& w, Nanos cause, Nanos latency, Nanos gone, Nanos end,
+                            bool restarts) {
   const Nanos stopped = cause + latency + kReact;
   EXPECT_GT(w.edges(cause - 300 * kNsPerMs, cause), 20u) << "running before the cause";
   EXPECT_EQ(w.edges(stopped, gone), 0u) << "edges while the cause lasted";
@@ -194,8 +192,7 @@ TEST(DaemonChargePump, AStalePlcStopsItUntilItsHeartbeatIsBack) {
   const PumpWire w = pump_wire(daemon);
   expect_stopped_between(w, cause, kTimeout, gone, end, true);
   EXPECT_GT(w.edges(cause, cause + kTimeout - kReact), 5u) << "running until the timeout";
-  EXPECT_NE(daemon.log().find("charge pump stopped (PLC lost)"), std::string::npos)
-      << daemon.log();
+  EXPECT_NE(daemon.log().find("charge pump stopped (PLC lost)"), std::string::npos) << daemon.log();
 }
 
 TEST(DaemonChargePump, AnExpiredLeaseStopsItUntilTheNextTake) {
@@ -237,9 +234,9 @@ TEST(DaemonChargePump, LostInputEventsStopItForTheDropTime) {
   sleep_ns(500 * kNsPerMs);
   const Nanos cause = monotonic_now();
   plc.command(cmd::kRelativeMove, 100'000, 1'000, 200, 200);
-  ASSERT_TRUE(plc.wait(
-      [&] { return (plc.client().read_health().flags & STEPMOD_HEALTH_INPUT_LOST) != 0; },
-      milliseconds(5'000)))
+  ASSERT_TRUE(
+      plc.wait([&] { return (plc.client().read_health().flags & STEPMOD_HEALTH_INPUT_LOST) != 0; },
+               milliseconds(5'000)))
       << daemon.log();
   const Nanos lost = monotonic_now();  // seen by the test: at least a scan after the daemon
   constexpr Nanos kDrop = tools::ChargePumpFeed::FaultDrop::kDrop;

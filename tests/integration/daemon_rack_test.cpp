@@ -216,7 +216,8 @@ TEST_F(DaemonRack, OnePulseThreadAndOnePlannerThread) {
   // Every thread's policy and priority, from /proc: one thread runs at the pulse priority (the
   // planner and the trace writer are SCHED_FIFO too, below it: docs/ARCHITECTURE.md "Threads").
   int at_pulse_priority = 0;
-  for (const auto& e : fs::directory_iterator("/proc/" + std::to_string(daemon_->pid()) + "/task")) {
+  for (const auto& e :
+       fs::directory_iterator("/proc/" + std::to_string(daemon_->pid()) + "/task")) {
     const pid_t t = std::stoi(e.path().filename().string());
     sched_param sp{};
     const bool fifo = ::sched_getscheduler(t) == SCHED_FIFO && ::sched_getparam(t, &sp) == 0;
