@@ -79,8 +79,10 @@ class RackFiles {
       c_axes += sim_axis(numbered_lines(first, {"step", "dir", "cw_limit", "ccw_limit"}), far);
     }
     module("c", "3602", c_axes, 1);
+    // The 3601s carry a charge pump each (docs/safety.md): a's stops with its PLC, b's runs on.
     const std::string axis_3601 =
-        sim_axis(numbered_lines(1, {"step", "dir", "home", "cw_limit", "ccw_limit"}), far);
+        sim_axis(numbered_lines(1, {"step", "dir", "home", "cw_limit", "ccw_limit"}), far) +
+        "\n[charge_pump]\nline = 6\nfrequency_hz = 100\n";
     module("a", "3601", axis_3601, 2, "plc_timeout_ms = " + std::to_string(kStaleMs) + "\n");
     module("b", "3601", axis_3601, 3);
   }
@@ -203,6 +205,12 @@ TEST_F(DaemonRack, EveryModuleAtOnceExactCountsAndOneStaleModuleStopsAlone) {
   EXPECT_EQ(static_cast<std::int64_t>(vcd.rising(wire("a", 1, "step")).size()), a_stopped_at);
   EXPECT_TRUE(vcd.wires.contains(wire("c", 2, "cw_limit")));
   EXPECT_FALSE(vcd.wires.contains("axis1.step"));  // every wire carries its module's name
+  // The charge pumps, `<module>.charge_pump`: a's stopped with its stale PLC while b's went on.
+  const auto pump_a = vcd.rising(files_.name("a") + ".charge_pump");
+  const auto pump_b = vcd.rising(files_.name("b") + ".charge_pump");
+  ASSERT_GT(pump_b.size(), 50u) << "b's pump toggles at 100 Hz through the run";
+  ASSERT_FALSE(pump_a.empty()) << "a's pump ran until its PLC went stale";
+  EXPECT_LT(pump_a.back() + 500'000'000, pump_b.back()) << "a's pump stopped long before b's";
 }
 
 TEST_F(DaemonRack, OnePulseThreadAndOnePlannerThread) {
