@@ -154,8 +154,12 @@ void SimBackend::force(unsigned axis, std::uint32_t mask, std::uint32_t levels,
 }
 
 void SimBackend::set_control_wire(unsigned axis, std::uint32_t bit, bool wire) noexcept {
-  const std::uint32_t was = control_wires_[axis].load(std::memory_order_relaxed);
-  control_wires_[axis].store(wire ? was | bit : was & ~bit, std::memory_order_relaxed);
+  // One atomic read-modify-write: idle_outputs() may run on another thread than the control's.
+  if (wire) {
+    control_wires_[axis].fetch_or(bit, std::memory_order_relaxed);
+  } else {
+    control_wires_[axis].fetch_and(~bit, std::memory_order_relaxed);
+  }
 }
 
 void SimBackend::set_enable(unsigned axis, bool asserted) noexcept {
