@@ -447,16 +447,6 @@ int guard(int argc, char** argv) {
   return 0;
 }
 
-// Step trains of consecutive moves, split where the line rested longer than `gap`.
-std::vector<std::vector<Nanos>> split_moves(const std::vector<Nanos>& rising, Nanos gap) {
-  std::vector<std::vector<Nanos>> moves;
-  for (std::size_t i = 0; i < rising.size(); ++i) {
-    if (i == 0 || rising[i] - rising[i - 1] > gap) moves.emplace_back();
-    moves.back().push_back(rising[i]);
-  }
-  return moves;
-}
-
 struct SlipCase {
   int rate;
   const char* profile;  // constant, trapezoid, scurve

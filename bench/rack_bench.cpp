@@ -245,12 +245,7 @@ planner::MoveSpec move_spec(std::int32_t steps, int rate, std::int32_t accel_wor
 void judge(const std::vector<std::vector<Nanos>>& axes, const std::vector<Nanos>& plan,
            std::int32_t steps, Totals& t) {
   for (const std::vector<Nanos>& rising : axes) {
-    std::vector<std::vector<Nanos>> moves;
-    for (std::size_t i = 0; i < rising.size(); ++i) {
-      if (i == 0 || rising[i] - rising[i - 1] > 300 * kNsPerMs) moves.emplace_back();
-      moves.back().push_back(rising[i]);
-    }
-    for (const auto& wire : moves) {
+    for (const auto& wire : split_moves(rising, 300 * kNsPerMs)) {
       const bool full = wire.size() == static_cast<std::size_t>(steps);
       const SlipVerdict v = judge_move(wire, plan, kStartSpeed, !full);
       t.compressed += v.compressed;

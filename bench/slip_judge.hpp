@@ -1,8 +1,9 @@
 #pragma once
 // Benchmark 12's judgement of one axis' step train from the VCD against its plan (issue 18's
 // criteria, docs/slip.md): compressed intervals, pauses beyond the late-edge guard's rule that
-// did not fault, the end within 2.5 x nominal + 3 s. Shared by the single-axis moves
-// (bench/daemon_bench.cpp) and the 3602 paths (bench/path_slip.cpp).
+// did not fault, the end within 2.5 x nominal + 3 s; and the VCD's step trains split into moves
+// where the line rested. Shared by the single-axis moves (bench/daemon_bench.cpp), the 3602 paths
+// (bench/path_slip.cpp) and the rack (bench/rack_bench.cpp).
 #include <algorithm>
 #include <cstddef>
 #include <vector>
@@ -44,6 +45,16 @@ inline SlipVerdict judge_move(const std::vector<Nanos>& wire, const std::vector<
     v.in_time = static_cast<double>(wire.back() - wire.front()) <= 2.5 * nominal + 3e9;
   }
   return v;
+}
+
+// Step trains of consecutive moves, split where the line rested longer than `gap`.
+inline std::vector<std::vector<Nanos>> split_moves(const std::vector<Nanos>& rising, Nanos gap) {
+  std::vector<std::vector<Nanos>> moves;
+  for (std::size_t i = 0; i < rising.size(); ++i) {
+    if (i == 0 || rising[i] - rising[i - 1] > gap) moves.emplace_back();
+    moves.back().push_back(rising[i]);
+  }
+  return moves;
 }
 
 }  // namespace stepmod::bench
