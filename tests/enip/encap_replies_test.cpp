@@ -39,7 +39,8 @@ TEST(EnipReplies, ListIdentityReply) {
       "0c 737465706d6f642033363031 03");   // "stepmod 3601", state operational
   EXPECT_EQ(first(out, n), want);
   // The reply is a well-formed frame with one well-formed CPF item.
-  const EncapFrame back = frame_of(first(out, n));
+  const auto reply_bytes = first(out, n);  // the frame views these bytes: keep them
+  const EncapFrame back = frame_of(reply_bytes);
   Cpf cpf;
   EXPECT_EQ(parse_cpf(back.data, cpf), CpfParse::kOk);
 }
@@ -51,7 +52,8 @@ TEST(EnipReplies, RegisterSessionGivesAHandleBoundToTheConnection) {
   ASSERT_NE(r.session, 0u);
   EXPECT_TRUE(sessions.valid(r.session, 7));
   EXPECT_FALSE(sessions.valid(r.session, 8));
-  const EncapFrame reply = frame_of(first(out, r.reply_size));
+  const auto reply_bytes = first(out, r.reply_size);  // the frame views these bytes
+  const EncapFrame reply = frame_of(reply_bytes);
   EXPECT_EQ(reply.header.session, r.session);
   EXPECT_EQ(reply.header.status, 0u);
   EXPECT_EQ(reply.header.context[0], 0xaa);

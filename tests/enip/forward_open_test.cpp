@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <deque>
 
 #include "tests/enip/enip_bytes.hpp"
 
@@ -24,7 +25,15 @@ const auto kFixed = hex(
 const auto kPath = hex("09 34 04 0000 0000 0000 00 00 20 04 24 97 2c 96 2c 64");
 const AssemblyLayout k3601 = assembly_layout(2, 8, 8);
 
-ForwardOpen parsed(const std::vector<std::uint8_t>& data, bool large = false) {
+// A parsed request views its bytes (its path): the tests' requests are kept for the program's life.
+const std::vector<std::uint8_t>& kept(std::vector<std::uint8_t> bytes) {
+  static std::deque<std::vector<std::uint8_t>> all;
+  all.push_back(std::move(bytes));
+  return all.back();
+}
+
+ForwardOpen parsed(std::vector<std::uint8_t> bytes, bool large = false) {
+  const auto& data = kept(std::move(bytes));
   ForwardOpen fo;
   EXPECT_EQ(parse_forward_open(data, large, fo), cip_general::kSuccess);
   return fo;
