@@ -13,7 +13,9 @@
 #include "fieldbus/enip/epath.hpp"
 #include "fieldbus/enip/forward_open.hpp"
 #include "fieldbus/enip/io_packet.hpp"
+#include "fieldbus/enip/message_router.hpp"
 #include "tests/enip/enip_bytes.hpp"
+#include "tests/enip/router_fakes.hpp"
 
 namespace stepmod::enip {
 namespace {
@@ -106,7 +108,25 @@ std::vector<Bytes> seeds() {
           hex("03 7d 3412 3333 37130000 03 00 01 00 20 02 24 01"),
           hex("0200 0280 0800 d0c0b0a0 05000000 b100 1600 0200 01000000"
               "0100 0200 0300 0400 0500 0600 0700 0800"),
-          hex("34 04 ffff 2b00 110e 81 01 20 04 24 97 2c 96 2c 64 80 01 aa bb 12 02 31 32")};
+          hex("34 04 ffff 2b00 110e 81 01 20 04 24 97 2c 96 2c 64 80 01 aa bb 12 02 31 32"),
+          cat(hex("52 02 20 06 24 01 07 f9 18 00 10 03 20 04 24 96 30 03"),
+              hex("0000 0000 0000 0000 0000 0000 0000 0000 01 00 01 00"))};
+}
+
+// The router on a mutated message, with an owner open: whatever the bytes, the reply is written
+// whole and the output words are not.
+void route_with_owner(std::span<const std::uint8_t> b) {
+  test::FakeAssemblies assemblies;
+  test::FakeConnections connections;
+  connections.owner = true;
+  const IdentityValues id = identity_for(3601, 1);
+  RouterContext ctx{id, assembly_layout(2, 8, 8), AdapterLimits{}, assemblies, connections};
+  std::array<std::uint8_t, kEncapMaxFrame> out{};
+  Writer w(out);
+  route_message(b, ctx, w);
+  ASSERT_TRUE(w.ok());
+  ASSERT_GE(w.size(), 4u);
+  ASSERT_EQ(assemblies.writes, 0);
 }
 
 TEST(EnipMutation, ParsersSurviveMutatedPackets) {
@@ -116,6 +136,7 @@ TEST(EnipMutation, ParsersSurviveMutatedPackets) {
       const Bytes b = mutate(seed, rng);
       take_frames(b);
       take_cip(b);
+      route_with_owner(b);
       if (HasFatalFailure()) return;
     }
   }
