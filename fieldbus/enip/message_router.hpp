@@ -46,6 +46,13 @@ class AssemblyData {
   virtual void write_output(std::span<const std::uint8_t> bytes) noexcept = 0;
 };
 
+// Who sent the request being routed, and when (CLOCK_MONOTONIC ns): a connection's T→O goes to
+// its originator, and its timeout counts from its opening.
+struct RequestOrigin {
+  std::uint32_t ip = 0;  // IPv4, host byte order
+  std::int64_t now_ns = 0;
+};
+
 // The connection table, for the Connection Manager's services.
 class ConnectionTable {
  public:
@@ -54,7 +61,7 @@ class ConnectionTable {
   // Opens a validated connection: the ownership rule (check_ownership), then the ids;
   // `ot_id` is ours, T→O is the originator's.
   virtual CipStatus open(const ForwardOpen& fo, const AcceptedOpen& accepted,
-                         std::uint32_t& ot_id) noexcept = 0;
+                         const RequestOrigin& origin, std::uint32_t& ot_id) noexcept = 0;
   // 0x0107 when no connection has the triad.
   virtual CipStatus close(const ConnectionTriad& triad) noexcept = 0;
 };
@@ -65,6 +72,7 @@ struct RouterContext {
   AdapterLimits limits;
   AssemblyData& assemblies;
   ConnectionTable& connections;
+  RequestOrigin origin;
 };
 
 // Handles `message` (one message router request) and writes its whole reply to `w`.

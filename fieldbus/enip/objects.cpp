@@ -88,7 +88,7 @@ CipStatus forward_open(const MrRequest& req, RouterContext& ctx, Writer& data,
   AcceptedOpen accepted;
   CipStatus st = validate_forward_open(fo, ctx.layout, ctx.identity, ctx.limits, accepted);
   std::uint32_t ot_id = 0;
-  if (st.ok()) st = ctx.connections.open(fo, accepted, ot_id);
+  if (st.ok()) st = ctx.connections.open(fo, accepted, ctx.origin, ot_id);
   if (st.ok()) {
     put_forward_open_success(data, fo, ot_id, fo.to_id);
   } else {

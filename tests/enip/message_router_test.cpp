@@ -23,7 +23,8 @@ class EnipRouter : public ::testing::Test {
   Bytes ask(const Bytes& message) {
     std::array<std::uint8_t, 600> out{};
     Writer w(out);
-    RouterContext ctx{identity, assembly_layout(2, 8, 8), AdapterLimits{}, assemblies, connections};
+    RouterContext ctx{identity, assembly_layout(2, 8, 8), AdapterLimits{}, assemblies,
+                      connections, RequestOrigin{}};
     route_message(message, ctx, w);
     EXPECT_TRUE(w.ok());
     return {w.written().begin(), w.written().end()};

@@ -120,7 +120,8 @@ void route_with_owner(std::span<const std::uint8_t> b) {
   test::FakeConnections connections;
   connections.owner = true;
   const IdentityValues id = identity_for(3601, 1);
-  RouterContext ctx{id, assembly_layout(2, 8, 8), AdapterLimits{}, assemblies, connections};
+  RouterContext ctx{id, assembly_layout(2, 8, 8), AdapterLimits{}, assemblies, connections,
+                    RequestOrigin{}};
   std::array<std::uint8_t, kEncapMaxFrame> out{};
   Writer w(out);
   route_message(b, ctx, w);

@@ -27,7 +27,7 @@ class FakeAssemblies : public AssemblyData {
 class FakeConnections : public ConnectionTable {
  public:
   bool owner_open() const noexcept override { return owner; }
-  CipStatus open(const ForwardOpen& fo, const AcceptedOpen& accepted,
+  CipStatus open(const ForwardOpen& fo, const AcceptedOpen& accepted, const RequestOrigin&,
                  std::uint32_t& ot_id) noexcept override {
     OpenConnections state;
     state.owner = owner;
