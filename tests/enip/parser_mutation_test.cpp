@@ -13,6 +13,7 @@
 #include "fieldbus/enip/epath.hpp"
 #include "fieldbus/enip/forward_open.hpp"
 #include "fieldbus/enip/io_packet.hpp"
+#include "fieldbus/enip/encap_session.hpp"
 #include "fieldbus/enip/message_router.hpp"
 #include "tests/enip/enip_bytes.hpp"
 #include "tests/enip/router_fakes.hpp"
@@ -103,6 +104,9 @@ std::vector<Bytes> seeds() {
                             "00000000 0a00 0200 0000 0000 b200 3c00 54 02 20 06 24 01");
   return {reg,
           cat(reg, cat(rr_head, kForwardOpen)),
+          cat(reg, hex("6f00 2400 01000000 00000000 0000000000000000 00000000"
+                       "00000000 0a00 0200 0000 0000 b200 1400"
+                       "52 02 20 06 24 01 07 f9 0600 01 02 20 01 24 01 01 00 01 00")),
           hex("6300 0000 00000000 00000000 0000000000000000 00000000"),
           kForwardOpen,
           hex("03 7d 3412 3333 37130000 03 00 01 00 20 02 24 01"),
@@ -130,6 +134,30 @@ void route_with_owner(std::span<const std::uint8_t> b) {
   ASSERT_EQ(assemblies.writes, 0);
 }
 
+// The session layer on a mutated stream and datagram, an owner open: replies fit, frames are
+// consumed forward, the output words are not written.
+void session_with_owner(std::span<const std::uint8_t> b) {
+  test::FakeAssemblies assemblies;
+  test::FakeConnections connections;
+  connections.owner = true;
+  SessionTable sessions;
+  const IdentityValues id = identity_for(3202, 1);
+  RouterContext router{id, assembly_layout(4, 16, 16), AdapterLimits{}, assemblies, connections,
+                       RequestOrigin{}};
+  EncapContext ctx{sessions, id, SocketAddress{}, router};
+  std::array<std::uint8_t, kEncapMaxFrame> out{};
+  std::span<const std::uint8_t> stream = b;
+  for (;;) {
+    const SessionStep s = handle_tcp(stream, 1, ctx, out);
+    ASSERT_LE(s.reply_size, out.size());
+    if (s.consumed == 0 || s.action == SessionAction::kClose) break;
+    ASSERT_LE(s.consumed, stream.size());
+    stream = stream.subspan(s.consumed);
+  }
+  ASSERT_LE(handle_udp(b, ctx, out), out.size());
+  ASSERT_EQ(assemblies.writes, 0);
+}
+
 TEST(EnipMutation, ParsersSurviveMutatedPackets) {
   std::mt19937 rng(20261128);
   for (const Bytes& seed : seeds()) {
@@ -138,6 +166,7 @@ TEST(EnipMutation, ParsersSurviveMutatedPackets) {
       take_frames(b);
       take_cip(b);
       route_with_owner(b);
+      session_with_owner(b);
       if (HasFatalFailure()) return;
     }
   }
