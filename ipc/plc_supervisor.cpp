@@ -23,13 +23,16 @@ const ImageWords& PlcSupervisor::scan(const Sample& s) noexcept {
   std::uint32_t flags = 0;
 
   // Heartbeat (INTERFACE 3.2): stale while unchanged for the timeout.
-  if (s.heartbeat != heartbeat_ || lease_stands(s)) {
+  const bool lease = lease_stands(s);
+  if (s.heartbeat != heartbeat_ || lease) {
     heartbeat_ = s.heartbeat;
     heartbeat_changed_ = s.now;
   }
   if (heartbeat_timeout_ > 0 && s.now - heartbeat_changed_ >= heartbeat_timeout_) {
     flags |= STEPMOD_HEALTH_PLC_STALE;
   }
+  // A fieldbus PLC out of Run is a stale heartbeat at once, watched or not.
+  if (s.plc_not_in_run && !lease) flags |= STEPMOD_HEALTH_PLC_STALE;
 
   // Output sequence: the same odd value for the timeout is a writer that never finished.
   if ((s.seq & 1u) != 0) {

@@ -4,7 +4,8 @@
 // is tested scan by scan; the daemon logs the transitions it reports.
 //
 // Three conditions, each a health flag (STEPMOD_HEALTH_*), set while it lasts:
-//  * PLC heartbeat stale (bit 1): [module] plc_timeout_ms on and the heartbeat unchanged that long.
+//  * PLC heartbeat stale (bit 1): [module] plc_timeout_ms on and the heartbeat unchanged that long,
+//    or a fieldbus PLC out of Run (Sample::plc_not_in_run).
 //  * Output sequence stuck odd (bit 2): the same odd sequence value for longer than the heartbeat
 //    timeout, or 100 ms with the heartbeat watch off: a PLC that died in the middle of a write.
 //  * Seqlock bypassed (bit 3): two consistent snapshots with the same sequence but different
@@ -54,6 +55,11 @@ class PlcSupervisor {
     // no lease word (garbage, a far-off or passed expiry) holds off the heartbeat timeout for
     // longer than the 500 ms a live holder's lease lasts without renewal.
     Nanos lease_until = 0;
+    // A fieldbus PLC that told us it left Run (the EtherNet/IP adapter's owner connection Idle,
+    // timed out or closed: docs/ethernetip-design.md, "Where it sits in stepmod"). Treated
+    // exactly as a stale heartbeat, whatever the heartbeat timeout is (also 0, the watch off),
+    // until the PLC is back in Run. A standing lease holds it off as it holds off the timeout.
+    bool plc_not_in_run = false;
   };
 
   // One scan. Returns the words the module is to scan this time (the live snapshot, the last
