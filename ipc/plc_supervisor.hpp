@@ -76,12 +76,15 @@ class PlcSupervisor {
 
   // Diagnostics for the log lines.
   std::uint32_t stuck_seq() const noexcept { return odd_value_; }
+  bool not_in_run() const noexcept { return not_in_run_; }  // the last sample's plc_not_in_run
   Nanos heartbeat_age(Nanos now) const noexcept { return now - heartbeat_changed_; }
   std::uint64_t bypass_changes() const noexcept { return bypass_changes_; }
   Nanos heartbeat_timeout() const noexcept { return heartbeat_timeout_; }
   Nanos odd_timeout() const noexcept { return odd_timeout_; }
 
  private:
+  std::uint32_t heartbeat_flags(const Sample& s) noexcept;
+
   const Nanos heartbeat_timeout_;
   const Nanos odd_timeout_;
   bool first_ = true;
@@ -98,6 +101,7 @@ class PlcSupervisor {
   Nanos last_bypass_ = 0;
   std::uint64_t bypass_changes_ = 0;
   bool lost_ = false;
+  bool not_in_run_ = false;
   bool tripped_ = false;
   std::uint32_t flags_ = 0;
   std::uint32_t started_ = 0;

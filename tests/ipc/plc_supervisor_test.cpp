@@ -126,6 +126,7 @@ TEST(SupervisorFieldbus, APlcOutOfRunIsAStaleHeartbeatWhateverTheTimeout) {
   EXPECT_TRUE(off.tripped());
   EXPECT_TRUE(off.plc_lost());
   EXPECT_EQ(off.flags(), STEPMOD_HEALTH_PLC_STALE);
+  EXPECT_TRUE(off.not_in_run());  // the log says why
   s.now += kScan;
   off.scan(s);
   EXPECT_FALSE(off.tripped());  // once per loss
