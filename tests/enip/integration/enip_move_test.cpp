@@ -1,0 +1,177 @@
+// End to end over EtherNet/IP (docs/ethernetip-design.md, "Tests"): the real stepmodd with its
+// adapter, driven by st-ethernet-ip's class 1 scanner (an npm package we did not write) as a
+// Logix PLC would: exclusive owner at RPI 10 ms, every command through the I/O data alone
+// (the suite's PLC programs over EnipPort), checked in the T→O data, the image and the VCD.
+// Then the deadman: the scanner falls silent and the axes stop with Position Invalid and health
+// bit 1 though plc_timeout_ms is 0; and a second owner is refused with 0x01/0x0106.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "ipc/sim_panel.hpp"
+#include "module_types/m3202/plc_3202.hpp"
+#include "module_types/m3601/plc_3601.hpp"
+#include "tests/enip/integration/enip_daemon.hpp"
+#include "tests/enip/integration/enip_port.hpp"
+#include "tests/support/vcd_reader.hpp"
+
+namespace stepmod::testing {
+namespace {
+
+using std::chrono::milliseconds;
+using Clock = std::chrono::steady_clock;
+namespace m1 = words::m3601;
+namespace m2 = words::m3202;
+
+constexpr const char* kSim = "cw_limit_at = 10000000\nccw_limit_at = -10000000\n";
+constexpr std::uint16_t k3601Config = m1::cfg_msw::kCaptureUsed | m1::cfg_msw::kExternalUsed |
+                                      m1::cfg_msw::kHomeUsed | m1::cfg_msw::kEStopUsed |
+                                      m1::cfg_msw::kCwLimitUsed | m1::cfg_msw::kCcwLimitUsed |
+                                      m1::cfg_msw::kQuadratureEncoder | m1::cfg_msw::kStepDirOutput;
+constexpr std::uint32_t k3202Config = m2::cfg_bit::kHomeUsed | m2::cfg_bit::kCwLimitUsed |
+                                      m2::cfg_bit::kCcwLimitUsed | m2::cfg_bit::kQuadratureEncoder |
+                                      m2::cfg_bit::kStepDirOutput | m2::cfg_bit::kActiveLevels;
+constexpr plc::Profile kProfile3601{.speed = 20'000, .accel = 100, .decel = 100};
+constexpr plc::Profile kProfile3202{.speed = 20'000, .accel = 100'000, .decel = 100'000};
+
+class EnipMove : public EnipDaemon {
+ protected:
+  // Waits until `cond` holds for the image's inputs (observation only: no write).
+  bool image_until(const std::function<bool(const ImageWords&)>& cond, milliseconds limit) {
+    const auto end = Clock::now() + limit;
+    for (;;) {
+      ImageWords in;
+      if (image_->read_inputs(in) && cond(in)) return true;
+      if (Clock::now() > end) return false;
+      std::this_thread::sleep_for(milliseconds(1));
+    }
+  }
+  Vcd stop_and_read_trace() {
+    image_.reset();
+    EXPECT_EQ(daemon_->terminate(), 0) << daemon_->log();
+    return read_vcd(daemon_->trace_path());
+  }
+};
+
+TEST_F(EnipMove, A3601ConfiguredAndMovedThroughTheIoDataAlone) {
+  REQUIRE_ENIP_PARTNERS();
+  start(sim_3601_config("", kSim));
+  auto scanner = connect_scanner(10);
+  ASSERT_TRUE(scanner);
+  EnipPort port(*scanner, *image_);
+  plc::Plc3601 plc(port, milliseconds(3000));
+  const plc::Outcome cfg = plc.configure(k3601Config, 0x3F, 1'000);
+  ASSERT_TRUE(cfg.ok) << cfg.message << scanner->transcript();
+  ASSERT_TRUE(plc.preset_position(0).ok);  // Position Invalid since power-up
+  const plc::Outcome mv = plc.move(false, 10'000, kProfile3601);
+  ASSERT_TRUE(mv.ok) << mv.message;
+  const plc::Outcome idle = plc.wait_idle(std::chrono::seconds(20));
+  ASSERT_TRUE(idle.ok) << idle.message;
+  // Exact in T→O: the scanner's input words, as the adapter sent them.
+  ImageWords to;
+  ASSERT_TRUE(port.read_inputs(to));
+  const plc::m3601::Status st = plc::m3601::decode_status(to);
+  EXPECT_EQ(st.position, 10'000);
+  EXPECT_TRUE(st.has(m1::status_msw::kMoveComplete));
+  EXPECT_FALSE(st.has(m1::status_msw::kPositionInvalid));
+  // ... and in the image: the same words.
+  ImageWords in;
+  ASSERT_TRUE(image_->read_inputs(in));
+  EXPECT_EQ(plc::m3601::decode_status(in).position, 10'000);
+  EXPECT_EQ(port.lost_writes(), 0u);
+  EXPECT_EQ(image_->read_health().flags, 0u) << "no PLC loss while the scanner ran";
+  scanner.reset();
+  EXPECT_EQ(stop_and_read_trace().rising("axis1.step").size(), 10'000u);
+}
+
+TEST_F(EnipMove, BothChannelsOfA3202ThroughTheIoDataAlone) {
+  REQUIRE_ENIP_PARTNERS();
+  start(sim_module_tables("3202") + sim_axis(every_axis_line(1), kSim) +
+        sim_axis(every_axis_line(12), kSim));
+  auto scanner = connect_scanner(10);
+  ASSERT_TRUE(scanner);
+  EnipPort port(*scanner, *image_);
+  plc::Plc3202 plc(port, milliseconds(3000));
+  for (unsigned ch : {0u, 1u}) {
+    const plc::Outcome cfg = plc.configure(ch, k3202Config, 1'000);
+    ASSERT_TRUE(cfg.ok) << ch << ": " << cfg.message << scanner->transcript();
+    ASSERT_TRUE(plc.preset_position(ch, 0).ok);
+  }
+  ASSERT_TRUE(plc.move(0, false, 10'000, kProfile3202).ok);
+  ASSERT_TRUE(plc.move(1, false, -10'000, kProfile3202).ok);
+  for (unsigned ch : {0u, 1u}) ASSERT_TRUE(plc.wait_idle(ch, std::chrono::seconds(20)).ok);
+  ImageWords to;
+  ASSERT_TRUE(port.read_inputs(to));
+  ImageWords in;
+  ASSERT_TRUE(image_->read_inputs(in));
+  EXPECT_EQ(plc::m3202::decode_status(to, 0).position, 10'000);
+  EXPECT_EQ(plc::m3202::decode_status(to, 1).position, -10'000);
+  EXPECT_TRUE(plc::m3202::decode_status(to, 1).has(m2::status_bit::kMoveComplete));
+  EXPECT_EQ(plc::m3202::decode_status(in, 0).position, 10'000);
+  EXPECT_EQ(plc::m3202::decode_status(in, 1).position, -10'000);
+  EXPECT_EQ(port.lost_writes(), 0u);
+  scanner.reset();
+  const Vcd vcd = stop_and_read_trace();
+  EXPECT_EQ(vcd.rising("axis1.step").size(), 10'000u);
+  EXPECT_EQ(vcd.rising("axis2.step").size(), 10'000u);
+}
+
+// plc_timeout_ms = 0 (the sim config's default): only the adapter's deadman can stop the axis.
+TEST_F(EnipMove, TheScannerFallsSilentAndTheAxisStopsWithinTheTimeout) {
+  REQUIRE_ENIP_PARTNERS();
+  start(sim_3601_config("plc_timeout_ms = 0\n", kSim));
+  auto scanner = connect_scanner(10);
+  ASSERT_TRUE(scanner);
+  EnipPort port(*scanner, *image_);
+  plc::Plc3601 plc(port, milliseconds(3000));
+  ASSERT_TRUE(plc.configure(k3601Config, 0x3F, 1'000).ok);
+  ASSERT_TRUE(
+      plc.move(false, 5'000'000, plc::Profile{.speed = 5'000, .accel = 100, .decel = 100}).ok);
+  const auto moving = [](const ImageWords& w) { return plc::m3601::decode_status(w).moving(); };
+  ASSERT_TRUE(image_until(moving, milliseconds(2000)));
+  port.pass(milliseconds(300));  // still moving while the scanner runs
+  ASSERT_TRUE(image_until(moving, milliseconds(0)));
+  scanner->ask("silent");
+  const auto silent = Clock::now();
+  // The timeout: RPI 10 ms x 32 (st-ethernet-ip's multiplier) = 320 ms; the bound is generous
+  // for a loaded machine.
+  ASSERT_TRUE(image_until([&](const ImageWords& w) { return !moving(w); }, milliseconds(5000)))
+      << daemon_->log();
+  const auto took = std::chrono::duration_cast<milliseconds>(Clock::now() - silent).count();
+  EXPECT_GE(took, 250) << "stopped before the connection's timeout";
+  EXPECT_LE(took, 3000);
+  ImageWords in;
+  ASSERT_TRUE(image_->read_inputs(in));
+  EXPECT_TRUE(plc::m3601::decode_status(in).has(m1::status_msw::kPositionInvalid));
+  EXPECT_NE(image_->read_health().flags & STEPMOD_HEALTH_PLC_STALE, 0u);
+  ipc::SimPanelClient panel(daemon_->name());
+  const std::int64_t stopped_at = panel.read(0).position;
+  std::this_thread::sleep_for(milliseconds(200));
+  EXPECT_EQ(panel.read(0).position, stopped_at) << "the motor still turns";
+  EXPECT_NE(daemon_->log().find("EtherNet/IP: the owner PLC left Run"), std::string::npos)
+      << daemon_->log();
+  std::cout << "stopped " << took << " ms after the scanner fell silent\n";
+}
+
+TEST_F(EnipMove, ASecondOwnerIsRefusedWith0x0106) {
+  REQUIRE_ENIP_PARTNERS();
+  start(sim_3601_config("", kSim));
+  auto owner = connect_scanner(10);
+  ASSERT_TRUE(owner);
+  PartnerProcess second({"open-once", scanner_config(other_ip_, 10, 16)});
+  const auto r = second.line_with("opened", std::chrono::seconds(10));
+  ASSERT_TRUE(r.has_value()) << second.transcript();
+  EXPECT_EQ(json_field(*r, "opened"), "false") << *r;
+  EXPECT_EQ(json_field(*r, "general"), "1") << *r;
+  EXPECT_NE(r->find("\"extended\":[262]"), std::string::npos) << *r << " (0x0106 = 262)";
+  // The owner is untouched: its T→O keeps coming.
+  const auto a = owner->ask("get");
+  std::this_thread::sleep_for(milliseconds(100));
+  const auto b = owner->ask("get");
+  ASSERT_TRUE(a && b);
+  EXPECT_GT(std::stoul(json_field(*b, "seq")), std::stoul(json_field(*a, "seq")));
+}
+
+}  // namespace
+}  // namespace stepmod::testing
