@@ -10,12 +10,13 @@
 #include "fieldbus/enip/cpf.hpp"
 #include "fieldbus/enip/encap.hpp"
 #include "fieldbus/enip/encap_replies.hpp"
+#include "fieldbus/enip/encap_session.hpp"
 #include "fieldbus/enip/epath.hpp"
 #include "fieldbus/enip/forward_open.hpp"
 #include "fieldbus/enip/io_packet.hpp"
-#include "fieldbus/enip/encap_session.hpp"
 #include "fieldbus/enip/message_router.hpp"
 #include "tests/enip/enip_bytes.hpp"
+#include "tests/enip/mutation_corpus.hpp"
 #include "tests/enip/router_fakes.hpp"
 
 namespace stepmod::enip {
@@ -28,21 +29,6 @@ using Bytes = std::vector<std::uint8_t>;
 bool inside(std::span<const std::uint8_t> part, std::span<const std::uint8_t> whole) {
   if (part.empty()) return true;
   return part.data() >= whole.data() && part.data() + part.size() <= whole.data() + whole.size();
-}
-
-Bytes mutate(Bytes b, std::mt19937& rng) {
-  const int edits = 1 + static_cast<int>(rng() % 4);
-  for (int e = 0; e < edits; ++e) {
-    const std::size_t at = b.empty() ? 0 : rng() % b.size();
-    switch (rng() % 5) {
-      case 0: if (!b.empty()) b[at] ^= static_cast<std::uint8_t>(1u << (rng() % 8)); break;
-      case 1: if (!b.empty()) b[at] = static_cast<std::uint8_t>(rng()); break;
-      case 2: b.insert(b.begin() + static_cast<long>(at), static_cast<std::uint8_t>(rng())); break;
-      case 3: b.resize(at); break;
-      default: if (!b.empty()) b[at] = (rng() % 2) != 0 ? 0xFF : 0x00; break;
-    }
-  }
-  return b;
 }
 
 // A TCP stream's worth of frames, as the server will take them.
@@ -94,29 +80,6 @@ void take_cip(std::span<const std::uint8_t> b) {
   }
 }
 
-const Bytes kForwardOpen = hex(
-    "03 7d 00000000 78563412 3412 3333 37130000 03 000000 10270000 1648 10270000 1248 01"
-    "09 34 04 0000 0000 0000 00 00 20 04 24 97 2c 96 2c 64");
-
-std::vector<Bytes> seeds() {
-  const Bytes reg = hex("6500 0400 00000000 00000000 0000000000000000 00000000 0100 0000");
-  const Bytes rr_head = hex("6f00 4c00 01000000 00000000 0000000000000000 00000000"
-                            "00000000 0a00 0200 0000 0000 b200 3c00 54 02 20 06 24 01");
-  return {reg,
-          cat(reg, cat(rr_head, kForwardOpen)),
-          cat(reg, hex("6f00 2400 01000000 00000000 0000000000000000 00000000"
-                       "00000000 0a00 0200 0000 0000 b200 1400"
-                       "52 02 20 06 24 01 07 f9 0600 01 02 20 01 24 01 01 00 01 00")),
-          hex("6300 0000 00000000 00000000 0000000000000000 00000000"),
-          kForwardOpen,
-          hex("03 7d 3412 3333 37130000 03 00 01 00 20 02 24 01"),
-          hex("0200 0280 0800 d0c0b0a0 05000000 b100 1600 0200 01000000"
-              "0100 0200 0300 0400 0500 0600 0700 0800"),
-          hex("34 04 ffff 2b00 110e 81 01 20 04 24 97 2c 96 2c 64 80 01 aa bb 12 02 31 32"),
-          cat(hex("52 02 20 06 24 01 07 f9 18 00 10 03 20 04 24 96 30 03"),
-              hex("0000 0000 0000 0000 0000 0000 0000 0000 01 00 01 00"))};
-}
-
 // The router on a mutated message, with an owner open: whatever the bytes, the reply is written
 // whole and the output words are not.
 void route_with_owner(std::span<const std::uint8_t> b) {
@@ -124,8 +87,8 @@ void route_with_owner(std::span<const std::uint8_t> b) {
   test::FakeConnections connections;
   connections.owner = true;
   const IdentityValues id = identity_for(3601, 1);
-  RouterContext ctx{id, assembly_layout(2, 8, 8), AdapterLimits{}, assemblies, connections,
-                    RequestOrigin{}};
+  RouterContext ctx{id,          assembly_layout(2, 8, 8), AdapterLimits{}, assemblies,
+                    connections, RequestOrigin{}};
   std::array<std::uint8_t, kEncapMaxFrame> out{};
   Writer w(out);
   route_message(b, ctx, w);
@@ -142,8 +105,8 @@ void session_with_owner(std::span<const std::uint8_t> b) {
   connections.owner = true;
   SessionTable sessions;
   const IdentityValues id = identity_for(3202, 1);
-  RouterContext router{id, assembly_layout(4, 16, 16), AdapterLimits{}, assemblies, connections,
-                       RequestOrigin{}};
+  RouterContext router{
+      id, assembly_layout(4, 16, 16), AdapterLimits{}, assemblies, connections, RequestOrigin{}};
   EncapContext ctx{sessions, id, SocketAddress{}, router};
   std::array<std::uint8_t, kEncapMaxFrame> out{};
   std::span<const std::uint8_t> stream = b;
@@ -160,9 +123,9 @@ void session_with_owner(std::span<const std::uint8_t> b) {
 
 TEST(EnipMutation, ParsersSurviveMutatedPackets) {
   std::mt19937 rng(20261128);
-  for (const Bytes& seed : seeds()) {
+  for (const Bytes& seed : test::mutation_seeds()) {
     for (int i = 0; i < 3000; ++i) {
-      const Bytes b = mutate(seed, rng);
+      const Bytes b = test::mutate(seed, rng);
       take_frames(b);
       take_cip(b);
       route_with_owner(b);

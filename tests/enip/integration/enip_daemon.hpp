@@ -19,14 +19,19 @@ namespace stepmod::testing {
 
 class EnipDaemon : public ::testing::Test {
  protected:
-  // `module`: the module tables and axes (sim_config.hpp); `extra`: more [ethernetip] keys.
+  // `module`: the module tables and axes (sim_config.hpp); `extra`: more [ethernetip] keys, in
+  // which {SCANNER} is the scanner's address.
   void start(const std::string& module, const std::string& extra = "") {
     const std::string net = "127.0." + std::to_string(100 + ::getpid() % 150) + ".";
     target_ = net + "1";
     scanner_ip_ = net + "2";
     other_ip_ = net + "3";
+    std::string keys = extra;  // "{SCANNER}": the scanner's address
+    for (auto at = keys.find("{SCANNER}"); at != std::string::npos; at = keys.find("{SCANNER}")) {
+      keys.replace(at, 9, scanner_ip_);
+    }
     const std::string enip = "\n[ethernetip]\nenabled = true\nlisten = \"" + target_ +
-                             ":44818\"\nrpi_min_us = 1000\n" + extra;
+                             ":44818\"\nrpi_min_us = 1000\n" + keys;
     daemon_ = std::make_unique<DaemonProcess>(module + enip);
     ASSERT_TRUE(daemon_->wait_ready()) << daemon_->log();
     image_ = std::make_unique<ipc::Client>(daemon_->name());
