@@ -14,6 +14,8 @@
 #include "module_types/m3601/plc_3601.hpp"
 #include "tests/enip/integration/enip_daemon.hpp"
 #include "tests/enip/integration/enip_port.hpp"
+#include "tests/enip/integration/raw_socket.hpp"
+#include "tests/enip/mutation_corpus.hpp"
 #include "tests/support/vcd_reader.hpp"
 
 namespace stepmod::testing {
@@ -21,6 +23,7 @@ namespace {
 
 using std::chrono::milliseconds;
 using Clock = std::chrono::steady_clock;
+using Bytes = std::vector<std::uint8_t>;
 namespace m1 = words::m3601;
 namespace m2 = words::m3202;
 
@@ -152,6 +155,59 @@ TEST_F(EnipMove, TheScannerFallsSilentAndTheAxisStopsWithinTheTimeout) {
   EXPECT_NE(daemon_->log().find("EtherNet/IP: the owner PLC left Run"), std::string::npos)
       << daemon_->log();
   std::cout << "stopped " << took << " ms after the scanner fell silent\n";
+}
+
+// Idle in the run/idle header is the PLC leaving Run at once (no timeout to wait for), and the
+// next Run packet brings it back. st-ethernet-ip always sends Run, so the Idle and the Run after
+// it are sent from the scanner's address with its O→T connection id and newer sequences.
+TEST_F(EnipMove, AnIdlePacketStopsAtOnceAndTheNextRunPacketClearsIt) {
+  REQUIRE_ENIP_PARTNERS();
+  start(sim_3601_config("plc_timeout_ms = 0\n", kSim));
+  auto scanner = connect_scanner(10);
+  ASSERT_TRUE(scanner);
+  const std::string connected = scanner->transcript();
+  const auto ot = static_cast<std::uint32_t>(std::stoul(json_field(connected, "ot")));
+  EnipPort port(*scanner, *image_);
+  plc::Plc3601 plc(port, milliseconds(3000));
+  ASSERT_TRUE(plc.configure(k3601Config, 0x3F, 1'000).ok);
+  ASSERT_TRUE(
+      plc.move(false, 5'000'000, plc::Profile{.speed = 5'000, .accel = 100, .decel = 100}).ok);
+  const auto moving = [](const ImageWords& w) { return plc::m3601::decode_status(w).moving(); };
+  ASSERT_TRUE(image_until(moving, milliseconds(2000)));
+  // O→T as the scanner sends it (tests/enip/io_packet_test.cpp), sequence far ahead of its own.
+  const auto packet = [&](std::uint32_t seq, bool run) {
+    Bytes b = enip::test::hex("0200 0280 0800 00000000 00000000 b100 1600 0000 00000000");
+    for (int i = 0; i < 4; ++i) {
+      b[6 + i] = static_cast<std::uint8_t>(ot >> (8 * i));
+      b[10 + i] = static_cast<std::uint8_t>(seq >> (8 * i));
+    }
+    b[18] = static_cast<std::uint8_t>(seq);  // a new CIP count: new data
+    b[20] = run ? 1 : 0;
+    b.resize(b.size() + 16, 0);  // the words: all 0 (no command)
+    const int fd = bound_socket(SOCK_DGRAM, scanner_ip_);
+    const sockaddr_in to = ipv4(target_, 2222);
+    ::sendto(fd, b.data(), b.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
+    ::close(fd);
+  };
+  scanner->ask("silent");  // its own packets would be older than ours anyway
+  const auto idle_at = Clock::now();
+  packet(0x40000000u, false);
+  ASSERT_TRUE(image_until([&](const ImageWords& w) { return !moving(w); }, milliseconds(3000)));
+  const auto took = std::chrono::duration_cast<milliseconds>(Clock::now() - idle_at).count();
+  EXPECT_LT(took, 250) << "Idle waited for the timeout";
+  ImageWords in;
+  ASSERT_TRUE(image_->read_inputs(in));
+  EXPECT_TRUE(plc::m3601::decode_status(in).has(m1::status_msw::kPositionInvalid));
+  EXPECT_NE(image_->read_health().flags & STEPMOD_HEALTH_PLC_STALE, 0u);
+  packet(0x40000001u, true);  // Run again, before the connection's timeout
+  const auto end = Clock::now() + milliseconds(2000);
+  while ((image_->read_health().flags & STEPMOD_HEALTH_PLC_STALE) != 0 && Clock::now() < end) {
+    std::this_thread::sleep_for(milliseconds(1));
+  }
+  EXPECT_EQ(image_->read_health().flags & STEPMOD_HEALTH_PLC_STALE, 0u)
+      << "the Run packet did not clear the deadman\n"
+      << daemon_->log();
+  std::cout << "stopped " << took << " ms after the Idle packet\n";
 }
 
 TEST_F(EnipMove, ASecondOwnerIsRefusedWith0x0106) {
