@@ -20,6 +20,7 @@
 #include "ipc/mbap.hpp"
 #include "ipc/modbus_map.hpp"
 #include "ipc/shm_object.hpp"
+#include "ipc/wake_join.hpp"
 
 namespace stepmod::ipc {
 
@@ -151,10 +152,7 @@ ModbusServer::~ModbusServer() {
 }
 
 void ModbusServer::stop() noexcept {
-  if (!thread_.joinable()) return;
-  const std::uint64_t one = 1;
-  [[maybe_unused]] const ssize_t n = ::write(impl_->wake_fd, &one, sizeof one);
-  thread_.join();
+  wake_and_join(impl_->wake_fd, thread_);
 }
 
 std::string ModbusServer::endpoint() const {

@@ -13,6 +13,7 @@
 
 #include "fieldbus/enip/adapter_impl.hpp"
 #include "fieldbus/enip/adapter_sockets.hpp"
+#include "ipc/wake_join.hpp"
 
 namespace stepmod::enip {
 
@@ -81,23 +82,20 @@ Adapter::Adapter(const Setup& setup)
   thread_ = std::thread([this] { run(); });
 }
 
-Adapter::~Adapter() {
-  stop();
-}
-
-void Adapter::stop() noexcept {
-  if (!thread_.joinable()) return;
-  const std::uint64_t one = 1;
-  [[maybe_unused]] const ssize_t n = ::write(impl_->wake_fd, &one, sizeof one);
-  thread_.join();
-}
-
 std::string Adapter::endpoint() const {
   return endpoint_;
 }
 
 const AdapterCounters& Adapter::counters() const noexcept {
   return impl_->counters;
+}
+
+void Adapter::stop() noexcept {
+  ipc::wake_and_join(impl_->wake_fd, thread_);
+}
+
+Adapter::~Adapter() {
+  stop();
 }
 
 bool Adapter::Impl::allowed(std::uint32_t ip_host_order) noexcept {
@@ -153,46 +151,47 @@ void Adapter::Impl::on_due(Nanos now) noexcept {
   publish_deadman();
 }
 
-// Class 1 O→T: a Run packet with new data is one seqlock write of the output words.
-void Adapter::Impl::receive_io(Nanos now) noexcept {
+// Up to kDatagramsPerWake datagrams waiting on `fd`, each from an allowed sender handed to
+// `take(ip, bytes, from)`; a datagram longer than the buffer is not ours and is dropped.
+template <class Take>
+void Adapter::Impl::each_datagram(int fd, Take&& take) noexcept {
   for (int k = 0; k < kDatagramsPerWake; ++k) {
     sockaddr_in from{};
     socklen_t len = sizeof from;
-    const ssize_t n = ::recvfrom(io_fd, rx.data(), rx.size(), MSG_DONTWAIT | MSG_TRUNC,
+    const ssize_t n = ::recvfrom(fd, rx.data(), rx.size(), MSG_DONTWAIT | MSG_TRUNC,
                                  reinterpret_cast<sockaddr*>(&from), &len);
     if (n < 0) break;
     const std::uint32_t ip = ntohl(from.sin_addr.s_addr);
     if (static_cast<std::size_t>(n) > rx.size() || !allowed(ip)) continue;
-    const OtResult r =
-        connections.on_o_to_t(ip, std::span(rx.data(), static_cast<std::size_t>(n)), now);
+    take(ip, std::span<const std::uint8_t>(rx.data(), static_cast<std::size_t>(n)), from);
+  }
+}
+
+// Class 1 O→T: a Run packet with new data is one seqlock write of the output words.
+void Adapter::Impl::receive_io(Nanos now) noexcept {
+  each_datagram(io_fd, [&](std::uint32_t ip, std::span<const std::uint8_t> d, const sockaddr_in&) {
+    const OtResult r = connections.on_o_to_t(ip, d, now);
     if (r.outcome == OtOutcome::kRunWrite) {
       assemblies.write_output(r.data);
       counters.run_writes.fetch_add(1, std::memory_order_relaxed);
     } else if (r.outcome == OtOutcome::kDropped) {
       counters.io_dropped.fetch_add(1, std::memory_order_relaxed);
     }
-  }
+  });
   publish_deadman();
 }
 
 // UDP encapsulation: ListIdentity, ListServices, ListInterfaces, answered to the sender.
 void Adapter::Impl::receive_udp(Nanos now) noexcept {
-  for (int k = 0; k < kDatagramsPerWake; ++k) {
-    sockaddr_in from{};
-    socklen_t len = sizeof from;
-    const ssize_t n = ::recvfrom(udp_fd, rx.data(), rx.size(), MSG_DONTWAIT | MSG_TRUNC,
-                                 reinterpret_cast<sockaddr*>(&from), &len);
-    if (n < 0) break;
-    const std::uint32_t ip = ntohl(from.sin_addr.s_addr);
-    if (static_cast<std::size_t>(n) > rx.size() || !allowed(ip)) continue;
-    router.origin = RequestOrigin{ip, now};
-    const std::size_t size =
-        handle_udp(std::span(rx.data(), static_cast<std::size_t>(n)), encap, tx);
-    if (size > 0) {
-      ::sendto(udp_fd, tx.data(), size, MSG_DONTWAIT, reinterpret_cast<const sockaddr*>(&from),
-               len);
-    }
-  }
+  each_datagram(udp_fd,
+                [&](std::uint32_t ip, std::span<const std::uint8_t> d, const sockaddr_in& from) {
+                  router.origin = RequestOrigin{ip, now};
+                  const std::size_t size = handle_udp(d, encap, tx);
+                  if (size > 0) {
+                    ::sendto(udp_fd, tx.data(), size, MSG_DONTWAIT,
+                             reinterpret_cast<const sockaddr*>(&from), sizeof from);
+                  }
+                });
 }
 
 void Adapter::run() noexcept {

@@ -76,6 +76,8 @@ struct Adapter::Impl {
   void rearm() noexcept;
   std::size_t fill_fds() noexcept;
   void on_due(Nanos now) noexcept;
+  template <class Take>
+  void each_datagram(int fd, Take&& take) noexcept;
   void receive_io(Nanos now) noexcept;
   void receive_udp(Nanos now) noexcept;
   // adapter_tcp.cpp

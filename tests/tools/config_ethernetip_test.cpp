@@ -3,61 +3,42 @@
 // key and the fix (stepmodd exits 2 on every ConfigError).
 #include <gtest/gtest.h>
 
-#include <arpa/inet.h>
-
 #include <string>
 
 #include "config/config.hpp"
+#include "tests/tools/one_table_config.hpp"
 
 namespace stepmod::tools {
 namespace {
 
-constexpr const char* kBase = R"([module]
-type = "3601"
-
-[[axis]]
-step = 17
-dir = 27
-
-)";  // [ethernetip] starts on line 8
-
-std::string error_of(const std::string& table) {
-  try {
-    parse_config(std::string(kBase) + table, "test.toml");
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "(accepted)";
+// The options in one line: "on|off ADDRESS:PORT allow N rpi MIN..MAX".
+std::string summary(const enip::AdapterOptions& e) {
+  return std::string(e.enabled ? "on " : "off ") + e.address + ":" + std::to_string(e.port) +
+         " allow " + std::to_string(e.allow.size()) + " rpi " + std::to_string(e.rpi_min_us) +
+         ".." + std::to_string(e.rpi_max_us);
 }
 
 TEST(ConfigEthernetIp, OffByDefaultWithContractDefaults) {
-  const Config c = parse_config(kBase, "t.toml");
-  EXPECT_FALSE(c.ethernetip.enabled);
-  EXPECT_EQ(c.ethernetip.address, "127.0.0.1");
-  EXPECT_EQ(c.ethernetip.port, 44818);
-  EXPECT_TRUE(c.ethernetip.allow.empty());
-  EXPECT_EQ(c.ethernetip.rpi_min_us, 1000u);
-  EXPECT_EQ(c.ethernetip.rpi_max_us, 100000u);
-  EXPECT_FALSE(parse_config(std::string(kBase) + "[ethernetip]\n", "t.toml").ethernetip.enabled);
+  EXPECT_EQ(summary(parse_config(kBase, "t.toml").ethernetip),
+            "off 127.0.0.1:44818 allow 0 rpi 1000..100000");
+  // An empty table changes nothing either.
+  EXPECT_EQ(summary(parse_config(std::string(kBase) + "[ethernetip]\n", "t.toml").ethernetip),
+            "off 127.0.0.1:44818 allow 0 rpi 1000..100000");
 }
 
 TEST(ConfigEthernetIp, FullTable) {
-  const Config c = parse_config(std::string(kBase) + R"([ethernetip]
+  const std::string table = R"([ethernetip]
 enabled = true
 listen = "10.0.0.5:44818"
 allow = ["10.0.0.1", "192.168.0.0/16"]
 rpi_min_us = 2000
 rpi_max_us = 50000
-)",
-                                "t.toml");
-  EXPECT_TRUE(c.ethernetip.enabled);
-  EXPECT_EQ(c.ethernetip.address, "10.0.0.5");
-  EXPECT_EQ(c.ethernetip.port, 44818);
-  ASSERT_EQ(c.ethernetip.allow.size(), 2u);
-  EXPECT_EQ(c.ethernetip.allow[0].network, 0x0A000001u);
-  EXPECT_EQ(c.ethernetip.allow[1].mask, 0xFFFF0000u);
-  EXPECT_EQ(c.ethernetip.rpi_min_us, 2000u);
-  EXPECT_EQ(c.ethernetip.rpi_max_us, 50000u);
+)";
+  const enip::AdapterOptions e = parse_config(std::string(kBase) + table, "t.toml").ethernetip;
+  EXPECT_EQ(summary(e), "on 10.0.0.5:44818 allow 2 rpi 2000..50000");
+  ASSERT_EQ(e.allow.size(), 2u);
+  EXPECT_EQ(e.allow[0].network, 0x0A000001u);
+  EXPECT_EQ(e.allow[1].mask, 0xFFFF0000u);
 }
 
 TEST(ConfigEthernetIp, BadListenNamesTheKeyAndTheForm) {

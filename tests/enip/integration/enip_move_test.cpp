@@ -40,6 +40,7 @@ constexpr plc::Profile kProfile3202{.speed = 20'000, .accel = 100'000, .decel = 
 
 class EnipMove : public EnipDaemon {
  protected:
+  void SetUp() override { REQUIRE_ENIP_PARTNERS(); }
   // Waits until `cond` holds for the image's inputs (observation only: no write).
   bool image_until(const std::function<bool(const ImageWords&)>& cond, milliseconds limit) {
     const auto end = Clock::now() + limit;
@@ -50,6 +51,20 @@ class EnipMove : public EnipDaemon {
       std::this_thread::sleep_for(milliseconds(1));
     }
   }
+  // A 3601 on the simulated machine (plc_timeout_ms 0: only the adapter's deadman can stop it)
+  // and its owner, st-ethernet-ip's scanner at RPI 10 ms; null when either did not start.
+  std::unique_ptr<PartnerProcess> start_3601_owned() {
+    start(sim_3601_config("plc_timeout_ms = 0\n", kSim));
+    return image_ ? connect_scanner(10) : nullptr;
+  }
+  // Configured, and moving a long way (5,000,000 steps at 5,000 steps/s) through the I/O data.
+  void start_long_move(plc::Plc3601& plc) {
+    ASSERT_TRUE(plc.configure(k3601Config, 0x3F, 1'000).ok);
+    const plc::Profile slow{.speed = 5'000, .accel = 100, .decel = 100};
+    ASSERT_TRUE(plc.move(false, 5'000'000, slow).ok);
+    ASSERT_TRUE(image_until(moving_3601, milliseconds(2000)));
+  }
+  static bool moving_3601(const ImageWords& w) { return plc::m3601::decode_status(w).moving(); }
   Vcd stop_and_read_trace() {
     image_.reset();
     EXPECT_EQ(daemon_->terminate(), 0) << daemon_->log();
@@ -58,10 +73,8 @@ class EnipMove : public EnipDaemon {
 };
 
 TEST_F(EnipMove, A3601ConfiguredAndMovedThroughTheIoDataAlone) {
-  REQUIRE_ENIP_PARTNERS();
-  start(sim_3601_config("", kSim));
-  auto scanner = connect_scanner(10);
-  ASSERT_TRUE(scanner);
+  auto scanner = start_3601_owned();
+  ASSERT_TRUE(scanner) << "no scanner";
   EnipPort port(*scanner, *image_);
   plc::Plc3601 plc(port, milliseconds(3000));
   const plc::Outcome cfg = plc.configure(k3601Config, 0x3F, 1'000);
@@ -88,8 +101,24 @@ TEST_F(EnipMove, A3601ConfiguredAndMovedThroughTheIoDataAlone) {
   EXPECT_EQ(stop_and_read_trace().rising("axis1.step").size(), 10'000u);
 }
 
+TEST_F(EnipMove, ASecondOwnerIsRefusedWith0x0106) {
+  auto owner = start_3601_owned();
+  ASSERT_TRUE(owner) << "no scanner";
+  PartnerProcess second({"open-once", scanner_config(other_ip_, 10, 16)});
+  const auto r = second.line_with("opened", std::chrono::seconds(10));
+  ASSERT_TRUE(r.has_value()) << second.transcript();
+  EXPECT_EQ(json_field(*r, "opened"), "false") << *r;
+  EXPECT_EQ(json_field(*r, "general"), "1") << *r;
+  EXPECT_NE(r->find("\"extended\":[262]"), std::string::npos) << *r << " (0x0106 = 262)";
+  // The owner is untouched: its T→O keeps coming.
+  const auto a = owner->ask("get");
+  std::this_thread::sleep_for(milliseconds(100));
+  const auto b = owner->ask("get");
+  ASSERT_TRUE(a && b);
+  EXPECT_GT(std::stoul(json_field(*b, "seq")), std::stoul(json_field(*a, "seq")));
+}
+
 TEST_F(EnipMove, BothChannelsOfA3202ThroughTheIoDataAlone) {
-  REQUIRE_ENIP_PARTNERS();
   start(sim_module_tables("3202") + sim_axis(every_axis_line(1), kSim) +
         sim_axis(every_axis_line(12), kSim));
   auto scanner = connect_scanner(10);
@@ -122,24 +151,18 @@ TEST_F(EnipMove, BothChannelsOfA3202ThroughTheIoDataAlone) {
 
 // plc_timeout_ms = 0 (the sim config's default): only the adapter's deadman can stop the axis.
 TEST_F(EnipMove, TheScannerFallsSilentAndTheAxisStopsWithinTheTimeout) {
-  REQUIRE_ENIP_PARTNERS();
-  start(sim_3601_config("plc_timeout_ms = 0\n", kSim));
-  auto scanner = connect_scanner(10);
-  ASSERT_TRUE(scanner);
+  auto scanner = start_3601_owned();
+  ASSERT_TRUE(scanner) << "no scanner";
   EnipPort port(*scanner, *image_);
   plc::Plc3601 plc(port, milliseconds(3000));
-  ASSERT_TRUE(plc.configure(k3601Config, 0x3F, 1'000).ok);
-  ASSERT_TRUE(
-      plc.move(false, 5'000'000, plc::Profile{.speed = 5'000, .accel = 100, .decel = 100}).ok);
-  const auto moving = [](const ImageWords& w) { return plc::m3601::decode_status(w).moving(); };
-  ASSERT_TRUE(image_until(moving, milliseconds(2000)));
+  ASSERT_NO_FATAL_FAILURE(start_long_move(plc));
   port.pass(milliseconds(300));  // still moving while the scanner runs
-  ASSERT_TRUE(image_until(moving, milliseconds(0)));
+  ASSERT_TRUE(image_until(moving_3601, milliseconds(0)));
   scanner->ask("silent");
   const auto silent = Clock::now();
   // The timeout: RPI 10 ms x 32 (st-ethernet-ip's multiplier) = 320 ms; the bound is generous
   // for a loaded machine.
-  ASSERT_TRUE(image_until([&](const ImageWords& w) { return !moving(w); }, milliseconds(5000)))
+  ASSERT_TRUE(image_until([&](const ImageWords& w) { return !moving_3601(w); }, milliseconds(5000)))
       << daemon_->log();
   const auto took = std::chrono::duration_cast<milliseconds>(Clock::now() - silent).count();
   EXPECT_GE(took, 250) << "stopped before the connection's timeout";
@@ -161,19 +184,13 @@ TEST_F(EnipMove, TheScannerFallsSilentAndTheAxisStopsWithinTheTimeout) {
 // next Run packet brings it back. st-ethernet-ip always sends Run, so the Idle and the Run after
 // it are sent from the scanner's address with its O→T connection id and newer sequences.
 TEST_F(EnipMove, AnIdlePacketStopsAtOnceAndTheNextRunPacketClearsIt) {
-  REQUIRE_ENIP_PARTNERS();
-  start(sim_3601_config("plc_timeout_ms = 0\n", kSim));
-  auto scanner = connect_scanner(10);
-  ASSERT_TRUE(scanner);
+  auto scanner = start_3601_owned();
+  ASSERT_TRUE(scanner) << "no scanner";
   const std::string connected = scanner->transcript();
   const auto ot = static_cast<std::uint32_t>(std::stoul(json_field(connected, "ot")));
   EnipPort port(*scanner, *image_);
   plc::Plc3601 plc(port, milliseconds(3000));
-  ASSERT_TRUE(plc.configure(k3601Config, 0x3F, 1'000).ok);
-  ASSERT_TRUE(
-      plc.move(false, 5'000'000, plc::Profile{.speed = 5'000, .accel = 100, .decel = 100}).ok);
-  const auto moving = [](const ImageWords& w) { return plc::m3601::decode_status(w).moving(); };
-  ASSERT_TRUE(image_until(moving, milliseconds(2000)));
+  ASSERT_NO_FATAL_FAILURE(start_long_move(plc));
   // O→T as the scanner sends it (tests/enip/io_packet_test.cpp), sequence far ahead of its own.
   const auto packet = [&](std::uint32_t seq, bool run) {
     Bytes b = enip::test::hex("0200 0280 0800 00000000 00000000 b100 1600 0000 00000000");
@@ -192,7 +209,8 @@ TEST_F(EnipMove, AnIdlePacketStopsAtOnceAndTheNextRunPacketClearsIt) {
   scanner->ask("silent");  // its own packets would be older than ours anyway
   const auto idle_at = Clock::now();
   packet(0x40000000u, false);
-  ASSERT_TRUE(image_until([&](const ImageWords& w) { return !moving(w); }, milliseconds(3000)));
+  ASSERT_TRUE(
+      image_until([&](const ImageWords& w) { return !moving_3601(w); }, milliseconds(3000)));
   const auto took = std::chrono::duration_cast<milliseconds>(Clock::now() - idle_at).count();
   EXPECT_LT(took, 250) << "Idle waited for the timeout";
   ImageWords in;
@@ -208,25 +226,6 @@ TEST_F(EnipMove, AnIdlePacketStopsAtOnceAndTheNextRunPacketClearsIt) {
       << "the Run packet did not clear the deadman\n"
       << daemon_->log();
   std::cout << "stopped " << took << " ms after the Idle packet\n";
-}
-
-TEST_F(EnipMove, ASecondOwnerIsRefusedWith0x0106) {
-  REQUIRE_ENIP_PARTNERS();
-  start(sim_3601_config("", kSim));
-  auto owner = connect_scanner(10);
-  ASSERT_TRUE(owner);
-  PartnerProcess second({"open-once", scanner_config(other_ip_, 10, 16)});
-  const auto r = second.line_with("opened", std::chrono::seconds(10));
-  ASSERT_TRUE(r.has_value()) << second.transcript();
-  EXPECT_EQ(json_field(*r, "opened"), "false") << *r;
-  EXPECT_EQ(json_field(*r, "general"), "1") << *r;
-  EXPECT_NE(r->find("\"extended\":[262]"), std::string::npos) << *r << " (0x0106 = 262)";
-  // The owner is untouched: its T→O keeps coming.
-  const auto a = owner->ask("get");
-  std::this_thread::sleep_for(milliseconds(100));
-  const auto b = owner->ask("get");
-  ASSERT_TRUE(a && b);
-  EXPECT_GT(std::stoul(json_field(*b, "seq")), std::stoul(json_field(*a, "seq")));
 }
 
 }  // namespace
