@@ -58,10 +58,12 @@ class EnipMove : public EnipDaemon {
     return image_ ? connect_scanner(10) : nullptr;
   }
   // Configured, and moving a long way (5,000,000 steps at 5,000 steps/s) through the I/O data.
-  void start_long_move(plc::Plc3601& plc) {
-    ASSERT_TRUE(plc.configure(k3601Config, 0x3F, 1'000).ok);
+  void start_long_move(plc::Plc3601& plc, const PartnerProcess& scanner) {
+    const plc::Outcome cfg = plc.configure(k3601Config, 0x3F, 1'000);
+    ASSERT_TRUE(cfg.ok) << cfg.message << "\n" << scanner.transcript() << daemon_->log();
     const plc::Profile slow{.speed = 5'000, .accel = 100, .decel = 100};
-    ASSERT_TRUE(plc.move(false, 5'000'000, slow).ok);
+    const plc::Outcome mv = plc.move(false, 5'000'000, slow);
+    ASSERT_TRUE(mv.ok) << mv.message << "\n" << scanner.transcript() << daemon_->log();
     ASSERT_TRUE(image_until(moving_3601, milliseconds(2000)));
   }
   static bool moving_3601(const ImageWords& w) { return plc::m3601::decode_status(w).moving(); }
@@ -155,7 +157,7 @@ TEST_F(EnipMove, TheScannerFallsSilentAndTheAxisStopsWithinTheTimeout) {
   ASSERT_TRUE(scanner) << "no scanner";
   EnipPort port(*scanner, *image_);
   plc::Plc3601 plc(port, milliseconds(3000));
-  ASSERT_NO_FATAL_FAILURE(start_long_move(plc));
+  ASSERT_NO_FATAL_FAILURE(start_long_move(plc, *scanner));
   port.pass(milliseconds(300));  // still moving while the scanner runs
   ASSERT_TRUE(image_until(moving_3601, milliseconds(0)));
   scanner->ask("silent");
@@ -190,7 +192,7 @@ TEST_F(EnipMove, AnIdlePacketStopsAtOnceAndTheNextRunPacketClearsIt) {
   const auto ot = static_cast<std::uint32_t>(std::stoul(json_field(connected, "ot")));
   EnipPort port(*scanner, *image_);
   plc::Plc3601 plc(port, milliseconds(3000));
-  ASSERT_NO_FATAL_FAILURE(start_long_move(plc));
+  ASSERT_NO_FATAL_FAILURE(start_long_move(plc, *scanner));
   // O→T as the scanner sends it (tests/enip/io_packet_test.cpp), sequence far ahead of its own.
   const auto packet = [&](std::uint32_t seq, bool run) {
     Bytes b = enip::test::hex("0200 0280 0800 00000000 00000000 b100 1600 0000 00000000");
