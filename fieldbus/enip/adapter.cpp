@@ -3,6 +3,7 @@
 #include <arpa/inet.h>
 #include <pthread.h>
 #include <sched.h>
+#include <spdlog/spdlog.h>
 #include <sys/eventfd.h>
 #include <sys/random.h>
 #include <sys/socket.h>
@@ -98,9 +99,19 @@ Adapter::~Adapter() {
   stop();
 }
 
-bool Adapter::Impl::allowed(std::uint32_t ip_host_order) noexcept {
+bool Adapter::Impl::allowed(std::uint32_t ip_host_order, const char* what) noexcept {
   if (ipc::address_allowed(setup.options.allow, htonl(ip_host_order))) return true;
   counters.refused.fetch_add(1, std::memory_order_relaxed);
+  std::uint64_t since = 0;
+  if (refused_log.count(monotonic_now(), since)) {
+    const in_addr a{htonl(ip_host_order)};
+    char host[INET_ADDRSTRLEN] = "?";
+    ::inet_ntop(AF_INET, &a, host, sizeof host);
+    spdlog::warn(
+        "ethernetip: {} from {} dropped (not in [ethernetip] allow); {} dropped since the last "
+        "such line",
+        what, host, since);
+  }
   return false;
 }
 
@@ -154,7 +165,7 @@ void Adapter::Impl::on_due(Nanos now) noexcept {
 // Up to kDatagramsPerWake datagrams waiting on `fd`, each from an allowed sender handed to
 // `take(ip, bytes, from)`; a datagram longer than the buffer is not ours and is dropped.
 template <class Take>
-void Adapter::Impl::each_datagram(int fd, Take&& take) noexcept {
+void Adapter::Impl::each_datagram(int fd, const char* what, Take&& take) noexcept {
   for (int k = 0; k < kDatagramsPerWake; ++k) {
     sockaddr_in from{};
     socklen_t len = sizeof from;
@@ -162,28 +173,29 @@ void Adapter::Impl::each_datagram(int fd, Take&& take) noexcept {
                                  reinterpret_cast<sockaddr*>(&from), &len);
     if (n < 0) break;
     const std::uint32_t ip = ntohl(from.sin_addr.s_addr);
-    if (static_cast<std::size_t>(n) > rx.size() || !allowed(ip)) continue;
+    if (static_cast<std::size_t>(n) > rx.size() || !allowed(ip, what)) continue;
     take(ip, std::span<const std::uint8_t>(rx.data(), static_cast<std::size_t>(n)), from);
   }
 }
 
 // Class 1 O→T: a Run packet with new data is one seqlock write of the output words.
 void Adapter::Impl::receive_io(Nanos now) noexcept {
-  each_datagram(io_fd, [&](std::uint32_t ip, std::span<const std::uint8_t> d, const sockaddr_in&) {
-    const OtResult r = connections.on_o_to_t(ip, d, now);
-    if (r.outcome == OtOutcome::kRunWrite) {
-      assemblies.write_output(r.data);
-      counters.run_writes.fetch_add(1, std::memory_order_relaxed);
-    } else if (r.outcome == OtOutcome::kDropped) {
-      counters.io_dropped.fetch_add(1, std::memory_order_relaxed);
-    }
-  });
+  each_datagram(io_fd, "an I/O packet",
+                [&](std::uint32_t ip, std::span<const std::uint8_t> d, const sockaddr_in&) {
+                  const OtResult r = connections.on_o_to_t(ip, d, now);
+                  if (r.outcome == OtOutcome::kRunWrite) {
+                    assemblies.write_output(r.data);
+                    counters.run_writes.fetch_add(1, std::memory_order_relaxed);
+                  } else if (r.outcome == OtOutcome::kDropped) {
+                    counters.io_dropped.fetch_add(1, std::memory_order_relaxed);
+                  }
+                });
   publish_deadman();
 }
 
 // UDP encapsulation: ListIdentity, ListServices, ListInterfaces, answered to the sender.
 void Adapter::Impl::receive_udp(Nanos now) noexcept {
-  each_datagram(udp_fd,
+  each_datagram(udp_fd, "a UDP request",
                 [&](std::uint32_t ip, std::span<const std::uint8_t> d, const sockaddr_in& from) {
                   router.origin = RequestOrigin{ip, now};
                   const std::size_t size = handle_udp(d, encap, tx);

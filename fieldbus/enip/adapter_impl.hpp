@@ -15,6 +15,7 @@
 #include "fieldbus/enip/encap_session.hpp"
 #include "fieldbus/enip/image_assemblies.hpp"
 #include "fieldbus/enip/t_to_o_producer.hpp"
+#include "ipc/log_throttle.hpp"
 #include "ipc/shm_object.hpp"
 
 namespace stepmod::enip {
@@ -58,6 +59,7 @@ struct Adapter::Impl {
   RouterContext router;
   EncapContext encap;
   AdapterCounters counters;
+  ipc::LogThrottle refused_log{10 * kNsPerSec};  // a flood cannot flood the journal
   int wake_fd = -1;
   int timer_fd = -1;
   int listen_fd = -1;
@@ -71,13 +73,14 @@ struct Adapter::Impl {
   std::array<std::uint8_t, kEncapMaxFrame + kMaxReplyBytes> tx{};
   std::array<std::uint8_t, kMaxAssemblyBytes> input{};
 
-  bool allowed(std::uint32_t ip_host_order) noexcept;
+  // Whether `ip` is in the allow list; else counted and (throttled) logged as `what`.
+  bool allowed(std::uint32_t ip_host_order, const char* what) noexcept;
   void publish_deadman() noexcept;
   void rearm() noexcept;
   std::size_t fill_fds() noexcept;
   void on_due(Nanos now) noexcept;
   template <class Take>
-  void each_datagram(int fd, Take&& take) noexcept;
+  void each_datagram(int fd, const char* what, Take&& take) noexcept;
   void receive_io(Nanos now) noexcept;
   void receive_udp(Nanos now) noexcept;
   // adapter_tcp.cpp

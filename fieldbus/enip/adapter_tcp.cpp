@@ -31,7 +31,7 @@ void Adapter::Impl::accept_one(Nanos now) noexcept {
       ::accept4(listen_fd, reinterpret_cast<sockaddr*>(&a), &len, SOCK_NONBLOCK | SOCK_CLOEXEC);
   if (fd < 0) return;
   const std::uint32_t ip = ntohl(a.sin_addr.s_addr);
-  if (!allowed(ip)) {
+  if (!allowed(ip, "a TCP connection")) {
     ::close(fd);
     return;
   }

@@ -1,7 +1,9 @@
 #include "tests/enip/integration/enip_port.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <thread>
+#include <vector>
 
 namespace stepmod::testing {
 
@@ -71,21 +73,25 @@ bool EnipPort::read_inputs(ImageWords& in) const {
     }
     in.w[i] = word_bytes_ == 2 ? static_cast<std::int16_t>(v) : static_cast<std::int32_t>(v);
   }
-  to_seq_ = static_cast<std::uint32_t>(std::stoul(json_field(*reply, "seq")));
   return true;
 }
 
-// Two T→O packets after now: the inputs read next were produced after everything before.
+// Until the scanner holds input words that the image showed after now: the T→O read next was
+// produced after everything before (a count of T→O packets would not do: on a loaded machine
+// node may still have older ones queued).
 bool EnipPort::wait_fresh_inputs() {
-  ImageWords in;
-  if (!read_inputs(in)) return false;
-  const std::uint32_t from = to_seq_;
+  std::vector<ImageWords> since;  // the image's input words from now on
   const auto end = Clock::now() + kReachTimeout;
-  while (to_seq_ - from < 2) {
-    if (Clock::now() > end || !read_inputs(in)) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  for (;;) {
+    ImageWords now;
+    if (image_.read_inputs(now) && (since.empty() || !(since.back() == now))) {
+      since.push_back(now);
+    }
+    ImageWords to;
+    if (read_inputs(to) && std::find(since.begin(), since.end(), to) != since.end()) return true;
+    if (Clock::now() > end) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
-  return true;
 }
 
 bool EnipPort::wait_scans(unsigned n) {

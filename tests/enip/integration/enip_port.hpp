@@ -31,8 +31,6 @@ class EnipPort : public plc::Port {
 
   // Writes that did not reach the image within the timeout (a test expects none).
   unsigned lost_writes() const { return lost_writes_; }
-  // The T→O sequence of the last read.
-  std::uint32_t to_sequence() const { return to_seq_; }
 
  private:
   std::string hex_of(const ImageWords& w) const;
@@ -45,7 +43,6 @@ class EnipPort : public plc::Port {
   unsigned in_words_;
   ImageWords out_{};
   unsigned lost_writes_ = 0;
-  mutable std::uint32_t to_seq_ = 0;
 };
 
 }  // namespace stepmod::testing

@@ -102,6 +102,8 @@ TEST_F(EnipWire, AnOriginatorOutsideTheAllowListIsNotServed) {
   ::send(out, kListIdentity.data(), kListIdentity.size(), MSG_NOSIGNAL);
   EXPECT_TRUE(receive(out, milliseconds(1000)).empty());
   ::close(out);
+  EXPECT_NE(daemon_->log().find("dropped (not in [ethernetip] allow)"), std::string::npos)
+      << daemon_->log();
 }
 
 // dumpcap on the loopback (root or CAP_NET_RAW), capturing the daemon's address until stop().
