@@ -159,7 +159,12 @@ TEST_F(EnipWire, ACapturedSessionDecodesWithoutMalformedPacketsOrExpertErrors) {
   start_3601();
   const std::string cap = daemon_->trace_path() + ".pcapng";
   Capture capture(target_, cap);
-  ASSERT_TRUE(capture.started()) << "dumpcap cannot capture on lo (root or CAP_NET_RAW needed)";
+  if (!capture.started()) {
+    // As a missing partner: skipped on a developer's machine, a failure in CI (CI=true).
+    const char* why = "dumpcap cannot capture on lo (root or CAP_NET_RAW needed)";
+    if (in_ci()) FAIL() << why;
+    GTEST_SKIP() << why;
+  }
   {  // a whole session: ListIdentity, the Identity object, an owner's I/O, a refused owner
     PartnerProcess list({"list-identity", target_, scanner_ip_, "udp"});
     ASSERT_TRUE(list.line_with("device", std::chrono::seconds(10)));
