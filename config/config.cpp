@@ -53,6 +53,7 @@ class Parser : ConfigReader {
     std::map<int64_t, std::string> used;
     parse_axes(root, module, c, used);
     parse_modbus(sub_table(root, "", "modbus"), c);
+    parse_ethernetip(sub_table(root, "", "ethernetip"), c);
     parse_charge_pump(sub_table(root, "", "charge_pump"), c, used);
     return c;
   }
@@ -70,13 +71,34 @@ class Parser : ConfigReader {
     m.max_clients = static_cast<unsigned>(get_int(t, p, config_key("modbus", "max_clients")));
     m.idle_timeout_ms =
         static_cast<unsigned>(get_int(t, p, config_key("modbus", "idle_timeout_ms")));
-    parse_modbus_listen(t, m);
-    if (t != nullptr) parse_modbus_allow(t, m);
+    parse_listen(t, config_key("modbus", "listen"), m.address, m.port);
+    if (t != nullptr) parse_allow(t, "modbus", m.allow);
   }
 
-  // `listen`: a numeric IPv4 address and a port (the default is parsed like a written value).
-  void parse_modbus_listen(const toml::table* t, ipc::ModbusOptions& m) const {
-    const ConfigKey& k = config_key("modbus", "listen");
+  // [ethernetip] (docs/ethernetip-design.md), as [modbus]: every field set here.
+  void parse_ethernetip(const toml::table* t, Config& c) const {
+    const std::string p = "ethernetip";
+    if (t != nullptr) check_keys(*t, p, "ethernetip");
+    enip::AdapterOptions& e = c.ethernetip;
+    e.enabled = get_bool(t, p, config_key("ethernetip", "enabled"));
+    const ConfigKey& min = config_key("ethernetip", "rpi_min_us");
+    const ConfigKey& max = config_key("ethernetip", "rpi_max_us");
+    e.rpi_min_us = static_cast<std::uint32_t>(get_int(t, p, min));
+    e.rpi_max_us = static_cast<std::uint32_t>(get_int(t, p, max));
+    parse_listen(t, config_key("ethernetip", "listen"), e.address, e.port);
+    if (t != nullptr) parse_allow(t, "ethernetip", e.allow);
+    if (e.rpi_max_us < e.rpi_min_us) {
+      const toml::node* n = t != nullptr ? t->get(max.key) : nullptr;
+      fail(n != nullptr ? n->source() : toml::source_region{}, "ethernetip.rpi_max_us",
+           "is " + std::to_string(e.rpi_max_us) + ", below ethernetip.rpi_min_us (" +
+               std::to_string(e.rpi_min_us) + "): raise it or lower rpi_min_us");
+    }
+  }
+
+  // `listen` of a server's table: a numeric IPv4 address and a port (the default is parsed like
+  // a written value).
+  void parse_listen(const toml::table* t, const ConfigKey& k, std::string& address,
+                    std::uint16_t& port_out) const {
     const toml::node* n = t != nullptr ? t->get(k.key) : nullptr;
     const auto* s = n != nullptr ? n->as_string() : nullptr;
     const std::string text = n == nullptr ? std::string(k.text) : s != nullptr ? s->get() : "";
@@ -92,21 +114,23 @@ class Parser : ConfigReader {
       ok = ok && port >= 1 && port <= 65535;  // TCP's ports
     }
     if (!ok) {
-      fail(n != nullptr ? n->source() : toml::source_region{}, "modbus.listen",
+      fail(n != nullptr ? n->source() : toml::source_region{},
+           std::string(k.table) + "." + std::string(k.key),
            "must be \"IPv4-ADDRESS:PORT\" with a port 1..65535, e.g. \"" + std::string(k.text) +
                "\"");
     }
-    m.address = text.substr(0, colon);
-    m.port = static_cast<std::uint16_t>(port);
+    address = text.substr(0, colon);
+    port_out = static_cast<std::uint16_t>(port);
   }
 
-  // [modbus] allow = ["127.0.0.1", "10.0.0.0/8", ...]: where connections may come from.
-  void parse_modbus_allow(const toml::table* t, ipc::ModbusOptions& m) const {
+  // allow = ["127.0.0.1", "10.0.0.0/8", ...] of a server's table: where peers may come from.
+  void parse_allow(const toml::table* t, const std::string& table,
+                   std::vector<ipc::AllowNet>& allow) const {
     const toml::node* n = t->get("allow");
     if (n == nullptr) return;
     const auto* list = n->as_array();
     if (list == nullptr || list->empty()) {
-      fail(n->source(), "modbus.allow",
+      fail(n->source(), table + ".allow",
            "must be a non-empty list of IPv4 addresses or networks, e.g. [\"127.0.0.1\", "
            "\"10.0.0.0/8\"]");
     }
@@ -114,11 +138,11 @@ class Parser : ConfigReader {
       const auto* s = e.as_string();
       const auto net = s != nullptr ? ipc::parse_allow_net(s->get()) : std::nullopt;
       if (!net) {
-        fail(e.source(), "modbus.allow",
+        fail(e.source(), table + ".allow",
              "each entry must be an IPv4 address or ADDRESS/PREFIX (0..32) in quotes, e.g. "
              "\"10.0.0.0/8\"");
       }
-      m.allow.push_back(*net);
+      allow.push_back(*net);
     }
   }
 

@@ -10,6 +10,7 @@
 #include "core/clock.hpp"
 #include "gpio/axis_lines.hpp"
 #include "gpio/backend.hpp"
+#include "fieldbus/enip/adapter_options.hpp"
 #include "gpio/sim_machine.hpp"
 #include "ipc/modbus_options.hpp"
 #include "module/personality.hpp"
@@ -75,6 +76,7 @@ struct Config {
   unsigned rt_table_line = 0;
   std::vector<AxisSection> axes;
   ipc::ModbusOptions modbus;  // [modbus] (docs/interface.md 6), every field set by the parser
+  enip::AdapterOptions ethernetip;  // [ethernetip] (docs/ethernetip-design.md), the same
   ChargePumpSection charge_pump;
 };
 

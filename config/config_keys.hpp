@@ -109,6 +109,7 @@ inline constexpr ConfigKey kConfigKeys[] = {
     table("", "rt"),
     table("", "axis"),
     table("", "modbus"),
+    table("", "ethernetip"),
     table("", "charge_pump"),
     // [module]
     {.table = "module", .key = "type", .type = kChoice, .absent = kRequired,
@@ -224,6 +225,26 @@ inline constexpr ConfigKey kConfigKeys[] = {
             "slowest master's poll period"},
     {.table = "modbus", .key = "allow", .type = kList, .absent = kUnset, .text = "any source",
      .doc = "a connection from elsewhere is closed at once (docs/hardening.md)"},
+    // [ethernetip] (docs/ethernetip-design.md): an extension, off by default.
+    {.table = "ethernetip", .key = "enabled", .type = kBool, .def = 0,
+     .doc = "true: serve the image as an EtherNet/IP adapter (class 1 I/O for a Logix PLC)"},
+    // Loopback, as Modbus: an EtherNet/IP adapter has no authentication either.
+    {.table = "ethernetip", .key = "listen", .type = kText, .text = "127.0.0.1:44818",
+     .doc = "TCP and UDP encapsulation; class 1 I/O on UDP 2222 of the same address; in a rack "
+            "one address per module"},
+    {.table = "ethernetip", .key = "allow", .type = kList, .absent = kUnset, .text = "any source",
+     .doc = "originator addresses allowed; a connection, request or I/O packet from elsewhere is "
+            "dropped"},
+    // Defaults: 1 ms, a Logix PLC's shortest usual RPI; 100 ms, beyond which a silent PLC
+    // stops a move late (the timeout is RPI x the multiplier). The bounds: 250 us, the shortest
+    // scan_us (faster I/O than the module scans is useless); 10 s. The ranges meet at 1 ms ..
+    // 100 ms so that each bound is valid with the other key's default.
+    {.table = "ethernetip", .key = "rpi_min_us", .type = kInt, .def = 1000, .min = 250,
+     .max = 100'000, .unit = kUs,
+     .doc = "the shortest requested packet interval accepted (Forward_Open 0x01/0x0112 below)"},
+    {.table = "ethernetip", .key = "rpi_max_us", .type = kInt, .def = 100'000, .min = 1000,
+     .max = 10'000'000, .unit = kUs,
+     .doc = "the longest requested packet interval accepted; at least `rpi_min_us`"},
     // [charge_pump] (docs/safety.md "Charge pump"): an extension, off unless `line` names a line.
     {.table = "charge_pump", .key = "line", .type = kLine, .absent = kUnset, .min = 0,
      .max = kMaxLineOffset, .text = "not wired",

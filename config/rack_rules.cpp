@@ -102,12 +102,29 @@ void check_modbus(const RackConfig& rack) {
   }
 }
 
+// Each module's adapter has an address of its own: its I/O is on UDP 2222 of that address, so
+// even two ports of one address would clash (docs/ethernetip-design.md).
+void check_ethernetip(const RackConfig& rack) {
+  std::map<std::string, const Config*> owner;  // address -> the module that has it
+  for (const Config& m : rack.modules) {
+    if (!m.ethernetip.enabled) continue;
+    const auto [it, fresh] = owner.emplace(m.ethernetip.address, &m);
+    if (fresh) continue;
+    refuse(rack, "key 'ethernetip.listen': modules '" + it->second->name + "' (" +
+                     it->second->file + ") and '" + m.name + "' (" + m.file +
+                     ") both listen on address " + m.ethernetip.address +
+                     " (class 1 I/O is on UDP 2222 of it): give each module its own address "
+                     "(a board can carry several)");
+  }
+}
+
 }  // namespace
 
 void check_rack(const RackConfig& rack) {
   check_names(rack);
   check_lines(rack);
   check_modbus(rack);
+  check_ethernetip(rack);
 }
 
 }  // namespace stepmod::tools

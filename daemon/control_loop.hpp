@@ -39,6 +39,8 @@ class ControlLoop {
     ipc::ShmImage& image;
     ModuleTrace* trace;
     SimPanelLink* panel;
+    // A fieldbus PLC out of Run (the EtherNet/IP adapter's deadman); null: no such fieldbus.
+    const std::atomic<bool>* plc_not_in_run = nullptr;
   };
   explicit ControlLoop(const Parts& parts);
 

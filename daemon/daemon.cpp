@@ -8,6 +8,7 @@
 #include "daemon/backend_factory.hpp"
 #include "daemon/daemon_log.hpp"
 #include "daemon/daemon_trace.hpp"
+#include "daemon/enip_adapters.hpp"
 #include "daemon/modbus_servers.hpp"
 #include "daemon/module_runtime.hpp"
 #include "daemon/realtime_setup.hpp"
@@ -37,6 +38,7 @@ struct Daemon::Impl {
   std::unique_ptr<Stack> stack;
   std::vector<std::unique_ptr<ModuleRuntime>> modules;
   std::vector<std::unique_ptr<ipc::ModbusServer>> modbus;  // after the images they map
+  std::vector<std::unique_ptr<enip::Adapter>> enip;        // the same
 
   const Config& first() const { return rack.modules.front(); }
   void build_backends();
@@ -57,6 +59,7 @@ Daemon::Daemon(const RackConfig& rack, const std::optional<std::string>& trace_p
   d.build_stack();
   d.build_modules();
   d.modbus = start_modbus_servers(d.rack.modules);
+  d.enip = start_enip_adapters(d.modules);
   if (trace_path) d.trace->open(*trace_path, d.start, d.rack.modules, d.rack.rack_file, *d.stack);
 }
 

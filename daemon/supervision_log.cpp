@@ -8,7 +8,12 @@ void log_supervision(const ipc::PlcSupervisor& sup, Nanos now) {
   const std::uint32_t on = sup.started();
   const std::uint32_t off = sup.ended();
   if ((on | off) == 0) return;
-  if (on & STEPMOD_HEALTH_PLC_STALE) {
+  if ((on & STEPMOD_HEALTH_PLC_STALE) && sup.not_in_run()) {
+    spdlog::warn(
+        "EtherNet/IP: the owner PLC left Run (Idle, no O→T for its timeout, or Forward_Close): "
+        "every axis stopped, position invalid; the output words are frozen until its next Run "
+        "packet");
+  } else if (on & STEPMOD_HEALTH_PLC_STALE) {
     spdlog::warn(
         "PLC heartbeat unchanged for {} ms: the PLC is treated as out of Run mode (every axis "
         "stopped, position invalid; the output words are frozen and not acted on until the "
@@ -17,8 +22,8 @@ void log_supervision(const ipc::PlcSupervisor& sup, Nanos now) {
   }
   if (off & STEPMOD_HEALTH_PLC_STALE) {
     spdlog::info(
-        "PLC heartbeat moves again: output words acted on again (a command bit held "
-        "through the outage needs a new 0->1 edge)");
+        "PLC heartbeat moves again (or the fieldbus PLC is back in Run): output words acted on "
+        "again (a command bit held through the outage needs a new 0->1 edge)");
   }
   if (on & STEPMOD_HEALTH_SEQ_STUCK) {
     spdlog::warn(

@@ -17,9 +17,11 @@
 #include <list>
 #include <vector>
 
+#include "ipc/log_throttle.hpp"
 #include "ipc/mbap.hpp"
 #include "ipc/modbus_map.hpp"
 #include "ipc/shm_object.hpp"
+#include "ipc/wake_join.hpp"
 
 namespace stepmod::ipc {
 
@@ -36,26 +38,6 @@ std::string peer_name(const sockaddr_in& a) {
   ::inet_ntop(AF_INET, &a.sin_addr, host, sizeof host);
   return std::string(host) + ":" + std::to_string(ntohs(a.sin_port));
 }
-
-// Counts events of one kind and lets a log line about them through at most once per period: a
-// client that connects in a loop cannot flood the journal.
-class LogThrottle {
- public:
-  // Counts one event; true when a line is due, with `since` = the events since the last line
-  // (this one included).
-  bool count(Nanos now, std::uint64_t& since) {
-    ++quiet_;
-    if (last_ != 0 && now - last_ < ModbusServer::kLogPeriod) return false;
-    since = quiet_;
-    last_ = now;
-    quiet_ = 0;
-    return true;
-  }
-
- private:
-  Nanos last_ = 0;
-  std::uint64_t quiet_ = 0;
-};
 }  // namespace
 
 struct ModbusServer::Impl {
@@ -69,9 +51,9 @@ struct ModbusServer::Impl {
   int listen_fd = -1;
   int wake_fd = -1;
   std::list<Connection> clients;
-  LogThrottle refused_log;
-  LogThrottle evicted_log;
-  LogThrottle idle_log;
+  LogThrottle refused_log{kLogPeriod};
+  LogThrottle evicted_log{kLogPeriod};
+  LogThrottle idle_log{kLogPeriod};
 
   ~Impl() {
     for (Connection& c : clients) ::close(c.fd);
@@ -151,10 +133,7 @@ ModbusServer::~ModbusServer() {
 }
 
 void ModbusServer::stop() noexcept {
-  if (!thread_.joinable()) return;
-  const std::uint64_t one = 1;
-  [[maybe_unused]] const ssize_t n = ::write(impl_->wake_fd, &one, sizeof one);
-  thread_.join();
+  wake_and_join(impl_->wake_fd, thread_);
 }
 
 std::string ModbusServer::endpoint() const {

@@ -14,22 +14,31 @@ PlcSupervisor::PlcSupervisor(Nanos heartbeat_timeout) noexcept
     : heartbeat_timeout_(heartbeat_timeout > 0 ? heartbeat_timeout : 0),
       odd_timeout_(heartbeat_timeout > 0 ? heartbeat_timeout : kOddTimeoutWithoutHeartbeat) {}
 
-const ImageWords& PlcSupervisor::scan(const Sample& s) noexcept {
-  if (first_) {
-    first_ = false;
-    heartbeat_ = s.heartbeat;
-    heartbeat_changed_ = s.now;
-  }
+// Heartbeat (INTERFACE 3.2): stale while unchanged for the timeout, or at once while a fieldbus
+// PLC is out of Run.
+std::uint32_t PlcSupervisor::heartbeat_flags(const Sample& s) noexcept {
   std::uint32_t flags = 0;
-
-  // Heartbeat (INTERFACE 3.2): stale while unchanged for the timeout.
-  if (s.heartbeat != heartbeat_ || lease_stands(s)) {
+  const bool lease = lease_stands(s);
+  if (s.heartbeat != heartbeat_ || lease) {
     heartbeat_ = s.heartbeat;
     heartbeat_changed_ = s.now;
   }
   if (heartbeat_timeout_ > 0 && s.now - heartbeat_changed_ >= heartbeat_timeout_) {
     flags |= STEPMOD_HEALTH_PLC_STALE;
   }
+  // A fieldbus PLC out of Run is a stale heartbeat at once, watched or not.
+  not_in_run_ = s.plc_not_in_run && !lease;
+  if (not_in_run_) flags |= STEPMOD_HEALTH_PLC_STALE;
+  return flags;
+}
+
+const ImageWords& PlcSupervisor::scan(const Sample& s) noexcept {
+  if (first_) {
+    first_ = false;
+    heartbeat_ = s.heartbeat;
+    heartbeat_changed_ = s.now;
+  }
+  std::uint32_t flags = heartbeat_flags(s);
 
   // Output sequence: the same odd value for the timeout is a writer that never finished.
   if ((s.seq & 1u) != 0) {

@@ -4,7 +4,8 @@
 // is tested scan by scan; the daemon logs the transitions it reports.
 //
 // Three conditions, each a health flag (STEPMOD_HEALTH_*), set while it lasts:
-//  * PLC heartbeat stale (bit 1): [module] plc_timeout_ms on and the heartbeat unchanged that long.
+//  * PLC heartbeat stale (bit 1): [module] plc_timeout_ms on and the heartbeat unchanged that long,
+//    or a fieldbus PLC out of Run (Sample::plc_not_in_run).
 //  * Output sequence stuck odd (bit 2): the same odd sequence value for longer than the heartbeat
 //    timeout, or 100 ms with the heartbeat watch off: a PLC that died in the middle of a write.
 //  * Seqlock bypassed (bit 3): two consistent snapshots with the same sequence but different
@@ -54,6 +55,11 @@ class PlcSupervisor {
     // no lease word (garbage, a far-off or passed expiry) holds off the heartbeat timeout for
     // longer than the 500 ms a live holder's lease lasts without renewal.
     Nanos lease_until = 0;
+    // A fieldbus PLC that told us it left Run (the EtherNet/IP adapter's owner connection Idle,
+    // timed out or closed: docs/ethernetip-design.md, "Where it sits in stepmod"). Treated
+    // exactly as a stale heartbeat, whatever the heartbeat timeout is (also 0, the watch off),
+    // until the PLC is back in Run. A standing lease holds it off as it holds off the timeout.
+    bool plc_not_in_run = false;
   };
 
   // One scan. Returns the words the module is to scan this time (the live snapshot, the last
@@ -70,12 +76,15 @@ class PlcSupervisor {
 
   // Diagnostics for the log lines.
   std::uint32_t stuck_seq() const noexcept { return odd_value_; }
+  bool not_in_run() const noexcept { return not_in_run_; }  // the last sample's plc_not_in_run
   Nanos heartbeat_age(Nanos now) const noexcept { return now - heartbeat_changed_; }
   std::uint64_t bypass_changes() const noexcept { return bypass_changes_; }
   Nanos heartbeat_timeout() const noexcept { return heartbeat_timeout_; }
   Nanos odd_timeout() const noexcept { return odd_timeout_; }
 
  private:
+  std::uint32_t heartbeat_flags(const Sample& s) noexcept;
+
   const Nanos heartbeat_timeout_;
   const Nanos odd_timeout_;
   bool first_ = true;
@@ -92,6 +101,7 @@ class PlcSupervisor {
   Nanos last_bypass_ = 0;
   std::uint64_t bypass_changes_ = 0;
   bool lost_ = false;
+  bool not_in_run_ = false;
   bool tripped_ = false;
   std::uint32_t flags_ = 0;
   std::uint32_t started_ = 0;

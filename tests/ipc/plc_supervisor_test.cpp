@@ -103,6 +103,41 @@ TEST_F(Supervisor, HeartbeatWatchOffNeverTrips) {
   }
 }
 
+// Issue 34: a fieldbus PLC out of Run (the EtherNet/IP owner Idle, timed out or closed) is a
+// stale heartbeat at once, with the heartbeat watch off (plc_timeout_ms = 0) and a heartbeat
+// that keeps moving; the words freeze until the PLC is back in Run.
+TEST(SupervisorFieldbus, APlcOutOfRunIsAStaleHeartbeatWhateverTheTimeout) {
+  PlcSupervisor off(0);
+  PlcSupervisor::Sample s;
+  s.snapshot_ok = true;
+  s.words.w[0] = 7;
+  for (int i = 0; i < 10; ++i) {
+    s.now = i * kScan;
+    ++s.heartbeat;
+    off.scan(s);
+    ASSERT_EQ(off.flags(), 0u);
+  }
+  s.plc_not_in_run = true;
+  s.now += kScan;
+  ++s.heartbeat;
+  s.words.w[0] = 8;  // written (through the seqlock) after the PLC left Run: not acted on
+  s.snapshot_seq = s.seq = 2;
+  EXPECT_EQ(off.scan(s).w[0], 7);
+  EXPECT_TRUE(off.tripped());
+  EXPECT_TRUE(off.plc_lost());
+  EXPECT_EQ(off.flags(), STEPMOD_HEALTH_PLC_STALE);
+  EXPECT_TRUE(off.not_in_run());  // the log says why
+  s.now += kScan;
+  off.scan(s);
+  EXPECT_FALSE(off.tripped());  // once per loss
+  EXPECT_TRUE(off.plc_lost());
+  s.plc_not_in_run = false;  // the next Run packet
+  s.now += kScan;
+  EXPECT_EQ(off.scan(s).w[0], 8);
+  EXPECT_FALSE(off.plc_lost());
+  EXPECT_EQ(off.flags(), 0u);
+}
+
 // Issue 29: a lease stands in for the heartbeat only while its expiry is one a live holder writes
 // (now .. now + 500 ms). Before, any held lease reset the heartbeat timer at every scan: garbage
 // lease words switched the PLC watchdog off.

@@ -146,6 +146,12 @@ writes = false
 max_clients = 4
 idle_timeout_ms = 5000
 allow = ["127.0.0.1"]
+[ethernetip]
+enabled = false
+listen = "127.0.0.1:44818"
+allow = ["127.0.0.1"]
+rpi_min_us = 1000
+rpi_max_us = 100000
 [charge_pump]
 line = 13
 frequency_hz = 100

@@ -5,27 +5,10 @@
 #include <string>
 
 #include "config/config.hpp"
+#include "tests/tools/one_table_config.hpp"
 
 namespace stepmod::tools {
 namespace {
-
-constexpr const char* kBase = R"([module]
-type = "3601"
-
-[[axis]]
-step = 17
-dir = 27
-
-)";  // [modbus] starts on line 8
-
-std::string error_of(const std::string& modbus_table) {
-  try {
-    parse_config(std::string(kBase) + modbus_table, "test.toml");
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "(accepted)";
-}
 
 TEST(ConfigModbus, OffByDefaultWithContractDefaults) {
   const Config c = parse_config(kBase, "t.toml");

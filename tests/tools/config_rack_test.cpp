@@ -128,6 +128,23 @@ TEST_F(ConfigRack, SharedModbusServerKeysMustAgree) {
   EXPECT_NE(e.find("modbus.max_clients"), std::string::npos) << e;
 }
 
+// docs/ethernetip-design.md: each module's adapter on an address of its own (its I/O is on UDP
+// 2222 of it, so another port of the same address clashes too).
+TEST_F(ConfigRack, TwoAdaptersOnOneAddressAreAnError) {
+  const std::string ei = "[ethernetip]\nenabled = true\n";
+  module("x.toml", "x", 17, ei);
+  module("y.toml", "y", 17, ei + "listen = \"127.0.0.1:44819\"\n");
+  const std::string e = error_of(rack("[rack]\nmodules = [\"x.toml\", \"y.toml\"]\n"));
+  EXPECT_NE(e.find("key 'ethernetip.listen'"), std::string::npos) << e;
+  EXPECT_NE(e.find("'x'"), std::string::npos) << e;
+  EXPECT_NE(e.find("y.toml"), std::string::npos) << e;
+  EXPECT_NE(e.find("own address"), std::string::npos) << e;
+  module("y.toml", "y", 17, ei + "listen = \"127.0.0.2:44818\"\n");
+  EXPECT_EQ(error_of(dir_ / "rack.toml"), "(accepted)");
+  module("y.toml", "y", 17, "[ethernetip]\nenabled = false\n");  // off: no address taken
+  EXPECT_EQ(error_of(dir_ / "rack.toml"), "(accepted)");
+}
+
 TEST_F(ConfigRack, RackAndModuleInOneFile) {
   module("x.toml", "x");
   const std::string e =

@@ -46,6 +46,9 @@ const std::map<std::string, Read>& readers() {
       {"modbus.unit_id", [](const Config& c) { return c.modbus.unit_id; }},
       {"modbus.max_clients", [](const Config& c) { return c.modbus.max_clients; }},
       {"modbus.idle_timeout_ms", [](const Config& c) { return c.modbus.idle_timeout_ms; }},
+      {"ethernetip.enabled", [](const Config& c) { return c.ethernetip.enabled ? 1 : 0; }},
+      {"ethernetip.rpi_min_us", [](const Config& c) { return c.ethernetip.rpi_min_us; }},
+      {"ethernetip.rpi_max_us", [](const Config& c) { return c.ethernetip.rpi_max_us; }},
       {"charge_pump.frequency_hz", [](const Config& c) { return c.charge_pump.frequency_hz; }},
   };
   return r;
@@ -122,6 +125,9 @@ TEST(ConfigTable, AKeyLeftOutGetsTheRowsDefault) {
   EXPECT_EQ(c.modbus.address + ":" + std::to_string(c.modbus.port),
             config_key("modbus", "listen").text);
   EXPECT_TRUE(c.modbus.allow.empty());
+  EXPECT_EQ(c.ethernetip.address + ":" + std::to_string(c.ethernetip.port),
+            config_key("ethernetip", "listen").text);
+  EXPECT_TRUE(c.ethernetip.allow.empty());
   EXPECT_EQ(c.axes[0].enable_release, 0);
 }
 

@@ -1,0 +1,126 @@
+// The EtherNet/IP clients the suite tests the adapter against, driven by the C++ tests
+// (tests/enip/integration): pinned npm packages we did not write, installed into the build tree
+// by `scripts/install-deps --enip-partners BUILD_DIR` (NODE_PATH points there). One JSON object
+// per line on stdout.
+//
+//   node partner.js scanner '{"target":..,"local":..,"rpi":10,"in":16,"out":16}'
+//       st-ethernet-ip's class 1 scanner, exclusive owner of assemblies 150/100/151; then on
+//       stdin: "set HEX" (the O→T words), "get" (the T→O words and sequence), "silent" (stop
+//       sending O→T), "quit"
+//   node partner.js open-once '{...same...}'   one Forward_Open; its status, then exit
+//   node partner.js identity TARGET             ethernet-ip: Get_Attributes_All and
+//                                               Get_Attribute_Single of the Identity object
+//   node partner.js list-identity TARGET LOCAL udp|tcp   ListIdentity, parsed by
+//                                               st-ethernet-ip's Browser
+"use strict";
+const net = require("net");
+const readline = require("readline");
+
+const say = (o) => process.stdout.write(JSON.stringify(o) + "\n");
+const fail = (e) => {
+  say({ error: String(e && e.message ? e.message : JSON.stringify(e)), detail: e });
+  process.exit(3);
+};
+
+function assemblies(c) {
+  return {
+    configInstance: { assembly: 151, size: 0 },
+    outputInstance: { assembly: 150, size: c.out },
+    inputInstance: { assembly: 100, size: c.in },
+  };
+}
+
+function scanner(c) {
+  const { IO } = require("st-ethernet-ip");
+  const io = new IO.Scanner(2222, c.local);
+  const conn = io.addConnection(assemblies(c), c.rpi, c.target);
+  conn.on("connected", () => say({ connected: true, ot: conn.OTid, to: conn.TOid }));
+  conn.on("disconnected", () => say({ disconnected: true }));
+  const rl = readline.createInterface({ input: process.stdin });
+  rl.on("line", (line) => {
+    const [cmd, arg] = line.trim().split(/\s+/);
+    if (cmd === "set") {
+      conn.outputData = Buffer.from(arg, "hex");
+      say({ ok: true });
+    } else if (cmd === "get") {
+      say({ in: conn.inputData.toString("hex"), seq: conn.TOsequenceNum, run: conn.run });
+    } else if (cmd === "silent") {
+      conn.run = false;
+      say({ ok: true });
+    } else if (cmd === "quit") {
+      process.exit(0);
+    }
+  });
+  rl.on("close", () => process.exit(0));
+}
+
+async function openOnce(c) {
+  const TCP = require("st-ethernet-ip/dist/io/tcp");
+  const a = assemblies(c);
+  const t = new TCP(true, a.configInstance, a.outputInstance, a.inputInstance);
+  t.rpi = c.rpi;
+  t.timeout_sp = 2000;
+  try {
+    const id = await t.connect(c.target, 0, c.local);
+    say({ opened: true, ot: id });
+  } catch (e) {
+    say({ opened: false, general: e.generalStatusCode, extended: e.extendedStatus });
+  }
+  process.exit(0);
+}
+
+async function identity(target) {
+  const { Controller, EthernetIP } = require("ethernet-ip");
+  const { CIP } = EthernetIP;
+  const plc = new Controller();
+  let all = null;
+  plc.on("Get Attribute All", (err, data) => { all = err ? null : data; });
+  await plc.connect(target, 0);
+  const { LOGICAL } = CIP.EPATH.segments;
+  const single = async (attribute) => {
+    const path = Buffer.concat([
+      LOGICAL.build(LOGICAL.types.ClassID, 0x01),
+      LOGICAL.build(LOGICAL.types.InstanceID, 0x01),
+      LOGICAL.build(LOGICAL.types.AttributeID, attribute),
+    ]);
+    const got = new Promise((resolve, reject) => {
+      plc.once("Get Attribute Single", (err, data) => (err ? reject(err) : resolve(data)));
+    });
+    plc.write_cip(CIP.MessageRouter.build(CIP.MessageRouter.services.GET_ATTRIBUTE_SINGLE, path, []));
+    return (await got).toString("hex");
+  };
+  const singles = {};
+  for (const a of [1, 2, 3, 4, 5, 6, 7]) singles[a] = await single(a);
+  say({ all: all ? all.toString("hex") : null, properties: plc.properties, singles });
+  plc.destroy();
+  process.exit(0);
+}
+
+function listIdentity(target, local, how) {
+  const { Browser, EthernetIP } = require("st-ethernet-ip");
+  const { encapsulation } = EthernetIP;
+  const request = encapsulation.header.build(encapsulation.commands.ListIdentity);
+  const b = new Browser(0, local, false);
+  const parse = (msg) => {
+    const d = b._parseListIdentityResponse(msg);
+    say({ device: d, via: how });
+    process.exit(0);
+  };
+  if (how === "udp") {
+    b.socket.on("message", parse);
+    b.socket.on("listening", () => b.socket.send(request, 44818, target));
+  } else {
+    const s = net.connect({ host: target, port: 44818, localAddress: local }, () => s.write(request));
+    s.on("data", parse);
+    s.on("error", fail);
+  }
+}
+
+process.on("unhandledRejection", fail);
+const [mode, a1, a2, a3] = process.argv.slice(2);
+if (mode === "scanner") scanner(JSON.parse(a1));
+else if (mode === "open-once") openOnce(JSON.parse(a1));
+else if (mode === "identity") identity(a1);
+else if (mode === "list-identity") listIdentity(a1, a2, a3);
+else fail(new Error("unknown mode " + mode));
+setTimeout(() => fail(new Error("partner.js: no result in 60 s")), 60000).unref();
