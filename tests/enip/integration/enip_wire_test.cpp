@@ -35,7 +35,7 @@ std::string machine_id() {
   return id;
 }
 
-class EnipWire : public EnipDaemon {
+class EnipDaemonWire : public EnipDaemon {
  protected:
   void start_3601(const std::string& extra = "") { start(sim_3601_config("", kSim), extra); }
   // ListIdentity from `local` by UDP: the reply's product name, empty when none came.
@@ -46,7 +46,7 @@ class EnipWire : public EnipDaemon {
   }
 };
 
-TEST_F(EnipWire, TheIdentityObjectReadByEthernetIp) {
+TEST_F(EnipDaemonWire, TheIdentityObjectReadByEthernetIp) {
   REQUIRE_ENIP_PARTNERS();
   start_3601();
   PartnerProcess p({"identity", target_});
@@ -68,7 +68,7 @@ TEST_F(EnipWire, TheIdentityObjectReadByEthernetIp) {
   }
 }
 
-TEST_F(EnipWire, ListIdentityIsAnsweredOnUdpAndTcp) {
+TEST_F(EnipDaemonWire, ListIdentityIsAnsweredOnUdpAndTcp) {
   REQUIRE_ENIP_PARTNERS();
   start_3601();
   for (const char* how : {"udp", "tcp"}) {
@@ -86,7 +86,7 @@ TEST_F(EnipWire, ListIdentityIsAnsweredOnUdpAndTcp) {
   }
 }
 
-TEST_F(EnipWire, AnOriginatorOutsideTheAllowListIsNotServed) {
+TEST_F(EnipDaemonWire, AnOriginatorOutsideTheAllowListIsNotServed) {
   start_3601("allow = [\"{SCANNER}\"]\n");
   EXPECT_EQ(list_identity_name(scanner_ip_), "stepmod 3601");
   EXPECT_EQ(list_identity_name(other_ip_), "") << "a datagram from outside the list is answered";
@@ -151,7 +151,7 @@ int tshark_count(const std::string& cap, const std::string& filter) {
   return rc == 0 ? std::stoi(out) : -1;
 }
 
-TEST_F(EnipWire, ACapturedSessionDecodesWithoutMalformedPacketsOrExpertErrors) {
+TEST_F(EnipDaemonWire, ACapturedSessionDecodesWithoutMalformedPacketsOrExpertErrors) {
   REQUIRE_ENIP_PARTNERS();
   std::string out;
   ASSERT_EQ(run_shell("tshark -v", &out), 0)
@@ -199,7 +199,7 @@ TEST_F(EnipWire, ACapturedSessionDecodesWithoutMalformedPacketsOrExpertErrors) {
 
 // A fuzz run: the mutation corpus (tests/enip/mutation_corpus.hpp, fixed seed) on TCP 44818,
 // UDP 44818 and UDP 2222 of the running daemon.
-TEST_F(EnipWire, FuzzedFramesOnTcpAndUdpNeitherCrashNorWriteTheImage) {
+TEST_F(EnipDaemonWire, FuzzedFramesOnTcpAndUdpNeitherCrashNorWriteTheImage) {
   start_3601();
   const auto& img = image_->raw();
   ImageWords before;
