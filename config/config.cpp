@@ -72,7 +72,7 @@ class Parser : ConfigReader {
     m.idle_timeout_ms =
         static_cast<unsigned>(get_int(t, p, config_key("modbus", "idle_timeout_ms")));
     parse_listen(t, config_key("modbus", "listen"), m.address, m.port);
-    if (t != nullptr) parse_allow(t, "modbus", m.allow);
+    if (t != nullptr) parse_allow(t, "modbus", m.allow, EmptyAllow::kRefused);
   }
 
   // [ethernetip] (docs/ethernetip-design.md), as [modbus]: every field set here.
@@ -86,7 +86,8 @@ class Parser : ConfigReader {
     e.rpi_min_us = static_cast<std::uint32_t>(get_int(t, p, min));
     e.rpi_max_us = static_cast<std::uint32_t>(get_int(t, p, max));
     parse_listen(t, config_key("ethernetip", "listen"), e.address, e.port);
-    if (t != nullptr) parse_allow(t, "ethernetip", e.allow);
+    // `allow = []` is the contract's own example for "any originator" (docs/interface.md 9).
+    if (t != nullptr) parse_allow(t, "ethernetip", e.allow, EmptyAllow::kMeansAny);
     if (e.rpi_max_us < e.rpi_min_us) {
       const toml::node* n = t != nullptr ? t->get(max.key) : nullptr;
       fail(n != nullptr ? n->source() : toml::source_region{}, "ethernetip.rpi_max_us",
@@ -123,12 +124,17 @@ class Parser : ConfigReader {
     port_out = static_cast<std::uint16_t>(port);
   }
 
+  // An empty list: refused where the key's only documented form is a non-empty list ([modbus]),
+  // any source where the contract writes `allow = []` for "any" ([ethernetip]).
+  enum class EmptyAllow { kRefused, kMeansAny };
+
   // allow = ["127.0.0.1", "10.0.0.0/8", ...] of a server's table: where peers may come from.
   void parse_allow(const toml::table* t, const std::string& table,
-                   std::vector<ipc::AllowNet>& allow) const {
+                   std::vector<ipc::AllowNet>& allow, EmptyAllow empty) const {
     const toml::node* n = t->get("allow");
     if (n == nullptr) return;
     const auto* list = n->as_array();
+    if (list != nullptr && list->empty() && empty == EmptyAllow::kMeansAny) return;
     if (list == nullptr || list->empty()) {
       fail(n->source(), table + ".allow",
            "must be a non-empty list of IPv4 addresses or networks, e.g. [\"127.0.0.1\", "

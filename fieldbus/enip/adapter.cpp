@@ -178,7 +178,8 @@ void Adapter::Impl::each_datagram(int fd, const char* what, Take&& take) noexcep
   }
 }
 
-// Class 1 O→T: a Run packet with new data is one seqlock write of the output words.
+// Class 1 O→T: a Run packet with new data is one seqlock write of the output words; every Run
+// packet is a PLC heartbeat.
 void Adapter::Impl::receive_io(Nanos now) noexcept {
   each_datagram(io_fd, "an I/O packet",
                 [&](std::uint32_t ip, std::span<const std::uint8_t> d, const sockaddr_in&) {
@@ -186,6 +187,8 @@ void Adapter::Impl::receive_io(Nanos now) noexcept {
                   if (r.outcome == OtOutcome::kRunWrite) {
                     assemblies.write_output(r.data);
                     counters.run_writes.fetch_add(1, std::memory_order_relaxed);
+                  } else if (r.outcome == OtOutcome::kRunRepeat) {
+                    assemblies.beat();
                   } else if (r.outcome == OtOutcome::kDropped) {
                     counters.io_dropped.fetch_add(1, std::memory_order_relaxed);
                   }

@@ -129,7 +129,7 @@ OtResult IoConnections::on_o_to_t(std::uint32_t from_ip, std::span<const std::ui
     return {OtOutcome::kIdle, {}};
   }
   left_run_ = false;
-  return new_data ? OtResult{OtOutcome::kRunWrite, p.data} : OtResult{OtOutcome::kRefresh, {}};
+  return new_data ? OtResult{OtOutcome::kRunWrite, p.data} : OtResult{OtOutcome::kRunRepeat, {}};
 }
 
 bool IoConnections::expire(std::int64_t now_ns) noexcept {

@@ -38,8 +38,11 @@ struct IoConnection {
 // What an O→T packet did.
 enum class OtOutcome {
   kDropped,   // unknown id, wrong sender, old sequence, malformed: nothing changes
-  kRunWrite,  // Run with new data: write `data` as one PLC write (and a heartbeat)
-  kRefresh,   // accepted (Run repeated, or a heartbeat): the timeout restarts, nothing to write
+  kRunWrite,   // Run with new data: write `data` as one PLC write (and a heartbeat)
+  // Run with the CIP sequence count repeated (the same data, written already): the PLC is alive
+  // and in Run, so a heartbeat (docs/interface.md 9: every accepted Run packet is one), no write.
+  kRunRepeat,
+  kRefresh,  // accepted from an input-only / listen-only connection: the timeout restarts
   kIdle,      // the owner's Idle: the PLC left Run
 };
 

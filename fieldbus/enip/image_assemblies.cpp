@@ -45,6 +45,10 @@ void ImageAssemblies::write_output(std::span<const std::uint8_t> bytes) noexcept
   stepmod_seq_write(&img_.output_seq, &img_.output_image, img_.word_bytes, img_.output_words,
                     words.data());
   // The adapter that writes is the PLC: its writes are its heartbeat.
+  beat();
+}
+
+void ImageAssemblies::beat() noexcept {
   __atomic_fetch_add(&img_.plc_heartbeat, 1u, __ATOMIC_RELEASE);
 }
 

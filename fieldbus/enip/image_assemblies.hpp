@@ -23,6 +23,8 @@ class ImageAssemblies : public AssemblyData {
   // thread never waits on the module).
   void read(std::uint32_t instance, std::span<std::uint8_t> out) noexcept override;
   void write_output(std::span<const std::uint8_t> bytes) noexcept override;
+  // A Run packet whose data was written already: the PLC's heartbeat alone.
+  void beat() noexcept;
 
  private:
   stepmod_image_t& img_;

@@ -67,7 +67,8 @@ TEST_F(EnipConnections, RunPacketsWriteOnceEachAndIdleIsTheDeadman) {
   OtResult r = table.on_o_to_t(kPlc, o_to_t(1, 1, true), 1 * kMs);
   ASSERT_EQ(r.outcome, OtOutcome::kRunWrite);
   EXPECT_EQ(r.data.size(), 16u);
-  EXPECT_EQ(table.on_o_to_t(kPlc, o_to_t(2, 1, true), 2 * kMs).outcome, OtOutcome::kRefresh);
+  // The same CIP count again: the data was written; the PLC is alive in Run (a heartbeat).
+  EXPECT_EQ(table.on_o_to_t(kPlc, o_to_t(2, 1, true), 2 * kMs).outcome, OtOutcome::kRunRepeat);
   EXPECT_EQ(table.on_o_to_t(kPlc, o_to_t(2, 2, true), 3 * kMs).outcome, OtOutcome::kDropped);
   EXPECT_EQ(table.on_o_to_t(kPlc, o_to_t(3, 2, true), 4 * kMs).outcome, OtOutcome::kRunWrite);
   EXPECT_EQ(table.identity_status(), 0x0061);  // owned, a connection in Run

@@ -58,6 +58,16 @@ TEST(EnipImageAssemblies, AWriteIsOneSeqlockWriteAndAHeartbeat) {
   EXPECT_EQ(img->plc_heartbeat, 1u);
 }
 
+// A Run packet repeating the last CIP count: the PLC's heartbeat, the words untouched.
+TEST(EnipImageAssemblies, ABeatIsAHeartbeatWithoutAWrite) {
+  auto img = image_of(2, 8);
+  ImageAssemblies a(*img);
+  a.beat();
+  a.beat();
+  EXPECT_EQ(img->plc_heartbeat, 2u);
+  EXPECT_EQ(img->output_seq, 0u);
+}
+
 TEST(EnipImageAssemblies, AReadDuringAWriteKeepsTheLastConsistentWords) {
   auto img = image_of(2, 8);
   ImageAssemblies a(*img);

@@ -41,6 +41,13 @@ rpi_max_us = 50000
   EXPECT_EQ(e.allow[1].mask, 0xFFFF0000u);
 }
 
+// The contract's own block writes `allow = []` for "any originator that can reach listen".
+TEST(ConfigEthernetIp, EmptyAllowListMeansAnySource) {
+  const std::string table = "[ethernetip]\nenabled = true\nallow = []\n";
+  EXPECT_EQ(summary(parse_config(std::string(kBase) + table, "t.toml").ethernetip),
+            "on 127.0.0.1:44818 allow 0 rpi 1000..100000");
+}
+
 TEST(ConfigEthernetIp, BadListenNamesTheKeyAndTheForm) {
   const std::string e = error_of("[ethernetip]\nlisten = \"localhost:44818\"\n");
   EXPECT_NE(e.find("test.toml"), std::string::npos) << e;
@@ -51,7 +58,7 @@ TEST(ConfigEthernetIp, BadListenNamesTheKeyAndTheForm) {
 }
 
 TEST(ConfigEthernetIp, BadAllowNamesTheKey) {
-  for (const char* bad : {"allow = []\n", "allow = [\"10.0.0.0/33\"]\n", "allow = \"any\"\n"}) {
+  for (const char* bad : {"allow = [\"10.0.0.0/33\"]\n", "allow = \"any\"\n", "allow = [1]\n"}) {
     const std::string e = error_of(std::string("[ethernetip]\n") + bad);
     EXPECT_NE(e.find("ethernetip.allow"), std::string::npos) << bad << ": " << e;
   }
