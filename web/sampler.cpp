@@ -7,6 +7,7 @@
 #include "registry/module_registry.hpp"
 #include "web/image_json.hpp"
 #include "web/reason.hpp"
+#include "web/unit_state.hpp"
 
 namespace stepmod::web {
 namespace {
@@ -80,6 +81,7 @@ std::string Sampler::batch_json() {
   for (unsigned u = 0; u < units; ++u) {
     nlohmann::json j = unit_json(type, last_in_, u);
     j["reason"] = reason_json(client_.raw(), u, registry::row_of(type).rules->accel_word_unit);
+    j["machine"] = unit_state_json(type, client_.read_unit_state(u));
     status.push_back(std::move(j));
   }
   const ipc::Health h = client_.read_health();
