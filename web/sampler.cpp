@@ -47,10 +47,12 @@ void Sampler::take_sample(std::int64_t t_us) {
   ImageWords in;
   if (!client_.read_inputs(in)) return;  // a writer held the sequence: skip this sample
   last_in_ = in;
-  Sample s{t_us, {0, 0}};
+  Sample s{t_us, {0, 0}, {0, 0}};
   const unsigned units = client_.shape().axes;
   for (unsigned u = 0; u < units && u < 2; ++u) {
-    s.pos[u] = registers_of(client_.type(), in, u).position;
+    const UnitRegisters r = registers_of(client_.type(), in, u);
+    s.pos[u] = r.position;
+    s.enc[u] = r.encoder;
   }
   pending_.push_back(s);
   samples_.fetch_add(1, std::memory_order_relaxed);
@@ -72,10 +74,16 @@ std::string Sampler::batch_json() {
   const unsigned units = client_.shape().axes;
   nlohmann::json t = nlohmann::json::array();
   nlohmann::json pos = nlohmann::json::array();
+  // The encoder samples, for the following error (position - encoder), where the module has an
+  // encoder input; null where it has none.
+  const bool encoder = client_.shape().terminals.encoder;
+  nlohmann::json enc = encoder ? nlohmann::json::array() : nlohmann::json(nullptr);
   for (unsigned u = 0; u < units; ++u) pos.push_back(nlohmann::json::array());
+  for (unsigned u = 0; u < units && encoder; ++u) enc.push_back(nlohmann::json::array());
   for (const Sample& s : pending_) {
     t.push_back(s.t_us);
     for (unsigned u = 0; u < units; ++u) pos[u].push_back(s.pos[u]);
+    for (unsigned u = 0; u < units && encoder; ++u) enc[u].push_back(s.enc[u]);
   }
   nlohmann::json status = nlohmann::json::array();
   for (unsigned u = 0; u < units; ++u) {
@@ -98,6 +106,7 @@ std::string Sampler::batch_json() {
   return nlohmann::json{{"type", "batch"},
                         {"t_us", t},
                         {"pos", pos},
+                        {"enc", enc},
                         {"status", status},
                         {"scan", client_.scan_counter()},
                         {"sim", sim_.state()},

@@ -57,7 +57,7 @@ class Machine:
     """A stepmodd on the simulated machine (an examples/*-sim.toml under a fresh name), the
     token file and a stepmod-web for it."""
 
-    def __init__(self, example, port, trace=False):
+    def __init__(self, example, port, trace=False, extra_axis=""):
         self.dir = tempfile.mkdtemp(prefix="stepmod-web-test-")
         self.name = "webt%d%d" % (os.getpid() % 100000, port % 100)
         with open(os.path.join(SRC, "examples", example)) as f:
@@ -66,6 +66,7 @@ class Machine:
         # This shared, loaded machine: the late-edge guard at its maximum (as the daemon tests).
         cfg = re.sub(r"(?m)^\[rt\]$", "[rt]\nlate_limit_us = 1000000", cfg)
         cfg = re.sub(r"(?m)^lag_limit_steps = .*$", "lag_limit_steps = 1000000", cfg)
+        cfg = cfg.replace("[[axis]]\n", "[[axis]]\n" + extra_axis, 1)  # the first axis' keys
         self.config = os.path.join(self.dir, "c.toml")
         with open(self.config, "w") as f:
             f.write(cfg)
@@ -383,13 +384,13 @@ class Web3601(unittest.TestCase):
         self.c.d.execute_script("command(0, 'force_input', {input: 'cw_limit', level: 1})")
         try:
             self.c.wait_message(r"^Axis 1: 3601-IE-02: .* — ")
-            wait_for(lambda: self.c.text("#unit-0 .sim-in[data-input=cw_limit] span") ==
-                     "cw_limit: forced 1", 5, "the page showing the forced limit")
+            wait_for(lambda: self.c.text("#unit-0 .sim-in[data-input=cw_limit] span")
+                     .endswith(", forced 1"), 5, "the page showing the forced limit")
         finally:
             release_button(self.c)
             self.c.click("#unit-0 .sim-in[data-input=cw_limit] .f-free")
-        wait_for(lambda: self.c.text("#unit-0 .sim-in[data-input=cw_limit] span") ==
-                 "cw_limit: free", 5, "the limit released from the page")
+        wait_for(lambda: self.c.text("#unit-0 .sim-in[data-input=cw_limit] span")
+                 .endswith(", free"), 5, "the limit released from the page")
         self.c.click("#unit-0 .b-reset")
         self.c.click("#release")
 
