@@ -550,7 +550,7 @@ class Web3202(unittest.TestCase):
         self.assertIn("Disable Channel", self.c.el("#unit-0 .cfg-msw").get_attribute("textContent"))
         self.assertEqual(self.c.el("#unit-0 .f-accel").get_attribute("min"), "1000")
         self.assertEqual(self.c.el("#unit-0 .f-accel").get_attribute("max"), "2000000")
-        self.assertIn("steps/s²", self.c.el("#unit-0 .ranges").get_attribute("textContent"))
+        self.assertIn("steps/s²", self.c.el("#unit-0 .mranges").get_attribute("textContent"))
         for unit in (0, 1):
             self.assertIn("Channel Disabled", bits_on(self.c, unit))
             self.c.configure_plain(unit)
