@@ -668,8 +668,6 @@ class Web3602(unittest.TestCase):
             xs = c.d.execute_script("return [Math.min(...state.xy.x), Math.max(...state.xy.x)]")
             self.assertLessEqual(xs[0], 0)
             self.assertGreaterEqual(xs[1], 1999)  # the circle's far side, 2 x 500 from its start
-            c.d.execute_script("document.getElementById('path').scrollIntoView()")
-            c.d.save_screenshot(screenshot_path("web-3602-xy.png"))
             c.click("#path .p-gpo0")
             c.wait_message(r"^gpo: done")
             c.click("#release")

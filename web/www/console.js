@@ -254,7 +254,9 @@ function showLease(holder) {
     say("the lease ended (expired or freed): the axes were stopped", true);
   }
   state.myLease = state.holding && mine;
-  $("lease").textContent = holder === 0 ? "free" :
+  // A daemon gone leaves its image frozen: the holder there is no news (showView says so too).
+  $("lease").textContent = state.daemon && state.daemon.gone ? "unknown: no live data" :
+    holder === 0 ? "free" :
     (mine ? (state.holding ? `held by this console (process ${holder})` :
                              `held by this console, another page (process ${holder})`) :
             `held by process ${holder}`);

@@ -40,7 +40,7 @@ function buildInputs(box, u, names, sim) {
 function inputText(line, forced, sim) {
   const name = INPUT_LABELS[line.name] || line.name;
   const wire = line.wired ? `level ${line.level ? 1 : 0}` : "not wired";
-  const act = line.used ? (line.active ? "ACTIVE" : "inactive") : "not used by the configuration";
+  const act = line.used ? (line.active ? "ACTIVE" : "inactive") : "not used (configuration)";
   const force = sim ? (line.name in forced ? `, forced ${forced[line.name]}` : ", free") : "";
   return `${name}: ${wire}, ${act}${force}`;
 }
