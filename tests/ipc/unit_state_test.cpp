@@ -17,11 +17,14 @@ namespace {
 constexpr ModuleShape k3602{ModuleType::k3602, 2, 2, 16, 16};
 
 TEST(UnitStateBlock, AtOffset592PlusFortyEightPerAxisUnderTheInputSeqlock) {
-  EXPECT_EQ(offsetof(stepmod_image_t, units), 592u);
-  EXPECT_EQ(offsetof(stepmod_image_t, units[1]), 640u);
-  EXPECT_EQ(offsetof(stepmod_unit_state_t, inputs), 4u);
-  EXPECT_EQ(offsetof(stepmod_unit_state_t, drive_enable), 8u);
-  EXPECT_EQ(offsetof(stepmod_unit_state_t, config_words), 16u);
+  // docs/interface.md 3.6: the blocks at 592 and 640, their fields at 0, 4, 8, 16.
+  const std::size_t offsets[][2] = {{offsetof(stepmod_image_t, units), 592},
+                                    {offsetof(stepmod_image_t, units[1]), 640},
+                                    {offsetof(stepmod_unit_state_t, inputs), 4},
+                                    {offsetof(stepmod_unit_state_t, drive_enable), 8},
+                                    {offsetof(stepmod_unit_state_t, config_words), 16},
+                                    {sizeof(stepmod_unit_state_t), 48}};
+  for (const auto& o : offsets) EXPECT_EQ(o[0], o[1]);
 
   ShmImage image("t-unit-" + std::to_string(::getpid()), k3602);
   Client client(image.name());
