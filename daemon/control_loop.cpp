@@ -21,6 +21,7 @@ ControlLoop::ControlLoop(const Parts& parts)
     : parts_(parts),
       supervisor_(parts.config.plc_timeout_ns),
       reasons_(parts.stack.shape().axes),
+      units_(parts.stack.shape(), parts.stack.backend()),
       lost_inputs_(parts.stack),
       enables_(parts.stack, parts.config, lost_inputs_, parts.trace),
       health_(parts.stack, parts.config, lost_inputs_, parts.trace),
@@ -102,6 +103,7 @@ void ControlLoop::scan(Nanos now) {
   doorbell_.ring_if_submitted();
   cpu_notice_.scan();
   reasons_.scan(personality, image);
+  units_.scan(personality, out, enables_.states(), image);
   // The machine as of this scan, before the status: a reader that sees "stopped" in the status
   // finds the panel showing the motor's last step, not the one of the loop's top.
   if (parts_.panel != nullptr) parts_.panel->publish();

@@ -18,6 +18,7 @@
 #include "daemon/lost_input_watch.hpp"
 #include "daemon/pulse_doorbell.hpp"
 #include "daemon/reason_publisher.hpp"
+#include "daemon/unit_state_publisher.hpp"
 #include "gpio/backend.hpp"
 #include "ipc/plc_supervisor.hpp"
 #include "ipc/shm_image.hpp"
@@ -70,8 +71,9 @@ class ControlLoop {
   ImageWords given_{};  // the output words the module last scanned (held while a drive gets ready)
   Nanos next_scan_ = 0;
   ipc::PlcSupervisor supervisor_;
-  LeaseKeeper lease_;        // docs/interface.md 3.5
-  ReasonPublisher reasons_;  // docs/interface.md 3.4
+  LeaseKeeper lease_;         // docs/interface.md 3.5
+  ReasonPublisher reasons_;   // docs/interface.md 3.4
+  UnitStatePublisher units_;  // docs/interface.md 3.6
   LostInputWatch lost_inputs_;
   DriveEnableFeed enables_;
   HealthWords health_;

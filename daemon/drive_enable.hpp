@@ -40,6 +40,7 @@ class DriveEnable {
   // Whether a drive asserted less than its delay ago is not ready yet (commands wait).
   bool holding(Nanos now) const noexcept;
   bool asserted(unsigned axis) const noexcept { return state_[axis].asserted; }
+  bool wired(unsigned axis) const noexcept { return axis < axes_.size() && axes_[axis].wired; }
   // When the axis' enable line last changed (the VCD's axis<N>.enable edge); 0 before that.
   Nanos changed_at(unsigned axis) const noexcept { return state_[axis].changed_at; }
   bool any_wired() const noexcept;

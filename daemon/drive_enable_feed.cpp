@@ -45,6 +45,14 @@ void DriveEnableFeed::scan(bool plc_lost, Nanos now) {
   }
 }
 
+std::array<UnitStatePublisher::Enable, 2> DriveEnableFeed::states() const noexcept {
+  std::array<UnitStatePublisher::Enable, 2> s{};
+  for (unsigned a = 0; a < stack_.shape().axes && a < s.size(); ++a) {
+    s[a] = {enable_.wired(a), enable_.wired(a) && enable_.asserted(a)};
+  }
+  return s;
+}
+
 void DriveEnableFeed::trace_release(Nanos now) noexcept {
   if (trace_ == nullptr) return;
   for (unsigned a = 0; a < stack_.shape().axes; ++a) {

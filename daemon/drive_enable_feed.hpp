@@ -6,6 +6,7 @@
 #include "config/config.hpp"
 #include "core/clock.hpp"
 #include "daemon/drive_enable.hpp"
+#include "daemon/unit_state_publisher.hpp"
 
 namespace stepmod::tools {
 
@@ -23,6 +24,8 @@ class DriveEnableFeed {
   bool holding(Nanos now) const noexcept { return enable_.holding(now); }
   // After each module scan.
   void scan(bool plc_lost, Nanos now);
+  // Each axis' enable line: wired, and asserted now (docs/interface.md 3.6).
+  std::array<UnitStatePublisher::Enable, 2> states() const noexcept;
   // After the control loop, as the daemon idles every output: the asserted enables' release.
   void trace_release(Nanos now) noexcept;
 

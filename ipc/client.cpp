@@ -144,6 +144,12 @@ stepmod_reason_t Client::read_reason(unsigned axis) const noexcept {
   return r;
 }
 
+std::optional<stepmod_unit_state_t> Client::read_unit_state(unsigned axis) const noexcept {
+  stepmod_unit_state_t u{};
+  if (axis >= shape_.axes || !stepmod_read_unit_state(img_, axis, &u)) return std::nullopt;
+  return u;
+}
+
 stepmod_image_t& Client::writable_image() {
   require_writable();
   return *img_;

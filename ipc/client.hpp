@@ -39,6 +39,9 @@ class Client {
   // The error reason of axis/channel `axis` (0-based; docs/interface.md 3.4), consistent with one
   // input publication; seq 0 and an empty text when none (or no consistent read).
   stepmod_reason_t read_reason(unsigned axis) const noexcept;
+  // What axis/channel `axis` holds beyond its words (docs/interface.md 3.6), consistent with one
+  // input publication; nullopt for no such axis or no consistent read.
+  std::optional<stepmod_unit_state_t> read_unit_state(unsigned axis) const noexcept;
 
   // Writes the first output_words words under the output seqlock (truncated to the word size).
   void write_outputs(const ImageWords& out);

@@ -73,6 +73,15 @@ void ShmImage::publish_inputs(const ImageWords& in, const Health& health) noexce
     }
     __atomic_store_n(&r.seq, reasons_[a].seq, __ATOMIC_RELAXED);
   }
+  for (unsigned a = 0; a < units_.size(); ++a) {
+    stepmod_unit_state_t& u = img_->units[a];
+    __atomic_store_n(&u.config_seq, units_[a].config_seq, __ATOMIC_RELAXED);
+    __atomic_store_n(&u.inputs, units_[a].inputs, __ATOMIC_RELAXED);
+    __atomic_store_n(&u.drive_enable, units_[a].drive_enable, __ATOMIC_RELAXED);
+    for (unsigned i = 0; i < STEPMOD_UNIT_CONFIG_WORDS; ++i) {
+      __atomic_store_n(&u.config_words[i], units_[a].config_words[i], __ATOMIC_RELAXED);
+    }
+  }
   health_ = health;
   stepmod_seq_write_end(&img_->input_seq, odd);
   __atomic_fetch_add(&img_->scan_counter, 1u, __ATOMIC_RELEASE);
@@ -132,6 +141,10 @@ namespace stepmod::ipc {
 
 void ShmImage::set_reason(unsigned axis, const stepmod_reason_t& reason) noexcept {
   if (axis < reasons_.size()) reasons_[axis] = reason;
+}
+
+void ShmImage::set_unit_state(unsigned axis, const stepmod_unit_state_t& state) noexcept {
+  if (axis < units_.size()) units_[axis] = state;
 }
 
 ShmImage::Lease ShmImage::lease() const noexcept {

@@ -68,6 +68,10 @@ class ShmImage {
   // next publish_inputs().
   void set_reason(unsigned axis, const stepmod_reason_t& reason) noexcept;
 
+  // Section 3.6: what axis `axis` (0-based, < 2) holds beyond its words, written under the input
+  // seqlock by the next publish_inputs().
+  void set_unit_state(unsigned axis, const stepmod_unit_state_t& state) noexcept;
+
   // Section 3.5: the commissioning lease as its holder wrote it.
   struct Lease {
     std::uint32_t holder = 0;  // pid, 0 = free
@@ -89,6 +93,7 @@ class ShmImage {
   stepmod_image_t* img_ = nullptr;
   Health health_;                              // as last published
   std::array<stepmod_reason_t, 2> reasons_{};  // written with the next publication
+  std::array<stepmod_unit_state_t, 2> units_{};  // the same (section 3.6)
 };
 
 }  // namespace stepmod::ipc

@@ -17,6 +17,9 @@
  *   image offset 448 + 64 * (axis - 1): the error reason of each axis (section 3.4,
  *                           docs/error-reasons.md), under the input seqlock.
  *   image offset 576..591: the commissioning lease (section 3.5, docs/commissioning.md).
+ *   image offset 592 + 48 * (axis - 1): what each axis holds beyond its words (section 3.6): the
+ *                           configuration words it took, its input lines, its drive enable;
+ *                           under the input seqlock.
  */
 #ifndef STEPMOD_IMAGE_H
 #define STEPMOD_IMAGE_H
@@ -76,7 +79,9 @@ enum stepmod_image_offset {
   STEPMOD_OFF_LEASE_HOLDER = 576, /* section 3.5 */
   STEPMOD_OFF_LEASE_SEQ = 580,
   STEPMOD_OFF_LEASE_EXPIRY = 584,
-  STEPMOD_OFF_END_OF_FIELDS = 592
+  STEPMOD_OFF_UNITS = 592, /* section 3.6: 48 bytes per axis, under the input seqlock */
+  STEPMOD_UNIT_STRIDE = 48,
+  STEPMOD_OFF_END_OF_FIELDS = 688
 };
 
 /* Daemon health flags (offset 416, docs/interface.md 3.3): a bit each, set while the condition
@@ -97,6 +102,26 @@ typedef struct stepmod_reason {
   uint32_t item;                  /* checklist item code, 0 = none */
   char text[STEPMOD_REASON_TEXT]; /* "3601-CE-05: Vp 500 is below Vs 1000", NUL-terminated */
 } stepmod_reason_t;
+
+/* Section 3.6: what an axis/channel holds beyond its words, for consoles and HMIs. Input bits
+ * are in the simulator panel's order (STEPMOD_IN_CAPTURE .. STEPMOD_IN_CCW_LIMIT, bit 0..5). */
+#define STEPMOD_UNIT_CONFIG_WORDS 8u
+#define STEPMOD_UNIT_LEVELS_SHIFT 0u /* electrical level of each input line now */
+#define STEPMOD_UNIT_WIRED_SHIFT 8u  /* the line is wired (the daemon's configuration has it) */
+#define STEPMOD_UNIT_USED_SHIFT 16u  /* the module's configuration uses the input */
+#define STEPMOD_UNIT_ACTIVE_SHIFT 24u /* used and at its active level (after the polarity) */
+#define STEPMOD_UNIT_ENABLE_WIRED (1u << 0)    /* a drive-enable line is wired */
+#define STEPMOD_UNIT_ENABLE_ASSERTED (1u << 1) /* and asserted now */
+typedef struct stepmod_unit_state {
+  uint32_t config_seq;   /* +1 each time the axis leaves configuration mode; 0 = none yet */
+  uint32_t inputs;       /* STEPMOD_UNIT_*_SHIFT fields */
+  uint32_t drive_enable; /* STEPMOD_UNIT_ENABLE_* bits */
+  uint32_t reserved;
+  /* The axis' output words (its 8 of the image, 16- or 32-bit values) of the last scan in
+   * configuration mode before config_seq's change: the configuration the axis took, unless its
+   * status shows a Configuration Error (then it holds none and these words were refused). */
+  int32_t config_words[STEPMOD_UNIT_CONFIG_WORDS];
+} stepmod_unit_state_t;
 
 /* 64 bytes of backplane words: 16-bit words (3601/3602) sit at 2*i, 32-bit words (3202) at 4*i. */
 typedef union stepmod_words {
@@ -136,6 +161,7 @@ typedef struct stepmod_image {
   uint32_t lease_holder;       /* section 3.5: pid of the tool holding the lease, 0 = free */
   uint32_t lease_seq;          /* +1 by the tool at each take */
   uint64_t lease_expiry_ns;    /* CLOCK_MONOTONIC; at most 500 ms ahead, renewed every 100 ms */
+  stepmod_unit_state_t units[2]; /* section 3.6: axis/channel 1 and 2 */
   uint8_t unused[STEPMOD_IMAGE_SIZE - STEPMOD_OFF_END_OF_FIELDS];
 } stepmod_image_t;
 
@@ -169,6 +195,8 @@ STEPMOD_STATIC_ASSERT(sizeof(stepmod_reason_t) == STEPMOD_REASON_STRIDE, "reason
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, lease_holder) == STEPMOD_OFF_LEASE_HOLDER, "lh");
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, lease_seq) == STEPMOD_OFF_LEASE_SEQ, "ls");
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, lease_expiry_ns) == STEPMOD_OFF_LEASE_EXPIRY, "le");
+STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, units) == STEPMOD_OFF_UNITS, "units");
+STEPMOD_STATIC_ASSERT(sizeof(stepmod_unit_state_t) == STEPMOD_UNIT_STRIDE, "unit stride");
 STEPMOD_STATIC_ASSERT(offsetof(stepmod_image_t, unused) == STEPMOD_OFF_END_OF_FIELDS, "end");
 
 /* ---------------------------------------------------------------------------------------------
@@ -326,6 +354,28 @@ static inline int stepmod_read_reason(const stepmod_image_t* im, unsigned axis,
       out->text[STEPMOD_REASON_TEXT - 1] = '\0';
       return 1;
     }
+  }
+  return 0;
+}
+/* Section 3.6: the unit-state block of axis `axis` (0-based) as of one input publication.
+ * Returns 0 if a write overlapped every attempt. */
+static inline int stepmod_read_unit_state(const stepmod_image_t* im, unsigned axis,
+                                          stepmod_unit_state_t* out) {
+  unsigned t = 0, i = 0;
+  if (axis >= 2u) return 0;
+  for (t = 0; t < 1000u; ++t) {
+    const stepmod_unit_state_t* u = &im->units[axis];
+    if (t > 0 && (t % 32u) == 0u) sched_yield();
+    const uint32_t s0 = __atomic_load_n(&im->input_seq, __ATOMIC_ACQUIRE);
+    if (s0 & 1u) continue;
+    out->config_seq = __atomic_load_n(&u->config_seq, __ATOMIC_ACQUIRE);
+    out->inputs = __atomic_load_n(&u->inputs, __ATOMIC_ACQUIRE);
+    out->drive_enable = __atomic_load_n(&u->drive_enable, __ATOMIC_ACQUIRE);
+    out->reserved = 0;
+    for (i = 0; i < STEPMOD_UNIT_CONFIG_WORDS; ++i) {
+      out->config_words[i] = __atomic_load_n(&u->config_words[i], __ATOMIC_ACQUIRE);
+    }
+    if (__atomic_load_n(&im->input_seq, __ATOMIC_RELAXED) == s0) return 1;
   }
   return 0;
 }

@@ -59,6 +59,17 @@ class Personality {
     bool estop = false;
   };
   virtual DriveState drive_state(unsigned axis) const noexcept = 0;
+
+  // The input lines of axis `axis` (0-based) as the module sees them, bit n = InputLine n
+  // (capture, external, home, E-stop, CW, CCW limit): the electrical level now, whether the
+  // configuration in force uses the input, and whether it is active (used, at its active level).
+  // For a console's inputs panel (docs/interface.md 3.6).
+  struct InputLines {
+    std::uint16_t levels = 0;
+    std::uint16_t used = 0;
+    std::uint16_t active = 0;
+  };
+  virtual InputLines input_lines(unsigned axis) const noexcept = 0;
 };
 
 // The personality of each module type is made by its registry row (registry/module_registry.hpp).

@@ -58,8 +58,15 @@ plc::Outcome Controls::run(const nlohmann::json& req) {
         u, static_cast<std::int32_t>(request_int(req, "position", -2'000'000'000, 2'000'000'000)));
   }
   if (cmd == "configure") {
+    // The module checks the timeout's range (3602-CFG); a word it has not is refused here.
+    const std::int64_t timeout =
+        req.contains("homing_timeout") ? request_int(req, "homing_timeout", 0, 32767) : 0;
+    if (timeout != 0 && !has_homing_timeout()) {
+      throw std::invalid_argument("this module has no homing timeout: homing_timeout must be 0");
+    }
     return configure(u, config_bits(req),
-                     static_cast<std::int32_t>(request_int(req, "start_speed", 0, 2'000'000'000)));
+                     static_cast<std::int32_t>(request_int(req, "start_speed", 0, 2'000'000'000)),
+                     static_cast<std::int16_t>(timeout));
   }
   if (std::optional<plc::Outcome> o = module_command(cmd, u, req)) return *o;
   throw std::invalid_argument("unknown command '" + cmd + "'");

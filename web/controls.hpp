@@ -35,8 +35,13 @@ class Controls {
   // The configuration bits as one 32-bit value: MSW << 16 | LSW on the 3601/3602 (the request's
   // "msw" and "lsw"), the configuration DINT on the 3202 ("bits").
   virtual std::uint32_t config_bits(const nlohmann::json& req) const;
-  virtual plc::Outcome configure(unsigned u, std::uint32_t bits, std::int32_t start_speed) = 0;
+  // `homing_timeout_s`: the 3602's homing timeout word (0: none); the other modules have no
+  // such word, and a request that sets one is refused before this.
+  virtual plc::Outcome configure(unsigned u, std::uint32_t bits, std::int32_t start_speed,
+                                 std::int16_t homing_timeout_s) = 0;
   virtual unsigned units() const = 0;
+  // Whether the configuration has a homing timeout word (the 3602's).
+  virtual bool has_homing_timeout() const { return false; }
   // A command only this module has (the 3602's "path" and "gpo"); nullopt: none such.
   virtual std::optional<plc::Outcome> module_command(const std::string& cmd, unsigned u,
                                                      const nlohmann::json& req) {

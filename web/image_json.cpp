@@ -44,7 +44,8 @@ nlohmann::json module_json(ModuleType type) {
             {"accel_unit", per_s2 ? "steps/s²" : "steps/ms/s"},
             {"accel_default", per_s2 ? 100'000 : 100},
             {"target_min", r.target_min},
-            {"target_max", r.target_max}}}};
+            {"target_max", r.target_max},
+            {"homing_timeout_max", r.has_homing_timeout ? r.homing_timeout_max_s : 0}}}};
 }
 
 nlohmann::json hello_json(const std::string& name, ModuleType type) {

@@ -1,5 +1,5 @@
 #pragma once
-// The console row of module type `T` (web/module_views.hpp), the same for every type: its four
+// The console row of module type `T` (web/module_views.hpp), the same for every type: its five
 // functions are ViewOf<T>'s, which the type's folder defines (module_types/mXXXX/view_XXXX.cpp,
 // as `template <> UnitRegisters ViewOf<ModuleType::kXXXX>::registers(...)`). A module type adds
 // no row of its own: module_types/CMakeLists.txt lists kViewOf<T> for every type, and includes the
@@ -17,6 +17,7 @@ struct ViewOf {
   static UnitRegisters registers(const ImageWords& in, unsigned unit);
   static nlohmann::json status_words(const ImageWords& in, unsigned unit);
   static nlohmann::json config_bits();
+  static nlohmann::json config_of(const ImageWords& words);
   static std::unique_ptr<Controls> make_controls(plc::Port& port);
 };
 
@@ -33,10 +34,16 @@ struct ViewOf {
   template <>                                                          \
   nlohmann::json ViewOf<T>::config_bits();                             \
   template <>                                                          \
+  nlohmann::json ViewOf<T>::config_of(const ImageWords&);              \
+  template <>                                                          \
   std::unique_ptr<Controls> ViewOf<T>::make_controls(plc::Port&)
 
 template <ModuleType T>
-inline constexpr ModuleView kViewOf{T, ViewOf<T>::registers, ViewOf<T>::status_words,
-                                    ViewOf<T>::config_bits, ViewOf<T>::make_controls};
+inline constexpr ModuleView kViewOf{T,
+                                    ViewOf<T>::registers,
+                                    ViewOf<T>::status_words,
+                                    ViewOf<T>::config_bits,
+                                    ViewOf<T>::config_of,
+                                    ViewOf<T>::make_controls};
 
 }  // namespace stepmod::web

@@ -24,6 +24,10 @@ struct ModuleView {
   nlohmann::json (*status_words)(const ImageWords& in, unsigned unit);
   // The configuration bits by name, as the page's form groups them ({"msw": ..., "lsw": ...}).
   nlohmann::json (*config_bits)();
+  // The configuration a unit took, from its 8 output words of its last configuration scan
+  // (docs/interface.md 3.6; word 0 = the unit's first): the form's fields ({"msw", "lsw"} or
+  // {"bits"}, "start_speed", the 3602's "homing_timeout").
+  nlohmann::json (*config_of)(const ImageWords& words);
   // The controls of the module behind `port` (module_types/mXXXX/view_XXXX.cpp).
   std::unique_ptr<Controls> (*make_controls)(plc::Port& port);
 };

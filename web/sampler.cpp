@@ -7,6 +7,7 @@
 #include "registry/module_registry.hpp"
 #include "web/image_json.hpp"
 #include "web/reason.hpp"
+#include "web/unit_state.hpp"
 
 namespace stepmod::web {
 namespace {
@@ -46,10 +47,12 @@ void Sampler::take_sample(std::int64_t t_us) {
   ImageWords in;
   if (!client_.read_inputs(in)) return;  // a writer held the sequence: skip this sample
   last_in_ = in;
-  Sample s{t_us, {0, 0}};
+  Sample s{t_us, {0, 0}, {0, 0}};
   const unsigned units = client_.shape().axes;
   for (unsigned u = 0; u < units && u < 2; ++u) {
-    s.pos[u] = registers_of(client_.type(), in, u).position;
+    const UnitRegisters r = registers_of(client_.type(), in, u);
+    s.pos[u] = r.position;
+    s.enc[u] = r.encoder;
   }
   pending_.push_back(s);
   samples_.fetch_add(1, std::memory_order_relaxed);
@@ -71,15 +74,22 @@ std::string Sampler::batch_json() {
   const unsigned units = client_.shape().axes;
   nlohmann::json t = nlohmann::json::array();
   nlohmann::json pos = nlohmann::json::array();
+  // The encoder samples, for the following error (position - encoder), where the module has an
+  // encoder input; null where it has none.
+  const bool encoder = client_.shape().terminals.encoder;
+  nlohmann::json enc = encoder ? nlohmann::json::array() : nlohmann::json(nullptr);
   for (unsigned u = 0; u < units; ++u) pos.push_back(nlohmann::json::array());
+  for (unsigned u = 0; u < units && encoder; ++u) enc.push_back(nlohmann::json::array());
   for (const Sample& s : pending_) {
     t.push_back(s.t_us);
     for (unsigned u = 0; u < units; ++u) pos[u].push_back(s.pos[u]);
+    for (unsigned u = 0; u < units && encoder; ++u) enc[u].push_back(s.enc[u]);
   }
   nlohmann::json status = nlohmann::json::array();
   for (unsigned u = 0; u < units; ++u) {
     nlohmann::json j = unit_json(type, last_in_, u);
     j["reason"] = reason_json(client_.raw(), u, registry::row_of(type).rules->accel_word_unit);
+    j["machine"] = unit_state_json(type, client_.read_unit_state(u));
     status.push_back(std::move(j));
   }
   const ipc::Health h = client_.read_health();
@@ -96,6 +106,7 @@ std::string Sampler::batch_json() {
   return nlohmann::json{{"type", "batch"},
                         {"t_us", t},
                         {"pos", pos},
+                        {"enc", enc},
                         {"status", status},
                         {"scan", client_.scan_counter()},
                         {"sim", sim_.state()},

@@ -50,6 +50,7 @@ class Sampler {
   struct Sample {
     std::int64_t t_us;
     std::int64_t pos[2];
+    std::int64_t enc[2];  // the encoder registers (0 on a module without encoder input)
   };
   void run();
   void take_sample(std::int64_t t_us);

@@ -212,9 +212,9 @@ int Server::logout(mg_connection* c) {
 }
 
 int Server::serve_file(mg_connection* c, const std::string& uri) {
-  static const std::set<std::string> kFiles = {"/index.html", "/console.js",   "/plot.js",
-                                               "/style.css",  "/reasons.js",   "/path.js",
-                                               "/inputs.js",  "/picture.html", "/picture.js"};
+  static const std::set<std::string> kFiles = {
+      "/index.html", "/console.js", "/plot.js",   "/style.css",    "/reasons.js",
+      "/path.js",    "/inputs.js",  "/config.js", "/picture.html", "/picture.js"};
   const std::string path = uri == "/" ? "/index.html" : uri;
   if (kFiles.count(path) == 0) return respond(c, 404, "text/plain", "not found\n");
   return respond(c, 200, mime_of(path), read_file(opt_.www_dir + path));

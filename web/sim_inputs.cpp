@@ -8,9 +8,7 @@
 
 namespace stepmod::web {
 namespace {
-// In the panel's order (STEPMOD_IN_*), named as stepmodctl panel names them.
-constexpr std::array<std::string_view, 6> kInputs = {"capture", "external", "home",
-                                                     "estop",   "cw_limit", "ccw_limit"};
+constexpr const auto& kInputs = kInputNames;
 }  // namespace
 
 SimInputs::SimInputs(const std::string& name) {

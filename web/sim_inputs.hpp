@@ -4,13 +4,20 @@
 // which level, the outputs (step/CW, dir/CCW, GPO), and forces or releases an input as
 // `stepmodctl panel force|release` does. Without the panel (real hardware) there is nothing to
 // show and a force is refused.
+#include <array>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 
 #include "ipc/sim_panel.hpp"
 
 namespace stepmod::web {
+
+// The inputs of an axis in the panel's order (STEPMOD_IN_*, InputLine 0..5), named as stepmodctl
+// panel names them.
+inline constexpr std::array<std::string_view, 6> kInputNames = {"capture", "external", "home",
+                                                                "estop",   "cw_limit", "ccw_limit"};
 
 class SimInputs {
  public:

@@ -74,6 +74,9 @@ class Axis {
   DriveState drive_state() const noexcept {
     return {st_.configured, config_mode_, st_.estop_active()};
   }
+  // The input lines as the axis sees them: electrical levels, and which the configuration uses
+  // (for a console's inputs panel; the active states are in the status).
+  const InputBank& inputs() const noexcept { return st_.inputs; }
 
   // ---- Coordinated motion (the 3602's interpolated moves: module/m3602/interpolated_move.hpp).
   // A coordinator outside the axis starts the motion on this axis' MotionPort, one part of a

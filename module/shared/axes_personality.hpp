@@ -56,6 +56,19 @@ class AxesPersonality : public Personality {
     return {d.configured && !disabled, d.configuration_mode, d.estop};
   }
 
+  InputLines input_lines(unsigned axis) const noexcept override {
+    if (axis >= kAxes) return {};
+    const InputBank& b = axes_[axis].axis.inputs();
+    InputLines l;
+    l.active = b.active_bits();
+    for (unsigned i = 0; i < kPanelInputs; ++i) {
+      const auto line = static_cast<InputLine>(i);
+      if (b.level(line)) l.levels |= static_cast<std::uint16_t>(1u << i);
+      if (b.used(line)) l.used |= static_cast<std::uint16_t>(1u << i);
+    }
+    return l;
+  }
+
  protected:
   // One motion port per axis, in axis order.
   template <typename... Motion>

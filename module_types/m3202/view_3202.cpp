@@ -19,7 +19,7 @@ class Controls3202 final : public TwoUnitControls<plc::Plc3202> {
   std::uint32_t config_bits(const nlohmann::json& req) const override {
     return static_cast<std::uint32_t>(request_int(req, "bits", 0, 0x7FFFFFFF));
   }
-  plc::Outcome configure(unsigned u, std::uint32_t bits, std::int32_t vs) override {
+  plc::Outcome configure(unsigned u, std::uint32_t bits, std::int32_t vs, std::int16_t) override {
     return plc_.configure(u, bits, vs);
   }
 };
@@ -42,6 +42,13 @@ nlohmann::json ViewOf<ModuleType::k3202>::status_words(const ImageWords& in, uns
 template <>
 nlohmann::json ViewOf<ModuleType::k3202>::config_bits() {
   return {{"dint", table_json(words::m3202::kConfigBits)}};
+}
+
+template <>
+nlohmann::json ViewOf<ModuleType::k3202>::config_of(const ImageWords& w) {
+  namespace ow = words::m3202::out_word;
+  return {{"bits", static_cast<std::uint32_t>(w.w[ow::kCommand])},
+          {"start_speed", w.w[ow::kTarget]}};
 }
 
 template <>

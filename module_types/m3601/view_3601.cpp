@@ -27,7 +27,7 @@ class Controls3601 final : public Controls {
   plc::Outcome stop(unsigned) override { return plc_.immediate_stop(); }
   plc::Outcome reset(unsigned) override { return plc_.reset_errors(); }
   plc::Outcome preset(unsigned, std::int32_t p) override { return plc_.preset_position(p); }
-  plc::Outcome configure(unsigned, std::uint32_t bits, std::int32_t vs) override {
+  plc::Outcome configure(unsigned, std::uint32_t bits, std::int32_t vs, std::int16_t) override {
     return plc_.configure(static_cast<std::uint16_t>(bits >> 16),
                           static_cast<std::uint16_t>(bits & 0xFFFFu), vs);
   }
@@ -56,6 +56,15 @@ template <>
 nlohmann::json ViewOf<ModuleType::k3601>::config_bits() {
   return {{"msw", table_json(words::m3601::kConfigMswBits)},
           {"lsw", table_json(words::m3601::kConfigLswBits)}};
+}
+
+template <>
+nlohmann::json ViewOf<ModuleType::k3601>::config_of(const ImageWords& w) {
+  namespace ow = words::m3601::out_word;
+  const auto vs = words::decode_3601(w.w[ow::kTargetMsw], w.w[ow::kTargetLsw]);
+  return {{"msw", w.w[ow::kMsw] & 0xFFFF},
+          {"lsw", w.w[ow::kLsw] & 0xFFFF},
+          {"start_speed", vs ? nlohmann::json(*vs) : nlohmann::json(nullptr)}};
 }
 
 template <>

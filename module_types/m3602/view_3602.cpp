@@ -29,10 +29,12 @@ class Controls3602 final : public TwoUnitControls<plc::Plc3602> {
     return std::nullopt;
   }
 
-  plc::Outcome configure(unsigned u, std::uint32_t bits, std::int32_t vs) override {
+  plc::Outcome configure(unsigned u, std::uint32_t bits, std::int32_t vs,
+                         std::int16_t homing_timeout_s) override {
     return plc_.configure(u, static_cast<std::uint16_t>(bits >> 16),
-                          static_cast<std::uint16_t>(bits & 0xFFFFu), vs);
+                          static_cast<std::uint16_t>(bits & 0xFFFFu), vs, homing_timeout_s);
   }
+  bool has_homing_timeout() const override { return true; }
 
  private:
   plc::Interp3602 interp_;
@@ -57,6 +59,16 @@ template <>
 nlohmann::json ViewOf<ModuleType::k3602>::config_bits() {
   return {{"msw", table_json(words::m3602::kConfigMswBits)},
           {"lsw", table_json(words::m3602::kConfigLswBits)}};
+}
+
+template <>
+nlohmann::json ViewOf<ModuleType::k3602>::config_of(const ImageWords& w) {
+  namespace ow = words::m3602::out_word;
+  return {
+      {"msw", w.w[ow::kMsw] & 0xFFFF},
+      {"lsw", w.w[ow::kLsw] & 0xFFFF},
+      {"start_speed", words::decode_3602(w.w[ow::kStartingSpeedMsw], w.w[ow::kStartingSpeedLsw])},
+      {"homing_timeout", w.w[ow::kHomingTimeout]}};
 }
 
 template <>

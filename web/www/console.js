@@ -50,50 +50,6 @@ function command(unit, cmd, extra) {
   }
 }
 
-function configBits(box, bits, prefix) {
-  for (const b of bits) {
-    if (b.name === "Configuration Mode") continue; // added by the plc/ library
-    const l = document.createElement("label");
-    const c = b.width > 1 ? fieldSelect(b) : document.createElement("input");
-    if (!(b.width > 1)) c.type = "checkbox";
-    c.dataset.bit = b.bit; c.className = prefix;
-    l.appendChild(c); l.appendChild(document.createTextNode(" " + b.name));
-    box.appendChild(l);
-  }
-}
-
-// A field of several bits: every value, named as the manual's name says ("(1 = limit,
-// 2 = E-stop)"); 0 is "unused", a value the name does not give is reserved (a Configuration
-// Error: the module's configuration check says which item).
-function fieldSelect(b) {
-  const names = { 0: "unused" };
-  const m = /\(([^)]*)\)/.exec(b.name);
-  if (m) for (const part of m[1].split(",")) {
-    const kv = /^\s*(\d+)\s*=\s*(.+?)\s*$/.exec(part);
-    if (kv) names[kv[1]] = kv[2];
-  }
-  const sel = document.createElement("select");
-  for (let v = 0; v < (1 << b.width); v++) {
-    const o = document.createElement("option");
-    o.value = v; o.textContent = `${v}: ${names[v] || "reserved"}`;
-    sel.appendChild(o);
-  }
-  return sel;
-}
-
-function wordOf(root, cls) {
-  let w = 0;
-  for (const c of root.querySelectorAll("input." + cls)) if (c.checked) w |= 1 << c.dataset.bit;
-  for (const c of root.querySelectorAll("select." + cls)) w |= parseInt(c.value, 10) << c.dataset.bit;
-  return w;
-}
-
-// The configuration as the module takes it: MSW and LSW (3601, 3602) or one DINT (3202).
-function configWords(root) {
-  if (state.module.config_bits.dint) return { bits: wordOf(root, "cd") >>> 0 };
-  return { msw: wordOf(root, "cm"), lsw: wordOf(root, "cl") };
-}
-
 function jogButton(root, u, dir) {
   const b = root.querySelector(".b-jog-" + dir);
   const press = (e) => {
@@ -126,8 +82,8 @@ function wireControls(root, u, ranges) {
   click(".b-stop", () => command(u, "stop"));
   click(".b-reset", () => command(u, "reset"));
   click(".b-preset", () => command(u, "preset", { position: num(root, ".f-preset") }));
-  click(".b-config", () => command(u, "configure", Object.assign(configWords(root),
-                                                    { start_speed: num(root, ".f-vs") })));
+  click(".b-config", () => command(u, "configure", configRequest(root)));
+  click(".b-readback", () => readBack(state.units[u]));
   jogButton(root, u, "cw"); jogButton(root, u, "ccw");
   root.querySelector(".f-speed").max = ranges.speed_max;
   for (const c of [".f-accel", ".f-decel"]) {
@@ -138,11 +94,8 @@ function wireControls(root, u, ranges) {
   for (const c of root.querySelectorAll(".accel-unit")) c.textContent = ranges.accel_unit;
   const target = root.querySelector(".f-target");
   target.min = ranges.target_min; target.max = ranges.target_max;
-  const vs = root.querySelector(".f-vs");
-  vs.min = ranges.starting_speed_min; vs.max = ranges.starting_speed_max;
-  root.querySelector(".ranges").textContent =
-    `ranges: starting speed ${ranges.starting_speed_min}..${ranges.starting_speed_max} steps/s, ` +
-    `speed ..${ranges.speed_max} steps/s, accel/decel ${ranges.accel_min}..${ranges.accel_max} ` +
+  root.querySelector(".mranges").textContent =
+    `ranges: speed ..${ranges.speed_max} steps/s, accel/decel ${ranges.accel_min}..${ranges.accel_max} ` +
     `${ranges.accel_unit}, target ${ranges.target_min}..${ranges.target_max}`;
 }
 
@@ -163,12 +116,7 @@ function buildUnits(hello) {
     const root = $("unit-template").content.firstElementChild.cloneNode(true);
     root.id = "unit-" + u;
     root.querySelector(".unit-title").textContent = `${word} ${u + 1}`;
-    const cfg = hello.module.config_bits;
-    if (cfg.dint) configBits(root.querySelector(".cfg-msw"), cfg.dint, "cd");
-    else {
-      configBits(root.querySelector(".cfg-msw"), cfg.msw, "cm");
-      configBits(root.querySelector(".cfg-lsw"), cfg.lsw, "cl");
-    }
+    buildConfigForm(root, hello.module);
     wireControls(root, u, hello.module.ranges);
     main.appendChild(root);
     state.units.push({ root: root, plot: new LivePlot(root.querySelector("canvas"), 5, hello.module.ranges.speed_max) });
@@ -183,6 +131,14 @@ function displayUnits() {
   return { spu: spu > 0 ? spu : 1, name: $("uname").value || "step" };
 }
 
+// The following error where the module took a configuration with the encoder: the position
+// less the encoder in steps (the console's own setting: encoder counts per step).
+function followingError(unit, u, b) {
+  if (!b.enc || !b.enc[u] || !encoderConfigured(unit)) return null;
+  const cps = parseFloat($("cps").value) > 0 ? parseFloat($("cps").value) : 1;
+  return b.pos[u].map((p, k) => p - b.enc[u][k] / cps);
+}
+
 function showInUnits(root, steps) {
   const u = displayUnits();
   const text = `${+(steps / u.spu).toFixed(4)} ${u.name}`;
@@ -191,7 +147,7 @@ function showInUnits(root, steps) {
 }
 
 function loadDisplayUnits() {
-  for (const id of ["spu", "uname"]) {
+  for (const id of ["spu", "uname", "cps"]) {
     const saved = localStorage.getItem("stepmod." + id);
     if (saved !== null) $(id).value = saved;
     $(id).addEventListener("change", () => localStorage.setItem("stepmod." + id, $(id).value));
@@ -250,17 +206,20 @@ function showBatch(b) {
   }
   b.status.forEach((s, u) => {
     const unit = state.units[u]; if (!unit) return;
-    unit.plot.push(b.t_us, b.pos[u]);
+    showConfig(unit, s.machine, s.words);
+    unit.plot.push(b.t_us, b.pos[u], followingError(unit, u, b));
     const r = unit.root;
     r.querySelector(".pos").textContent = s.position;
     showInUnits(r, s.position);
     r.querySelector(".enc").textContent = state.module.has_encoder ? s.encoder : "— (no encoder input)";
     r.querySelector(".cap").textContent = s.capture;
     r.querySelector(".speed").textContent = Math.round(unit.plot.lastSpeed());
+    const fe = unit.plot.lastFollowingError();
+    r.querySelector(".ferr").textContent = fe === null ? "— (no encoder configured)" : fe.toFixed(1);
     showReason(r.querySelector(".reason"), state.reasons, s.reason, reasonActive(s.words, s.reason));
     newReason(u, s.reason);
     showWords(r.querySelector(".words"), s.words);
-    showSim(r.querySelector(".sim"), u, b.sim);
+    showInputs(r.querySelector(".sim"), u, s.machine, b.sim);
   });
   $("health").textContent = `${b.health.names} (16#${b.health.flags.toString(16)})`;
   $("plc").textContent = b.plc.stale ? "heartbeat stale" :
@@ -295,7 +254,9 @@ function showLease(holder) {
     say("the lease ended (expired or freed): the axes were stopped", true);
   }
   state.myLease = state.holding && mine;
-  $("lease").textContent = holder === 0 ? "free" :
+  // A daemon gone leaves its image frozen: the holder there is no news (showView says so too).
+  $("lease").textContent = state.daemon && state.daemon.gone ? "unknown: no live data" :
+    holder === 0 ? "free" :
     (mine ? (state.holding ? `held by this console (process ${holder})` :
                              `held by this console, another page (process ${holder})`) :
             `held by process ${holder}`);

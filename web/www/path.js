@@ -122,6 +122,7 @@ function buildPath(main) {
     const req = pathRequest(root);
     const sx = state.lastPos ? state.lastPos[0] : 0, sy = state.lastPos ? state.lastPos[1] : 0;
     plot.plan = plannedPath(req, sx, sy); plot.redraw();
+    state.lastUnit = 0; // the reply's reason is axis 1's (a path is axis 1's command)
     if (!send(req)) say("path: NOT SENT: no connection to stepmod-web", true);
   });
   root.querySelector(".b-path-stop").addEventListener("click", () => command(0, "stop"));

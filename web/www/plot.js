@@ -1,4 +1,5 @@
-// A small canvas plotter for the live page: position and speed of one axis over the last
+// A small canvas plotter for the live page: position, speed and (where an encoder is configured)
+// the following error of one axis over the last
 // `seconds`, redrawn at most once per animation frame. Chosen over Chart.js because the page
 // appends 1,000 samples a second to a fixed time window and redraws 20+ times a second: two
 // polylines on a canvas do exactly that, with no animation, parsing or decimation to configure.
@@ -13,7 +14,7 @@ class LivePlot {
   constructor(canvas, seconds, speedMax) {
     this.canvas = canvas;
     this.span = seconds * 1e6; // µs
-    this.t = []; this.pos = []; this.speed = [];
+    this.t = []; this.pos = []; this.speed = []; this.ferr = [];
     this.pending = false;
     this.speedMax = speedMax || MAX_SPEED;
     this.breakAt = -Infinity; // time of the last jump no motor makes (a preset, a configuration)
@@ -34,23 +35,30 @@ class LivePlot {
     return Math.abs(v) > MAX_SPEED ? 0 : v;
   }
 
-  push(ts, ps) {
+  // `fe`: the following error of each sample (position - encoder, steps), or null (no encoder
+  // configured: the trace is cleared).
+  push(ts, ps, fe) {
+    if (!fe) this.ferr = [];
     for (let k = 0; k < ts.length; k++) {
       const n = this.t.length;
       // A step between two samples faster than the module can move is a preset or a
       // configuration's zero: the speed's window starts after it.
       if (n && Math.abs(ps[k] - this.pos[n - 1]) > this.speedMax * (ts[k] - this.t[n - 1]) * 1.1e-6 + 8) this.breakAt = ts[k];
       this.t.push(ts[k]); this.pos.push(ps[k]);
+      if (fe) this.ferr.push(fe[k]);
       this.speed.push(LivePlot.slope(this.t, this.pos, n, SPEED_WINDOW_US, this.breakAt));
     }
     const cut = this.t.length ? this.t[this.t.length - 1] - this.span : 0;
     let drop = 0;
     while (drop < this.t.length && this.t[drop] < cut) drop++;
     if (drop) { this.t.splice(0, drop); this.pos.splice(0, drop); this.speed.splice(0, drop); }
+    // The following error's samples are the last ones of the window (fewer after a clear).
+    if (this.ferr.length > this.t.length) this.ferr.splice(0, this.ferr.length - this.t.length);
     if (!this.pending) { this.pending = true; requestAnimationFrame(() => this.draw()); }
   }
 
   lastSpeed() { return this.speed.length ? this.speed[this.speed.length - 1] : 0; }
+  lastFollowingError() { return this.ferr.length ? this.ferr[this.ferr.length - 1] : null; }
 
   static range(a) {
     let lo = Infinity, hi = -Infinity;
@@ -60,11 +68,12 @@ class LivePlot {
     return [lo, hi];
   }
 
+  // `ys` are the values of the last ys.length samples.
   line(ctx, ys, range, x0, w, h, color) {
-    const t1 = this.t[this.t.length - 1], t0 = t1 - this.span;
+    const t1 = this.t[this.t.length - 1], t0 = t1 - this.span, off = this.t.length - ys.length;
     ctx.strokeStyle = color; ctx.lineWidth = 1.5; ctx.beginPath();
     for (let i = 0; i < ys.length; i++) {
-      const x = x0 + (this.t[i] - t0) / this.span * w;
+      const x = x0 + (this.t[i + off] - t0) / this.span * w;
       const y = 10 + (1 - (ys[i] - range[0]) / (range[1] - range[0])) * (h - 20);
       if (i) ctx.lineTo(x, y); else ctx.moveTo(x, y);
     }
@@ -110,6 +119,15 @@ class LivePlot {
     }
     this.line(ctx, this.pos, pr, x0, w, h, "#1565c0");
     this.line(ctx, this.speed, sr, x0, w, h, "#c62828");
+    if (this.ferr.length > 1) this.drawFollowingError(ctx, x0, w, h, yOf);
+  }
+
+  // The following error on its own scale, its ticks in green inside the right edge.
+  drawFollowingError(ctx, x0, w, h, yOf) {
+    const fr = LivePlot.range(this.ferr);
+    ctx.fillStyle = "#2e7d32"; ctx.textAlign = "right";
+    for (const v of LivePlot.ticks(fr, 4)) ctx.fillText(String(v), x0 + w - 4, yOf(v, fr) + 4);
+    this.line(ctx, this.ferr, fr, x0, w, h, "#2e7d32");
   }
 }
 window.LivePlot = LivePlot;
