@@ -47,7 +47,9 @@ function showReason(cell, table, r, active) {
   };
   add("r-text", (active ? "" : "(cleared) ") + r.text + (r.cut ? "…" : ""));
   if (!row) return;
-  add("r-cond", row.id + ": " + row.condition);
+  // The item's condition in full, unless the image's sentence already says exactly that.
+  const condition = row.id + ": " + row.condition;
+  if (!r.text.startsWith(condition)) add("r-cond", condition);
   add("r-fix", "What to do: " + row.fix);
   const a = document.createElement("a");
   a.href = "/reasons#" + encodeURIComponent(row.id); a.target = "_blank"; a.className = "r-link";
