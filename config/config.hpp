@@ -7,14 +7,14 @@
 #include <string>
 #include <vector>
 
+#include "config/config_keys.hpp"
 #include "core/clock.hpp"
+#include "fieldbus/enip/adapter_options.hpp"
 #include "gpio/axis_lines.hpp"
 #include "gpio/backend.hpp"
-#include "fieldbus/enip/adapter_options.hpp"
 #include "gpio/sim_machine.hpp"
 #include "ipc/modbus_options.hpp"
 #include "module/personality.hpp"
-#include "config/config_keys.hpp"
 
 namespace stepmod::tools {
 

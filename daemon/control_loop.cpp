@@ -73,8 +73,8 @@ const ImageWords& ControlLoop::words_for_module(Nanos now) {
   sample.seq = image.output_seq();
   sample.snapshot_ok = image.read_outputs(sample.words, sample.snapshot_seq);
   sample.lease_until = lease_.scan(image, sample.heartbeat, now, parts_.stack.personality());
-  sample.plc_not_in_run = parts_.plc_not_in_run != nullptr &&
-                          parts_.plc_not_in_run->load(std::memory_order_acquire);
+  sample.plc_not_in_run =
+      parts_.plc_not_in_run != nullptr && parts_.plc_not_in_run->load(std::memory_order_acquire);
   // While a drive enabled a moment ago is not ready, the module keeps scanning the words it
   // had: a command issued meanwhile is a new edge once the drive is ready.
   const ImageWords& live = supervisor_.scan(sample);

@@ -19,9 +19,8 @@ ModuleRuntime::ModuleRuntime(const Parts& parts) : config_(parts.config) {
   if (parts.sim != nullptr) {
     panel_ = std::make_unique<SimPanelLink>(config_.name, *parts.sim, parts.stack.shape().axes);
   }
-  control_ = std::make_unique<ControlLoop>(
-      ControlLoop::Parts{config_, parts.stack, parts.output, *image_, trace_.get(), panel_.get(),
-                         &plc_not_in_run_});
+  control_ = std::make_unique<ControlLoop>(ControlLoop::Parts{
+      config_, parts.stack, parts.output, *image_, trace_.get(), panel_.get(), &plc_not_in_run_});
 }
 
 ModuleRuntime::~ModuleRuntime() = default;

@@ -106,9 +106,9 @@ typedef struct stepmod_reason {
 /* Section 3.6: what an axis/channel holds beyond its words, for consoles and HMIs. Input bits
  * are in the simulator panel's order (STEPMOD_IN_CAPTURE .. STEPMOD_IN_CCW_LIMIT, bit 0..5). */
 #define STEPMOD_UNIT_CONFIG_WORDS 8u
-#define STEPMOD_UNIT_LEVELS_SHIFT 0u /* electrical level of each input line now */
-#define STEPMOD_UNIT_WIRED_SHIFT 8u  /* the line is wired (the daemon's configuration has it) */
-#define STEPMOD_UNIT_USED_SHIFT 16u  /* the module's configuration uses the input */
+#define STEPMOD_UNIT_LEVELS_SHIFT 0u  /* electrical level of each input line now */
+#define STEPMOD_UNIT_WIRED_SHIFT 8u   /* the line is wired (the daemon's configuration has it) */
+#define STEPMOD_UNIT_USED_SHIFT 16u   /* the module's configuration uses the input */
 #define STEPMOD_UNIT_ACTIVE_SHIFT 24u /* used and at its active level (after the polarity) */
 #define STEPMOD_UNIT_ENABLE_WIRED (1u << 0)    /* a drive-enable line is wired */
 #define STEPMOD_UNIT_ENABLE_ASSERTED (1u << 1) /* and asserted now */

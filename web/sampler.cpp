@@ -103,24 +103,24 @@ std::string Sampler::batch_json() {
       gone && !ipc::Lease::process_running(static_cast<std::uint32_t>(client_.raw().owner_pid));
   // The image's strings (the reasons) come from another process: bad UTF-8 in them is written
   // as U+FFFD rather than thrown out of this thread.
-  return nlohmann::json{{"type", "batch"},
-                        {"t_us", t},
-                        {"pos", pos},
-                        {"enc", enc},
-                        {"status", status},
-                        {"scan", client_.scan_counter()},
-                        {"sim", sim_.state()},
-                        {"daemon",
-                         {{"quiet_ms", image_ms.count()}, {"gone", gone}, {"stopped", stopped}}},
-                        {"health",
-                         {{"flags", h.flags},
-                          {"names", ipc::health_flag_names(h.flags)},
-                          {"late_faults", h.late_faults}}},
-                        {"plc",
-                         {{"heartbeat", link.heartbeat},
-                          {"quiet_ms", quiet_ms.count()},
-                          {"stale", (h.flags & STEPMOD_HEALTH_PLC_STALE) != 0}}},
-                        {"lease", {{"holder", ipc::Lease::holder_of(client_.raw())}}}}
+  return nlohmann::json{
+      {"type", "batch"},
+      {"t_us", t},
+      {"pos", pos},
+      {"enc", enc},
+      {"status", status},
+      {"scan", client_.scan_counter()},
+      {"sim", sim_.state()},
+      {"daemon", {{"quiet_ms", image_ms.count()}, {"gone", gone}, {"stopped", stopped}}},
+      {"health",
+       {{"flags", h.flags},
+        {"names", ipc::health_flag_names(h.flags)},
+        {"late_faults", h.late_faults}}},
+      {"plc",
+       {{"heartbeat", link.heartbeat},
+        {"quiet_ms", quiet_ms.count()},
+        {"stale", (h.flags & STEPMOD_HEALTH_PLC_STALE) != 0}}},
+      {"lease", {{"holder", ipc::Lease::holder_of(client_.raw())}}}}
       .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 

@@ -6,11 +6,11 @@
 namespace stepmod::enip {
 
 inline constexpr std::uint32_t kAssemblyClass = 0x04;
-inline constexpr std::uint32_t kInputInstance = 100;       // T→O: the module's input words
-inline constexpr std::uint32_t kOutputInstance = 150;      // O→T: the module's output words
-inline constexpr std::uint32_t kConfigInstance = 151;      // configuration, size 0
-inline constexpr std::uint32_t kInputOnlyHeartbeat = 198;  // O→T of an input-only connection
-inline constexpr std::uint32_t kListenOnlyHeartbeat = 199; // O→T of a listen-only connection
+inline constexpr std::uint32_t kInputInstance = 100;        // T→O: the module's input words
+inline constexpr std::uint32_t kOutputInstance = 150;       // O→T: the module's output words
+inline constexpr std::uint32_t kConfigInstance = 151;       // configuration, size 0
+inline constexpr std::uint32_t kInputOnlyHeartbeat = 198;   // O→T of an input-only connection
+inline constexpr std::uint32_t kListenOnlyHeartbeat = 199;  // O→T of a listen-only connection
 
 struct AssemblyLayout {
   std::uint16_t input_bytes = 0;   // instance 100

@@ -14,7 +14,8 @@ constexpr std::int64_t kNsPerUs = 1000;
 // The connection id of an O→T packet, read before the packet is judged against its connection.
 bool peek_connection_id(std::span<const std::uint8_t> datagram, std::uint32_t& id) noexcept {
   Cpf cpf;
-  if (parse_cpf(datagram, cpf) != CpfParse::kOk || cpf.items[0].type != cpf_item::kSequencedAddress) {
+  if (parse_cpf(datagram, cpf) != CpfParse::kOk ||
+      cpf.items[0].type != cpf_item::kSequencedAddress) {
     return false;
   }
   Reader r(cpf.items[0].data);

@@ -26,8 +26,8 @@ struct IoConnection {
   IoShape ot_shape;
   std::int64_t to_rpi_ns = 0;
   std::int64_t timeout_ns = 0;
-  std::int64_t last_ot_ns = 0;   // the last accepted O→T (or the opening)
-  std::int64_t next_to_ns = 0;   // when the next T→O is due
+  std::int64_t last_ot_ns = 0;  // the last accepted O→T (or the opening)
+  std::int64_t next_to_ns = 0;  // when the next T→O is due
   bool ot_seen = false;
   std::uint32_t ot_encap_sequence = 0;
   std::uint16_t ot_cip_sequence = 0;
@@ -38,12 +38,12 @@ struct IoConnection {
 // What an O→T packet did.
 enum class OtOutcome {
   kDropped,   // unknown id, wrong sender, old sequence, malformed: nothing changes
-  kRunWrite,   // Run with new data: write `data` as one PLC write (and a heartbeat)
+  kRunWrite,  // Run with new data: write `data` as one PLC write (and a heartbeat)
   // Run with the CIP sequence count repeated (the same data, written already): the PLC is alive
   // and in Run, so a heartbeat (docs/interface.md 9: every accepted Run packet is one), no write.
   kRunRepeat,
   kRefresh,  // accepted from an input-only / listen-only connection: the timeout restarts
-  kIdle,      // the owner's Idle: the PLC left Run
+  kIdle,     // the owner's Idle: the PLC left Run
 };
 
 struct OtResult {
@@ -57,8 +57,8 @@ class IoConnections : public ConnectionTable {
   explicit IoConnections(std::uint32_t seed) noexcept : id_state_(seed | 1u) {}
 
   bool owner_open() const noexcept override;
-  CipStatus open(const ForwardOpen& fo, const AcceptedOpen& accepted,
-                 const RequestOrigin& origin, std::uint32_t& ot_id) noexcept override;
+  CipStatus open(const ForwardOpen& fo, const AcceptedOpen& accepted, const RequestOrigin& origin,
+                 std::uint32_t& ot_id) noexcept override;
   CipStatus close(const ConnectionTriad& triad) noexcept override;
 
   OtResult on_o_to_t(std::uint32_t from_ip, std::span<const std::uint8_t> datagram,

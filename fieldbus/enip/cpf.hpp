@@ -39,9 +39,9 @@ struct Cpf {
 
 enum class CpfParse {
   kOk,
-  kTruncated,     // the count or an item runs past the end of the packet
-  kTooManyItems,  // more than kCpfMaxItems (or none)
-  kTrailingBytes, // bytes after the last item
+  kTruncated,      // the count or an item runs past the end of the packet
+  kTooManyItems,   // more than kCpfMaxItems (or none)
+  kTrailingBytes,  // bytes after the last item
 };
 
 // `buf` is exactly the CPF (the packet's end is the CPF's end).

@@ -34,7 +34,7 @@ inline constexpr std::uint16_t kSendUnitData = 0x0070;
 // The status field of a reply.
 enum class EncapStatus : std::uint32_t {
   kSuccess = 0x0000,
-  kInvalidCommand = 0x0001,  // unknown command, or RegisterSession twice on one connection
+  kInvalidCommand = 0x0001,      // unknown command, or RegisterSession twice on one connection
   kInsufficientMemory = 0x0002,  // no free session
   kIncorrectData = 0x0003,
   kInvalidSession = 0x0064,

@@ -52,8 +52,8 @@ RegisterResult handle_register_session(std::span<std::uint8_t> out, const EncapF
                                        SessionTable& sessions, std::uint32_t connection) noexcept;
 
 struct UnregisterResult {
-  bool close = false;         // the session ended: close the TCP connection, no reply
-  std::size_t reply_size = 0; // otherwise an error reply (not this connection's session)
+  bool close = false;          // the session ended: close the TCP connection, no reply
+  std::size_t reply_size = 0;  // otherwise an error reply (not this connection's session)
 };
 UnregisterResult handle_unregister_session(std::span<std::uint8_t> out, const EncapFrame& request,
                                            SessionTable& sessions,

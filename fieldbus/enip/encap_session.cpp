@@ -85,8 +85,8 @@ SessionStep tcp_frame(const EncapFrame& f, std::uint32_t connection, EncapContex
     default:
       break;
   }
-  const bool session_command = h.command == encap_cmd::kSendRRData ||
-                               h.command == encap_cmd::kSendUnitData;
+  const bool session_command =
+      h.command == encap_cmd::kSendRRData || h.command == encap_cmd::kSendUnitData;
   if (!session_command) {
     return reply(f.size, encode_status_reply(out, h, EncapStatus::kInvalidCommand));
   }
@@ -104,10 +104,14 @@ SessionStep handle_tcp(std::span<const std::uint8_t> in, std::uint32_t connectio
                        EncapContext& ctx, std::span<std::uint8_t> out) noexcept {
   EncapFrame f;
   switch (parse_encap(in, f)) {
-    case EncapParse::kIncomplete: return {};
-    case EncapParse::kTooLong: return {0, SessionAction::kClose, 0};
-    case EncapParse::kDiscard: return {f.size, SessionAction::kNone, 0};
-    case EncapParse::kFrame: break;
+    case EncapParse::kIncomplete:
+      return {};
+    case EncapParse::kTooLong:
+      return {0, SessionAction::kClose, 0};
+    case EncapParse::kDiscard:
+      return {f.size, SessionAction::kNone, 0};
+    case EncapParse::kFrame:
+      break;
   }
   return tcp_frame(f, connection, ctx, out);
 }

@@ -8,11 +8,20 @@ constexpr std::uint8_t kSimpleData = 0x80;
 
 bool kind_of_logical(std::uint8_t type, SegmentKind& kind) noexcept {
   switch (type) {
-    case 0: kind = SegmentKind::kClass; return true;
-    case 1: kind = SegmentKind::kInstance; return true;
-    case 3: kind = SegmentKind::kConnectionPoint; return true;
-    case 4: kind = SegmentKind::kAttribute; return true;
-    default: return false;  // member, service id, extended logical: not served
+    case 0:
+      kind = SegmentKind::kClass;
+      return true;
+    case 1:
+      kind = SegmentKind::kInstance;
+      return true;
+    case 3:
+      kind = SegmentKind::kConnectionPoint;
+      return true;
+    case 4:
+      kind = SegmentKind::kAttribute;
+      return true;
+    default:
+      return false;  // member, service id, extended logical: not served
   }
 }
 }  // namespace
@@ -32,10 +41,19 @@ bool EpathReader::logical(std::uint8_t type_byte, Segment& s) noexcept {
   }
   if (!kind_of_logical(type, s.kind)) return fail();
   switch (format) {
-    case 0: s.value = r_.u8(); break;
-    case 1: r_.skip(1); s.value = r_.u16(); break;
-    case 2: r_.skip(1); s.value = r_.u32(); break;
-    default: return fail();
+    case 0:
+      s.value = r_.u8();
+      break;
+    case 1:
+      r_.skip(1);
+      s.value = r_.u16();
+      break;
+    case 2:
+      r_.skip(1);
+      s.value = r_.u32();
+      break;
+    default:
+      return fail();
   }
   return r_.ok() ? true : fail();
 }
@@ -57,8 +75,10 @@ bool EpathReader::next(Segment& s) noexcept {
   s = Segment{};
   const std::uint8_t type_byte = r_.u8();
   switch (type_byte >> 5) {
-    case 0: return port(type_byte, s);
-    case 1: return logical(type_byte, s);
+    case 0:
+      return port(type_byte, s);
+    case 1:
+      return logical(type_byte, s);
     case 2:  // network segment: one byte of value
       s.kind = SegmentKind::kNetwork;
       s.value = type_byte;

@@ -72,7 +72,8 @@ std::uint8_t parse_forward_close(std::span<const std::uint8_t> data, ForwardClos
 
 namespace {
 CipStatus check_transport(std::uint8_t transport) noexcept {
-  if ((transport & 0x0Fu) != 1) return CipStatus::connection(cm_status::kTransportClassNotSupported);
+  if ((transport & 0x0Fu) != 1)
+    return CipStatus::connection(cm_status::kTransportClassNotSupported);
   if ((transport & 0x70u) != 0) return CipStatus::connection(cm_status::kTriggerNotSupported);
   if ((transport & 0x80u) != 0) return CipStatus::connection(cm_status::kDirectionNotSupported);
   return {};
@@ -81,8 +82,8 @@ CipStatus check_transport(std::uint8_t transport) noexcept {
 CipStatus check_types(const ForwardOpen& fo, ConnectionKind kind) noexcept {
   if (fo.ot.redundant_owner) return CipStatus::connection(cm_status::kRedundantOwnerNotSupported);
   const bool heartbeat = kind != ConnectionKind::kExclusiveOwner;
-  const bool ot_ok = fo.ot.type == conn_type::kPointToPoint ||
-                     (heartbeat && fo.ot.type == conn_type::kNull);
+  const bool ot_ok =
+      fo.ot.type == conn_type::kPointToPoint || (heartbeat && fo.ot.type == conn_type::kNull);
   if (!ot_ok) return CipStatus::connection(cm_status::kOtConnectionTypeNotSupported);
   if (fo.to.type != conn_type::kPointToPoint) {
     return CipStatus::connection(cm_status::kToConnectionTypeNotSupported);
@@ -100,8 +101,8 @@ CipStatus check_key(const ElectronicKey& key, const IdentityValues& id) noexcept
     return CipStatus::connection(cm_status::kDeviceTypeMismatch);
   }
   const bool major_bad = key.major() != 0 && key.major() != id.major;
-  const bool minor_bad = key.minor != 0 && (key.compatibility() ? key.minor > id.minor
-                                                                : key.minor != id.minor);
+  const bool minor_bad =
+      key.minor != 0 && (key.compatibility() ? key.minor > id.minor : key.minor != id.minor);
   if (major_bad || minor_bad) return CipStatus::connection(cm_status::kRevisionMismatch);
   return {};
 }
@@ -116,10 +117,17 @@ CipStatus check_app_path(const ConnectionPath& p, ConnectionKind& kind) noexcept
   }
   if (p.point_count < 1) return CipStatus::connection(cm_status::kInvalidConsumingPath);
   switch (p.points[0]) {
-    case kOutputInstance: kind = ConnectionKind::kExclusiveOwner; break;
-    case kInputOnlyHeartbeat: kind = ConnectionKind::kInputOnly; break;
-    case kListenOnlyHeartbeat: kind = ConnectionKind::kListenOnly; break;
-    default: return CipStatus::connection(cm_status::kInvalidConsumingPath);
+    case kOutputInstance:
+      kind = ConnectionKind::kExclusiveOwner;
+      break;
+    case kInputOnlyHeartbeat:
+      kind = ConnectionKind::kInputOnly;
+      break;
+    case kListenOnlyHeartbeat:
+      kind = ConnectionKind::kListenOnly;
+      break;
+    default:
+      return CipStatus::connection(cm_status::kInvalidConsumingPath);
   }
   if (p.point_count < 2 || p.points[1] != kInputInstance) {
     return CipStatus::connection(cm_status::kInvalidProducingPath);
@@ -162,10 +170,10 @@ CipStatus check_rpi(const ForwardOpen& fo, const AdapterLimits& limits) noexcept
 CipStatus check_sizes(const ForwardOpen& fo, ConnectionKind kind,
                       const AssemblyLayout& layout) noexcept {
   const bool owner = kind == ConnectionKind::kExclusiveOwner;
-  const std::uint16_t ot_want = owner ? static_cast<std::uint16_t>(
-                                            layout.output_bytes + kSequenceCountBytes +
-                                            kRunIdleHeaderBytes)
-                                      : kSequenceCountBytes;
+  const std::uint16_t ot_want =
+      owner ? static_cast<std::uint16_t>(layout.output_bytes + kSequenceCountBytes +
+                                         kRunIdleHeaderBytes)
+            : kSequenceCountBytes;
   const bool ot_ok = fo.ot.size == ot_want || (!owner && fo.ot.size == 0);
   if (!ot_ok) return CipStatus::connection(cm_status::kInvalidOtSize, ot_want);
   const auto to_want = static_cast<std::uint16_t>(layout.input_bytes + kSequenceCountBytes);

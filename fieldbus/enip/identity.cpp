@@ -57,15 +57,32 @@ void put_identity_all(Writer& w, const IdentityValues& id) noexcept {
 
 bool put_identity_attribute(Writer& w, const IdentityValues& id, std::uint8_t attribute) noexcept {
   switch (attribute) {
-    case 1: w.u16(id.vendor); return true;
-    case 2: w.u16(id.device_type); return true;
-    case 3: w.u16(id.product_code); return true;
-    case 4: put_revision(w, id); return true;
-    case 5: w.u16(id.status); return true;
-    case 6: w.u32(id.serial); return true;
-    case 7: put_name(w, id); return true;
-    case 8: w.u8(id.state); return true;
-    default: return false;
+    case 1:
+      w.u16(id.vendor);
+      return true;
+    case 2:
+      w.u16(id.device_type);
+      return true;
+    case 3:
+      w.u16(id.product_code);
+      return true;
+    case 4:
+      put_revision(w, id);
+      return true;
+    case 5:
+      w.u16(id.status);
+      return true;
+    case 6:
+      w.u32(id.serial);
+      return true;
+    case 7:
+      put_name(w, id);
+      return true;
+    case 8:
+      w.u8(id.state);
+      return true;
+    default:
+      return false;
   }
 }
 

@@ -45,9 +45,9 @@ void unconnected_send(const MrRequest& req, RouterContext& ctx, Writer& w) noexc
   r.skip(1);
   const auto route_path = r.bytes(2 * route_words);
   if (!r.ok() || r.remaining() != 0) {
-    put_reply_status(w, req.service, CipStatus::general_only(
-                                         r.ok() ? cip_general::kTooMuchData
-                                                : cip_general::kNotEnoughData));
+    put_reply_status(
+        w, req.service,
+        CipStatus::general_only(r.ok() ? cip_general::kTooMuchData : cip_general::kNotEnoughData));
     return;
   }
   if (!routes_to_us(route_path)) {

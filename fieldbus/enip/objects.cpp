@@ -8,7 +8,9 @@ namespace {
 constexpr std::uint32_t kIdentityClass = 0x01;
 constexpr std::uint32_t kAssemblyDataAttribute = 3;
 
-CipStatus status(std::uint8_t general) noexcept { return CipStatus::general_only(general); }
+CipStatus status(std::uint8_t general) noexcept {
+  return CipStatus::general_only(general);
+}
 
 // Identity: instance 1 only.
 CipStatus identity_get_all(const MrRequest& req, RouterContext& ctx, Writer& data) noexcept {
@@ -34,12 +36,17 @@ std::size_t assembly_bytes(std::uint32_t instance, const AssemblyLayout& layout,
                            bool& known) noexcept {
   known = true;
   switch (instance) {
-    case kInputInstance: return layout.input_bytes;
-    case kOutputInstance: return layout.output_bytes;
+    case kInputInstance:
+      return layout.input_bytes;
+    case kOutputInstance:
+      return layout.output_bytes;
     case kConfigInstance:
     case kInputOnlyHeartbeat:
-    case kListenOnlyHeartbeat: return 0;
-    default: known = false; return 0;
+    case kListenOnlyHeartbeat:
+      return 0;
+    default:
+      known = false;
+      return 0;
   }
 }
 
@@ -133,7 +140,9 @@ constexpr std::array<ServiceRow, 7> kServiceTable{{
 }};
 }  // namespace
 
-std::span<const ServiceRow> service_table() noexcept { return kServiceTable; }
+std::span<const ServiceRow> service_table() noexcept {
+  return kServiceTable;
+}
 
 CipStatus dispatch(const MrRequest& req, RouterContext& ctx, Writer& data) noexcept {
   bool class_known = false;

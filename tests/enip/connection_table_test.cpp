@@ -18,9 +18,9 @@ using Bytes = std::vector<std::uint8_t>;
 constexpr std::uint32_t kPlc = 0x7F000002u;
 constexpr std::int64_t kMs = 1'000'000;
 
-const Bytes kOwnerRequest = hex(
-    "03 7d 00000000 78563412 3412 3333 37130000 03 000000 10270000 1648 10270000 1248 01"
-    "09 34 04 0000 0000 0000 00 00 20 04 24 97 2c 96 2c 64");
+const Bytes kOwnerRequest =
+    hex("03 7d 00000000 78563412 3412 3333 37130000 03 000000 10270000 1648 10270000 1248 01"
+        "09 34 04 0000 0000 0000 00 00 20 04 24 97 2c 96 2c 64");
 
 class EnipConnections : public ::testing::Test {
  protected:

@@ -14,9 +14,9 @@ using test::hex;
 
 // SendRRData's data: interface 0, timeout 10, a null address item and an unconnected data item
 // holding Get_Attributes_All of the Identity object.
-const auto kRRData = hex(
-    "00000000 0a00"
-    "0200 0000 0000 b200 0600 01 02 20 01 24 01");
+const auto kRRData =
+    hex("00000000 0a00"
+        "0200 0000 0000 b200 0600 01 02 20 01 24 01");
 
 TEST(EnipCpf, ParsesSendDataAndItsItems) {
   SendData s;

@@ -31,12 +31,12 @@ TEST(EnipReplies, ListIdentityReply) {
   const IdentityValues id = identity_for(3601, 0x01020304u);
   const std::size_t n =
       encode_list_identity_reply(out, frame_of(req).header, id, {0x7F000001u, 44818});
-  const auto want = hex(
-      "6300 3400 00000000 00000000 0000000000000000 00000000"
-      "0100 0c00 2e00"                     // one item, CIP identity, 46 bytes
-      "0100 0002 af12 7f000001 0000000000000000"  // version 1, AF_INET, port, address
-      "ffff 2b00 110e 0101 3000 04030201"  // vendor .. serial
-      "0c 737465706d6f642033363031 03");   // "stepmod 3601", state operational
+  const auto want =
+      hex("6300 3400 00000000 00000000 0000000000000000 00000000"
+          "0100 0c00 2e00"                            // one item, CIP identity, 46 bytes
+          "0100 0002 af12 7f000001 0000000000000000"  // version 1, AF_INET, port, address
+          "ffff 2b00 110e 0101 3000 04030201"         // vendor .. serial
+          "0c 737465706d6f642033363031 03");          // "stepmod 3601", state operational
   EXPECT_EQ(first(out, n), want);
   // The reply is a well-formed frame with one well-formed CPF item.
   const auto reply_bytes = first(out, n);  // the frame views these bytes: keep them

@@ -22,9 +22,10 @@ const Bytes kRegister = hex("6500 0400 00000000 00000000 0000000000000000 000000
 // SendRRData with `session` around an Unconnected_Send (route port 1 / link 0) of Identity's
 // Get_Attributes_All, as ethernet-ip reads the identity.
 Bytes get_all_rr(std::uint8_t session) {
-  Bytes b = hex("6f00 2400 00000000 00000000 0102030405060708 00000000"
-                "00000000 0a00 0200 0000 0000 b200 1400"
-                "52 02 20 06 24 01 07 f9 0600 01 02 20 01 24 01 01 00 01 00");
+  Bytes b =
+      hex("6f00 2400 00000000 00000000 0102030405060708 00000000"
+          "00000000 0a00 0200 0000 0000 b200 1400"
+          "52 02 20 06 24 01 07 f9 0600 01 02 20 01 24 01 01 00 01 00");
   b[4] = session;
   return b;
 }
@@ -44,7 +45,7 @@ class EnipSession : public ::testing::Test {
   IdentityValues identity_ = identity_for(3601, 0x01020304u);
   test::FakeAssemblies assemblies_;
   test::FakeConnections connections_;
-  RouterContext router_{identity_, assembly_layout(2, 8, 8), AdapterLimits{}, assemblies_,
+  RouterContext router_{identity_,    assembly_layout(2, 8, 8), AdapterLimits{}, assemblies_,
                         connections_, RequestOrigin{}};
   EncapContext ctx_{sessions_, identity_, SocketAddress{0x7F000001u, 44818}, router_};
   std::array<std::uint8_t, kEncapMaxFrame> out_{};
@@ -57,10 +58,10 @@ TEST_F(EnipSession, RegisterThenReadTheIdentityThroughSendRRData) {
   const SessionStep s = tcp(get_all_rr(session));
   ASSERT_EQ(s.action, SessionAction::kReply);
   EXPECT_EQ(s.consumed, get_all_rr(session).size());
-  const Bytes want = cat(
-      hex("6f00 2f00 01000000 00000000 0102030405060708 00000000"
-          "00000000 0000 0200 0000 0000 b200 1f00"),
-      hex("81 00 00 00 ffff 2b00 110e 0101 3000 04030201 0c 737465706d6f642033363031"));
+  const Bytes want =
+      cat(hex("6f00 2f00 01000000 00000000 0102030405060708 00000000"
+              "00000000 0000 0200 0000 0000 b200 1f00"),
+          hex("81 00 00 00 ffff 2b00 110e 0101 3000 04030201 0c 737465706d6f642033363031"));
   EXPECT_EQ(last_, want);
 }
 

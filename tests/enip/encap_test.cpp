@@ -15,9 +15,9 @@ using test::cat;
 using test::hex;
 
 // RegisterSession as the npm clients send it: session 0, context 0, version 1, options 0.
-const auto kRegister = hex(
-    "65 00 04 00 00000000 00000000 0102030405060708 00000000"
-    "01 00 00 00");
+const auto kRegister =
+    hex("65 00 04 00 00000000 00000000 0102030405060708 00000000"
+        "01 00 00 00");
 
 TEST(EnipEncap, ParsesAWholeFrame) {
   EncapFrame f;

@@ -28,13 +28,13 @@ TEST(EnipEpath, RequestPathWithEightAndSixteenBitSegments) {
 TEST(EnipEpath, RequestPathRefusals) {
   RequestPath p;
   EXPECT_FALSE(parse_request_path(hex(""), p));
-  EXPECT_FALSE(parse_request_path(hex("24 01"), p));           // no class
-  EXPECT_FALSE(parse_request_path(hex("20 01 30 01"), p));     // attribute before instance
+  EXPECT_FALSE(parse_request_path(hex("24 01"), p));              // no class
+  EXPECT_FALSE(parse_request_path(hex("20 01 30 01"), p));        // attribute before instance
   EXPECT_FALSE(parse_request_path(hex("20 01 24 01 24 02"), p));  // two instances
-  EXPECT_FALSE(parse_request_path(hex("20 01 25 00 01"), p));  // a 16-bit value cut short
-  EXPECT_FALSE(parse_request_path(hex("20 01 24"), p));        // an 8-bit value missing
+  EXPECT_FALSE(parse_request_path(hex("20 01 25 00 01"), p));     // a 16-bit value cut short
+  EXPECT_FALSE(parse_request_path(hex("20 01 24"), p));           // an 8-bit value missing
   EXPECT_FALSE(parse_request_path(hex("91 03 61 62 63 00"), p));  // symbolic: not served
-  EXPECT_FALSE(parse_request_path(hex("23 01"), p));           // reserved logical format
+  EXPECT_FALSE(parse_request_path(hex("23 01"), p));              // reserved logical format
 }
 
 TEST(EnipEpath, PortSegments) {
@@ -82,8 +82,8 @@ TEST(EnipEpath, ConnectionPathOfAnIoScanner) {
 
 TEST(EnipEpath, ConnectionPathWithKeyFieldsAndDataSegment) {
   ConnectionPath p;
-  ASSERT_TRUE(parse_connection_path(
-      hex("34 04 ffff 2b00 110e 81 01  20 04 24 97 2c 96 2c 64 80 00"), p));
+  ASSERT_TRUE(
+      parse_connection_path(hex("34 04 ffff 2b00 110e 81 01  20 04 24 97 2c 96 2c 64 80 00"), p));
   EXPECT_EQ(p.key.vendor, 0xFFFF);
   EXPECT_EQ(p.key.product_code, 3601);
   EXPECT_TRUE(p.key.compatibility());
@@ -98,11 +98,11 @@ TEST(EnipEpath, ConnectionPathWithKeyFieldsAndDataSegment) {
 TEST(EnipEpath, ConnectionPathRefusals) {
   ConnectionPath p;
   EXPECT_FALSE(parse_connection_path(hex("34 05 0000 0000 0000 00 00 20 04"), p));  // format
-  EXPECT_FALSE(parse_connection_path(hex("34 04 0000 0000 0000 00"), p));  // key cut short
-  EXPECT_FALSE(parse_connection_path(hex("2c 96 2c 64"), p));              // no class
-  EXPECT_FALSE(parse_connection_path(hex("20 04 2c 96 2c 64 2c 65"), p));  // three points
+  EXPECT_FALSE(parse_connection_path(hex("34 04 0000 0000 0000 00"), p));           // key cut short
+  EXPECT_FALSE(parse_connection_path(hex("2c 96 2c 64"), p));                       // no class
+  EXPECT_FALSE(parse_connection_path(hex("20 04 2c 96 2c 64 2c 65"), p));           // three points
   EXPECT_FALSE(parse_connection_path(hex("20 04 2c 96 24 97 2c 64"), p));  // config after a point
-  EXPECT_FALSE(parse_connection_path(hex("20 04 24 97 2c 96 80 01 00"), p));  // data cut short
+  EXPECT_FALSE(parse_connection_path(hex("20 04 24 97 2c 96 80 01 00"), p));     // data cut short
   EXPECT_FALSE(parse_connection_path(hex("01 00 20 04 24 97 2c 96 2c 64"), p));  // a route
   EXPECT_FALSE(parse_connection_path(hex("20 04 24 97 2c 96 2c 64 34 04 0000 0000 0000 00 00"),
                                      p));  // the key after the class

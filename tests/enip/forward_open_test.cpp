@@ -19,9 +19,9 @@ using test::hex;
 // 2^3 × 125 ms, O→T id 0, its T→O id, serial 0x1234, vendor 0x3333, originator serial 0x1337,
 // multiplier 3 (× 32), O→T point-to-point scheduled fixed 22 bytes, T→O 18 bytes, class 1
 // cyclic, then its 9-word path.
-const auto kFixed = hex(
-    "03 7d 00000000 78563412 3412 3333 37130000 03 000000"
-    "10270000 1648 10270000 1248 01");
+const auto kFixed =
+    hex("03 7d 00000000 78563412 3412 3333 37130000 03 000000"
+        "10270000 1648 10270000 1248 01");
 const auto kPath = hex("09 34 04 0000 0000 0000 00 00 20 04 24 97 2c 96 2c 64");
 const AssemblyLayout k3601 = assembly_layout(2, 8, 8);
 
@@ -80,8 +80,8 @@ TEST(EnipForwardOpen, ShortOrLongRequestsAreGeneralErrors) {
   const auto whole = cat(kFixed, kPath);
   ForwardOpen fo;
   for (std::size_t n = 0; n < whole.size(); ++n) {
-    EXPECT_EQ(parse_forward_open(std::span(whole).first(n), false, fo),
-              cip_general::kNotEnoughData) << n;
+    EXPECT_EQ(parse_forward_open(std::span(whole).first(n), false, fo), cip_general::kNotEnoughData)
+        << n;
   }
   auto longer = whole;
   longer.push_back(0);
@@ -89,9 +89,9 @@ TEST(EnipForwardOpen, ShortOrLongRequestsAreGeneralErrors) {
 }
 
 TEST(EnipForwardOpen, LargeForwardOpenHas32BitParameters) {
-  const auto large = hex(
-      "03 7d 00000000 78563412 3412 3333 37130000 03 000000"
-      "10270000 16000048 10270000 12000048 01");
+  const auto large =
+      hex("03 7d 00000000 78563412 3412 3333 37130000 03 000000"
+          "10270000 16000048 10270000 12000048 01");
   const ForwardOpen fo = parsed(cat(large, kPath), true);
   EXPECT_TRUE(fo.large);
   EXPECT_EQ(fo.ot.type, conn_type::kPointToPoint);
@@ -181,7 +181,7 @@ TEST(EnipForwardOpen, ElectronicKeyRefusals) {
   EXPECT_EQ(key("0000 0000 0000 02 00"), cm_status::kRevisionMismatch);
   EXPECT_EQ(key("0000 0000 0000 01 02"), cm_status::kRevisionMismatch);
   EXPECT_EQ(key("0000 0000 0000 81 02"), cm_status::kRevisionMismatch);  // newer than ours
-  EXPECT_EQ(key("0000 0000 0000 81 01"), 0);  // compatible
+  EXPECT_EQ(key("0000 0000 0000 81 01"), 0);                             // compatible
 }
 
 TEST(EnipForwardOpen, HeartbeatConnectionsAndTheMultiplier) {

@@ -33,9 +33,9 @@ TEST(EnipIdentity, GetAttributesAllIsAttributesOneToSevenInOrder) {
   Writer w(buf);
   put_identity_all(w, id);
   ASSERT_TRUE(w.ok());
-  const auto want = hex(
-      "ffff 2b00 110e 01 01 3000 44332211 0c"
-      "73 74 65 70 6d 6f 64 20 33 36 30 31");  // "stepmod 3601"
+  const auto want =
+      hex("ffff 2b00 110e 01 01 3000 44332211 0c"
+          "73 74 65 70 6d 6f 64 20 33 36 30 31");  // "stepmod 3601"
   EXPECT_EQ(bytes_of(w), want);
 }
 

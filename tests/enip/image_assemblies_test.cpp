@@ -39,7 +39,7 @@ TEST(EnipImageAssemblies, AWriteIsOneSeqlockWriteAndAHeartbeat) {
   auto img = image_of(4, 16);
   ImageAssemblies a(*img);
   std::vector<std::uint8_t> bytes(64, 0);
-  bytes[0] = 0x10;   // word 0 = 10000 (0x2710)
+  bytes[0] = 0x10;  // word 0 = 10000 (0x2710)
   bytes[1] = 0x27;
   bytes[60] = 0xFF;  // word 15 = -1
   bytes[61] = 0xFF;

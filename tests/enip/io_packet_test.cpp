@@ -14,9 +14,9 @@ using test::hex;
 
 // What st-ethernet-ip sends to a 3601 (16 bytes): connection id, encapsulation sequence 5,
 // CIP count 2, run/idle header 1 (Run), the output words.
-const auto kRunPacket = hex(
-    "0200 0280 0800 d0c0b0a0 05000000 b100 1600 0200 01000000"
-    "0100 0200 0300 0400 0500 0600 0700 0800");
+const auto kRunPacket =
+    hex("0200 0280 0800 d0c0b0a0 05000000 b100 1600 0200 01000000"
+        "0100 0200 0300 0400 0500 0600 0700 0800");
 const IoShape kOwner3601{true, 16};
 
 TEST(EnipIoPacket, ParsesTheScannersRunPacket) {
@@ -41,9 +41,9 @@ TEST(EnipIoPacket, IdleIsSeen) {
 
 TEST(EnipIoPacket, AHeartbeatHasNoHeaderAndNoData) {
   IoPacket p;
-  EXPECT_EQ(parse_o_to_t(hex("0200 0280 0800 01000000 01000000 b100 0200 0700"), IoShape{false, 0},
-                         p),
-            IoParse::kOk);
+  EXPECT_EQ(
+      parse_o_to_t(hex("0200 0280 0800 01000000 01000000 b100 0200 0700"), IoShape{false, 0}, p),
+      IoParse::kOk);
   EXPECT_EQ(p.cip_sequence, 7);
   EXPECT_FALSE(p.run);
 }
@@ -59,8 +59,7 @@ TEST(EnipIoPacket, Refusals) {
   for (std::size_t n = 0; n < kRunPacket.size(); ++n) {
     EXPECT_NE(parse_o_to_t(std::span(kRunPacket).first(n), kOwner3601, p), IoParse::kOk) << n;
   }
-  EXPECT_EQ(parse_o_to_t(hex("0200 0280 0800 01000000 01000000 b100 0300 0700 01"), kOwner3601,
-                         p),
+  EXPECT_EQ(parse_o_to_t(hex("0200 0280 0800 01000000 01000000 b100 0300 0700 01"), kOwner3601, p),
             IoParse::kMalformed);
 }
 
@@ -69,8 +68,9 @@ TEST(EnipIoPacket, WritesTToOAsTheScannerReadsIt) {
   const auto words = hex("1100 2200 3300 4400 5500 6600 7700 8800");
   const std::size_t n = encode_t_to_o(out, 0x12345678u, 9, 3, words);
   // st-ethernet-ip takes the connection id at byte 6, the sequence at 10 and the data at 20.
-  const auto want = hex("0200 0280 0800 78563412 09000000 b100 1200 0300"
-                        "1100 2200 3300 4400 5500 6600 7700 8800");
+  const auto want =
+      hex("0200 0280 0800 78563412 09000000 b100 1200 0300"
+          "1100 2200 3300 4400 5500 6600 7700 8800");
   EXPECT_EQ(std::vector<std::uint8_t>(out.begin(), out.begin() + static_cast<long>(n)), want);
   EXPECT_EQ(encode_t_to_o(std::span(out).first(20), 1, 1, 1, words), 0u);
 }

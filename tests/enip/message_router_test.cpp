@@ -23,7 +23,7 @@ class EnipRouter : public ::testing::Test {
   Bytes ask(const Bytes& message) {
     std::array<std::uint8_t, 600> out{};
     Writer w(out);
-    RouterContext ctx{identity, assembly_layout(2, 8, 8), AdapterLimits{}, assemblies,
+    RouterContext ctx{identity,    assembly_layout(2, 8, 8), AdapterLimits{}, assemblies,
                       connections, RequestOrigin{}};
     route_message(message, ctx, w);
     EXPECT_TRUE(w.ok());
@@ -58,18 +58,18 @@ TEST_F(EnipRouter, IdentityGetAttributesAllDirectAndThroughUnconnectedSend) {
 TEST_F(EnipRouter, IdentitySingleAttributesAndRefusals) {
   EXPECT_EQ(ask(hex("0e 03 20 01 24 01 30 07")),
             cat(hex("8e 00 00 00 0c"), hex("737465706d6f642033363031")));
-  EXPECT_EQ(ask(hex("0e 03 20 01 24 01 30 09")), hex("8e 00 14 00"));  // no attribute 9
-  EXPECT_EQ(ask(hex("0e 02 20 01 24 02")), hex("8e 00 05 00"));        // no instance 2
+  EXPECT_EQ(ask(hex("0e 03 20 01 24 01 30 09")), hex("8e 00 14 00"));     // no attribute 9
+  EXPECT_EQ(ask(hex("0e 02 20 01 24 02")), hex("8e 00 05 00"));           // no instance 2
   EXPECT_EQ(ask(hex("10 03 20 01 24 01 30 07 00")), hex("90 00 08 00"));  // not settable here
-  EXPECT_EQ(ask(hex("01 02 20 01 24 01 00")), hex("81 00 15 00"));     // data after the path
-  EXPECT_EQ(ask(hex("01 02 20 77 24 01")), hex("81 00 05 00"));        // no class 0x77
+  EXPECT_EQ(ask(hex("01 02 20 01 24 01 00")), hex("81 00 15 00"));        // data after the path
+  EXPECT_EQ(ask(hex("01 02 20 77 24 01")), hex("81 00 05 00"));           // no class 0x77
 }
 
 TEST_F(EnipRouter, MalformedRequests) {
   EXPECT_EQ(ask(hex("01 03 20 01 24 01")), hex("81 00 13 00"));  // the path runs out
   EXPECT_EQ(ask(hex("01")), hex("81 00 13 00"));
   EXPECT_EQ(ask(hex("")), hex("80 00 13 00"));
-  EXPECT_EQ(ask(hex("01 01 91 00")), hex("81 00 04 00"));        // not a class path
+  EXPECT_EQ(ask(hex("01 01 91 00")), hex("81 00 04 00"));  // not a class path
 }
 
 TEST_F(EnipRouter, AssemblyReadsAndTheOwnerRuleOnWrites) {
@@ -88,10 +88,10 @@ TEST_F(EnipRouter, AssemblyReadsAndTheOwnerRuleOnWrites) {
   EXPECT_EQ(ask(hex("0e 03 20 04 24 65 30 03")), hex("8e 00 05 00"));  // no instance 101
 }
 
-const Bytes kForwardOpen = hex(
-    "54 02 20 06 24 01"
-    "03 7d 00000000 78563412 3412 3333 37130000 03 000000 10270000 1648 10270000 1248 01"
-    "09 34 04 0000 0000 0000 00 00 20 04 24 97 2c 96 2c 64");
+const Bytes kForwardOpen =
+    hex("54 02 20 06 24 01"
+        "03 7d 00000000 78563412 3412 3333 37130000 03 000000 10270000 1648 10270000 1248 01"
+        "09 34 04 0000 0000 0000 00 00 20 04 24 97 2c 96 2c 64");
 
 TEST_F(EnipRouter, ForwardOpenThroughUnconnectedSendThenASecondOwner) {
   EXPECT_EQ(ask(ucmm(kForwardOpen)),

@@ -27,7 +27,7 @@ TEST(EnipWire, AShortReadReadsNothingAndStaysFailed) {
   Reader r(b);
   EXPECT_EQ(r.u32(), 0u);  // not half a value: nothing
   EXPECT_FALSE(r.ok());
-  EXPECT_EQ(r.u8(), 0);         // nothing is read after a failure, even what remains
+  EXPECT_EQ(r.u8(), 0);  // nothing is read after a failure, even what remains
   EXPECT_TRUE(r.bytes(1).empty());
 }
 
