@@ -16,7 +16,7 @@ sized from it gets 0x0127/0x0128. So each file is compared with the facts the co
   * [Capacity]: the connection table's slots.
 Then the check is run on altered copies (another product code, a wrong size, a wrong instance
 in a path) and must find each: a check that passes everything would pass a drifted file too.
-Usage: eds_check.py EDS_FACTS_PROGRAM SOURCE_DIR
+Usage: eds_check.py SOURCE_DIR [EMULATOR...] EDS_FACTS_PROGRAM   (the emulator of a cross build)
 """
 import json
 import re
@@ -212,9 +212,12 @@ def drifted_copies(text, mod):
 
 
 def main():
-    facts = json.loads(subprocess.run([sys.argv[1]], capture_output=True, text=True,
+    if len(sys.argv) < 3:
+        print("usage: eds_check.py SOURCE_DIR [EMULATOR...] EDS_FACTS_PROGRAM", file=sys.stderr)
+        return 2
+    facts = json.loads(subprocess.run(sys.argv[2:], capture_output=True, text=True,
                                       check=True).stdout)
-    eds_dir = Path(sys.argv[2]) / "packaging" / "eds"
+    eds_dir = Path(sys.argv[1]) / "packaging" / "eds"
     failures = []
     want = {f"stepmod-{m['type']}.eds" for m in facts["modules"]}
     have = {p.name for p in eds_dir.glob("*.eds")}
