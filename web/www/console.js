@@ -16,7 +16,13 @@ const BLIND_MS = 1000;
 const state = { ws: null, module: null, units: [], holding: false, myLease: false,
                 leaseSeen: false, takenAt: 0, lastBatchAt: 0, daemon: null, blindSaid: false,
                 console: null, restarted: false, holder: 0, reasons: null, reasonSeq: [],
-                batches: 0, samples: 0, rateT0: performance.now(), jog: null };
+                batches: 0, samples: 0, rateT0: performance.now(), jog: null,
+                sentAt: 0, lastReply: null, lastReason: null };
+// A reason recorded between a command and a second after its reply is that command's
+// consequence (a configuration's Position Invalid is noted as the module leaves configuration
+// mode, after the reply; a forced limit stops the axis): the message line gives the reply, then
+// the reason, whichever of the two (from two threads of stepmod-web) the page hears first.
+const CONSEQUENCE_MS = 1000;
 const $ = (id) => document.getElementById(id);
 window.consoleStats = { batches: 0, samples: 0, rate: 0, sampleRate: 0,
                         view: { state: "connecting", since: Date.now() } };
@@ -45,6 +51,7 @@ function profile(root) {
 // daemon that decides); one that cannot be sent says so.
 function command(unit, cmd, extra) {
   state.lastUnit = unit;
+  state.sentAt = performance.now();
   if (!send(Object.assign({ op: "cmd", unit: unit, cmd: cmd }, extra || {}))) {
     say(`${cmd}: NOT SENT: no connection to stepmod-web`, true);
   }
@@ -234,8 +241,20 @@ function newReason(u, r) {
   const before = state.reasonSeq[u];
   state.reasonSeq[u] = seq;
   if (before === undefined || seq === before || !seq) return;
+  const text = unitReason(u, r), now = performance.now(), reply = state.lastReply;
+  state.lastReason = { text: text, at: now };
+  // Not while a command awaits its reply: that reply will take the reason (onReply).
+  if (reply && !reply.withReason && reply.at >= state.sentAt && now - reply.at < CONSEQUENCE_MS) {
+    reply.withReason = true;
+    say(`${reply.text} — ${text}`, true);
+  } else {
+    say(text, true);
+  }
+}
+
+function unitReason(u, r) {
   const noun = state.module.unit_noun;
-  say(`${noun.charAt(0).toUpperCase() + noun.slice(1)} ${u + 1}: ${reasonLine(state.reasons, r)}`, true);
+  return `${noun.charAt(0).toUpperCase() + noun.slice(1)} ${u + 1}: ${reasonLine(state.reasons, r)}`;
 }
 
 // The lease as the image shows it: free, this console's (this page or another of its pages), or
@@ -269,18 +288,35 @@ function onMessage(ev) {
   else if (m.type === "reply") {
     if (m.op === "take" && m.ok) { state.holding = true; state.leaseSeen = false; state.takenAt = performance.now(); }
     if (m.op === "release" && m.ok) state.holding = false;
-    // A reason the reply carries is this command's (a configuration's Position Invalid, a
-    // refusal's reason): the batches do not announce it again over the reply.
-    if (m.reason && m.reason.seq && state.lastUnit !== undefined) state.reasonSeq[state.lastUnit] = m.reason.seq;
-    // The plc/ library's message may quote the reason already: then only what to do is added.
-    const row = m.reason && m.reason.seq ? reasonRow(state.reasons, m.reason.item) : null;
-    const why = !m.ok && m.reason && m.reason.seq
-      ? (m.message.includes(m.reason.text.trim())
-        ? (m.reason.cut ? "…" : "") + (row ? ` — ${row.fix}` : "")
-        : ` — ${reasonLine(state.reasons, m.reason)}`)
-      : "";
-    say(`${m.op}: ${m.message}${why}`, !m.ok);
+    onReply(m);
   }
+}
+
+function onReply(m) {
+  const u = state.lastUnit, seq = m.reason && m.reason.seq ? m.reason.seq : 0;
+  // The reply's reason was read before the reply was sent; a batch sampled after it may have
+  // reached the page first with a newer one. Only a newer reason is news.
+  const newer = u !== undefined && seq > (state.reasonSeq[u] || 0);
+  // A reason the reply carries is this command's (a configuration's Position Invalid, a
+  // refusal's reason): the batches do not announce it again over the reply.
+  if (newer) state.reasonSeq[u] = seq;
+  // The plc/ library's message may quote the reason already: then only what to do is added.
+  const row = seq ? reasonRow(state.reasons, m.reason.item) : null;
+  let text = `${m.op}: ${m.message}`, withReason = false;
+  if (!m.ok && seq) {
+    text += m.message.includes(m.reason.text.trim())
+      ? (m.reason.cut ? "…" : "") + (row ? ` — ${row.fix}` : "")
+      : ` — ${reasonLine(state.reasons, m.reason)}`;
+    withReason = true;
+  } else if (newer) {
+    text += ` — ${unitReason(u, m.reason)}`;  // recorded before the reply, not yet in a batch
+    withReason = true;
+  } else if (state.lastReason && state.lastReason.at >= state.sentAt) {
+    text += ` — ${state.lastReason.text}`;  // a batch announced it between command and reply
+    withReason = true;
+  }
+  state.lastReply = { text: text, at: performance.now(), withReason: withReason };
+  say(text, !m.ok || withReason);
 }
 
 function connect() {
