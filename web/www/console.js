@@ -17,7 +17,7 @@ const state = { ws: null, module: null, units: [], holding: false, myLease: fals
                 leaseSeen: false, takenAt: 0, lastBatchAt: 0, daemon: null, blindSaid: false,
                 console: null, restarted: false, holder: 0, reasons: null, reasonSeq: [],
                 batches: 0, samples: 0, rateT0: performance.now(), jog: null,
-                sentAt: 0, lastReply: null, lastReason: null };
+                pendingSince: 0, lastReply: null, lastReason: null };
 // A reason recorded between a command and a second after its reply is that command's
 // consequence (a configuration's Position Invalid is noted as the module leaves configuration
 // mode, after the reply; a forced limit stops the axis): the message line gives the reply, then
@@ -51,8 +51,9 @@ function profile(root) {
 // daemon that decides); one that cannot be sent says so.
 function command(unit, cmd, extra) {
   state.lastUnit = unit;
-  state.sentAt = performance.now();
+  state.pendingSince = performance.now();  // until its reply
   if (!send(Object.assign({ op: "cmd", unit: unit, cmd: cmd }, extra || {}))) {
+    state.pendingSince = 0;
     say(`${cmd}: NOT SENT: no connection to stepmod-web`, true);
   }
 }
@@ -244,7 +245,7 @@ function newReason(u, r) {
   const text = unitReason(u, r), now = performance.now(), reply = state.lastReply;
   state.lastReason = { text: text, at: now };
   // Not while a command awaits its reply: that reply will take the reason (onReply).
-  if (reply && !reply.withReason && reply.at >= state.sentAt && now - reply.at < CONSEQUENCE_MS) {
+  if (reply && !reply.withReason && !state.pendingSince && now - reply.at < CONSEQUENCE_MS) {
     reply.withReason = true;
     say(`${reply.text} — ${text}`, true);
   } else {
@@ -294,6 +295,9 @@ function onMessage(ev) {
 
 function onReply(m) {
   const u = state.lastUnit, seq = m.reason && m.reason.seq ? m.reason.seq : 0;
+  // The reply of a command (not of a take or a release) ends its wait.
+  const pendingSince = m.op === "take" || m.op === "release" ? 0 : state.pendingSince;
+  if (pendingSince) state.pendingSince = 0;
   // The reply's reason was read before the reply was sent; a batch sampled after it may have
   // reached the page first with a newer one. Only a newer reason is news.
   const newer = u !== undefined && seq > (state.reasonSeq[u] || 0);
@@ -311,7 +315,7 @@ function onReply(m) {
   } else if (newer) {
     text += ` — ${unitReason(u, m.reason)}`;  // recorded before the reply, not yet in a batch
     withReason = true;
-  } else if (state.lastReason && state.lastReason.at >= state.sentAt) {
+  } else if (pendingSince && state.lastReason && state.lastReason.at >= pendingSince) {
     text += ` — ${state.lastReason.text}`;  // a batch announced it between command and reply
     withReason = true;
   }
@@ -322,7 +326,7 @@ function onReply(m) {
 function connect() {
   const ws = new WebSocket((location.protocol === "https:" ? "wss://" : "ws://") + location.host + "/ws");
   state.ws = ws;
-  ws.onclose = () => { state.holding = false; showView(); checkConsole(); setTimeout(connect, 1000); };
+  ws.onclose = () => { state.holding = false; state.pendingSince = 0; showView(); checkConsole(); setTimeout(connect, 1000); };
   ws.onmessage = onMessage;
 }
 

@@ -123,8 +123,11 @@ function buildPath(main) {
     const sx = state.lastPos ? state.lastPos[0] : 0, sy = state.lastPos ? state.lastPos[1] : 0;
     plot.plan = plannedPath(req, sx, sy); plot.redraw();
     state.lastUnit = 0; // the reply's reason is axis 1's (a path is axis 1's command)
-    state.sentAt = performance.now();
-    if (!send(req)) say("path: NOT SENT: no connection to stepmod-web", true);
+    state.pendingSince = performance.now();  // until its reply
+    if (!send(req)) {
+      state.pendingSince = 0;
+      say("path: NOT SENT: no connection to stepmod-web", true);
+    }
   });
   root.querySelector(".b-path-stop").addEventListener("click", () => command(0, "stop"));
   root.querySelector(".b-xy-clear").addEventListener("click", () => { plot.x = []; plot.y = []; plot.plan = []; plot.redraw(); });
