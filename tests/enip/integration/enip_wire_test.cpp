@@ -230,7 +230,14 @@ TEST_F(EnipDaemonWire, FuzzedFramesOnTcpAndUdpNeitherCrashNorWriteTheImage) {
   if (tcp >= 0) ::close(tcp);
   ::close(udp);
   EXPECT_GT(replies, 0u) << "the corpus never got an answer: it did not reach the adapter";
-  EXPECT_EQ(list_identity_name(scanner_ip_), "stepmod 3601") << daemon_->log();
+  // Still answered. The adapter may still be working through the corpus' datagrams, or the
+  // kernel dropped the first request on a full receive queue (UDP, on a loaded machine): asked
+  // again, once a second, for up to 10 s.
+  std::string name;
+  for (int attempt = 0; attempt < 10 && name.empty(); ++attempt) {
+    name = list_identity_name(scanner_ip_);
+  }
+  EXPECT_EQ(name, "stepmod 3601") << daemon_->log();
   ImageWords after;
   ASSERT_TRUE(image_->read_outputs(after));
   EXPECT_EQ(after, before);
