@@ -110,6 +110,8 @@ if [[ $(id -u) -ne 0 ]] && ! command -v qemu-system-x86_64 >/dev/null; then
   skip_all "qemu-system-x86_64 missing and not root to install it (scripts/vm/install-deps.sh as root)"
 fi
 
+# The VM's RAM: the initramfs (base, programs, their libraries) is unpacked into it.
+vm_ram_mb=256
 t_start=$(date +%s.%N)
 elapsed() { awk -v a="$t_start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }'; }
 
@@ -167,8 +169,13 @@ copy_lib() {  # LIB: its path in the VM; copied from this machine or the sysroot
   cp -L "$src" "$ov$lib"
 }
 copy_with_libs() {
-  local f=$1 lib
-  install -m 755 "$f" "$ov/vm/bin/$(basename "$f")"
+  local f=$1 lib dest
+  dest="$ov/vm/bin/$(basename "$f")"
+  # Without its debug information (a RelWithDebInfo stepmodd is ~28 MB): the initramfs is
+  # unpacked into the VM's RAM, and one that does not fit fails to unpack. The symbols stay
+  # (--strip-debug): a crash's backtrace still names its functions.
+  objcopy --strip-debug "$f" "$dest" 2>/dev/null || cp "$f" "$dest"
+  chmod 755 "$dest"
   LC_ALL=C readelf -d "$f" 2>/dev/null | grep -q NEEDED || return 0
   # Dynamically linked: bring its shared libraries and the loader, at their paths.
   while read -r lib; do
@@ -195,10 +202,15 @@ fi
 (cd "$ov" && find . -mindepth 1 | LC_ALL=C sort | cpio --quiet -o -H newc --owner=0:0) >"$out/overlay.cpio"
 cat "$cache/base.cpio" "$out/overlay.cpio" >"$out/initramfs.cpio"
 rm -f "$out/overlay.cpio"
+# The kernel unpacks the initramfs beside its loaded image in the VM's RAM (-m below): at 70 MB of
+# 256 it failed ("Initramfs unpacking failed: write error", then no /vm/board-setup.sh).
+initramfs_mb=$(du -m "$out/initramfs.cpio" | cut -f1)
+((initramfs_mb <= vm_ram_mb / 4)) ||
+  vm_die "the initramfs is ${initramfs_mb} MB: more than a quarter of the VM's ${vm_ram_mb} MB of RAM, it may not unpack (programs too large?)"
 vm_log "initramfs ready after $(elapsed) s: ${#case_names[@]} cases, ${#bins[@]} programs ($(du -h "$out/initramfs.cpio" | cut -f1))"
 
 # 3. Boot. Console on ttyS0 -> console.log, result lines on ttyS1 -> results.raw.
-qemu=(qemu-system-x86_64 -accel tcg -M pc -cpu max -m 256 -smp 1 -nodefaults -display none
+qemu=(qemu-system-x86_64 -accel tcg -M pc -cpu max -m "$vm_ram_mb" -smp 1 -nodefaults -display none
   -no-reboot -monitor none
   -kernel "$cache/vmlinux" -initrd "$out/initramfs.cpio"
   -append "console=ttyS0 quiet loglevel=3 panic=-1 oops=panic"
