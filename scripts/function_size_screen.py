@@ -17,7 +17,7 @@ anything unrecognised) makes its file a candidate, and so does a file whose brac
 balance (#if branches that open braces differently). Being wrong costs only a clang-tidy run.
 
 A candidate header is checked through one unit that includes it (the build's dependency log,
-`ninja -t deps`); without that log for every unit, every unit is checked.
+`ninja -t deps`); a unit that log does not know (not built yet) is parsed whole.
 
 Usage: function_size_screen.py --root DIR --build DIR --min-lines N UNIT...
 Prints the units clang-tidy must check, one per line; a summary on standard error.
@@ -206,21 +206,22 @@ def main():
     args = ap.parse_args()
     root = os.path.realpath(args.root)
     units = [os.path.realpath(u) for u in args.units]
-    deps = unit_dependencies(os.path.realpath(args.build), root)
-    if deps is None or any(u not in deps for u in units):
-        print("function-size screen: no dependency log for every unit (build first): "
-              "every unit is checked", file=sys.stderr)
-        for unit in units:
-            print(unit)
-        return 0
-    files = sorted({f for u in units for f in deps[u] if product_file(f, root)})
+    deps = unit_dependencies(os.path.realpath(args.build), root) or {}
+    # A unit the dependency log does not know (not built yet) is parsed whole: clang-tidy then
+    # reads its headers itself.
+    known = [u for u in units if u in deps]
+    unknown = [u for u in units if u not in deps]
+    files = sorted({f for u in known for f in deps[u] if product_file(f, root)})
     flagged = {f for f in files
                if long_function_blocks(open(f, encoding="utf-8", errors="replace").read(),
                                        args.min_lines)}
-    chosen = {u for u in units if u in flagged}
+    chosen = set(unknown) | {u for u in known if u in flagged}
     for header in sorted(flagged - set(units)):
-        if not any(header in deps[u] for u in chosen):
-            chosen.add(min(u for u in units if header in deps[u]))
+        if not any(header in deps.get(u, ()) for u in chosen):
+            chosen.add(min(u for u in known if header in deps[u]))
+    if unknown:
+        print(f"function-size screen: no dependency log for {len(unknown)} of {len(units)} units "
+              "(not built): parsed whole", file=sys.stderr)
     print(f"function-size screen: {len(flagged)} of {len(files)} product files hold a block of "
           f"{args.min_lines}+ lines that may be a function; {len(chosen)} of {len(units)} units "
           "to check", file=sys.stderr)

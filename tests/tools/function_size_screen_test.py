@@ -121,7 +121,11 @@ class ChoosingUnits(unittest.TestCase):
             self.assertEqual(chosen, [])
             chosen, err = self.run_main(tmp, {a: [a, h]})  # b.cpp not built: no log for it
             self.assertEqual(chosen, [a, b])
-            self.assertIn("every unit is checked", err)
+            self.assertIn("no dependency log for 1 of 2 units", err)
+            chosen, _ = self.run_main(tmp, {a: [a]})  # b parsed whole; h reached only through b
+            self.assertEqual(chosen, [b])
+            chosen, _ = self.run_main(tmp, None)  # no log at all (not ninja, not built)
+            self.assertEqual(chosen, [a, b])
 
 
 if __name__ == "__main__":
