@@ -108,10 +108,15 @@ def declaration_head(intro):
     return intro[i:]
 
 
+def is_scope(intro):
+    """Whether these tokens open a namespace, class, struct, union, enum or extern "C" block."""
+    head = declaration_head(intro)
+    return bool(head) and (head[0][1] in CONTAINER_WORDS or head[0][1] == "extern")
+
+
 def is_container_or_initializer(intro, opened_inside=False):
     """Whether the block after these tokens is positively not a function's body."""
-    head = declaration_head(intro)
-    if head and (head[0][1] in CONTAINER_WORDS or head[0][1] == "extern"):
+    if is_scope(intro):
         return True
     if not intro:
         # Right after an opening brace: a nested initializer ({{...}}) or a statement block;
@@ -156,7 +161,7 @@ def long_function_blocks(text, min_lines):
                 found.append((first, line))
             # An initializer's braces are part of the declaration around them (a constructor's
             # a_{x}, b_{y} before its body); any other block ends one.
-            intro = outer + [("op", "{}", line)] if not_function and not _is_scope(outer) else []
+            intro = outer + [("op", "{}", line)] if not_function and not is_scope(outer) else []
         elif value == ";":
             intro = []
         else:
@@ -165,9 +170,6 @@ def long_function_blocks(text, min_lines):
     return found if not stack else [(1, 0)]
 
 
-def _is_scope(intro):
-    head = declaration_head(intro)
-    return bool(head) and (head[0][1] in CONTAINER_WORDS or head[0][1] == "extern")
 
 
 def unit_dependencies(build, root):
