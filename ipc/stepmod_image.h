@@ -86,13 +86,13 @@ enum stepmod_image_offset {
 
 /* Daemon health flags (offset 416, docs/interface.md 3.3): a bit each, set while the condition
  * lasts. */
-#define STEPMOD_HEALTH_LATE_EDGE (1u << 0)      /* a late-edge fault stopped an axis */
-#define STEPMOD_HEALTH_PLC_STALE (1u << 1)      /* PLC heartbeat stale: as in Program mode */
-#define STEPMOD_HEALTH_SEQ_STUCK (1u << 2)      /* output sequence left odd (PLC died mid-write) */
-#define STEPMOD_HEALTH_SEQ_BYPASS (1u << 3)     /* output words changed, sequence did not */
-#define STEPMOD_HEALTH_TRACE_LOST (1u << 4)     /* trace records lost (the VCD says so too) */
-#define STEPMOD_HEALTH_INPUT_LOST (1u << 5)     /* input events lost: the moving axes were stopped */
-#define STEPMOD_HEALTH_LEASE_EXPIRED (1u << 6)  /* a commissioning lease expired: axes stopped */
+#define STEPMOD_HEALTH_LATE_EDGE (1u << 0)     /* a late-edge fault stopped an axis */
+#define STEPMOD_HEALTH_PLC_STALE (1u << 1)     /* PLC heartbeat stale: as in Program mode */
+#define STEPMOD_HEALTH_SEQ_STUCK (1u << 2)     /* output sequence left odd (PLC died mid-write) */
+#define STEPMOD_HEALTH_SEQ_BYPASS (1u << 3)    /* output words changed, sequence did not */
+#define STEPMOD_HEALTH_TRACE_LOST (1u << 4)    /* trace records lost (the VCD says so too) */
+#define STEPMOD_HEALTH_INPUT_LOST (1u << 5)    /* input events lost: the moving axes were stopped */
+#define STEPMOD_HEALTH_LEASE_EXPIRED (1u << 6) /* a commissioning lease expired: axes stopped */
 #define STEPMOD_HEALTH_LEASE_CONFLICT (1u << 7) /* PLC heartbeat changed during a lease */
 
 /* Section 3.4: why an error bit was set (item code: docs/error-reasons.md). */
@@ -157,10 +157,10 @@ typedef struct stepmod_image {
   uint32_t late_faults;   /* section 3.3: late-edge faults since the daemon started */
   uint32_t worst_late_us; /* extension: largest late-edge fault lateness, us */
   uint8_t reserved428[STEPMOD_OFF_REASONS - 428];
-  stepmod_reason_t reasons[2]; /* section 3.4: axis/channel 1 and 2 */
-  uint32_t lease_holder;       /* section 3.5: pid of the tool holding the lease, 0 = free */
-  uint32_t lease_seq;          /* +1 by the tool at each take */
-  uint64_t lease_expiry_ns;    /* CLOCK_MONOTONIC; at most 500 ms ahead, renewed every 100 ms */
+  stepmod_reason_t reasons[2];   /* section 3.4: axis/channel 1 and 2 */
+  uint32_t lease_holder;         /* section 3.5: pid of the tool holding the lease, 0 = free */
+  uint32_t lease_seq;            /* +1 by the tool at each take */
+  uint64_t lease_expiry_ns;      /* CLOCK_MONOTONIC; at most 500 ms ahead, renewed every 100 ms */
   stepmod_unit_state_t units[2]; /* section 3.6: axis/channel 1 and 2 */
   uint8_t unused[STEPMOD_IMAGE_SIZE - STEPMOD_OFF_END_OF_FIELDS];
 } stepmod_image_t;
@@ -283,23 +283,46 @@ static inline void stepmod_word_store(stepmod_words_t* w, unsigned word_bytes, u
   }
 }
 
-/* Copies n words (sign-extended to int32) into out. Returns 1 on a consistent snapshot, 0 if
- * every one of max_tries attempts overlapped a write (the caller keeps its previous copy). */
-static inline int stepmod_seq_read(const uint32_t* seq, const stepmod_words_t* w,
-                                   unsigned word_bytes, unsigned n, int32_t* out,
-                                   unsigned max_tries) {
-  unsigned t = 0, i = 0;
+/* The reader's side of every sequence lock in this file, written once: `copy` copies what the
+ * lock guards from `from` into `to`, with acquire loads, so the second sequence load cannot move
+ * before any of them. Returns 1 on a consistent snapshot, 0 if every one of max_tries attempts
+ * overlapped a write (the caller keeps its previous copy). */
+typedef void (*stepmod_seq_copy_fn)(const void* from, void* to);
+static inline int stepmod_seq_read_with(const uint32_t* seq, stepmod_seq_copy_fn copy,
+                                        const void* from, void* to, unsigned max_tries) {
+  unsigned t = 0;
   for (t = 0; t < max_tries; ++t) {
     /* On a single-CPU board a writer preempted inside its write only finishes once this reader
      * gives the CPU up: spin a little, then yield. */
     if (t > 0 && (t % 32u) == 0u) sched_yield();
     const uint32_t s0 = __atomic_load_n(seq, __ATOMIC_ACQUIRE);
     if (s0 & 1u) continue;
-    /* Acquire loads: the second sequence load cannot move before any of them. */
-    for (i = 0; i < n; ++i) out[i] = stepmod_word_load(w, word_bytes, i);
+    copy(from, to);
     if (__atomic_load_n(seq, __ATOMIC_RELAXED) == s0) return 1;
   }
   return 0;
+}
+#define STEPMOD_SEQ_READ_TRIES 1000u
+
+/* n words of a word block, for stepmod_seq_read. */
+typedef struct stepmod_word_span {
+  const stepmod_words_t* words;
+  unsigned word_bytes;
+  unsigned n;
+} stepmod_word_span_t;
+static inline void stepmod_copy_words(const void* from, void* to) {
+  const stepmod_word_span_t* s = (const stepmod_word_span_t*)from;
+  int32_t* out = (int32_t*)to;
+  unsigned i = 0;
+  for (i = 0; i < s->n; ++i) out[i] = stepmod_word_load(s->words, s->word_bytes, i);
+}
+
+/* Copies n words (sign-extended to int32) into out, under the sequence lock `seq`. */
+static inline int stepmod_seq_read(const uint32_t* seq, const stepmod_words_t* w,
+                                   unsigned word_bytes, unsigned n, int32_t* out,
+                                   unsigned max_tries) {
+  const stepmod_word_span_t span = {w, word_bytes, n};
+  return stepmod_seq_read_with(seq, stepmod_copy_words, &span, out, max_tries);
 }
 
 /* Writes n words under the sequence lock. */
@@ -314,70 +337,73 @@ static inline void stepmod_seq_write(uint32_t* seq, stepmod_words_t* w, unsigned
 /* PLC side, the usual calls. */
 static inline int stepmod_read_inputs(const stepmod_image_t* im, int32_t* out /* [16] */) {
   return stepmod_seq_read(&im->input_seq, &im->input_image, im->word_bytes, im->input_words, out,
-                          1000u);
+                          STEPMOD_SEQ_READ_TRIES);
 }
 static inline void stepmod_write_outputs(stepmod_image_t* im, const int32_t* in /* [16] */) {
   stepmod_seq_write(&im->output_seq, &im->output_image, im->word_bytes, im->output_words, in);
 }
 /* Section 3.3: the health flags and the late-edge fault count of one input publication (the
  * same seqlock as the input words). Returns 0 if a write overlapped every attempt. */
+typedef struct stepmod_health_copy {
+  uint32_t flags;
+  uint32_t late_faults;
+} stepmod_health_copy_t;
+static inline void stepmod_copy_health(const void* from, void* to) {
+  const stepmod_image_t* im = (const stepmod_image_t*)from;
+  stepmod_health_copy_t* out = (stepmod_health_copy_t*)to;
+  out->flags = __atomic_load_n(&im->health_flags, __ATOMIC_ACQUIRE);
+  out->late_faults = __atomic_load_n(&im->late_faults, __ATOMIC_ACQUIRE);
+}
 static inline int stepmod_read_health(const stepmod_image_t* im, uint32_t* flags,
                                       uint32_t* late_faults) {
-  unsigned t = 0;
-  for (t = 0; t < 1000u; ++t) {
-    if (t > 0 && (t % 32u) == 0u) sched_yield();
-    const uint32_t s0 = __atomic_load_n(&im->input_seq, __ATOMIC_ACQUIRE);
-    if (s0 & 1u) continue;
-    *flags = __atomic_load_n(&im->health_flags, __ATOMIC_ACQUIRE);
-    *late_faults = __atomic_load_n(&im->late_faults, __ATOMIC_ACQUIRE);
-    if (__atomic_load_n(&im->input_seq, __ATOMIC_RELAXED) == s0) return 1;
-  }
-  return 0;
+  stepmod_health_copy_t h = {0u, 0u};
+  if (!stepmod_seq_read_with(&im->input_seq, stepmod_copy_health, im, &h, STEPMOD_SEQ_READ_TRIES))
+    return 0;
+  *flags = h.flags;
+  *late_faults = h.late_faults;
+  return 1;
 }
 /* Section 3.4: the reason block of axis `axis` (0-based) as of one input publication. The text
  * is copied with relaxed byte loads (the seqlock decides). Returns 0 if a write overlapped every
  * attempt. */
+static inline void stepmod_copy_reason(const void* from, void* to) {
+  const stepmod_reason_t* r = (const stepmod_reason_t*)from;
+  stepmod_reason_t* out = (stepmod_reason_t*)to;
+  unsigned i = 0;
+  out->seq = __atomic_load_n(&r->seq, __ATOMIC_ACQUIRE);
+  out->item = __atomic_load_n(&r->item, __ATOMIC_ACQUIRE);
+  for (i = 0; i < STEPMOD_REASON_TEXT; ++i) {
+    out->text[i] = __atomic_load_n(&r->text[i], __ATOMIC_ACQUIRE);
+  }
+}
 static inline int stepmod_read_reason(const stepmod_image_t* im, unsigned axis,
                                       stepmod_reason_t* out) {
-  unsigned t = 0, i = 0;
   if (axis >= 2u) return 0;
-  for (t = 0; t < 1000u; ++t) {
-    if (t > 0 && (t % 32u) == 0u) sched_yield();
-    const uint32_t s0 = __atomic_load_n(&im->input_seq, __ATOMIC_ACQUIRE);
-    if (s0 & 1u) continue;
-    out->seq = __atomic_load_n(&im->reasons[axis].seq, __ATOMIC_ACQUIRE);
-    out->item = __atomic_load_n(&im->reasons[axis].item, __ATOMIC_ACQUIRE);
-    for (i = 0; i < STEPMOD_REASON_TEXT; ++i) {
-      out->text[i] = __atomic_load_n(&im->reasons[axis].text[i], __ATOMIC_ACQUIRE);
-    }
-    if (__atomic_load_n(&im->input_seq, __ATOMIC_RELAXED) == s0) {
-      out->text[STEPMOD_REASON_TEXT - 1] = '\0';
-      return 1;
-    }
-  }
-  return 0;
+  if (!stepmod_seq_read_with(&im->input_seq, stepmod_copy_reason, &im->reasons[axis], out,
+                             STEPMOD_SEQ_READ_TRIES))
+    return 0;
+  out->text[STEPMOD_REASON_TEXT - 1] = '\0';
+  return 1;
 }
 /* Section 3.6: the unit-state block of axis `axis` (0-based) as of one input publication.
  * Returns 0 if a write overlapped every attempt. */
+static inline void stepmod_copy_unit_state(const void* from, void* to) {
+  const stepmod_unit_state_t* u = (const stepmod_unit_state_t*)from;
+  stepmod_unit_state_t* out = (stepmod_unit_state_t*)to;
+  unsigned i = 0;
+  out->config_seq = __atomic_load_n(&u->config_seq, __ATOMIC_ACQUIRE);
+  out->inputs = __atomic_load_n(&u->inputs, __ATOMIC_ACQUIRE);
+  out->drive_enable = __atomic_load_n(&u->drive_enable, __ATOMIC_ACQUIRE);
+  out->reserved = 0;
+  for (i = 0; i < STEPMOD_UNIT_CONFIG_WORDS; ++i) {
+    out->config_words[i] = __atomic_load_n(&u->config_words[i], __ATOMIC_ACQUIRE);
+  }
+}
 static inline int stepmod_read_unit_state(const stepmod_image_t* im, unsigned axis,
                                           stepmod_unit_state_t* out) {
-  unsigned t = 0, i = 0;
   if (axis >= 2u) return 0;
-  for (t = 0; t < 1000u; ++t) {
-    const stepmod_unit_state_t* u = &im->units[axis];
-    if (t > 0 && (t % 32u) == 0u) sched_yield();
-    const uint32_t s0 = __atomic_load_n(&im->input_seq, __ATOMIC_ACQUIRE);
-    if (s0 & 1u) continue;
-    out->config_seq = __atomic_load_n(&u->config_seq, __ATOMIC_ACQUIRE);
-    out->inputs = __atomic_load_n(&u->inputs, __ATOMIC_ACQUIRE);
-    out->drive_enable = __atomic_load_n(&u->drive_enable, __ATOMIC_ACQUIRE);
-    out->reserved = 0;
-    for (i = 0; i < STEPMOD_UNIT_CONFIG_WORDS; ++i) {
-      out->config_words[i] = __atomic_load_n(&u->config_words[i], __ATOMIC_ACQUIRE);
-    }
-    if (__atomic_load_n(&im->input_seq, __ATOMIC_RELAXED) == s0) return 1;
-  }
-  return 0;
+  return stepmod_seq_read_with(&im->input_seq, stepmod_copy_unit_state, &im->units[axis], out,
+                               STEPMOD_SEQ_READ_TRIES);
 }
 static inline uint64_t stepmod_scan_counter(const stepmod_image_t* im) {
   return __atomic_load_n(&im->scan_counter, __ATOMIC_ACQUIRE);
