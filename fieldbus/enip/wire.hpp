@@ -13,9 +13,28 @@
 
 namespace stepmod::enip {
 
-class Reader {
+// What Reader and Writer share: the position in a buffer of `size` bytes and the ok flag, which
+// the first access that does not fit clears for good.
+class WireCursor {
  public:
-  explicit Reader(std::span<const std::uint8_t> buf) noexcept : buf_(buf) {}
+  bool ok() const noexcept { return ok_; }
+
+ protected:
+  explicit WireCursor(std::size_t size) noexcept : size_(size) {}
+  // Whether `n` more bytes fit (and ok() still holds); the caller then advances pos_ itself.
+  bool has(std::size_t n) noexcept {
+    if (ok_ && n <= size_ - pos_) return true;
+    ok_ = false;
+    return false;
+  }
+  std::size_t size_;
+  std::size_t pos_ = 0;
+  bool ok_ = true;
+};
+
+class Reader : public WireCursor {
+ public:
+  explicit Reader(std::span<const std::uint8_t> buf) noexcept : WireCursor(buf.size()), buf_(buf) {}
 
   std::uint8_t u8() noexcept { return has(1) ? buf_[pos_++] : 0; }
   std::uint16_t u16() noexcept {
@@ -39,25 +58,17 @@ class Reader {
   }
   void skip(std::size_t n) noexcept { (void)bytes(n); }
 
-  bool ok() const noexcept { return ok_; }
   std::size_t pos() const noexcept { return pos_; }
-  std::size_t remaining() const noexcept { return buf_.size() - pos_; }
+  std::size_t remaining() const noexcept { return size_ - pos_; }
   std::span<const std::uint8_t> rest() const noexcept { return buf_.subspan(pos_); }
 
  private:
-  bool has(std::size_t n) noexcept {
-    if (ok_ && n <= buf_.size() - pos_) return true;
-    ok_ = false;
-    return false;
-  }
   std::span<const std::uint8_t> buf_;
-  std::size_t pos_ = 0;
-  bool ok_ = true;
 };
 
-class Writer {
+class Writer : public WireCursor {
  public:
-  explicit Writer(std::span<std::uint8_t> out) noexcept : out_(out) {}
+  explicit Writer(std::span<std::uint8_t> out) noexcept : WireCursor(out.size()), out_(out) {}
 
   void u8(std::uint8_t v) noexcept {
     if (has(1)) put(v);
@@ -101,20 +112,12 @@ class Writer {
     out_[at + 1] = static_cast<std::uint8_t>(v >> 8);
   }
 
-  bool ok() const noexcept { return ok_; }
   std::size_t size() const noexcept { return pos_; }
   std::span<const std::uint8_t> written() const noexcept { return out_.first(pos_); }
 
  private:
-  bool has(std::size_t n) noexcept {
-    if (ok_ && n <= out_.size() - pos_) return true;
-    ok_ = false;
-    return false;
-  }
   void put(std::uint8_t v) noexcept { out_[pos_++] = v; }  // after has()
   std::span<std::uint8_t> out_;
-  std::size_t pos_ = 0;
-  bool ok_ = true;
 };
 
 }  // namespace stepmod::enip
