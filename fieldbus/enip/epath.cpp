@@ -115,34 +115,32 @@ bool parse_request_path(std::span<const std::uint8_t> path, RequestPath& out) no
 }
 
 namespace {
+// A field a connection path gives at most once: taken when `allowed` and not given yet.
+template <typename Field, typename Value>
+bool take_once(bool& given, Field& field, const Value& value, bool allowed = true) noexcept {
+  if (given || !allowed) return false;
+  given = true;
+  field = value;
+  return true;
+}
+
 // One segment of a connection path, in the order key, class, config instance, points, data.
 bool take_connection_segment(const Segment& s, ConnectionPath& out) noexcept {
   const bool after_points = out.point_count > 0 || out.has_data;
   switch (s.kind) {
     case SegmentKind::kElectronicKey:
-      if (out.has_key || out.has_class) return false;
-      out.has_key = true;
-      out.key = s.key;
-      return true;
+      return take_once(out.has_key, out.key, s.key, !out.has_class);
     case SegmentKind::kClass:
-      if (out.has_class) return false;
-      out.has_class = true;
-      out.class_id = s.value;
-      return true;
+      return take_once(out.has_class, out.class_id, s.value);
     case SegmentKind::kInstance:
-      if (!out.has_class || out.has_config || after_points) return false;
-      out.has_config = true;
-      out.config_instance = s.value;
-      return true;
+      return take_once(out.has_config, out.config_instance, s.value,
+                       out.has_class && !after_points);
     case SegmentKind::kConnectionPoint:
       if (!out.has_class || out.point_count == 2 || out.has_data) return false;
       out.points[out.point_count++] = s.value;
       return true;
     case SegmentKind::kData:
-      if (out.has_data) return false;
-      out.has_data = true;
-      out.data = s.data;
-      return true;
+      return take_once(out.has_data, out.data, s.data);
     case SegmentKind::kNetwork:
       return true;  // production inhibit time and its kin: nothing we act on
     default:
