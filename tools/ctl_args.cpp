@@ -88,4 +88,20 @@ unsigned input_index(const std::string& name) {
       "'");
 }
 
+std::uint32_t shared_config_bits(const ConfigureArgs& a, const words::SharedConfigMasks& m) {
+  std::uint32_t bits = 0;
+  bits |= a.capture ? m.capture : 0;
+  bits |= a.external ? m.external : 0;
+  bits |= a.home ? m.home : 0;
+  bits |= a.estop ? m.estop : 0;
+  bits |= a.cw_limit ? m.cw_limit : 0;
+  bits |= a.ccw_limit ? m.ccw_limit : 0;
+  bits |= a.proximity ? m.proximity : 0;
+  bits |= a.encoder ? m.encoder : 0;
+  bits |= a.diagnostic ? m.diagnostic : 0;
+  bits |= a.cw_ccw ? 0 : m.step_dir;
+  bits |= a.marker ? m.marker : 0;
+  return bits;
+}
+
 }  // namespace stepmod::tools::ctl

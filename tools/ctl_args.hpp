@@ -10,6 +10,7 @@
 
 #include "plc/move_profile.hpp"
 #include "tools/ctl_command.hpp"
+#include "words/shared_config_bits.hpp"
 
 namespace stepmod::tools::ctl {
 
@@ -59,5 +60,9 @@ plc::AccelType parse_accel_type(const std::string& s);
 inline constexpr const char* kInputNames[] = {"capture", "external", "home",
                                               "estop",   "cw_limit", "ccw_limit"};
 unsigned input_index(const std::string& name);
+
+// configure's flags for the configuration bits that the 3601 and the 3202 name alike, at the
+// module's positions (words/shared_config_bits.hpp); --cw-ccw clears Step+Direction Output.
+std::uint32_t shared_config_bits(const ConfigureArgs& a, const words::SharedConfigMasks& m);
 
 }  // namespace stepmod::tools::ctl

@@ -9,8 +9,8 @@
 #include <optional>
 #include <string_view>
 
-#include "core/bit_table.hpp"
 #include "module/axis/axis_config.hpp"
+#include "words/shared_config_bits.hpp"
 
 namespace stepmod::module::shared {
 
@@ -25,31 +25,13 @@ struct ConfigBits {
   bool any_end_limit = false;  // CW or CCW limit used
 };
 
-// Where a module's configuration word keeps those bits (`end_limits`: both limits' "used" bits).
-struct ConfigMasks {
-  std::uint32_t home, proximity, marker, encoder, diagnostic, step_dir, end_limits;
-};
-
-// Looked up by name in a module's configuration bit table: both manuals name these bits alike
-// (words/words_3601.hpp kConfigMswBits, words/words_3202.hpp kConfigBits).
-template <typename Table>
-consteval ConfigMasks config_masks(const Table& t) {
-  // Direct calls, no helper lambda: clang (clang-tidy) refuses a consteval lambda's call with a
-  // captured parameter as "not a constant expression"; the body of a consteval function is not.
-  using W = std::uint32_t;
-  return {mask_of<W>(t, "Home Input Used"),
-          mask_of<W>(t, "Backplane Home Proximity"),
-          mask_of<W>(t, "Marker Homing (0 = home switch)"),
-          mask_of<W>(t, "Quadrature Encoder"),
-          mask_of<W>(t, "Diagnostic Feedback"),
-          mask_of<W>(t, "Step+Direction Output (0 = CW/CCW)"),
-          mask_of<W>(t, "CW Limit Used") | mask_of<W>(t, "CCW Limit Used")};
-}
-
-constexpr ConfigBits read_config_bits(std::uint32_t word, const ConfigMasks& m) noexcept {
-  return {(word & m.home) != 0,      (word & m.proximity) != 0,  (word & m.marker) != 0,
-          (word & m.encoder) != 0,   (word & m.diagnostic) != 0, (word & m.step_dir) != 0,
-          (word & m.end_limits) != 0};
+// Where a module's configuration word keeps those bits: words/shared_config_bits.hpp, looked up
+// by name in the module's table (both manuals name these bits alike).
+constexpr ConfigBits read_config_bits(std::uint32_t word,
+                                      const words::SharedConfigMasks& m) noexcept {
+  return {(word & m.home) != 0,        (word & m.proximity) != 0,  (word & m.marker) != 0,
+          (word & m.encoder) != 0,     (word & m.diagnostic) != 0, (word & m.step_dir) != 0,
+          (word & m.end_limits()) != 0};
 }
 
 // #1..#5 in the manual's order: the first failing item, or nothing.

@@ -30,8 +30,7 @@ ConfigCheck check_config(const ImageWords& out, unsigned channel) noexcept {
     r.config = Config3202{bits, vs};
     return r;
   }
-  const shared::ConfigBits shared_bits =
-      shared::read_config_bits(bits, shared::config_masks(kConfigBits));
+  const shared::ConfigBits shared_bits = shared::read_config_bits(bits, cfg_bit::kShared);
   // Checked in the manual's order; the first failing item is reported. #1 as on the 3601
   // (3202 manual ch. 3, inferred): marker homing is a way to home by itself.
   if (auto f = shared::homing_and_feedback_fault<ConfigFault>(shared_bits)) return fail(*f);
@@ -55,7 +54,7 @@ axis::AxisConfig to_axis_config(const Config3202& c) noexcept {
   a.inputs_used = static_cast<std::uint16_t>(c.bits & cfg_bit::kInputsUsed);
   a.inputs_active_high =
       static_cast<std::uint16_t>((c.bits & cfg_bit::kActiveLevels) >> cfg_bit::kActiveLevelShift);
-  shared::apply_config_bits(shared::read_config_bits(c.bits, shared::config_masks(kConfigBits)), a);
+  shared::apply_config_bits(shared::read_config_bits(c.bits, cfg_bit::kShared), a);
   a.starting_speed = c.starting_speed;
   return a;
 }

@@ -19,18 +19,7 @@ std::uint32_t configuration_bits(const ConfigureArgs& a) {
   if (a.cw_estop || a.ccw_estop || !a.homing_timeout.empty()) {
     throw UsageError("--cw-estop, --ccw-estop and --homing-timeout are the 3602's");
   }
-  std::uint32_t bits = 0;
-  bits |= a.capture ? cb::kCaptureUsed : 0;
-  bits |= a.external ? cb::kExternalUsed : 0;
-  bits |= a.home ? cb::kHomeUsed : 0;
-  bits |= a.estop ? cb::kEStopUsed : 0;
-  bits |= a.cw_limit ? cb::kCwLimitUsed : 0;
-  bits |= a.ccw_limit ? cb::kCcwLimitUsed : 0;
-  bits |= a.proximity ? cb::kBackplaneProximity : 0;
-  bits |= a.encoder ? cb::kQuadratureEncoder : 0;
-  bits |= a.diagnostic ? cb::kDiagnosticFeedback : 0;
-  bits |= a.cw_ccw ? 0 : cb::kStepDirOutput;
-  bits |= a.marker ? cb::kMarkerHoming : 0;
+  std::uint32_t bits = shared_config_bits(a, cb::kShared);
   bits |= a.disable ? cb::kDisable : 0;
   // Active levels in bits 16..21: active high unless named (3202 manual ch. 3).
   std::uint32_t levels = cb::kActiveLevels;

@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "core/bit_table.hpp"
+#include "words/shared_config_bits.hpp"
 
 namespace stepmod::words::m3202 {
 
@@ -146,6 +147,8 @@ inline constexpr std::uint32_t kDisable = field(kConfigBits, "Disable Channel");
 inline constexpr std::uint32_t kConfigMode = field(kConfigBits, "Configuration Mode");
 // 3202-CFG-09: reserved bits 7, 11, 13-15, 22-27, 29, 30 (the bits the table does not name).
 inline constexpr std::uint32_t kReserved = detail::unnamed(kConfigBits);
+// The bits the 3601 names alike, where the DINT keeps them (words/shared_config_bits.hpp).
+inline constexpr SharedConfigMasks kShared = shared_config_masks(kConfigBits);
 }  // namespace cfg_bit
 
 namespace cmd_bit {

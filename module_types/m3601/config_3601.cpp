@@ -23,8 +23,7 @@ ConfigCheck check_config(const ImageWords& out) noexcept {
   const auto lsw = static_cast<std::uint16_t>(out.w[out_word::kLsw]);
   const auto vs_msw = static_cast<std::int16_t>(out.w[out_word::kTargetMsw]);
   const auto vs_lsw = static_cast<std::int16_t>(out.w[out_word::kTargetLsw]);
-  const shared::ConfigBits bits =
-      shared::read_config_bits(msw, shared::config_masks(kConfigMswBits));
+  const shared::ConfigBits bits = shared::read_config_bits(msw, cfg_msw::kShared);
 
   // Checked in the manual's order; the first failing item is reported.
   auto fail = [&r](ConfigFault f) {
@@ -57,8 +56,7 @@ axis::AxisConfig to_axis_config(const Config3601& c) noexcept {
                                        cfg_msw::kCwLimitUsed | cfg_msw::kCcwLimitUsed;
   a.inputs_used = c.msw & kInputBits;
   a.inputs_active_high = c.lsw & kInputBits;
-  shared::apply_config_bits(shared::read_config_bits(c.msw, shared::config_masks(kConfigMswBits)),
-                            a);
+  shared::apply_config_bits(shared::read_config_bits(c.msw, cfg_msw::kShared), a);
   a.starting_speed = c.starting_speed;
   return a;
 }

@@ -23,19 +23,8 @@ std::uint16_t configuration_msw(const ConfigureArgs& a) {
   if (a.cw_estop || a.ccw_estop || a.disable || !a.homing_timeout.empty()) {
     throw UsageError("--cw-estop, --ccw-estop, --disable and --homing-timeout are the 3602's");
   }
-  std::uint16_t msw = 0;
-  msw |= a.capture ? cm::kCaptureUsed : 0;
-  msw |= a.external ? cm::kExternalUsed : 0;
-  msw |= a.home ? cm::kHomeUsed : 0;
-  msw |= a.estop ? cm::kEStopUsed : 0;
-  msw |= a.cw_limit ? cm::kCwLimitUsed : 0;
-  msw |= a.ccw_limit ? cm::kCcwLimitUsed : 0;
-  msw |= a.proximity ? cm::kBackplaneProximity : 0;
-  msw |= a.encoder ? cm::kQuadratureEncoder : 0;
-  msw |= a.diagnostic ? cm::kDiagnosticFeedback : 0;
-  msw |= a.cw_ccw ? 0 : cm::kStepDirOutput;
-  msw |= a.marker ? cm::kMarkerHoming : 0;
-  return msw;
+  // Bits 0..12 are the ones the 3202 names alike; the 3601's MSW has no others but the mode bit.
+  return static_cast<std::uint16_t>(shared_config_bits(a, cm::kShared));
 }
 
 // Active levels in bits 0..5 (InputLine order); the manual advises active-high bits even for

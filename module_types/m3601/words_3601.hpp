@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "core/bit_table.hpp"
+#include "words/shared_config_bits.hpp"
 #include "words/word_pair.hpp"
 
 namespace stepmod::words::m3601 {
@@ -194,6 +195,8 @@ inline constexpr std::uint16_t kMarkerHoming =  // 0 = home-switch homing
     field(kConfigMswBits, "Marker Homing (0 = home switch)");
 inline constexpr std::uint16_t kConfigMode = field(kConfigMswBits, "Configuration Mode");
 inline constexpr std::uint16_t kReserved = detail::unnamed(kConfigMswBits);
+// The bits the 3202 names alike, where the MSW keeps them (words/shared_config_bits.hpp).
+inline constexpr SharedConfigMasks kShared = shared_config_masks(kConfigMswBits);
 }  // namespace cfg_msw
 
 namespace cfg_lsw {
