@@ -9,8 +9,10 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <optional>
 
 #include "fieldbus/enip/adapter_impl.hpp"
 #include "fieldbus/enip/adapter_sockets.hpp"
@@ -65,14 +67,32 @@ Adapter::Impl::Impl(const Setup& s)
   timer_fd = open_timer();
   listen_fd = open_bound_socket(SOCK_STREAM, o.address, o.port);
   udp_fd = open_bound_socket(SOCK_DGRAM, o.address, o.port);
+  want_packet_info(udp_fd);  // listening on 0.0.0.0, broadcasts arrive here too
   io_fd = open_bound_socket(SOCK_DGRAM, o.address, kIoPort);
+  random_state = random_seed() | 1u;
+  open_broadcast(o);
+}
+
+// Broadcast ListIdentity (docs/ethernetip-design.md, "Encapsulation"): answered on the interface
+// that holds the listen address. A socket bound to that address does not receive broadcasts, so
+// a second one on 0.0.0.0 does; when it cannot be bound (another program holds the port without
+// SO_REUSEADDR) the adapter runs without it and says so.
+void Adapter::Impl::open_broadcast(const AdapterOptions& o) {
+  broadcasts = BroadcastScope::for_listen(host_ip(o.address), interface_addresses());
+  if (!broadcasts.needs_own_socket()) return;
+  std::string why;
+  broadcast_fd = open_broadcast_socket(o.port, why);
+  if (broadcast_fd < 0) {
+    spdlog::warn("ethernetip: {}: broadcast ListIdentity will not be answered ({})", o.address,
+                 why);
+  }
 }
 
 Adapter::Impl::~Impl() {
   for (TcpClient& c : clients) {
     if (c.fd >= 0) ::close(c.fd);
   }
-  for (const int fd : {io_fd, udp_fd, listen_fd, timer_fd, wake_fd}) {
+  for (const int fd : {io_fd, broadcast_fd, udp_fd, listen_fd, timer_fd, wake_fd}) {
     if (fd >= 0) ::close(fd);
   }
 }
@@ -123,7 +143,7 @@ void Adapter::Impl::publish_deadman() noexcept {
 }
 
 void Adapter::Impl::rearm() noexcept {
-  const std::int64_t due = connections.next_due_ns();
+  const std::int64_t due = std::min(connections.next_due_ns(), delayed.next_due());
   if (due == armed_at) return;
   arm_timer(timer_fd, due);
   armed_at = due;
@@ -134,6 +154,7 @@ std::size_t Adapter::Impl::fill_fds() noexcept {
   fds[kTimer] = {timer_fd, POLLIN, 0};
   fds[kListen] = {listen_fd, POLLIN, 0};
   fds[kEncapUdp] = {udp_fd, POLLIN, 0};
+  fds[kBroadcastUdp] = {broadcast_fd, POLLIN, 0};  // fd -1: poll skips it
   fds[kIo] = {io_fd, POLLIN, 0};
   std::size_t n = kFixedSlots;
   for (const TcpClient& c : clients) fds[n++] = {c.fd, POLLIN, 0};  // fd -1: poll skips it
@@ -141,9 +162,13 @@ std::size_t Adapter::Impl::fill_fds() noexcept {
 }
 
 // Timeouts first (a silent owner is the PLC leaving Run), then every T→O that is due, each from
-// one read of the input words.
+// one read of the input words; the answers to broadcasts whose delay has passed.
 void Adapter::Impl::on_due(Nanos now) noexcept {
   connections.expire(now);
+  delayed.send_due(now, [this](const sockaddr_in& to, std::span<const std::uint8_t> reply) {
+    ::sendto(udp_fd, reply.data(), reply.size(), MSG_DONTWAIT,
+             reinterpret_cast<const sockaddr*>(&to), sizeof to);
+  });
   const std::span<std::uint8_t> in(input.data(), assemblies.layout().input_bytes);
   bool read = false;
   const std::span<IoConnection> slots = connections.slots();
@@ -163,18 +188,16 @@ void Adapter::Impl::on_due(Nanos now) noexcept {
 }
 
 // Up to kDatagramsPerWake datagrams waiting on `fd`, each from an allowed sender handed to
-// `take(ip, bytes, from)`; a datagram longer than the buffer is not ours and is dropped.
+// `take(ip, bytes, arrival)`; a datagram longer than the buffer is not ours and is dropped.
 template <class Take>
 void Adapter::Impl::each_datagram(int fd, const char* what, Take&& take) noexcept {
   for (int k = 0; k < kDatagramsPerWake; ++k) {
-    sockaddr_in from{};
-    socklen_t len = sizeof from;
-    const ssize_t n = ::recvfrom(fd, rx.data(), rx.size(), MSG_DONTWAIT | MSG_TRUNC,
-                                 reinterpret_cast<sockaddr*>(&from), &len);
+    Arrival a;
+    const long n = receive_datagram(fd, rx, a);
     if (n < 0) break;
-    const std::uint32_t ip = ntohl(from.sin_addr.s_addr);
+    const std::uint32_t ip = ntohl(a.from.sin_addr.s_addr);
     if (static_cast<std::size_t>(n) > rx.size() || !allowed(ip, what)) continue;
-    take(ip, std::span<const std::uint8_t>(rx.data(), static_cast<std::size_t>(n)), from);
+    take(ip, std::span<const std::uint8_t>(rx.data(), static_cast<std::size_t>(n)), a);
   }
 }
 
@@ -182,7 +205,7 @@ void Adapter::Impl::each_datagram(int fd, const char* what, Take&& take) noexcep
 // packet is a PLC heartbeat.
 void Adapter::Impl::receive_io(Nanos now) noexcept {
   each_datagram(io_fd, "an I/O packet",
-                [&](std::uint32_t ip, std::span<const std::uint8_t> d, const sockaddr_in&) {
+                [&](std::uint32_t ip, std::span<const std::uint8_t> d, const Arrival&) {
                   const OtResult r = connections.on_o_to_t(ip, d, now);
                   if (r.outcome == OtOutcome::kRunWrite) {
                     assemblies.write_output(r.data);
@@ -196,17 +219,48 @@ void Adapter::Impl::receive_io(Nanos now) noexcept {
   publish_deadman();
 }
 
-// UDP encapsulation: ListIdentity, ListServices, ListInterfaces, answered to the sender.
-void Adapter::Impl::receive_udp(Nanos now) noexcept {
-  each_datagram(udp_fd, "a UDP request",
-                [&](std::uint32_t ip, std::span<const std::uint8_t> d, const sockaddr_in& from) {
+// UDP encapsulation: ListIdentity, ListServices, ListInterfaces, answered to the sender at once;
+// a broadcast ListIdentity after its random delay. The broadcast socket also receives what is
+// not ours (another address's datagrams, another interface's broadcasts): dropped.
+void Adapter::Impl::receive_udp(int fd, Nanos now) noexcept {
+  each_datagram(fd, "a UDP request",
+                [&](std::uint32_t ip, std::span<const std::uint8_t> d, const Arrival& a) {
+                  const bool broadcast = broadcasts.accepts(a.ifindex, a.destination);
+                  if (broadcast) return answer_broadcast(d, a.from, now);
+                  if (fd != udp_fd) return;
                   router.origin = RequestOrigin{ip, now};
                   const std::size_t size = handle_udp(d, encap, tx);
                   if (size > 0) {
                     ::sendto(udp_fd, tx.data(), size, MSG_DONTWAIT,
-                             reinterpret_cast<const sockaddr*>(&from), sizeof from);
+                             reinterpret_cast<const sockaddr*>(&a.from), sizeof a.from);
                   }
                 });
+}
+
+// Only ListIdentity is answered to a broadcast, from the unicast socket (so from the listen
+// address), at a random time within the delay its sender allows; when every slot waits already,
+// not at all (docs/ethernetip-design.md, "Encapsulation").
+void Adapter::Impl::answer_broadcast(std::span<const std::uint8_t> request, const sockaddr_in& to,
+                                     Nanos now) noexcept {
+  const std::optional<Nanos> max_delay = list_identity_max_delay(request);
+  if (!max_delay) return;
+  const std::size_t size = handle_udp(request, encap, tx);
+  if (size == 0) return;
+  delayed.add(now + random_below(*max_delay + 1), to, std::span(tx.data(), size));
+}
+
+// xorshift32, seeded from getrandom(): spreads answers, guards nothing. Two draws make the
+// 64 bits a delay of up to 65.5 s in ns needs.
+Nanos Adapter::Impl::random_below(Nanos limit) noexcept {
+  const auto draw = [this]() -> std::uint64_t {
+    random_state ^= random_state << 13;
+    random_state ^= random_state >> 17;
+    random_state ^= random_state << 5;
+    return random_state;
+  };
+  const std::uint64_t high = draw();
+  const std::uint64_t r = (high << 32) | draw();
+  return static_cast<Nanos>(r % static_cast<std::uint64_t>(limit));
 }
 
 void Adapter::run() noexcept {
@@ -232,7 +286,8 @@ void Adapter::run() noexcept {
       d.armed_at = 0;  // fired: arm again whatever the next time is
     }
     if (d.fds[Impl::kIo].revents != 0) d.receive_io(now);
-    if (d.fds[Impl::kEncapUdp].revents != 0) d.receive_udp(now);
+    if (d.fds[Impl::kEncapUdp].revents != 0) d.receive_udp(d.udp_fd, now);
+    if (d.fds[Impl::kBroadcastUdp].revents != 0) d.receive_udp(d.broadcast_fd, now);
     for (std::size_t i = 0; i < kMaxTcpClients; ++i) {
       if (d.fds[Impl::kFixedSlots + i].revents != 0) d.serve(d.clients[i], now);
     }

@@ -10,6 +10,8 @@
 
 #include "core/clock.hpp"
 #include "fieldbus/enip/adapter.hpp"
+#include "fieldbus/enip/adapter_sockets.hpp"
+#include "fieldbus/enip/broadcast.hpp"
 #include "fieldbus/enip/connection_table.hpp"
 #include "fieldbus/enip/encap.hpp"
 #include "fieldbus/enip/encap_session.hpp"
@@ -46,7 +48,7 @@ struct Adapter::Impl {
   ~Impl();
 
   // Fixed poll slots, then one per TCP client.
-  enum Slot : std::size_t { kWake, kTimer, kListen, kEncapUdp, kIo, kFixedSlots };
+  enum Slot : std::size_t { kWake, kTimer, kListen, kEncapUdp, kBroadcastUdp, kIo, kFixedSlots };
 
   Setup setup;
   ipc::ShmMapping map;
@@ -64,7 +66,11 @@ struct Adapter::Impl {
   int timer_fd = -1;
   int listen_fd = -1;
   int udp_fd = -1;
+  int broadcast_fd = -1;  // -1: none needed (or it could not be bound)
   int io_fd = -1;
+  BroadcastScope broadcasts;  // which broadcast ListIdentity requests are answered
+  DelayedReplies delayed;     // their answers, each at its random time
+  std::uint32_t random_state = 1;
   std::int64_t armed_at = 0;
   std::uint32_t next_client_id = 1;
   std::array<TcpClient, kMaxTcpClients> clients{};
@@ -82,7 +88,11 @@ struct Adapter::Impl {
   template <class Take>
   void each_datagram(int fd, const char* what, Take&& take) noexcept;
   void receive_io(Nanos now) noexcept;
-  void receive_udp(Nanos now) noexcept;
+  void receive_udp(int fd, Nanos now) noexcept;
+  void answer_broadcast(std::span<const std::uint8_t> request, const sockaddr_in& to,
+                        Nanos now) noexcept;
+  void open_broadcast(const AdapterOptions& o);
+  Nanos random_below(Nanos limit) noexcept;
   // adapter_tcp.cpp
   void accept_one(Nanos now) noexcept;
   void serve(TcpClient& c, Nanos now) noexcept;

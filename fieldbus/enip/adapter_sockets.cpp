@@ -1,6 +1,8 @@
 #include "fieldbus/enip/adapter_sockets.hpp"
 
 #include <arpa/inet.h>
+#include <ifaddrs.h>
+#include <net/if.h>
 #include <sys/socket.h>
 #include <sys/timerfd.h>
 #include <unistd.h>
@@ -33,6 +35,71 @@ int open_bound_socket(int type, const std::string& address, std::uint16_t port) 
     throw ipc::IpcError("ethernetip: cannot bind " + where + ": " + why);
   }
   return fd;
+}
+
+int open_broadcast_socket(std::uint16_t port, std::string& why) noexcept {
+  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  if (fd < 0) {
+    why = std::strerror(errno);
+    return -1;
+  }
+  const int one = 1;
+  ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+  want_packet_info(fd);
+  const sockaddr_in a = ipv4_address(INADDR_ANY, port);
+  if (::bind(fd, reinterpret_cast<const sockaddr*>(&a), sizeof a) != 0) {
+    why = "cannot bind UDP 0.0.0.0:" + std::to_string(port) + ": " + std::strerror(errno);
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+void want_packet_info(int fd) noexcept {
+  const int one = 1;
+  ::setsockopt(fd, IPPROTO_IP, IP_PKTINFO, &one, sizeof one);
+}
+
+long receive_datagram(int fd, std::span<std::uint8_t> buf, Arrival& arrival) noexcept {
+  iovec iov{buf.data(), buf.size()};
+  alignas(cmsghdr) std::uint8_t control[CMSG_SPACE(sizeof(in_pktinfo))];
+  msghdr m{};
+  m.msg_name = &arrival.from;
+  m.msg_namelen = sizeof arrival.from;
+  m.msg_iov = &iov;
+  m.msg_iovlen = 1;
+  m.msg_control = control;
+  m.msg_controllen = sizeof control;
+  const ssize_t n = ::recvmsg(fd, &m, MSG_DONTWAIT | MSG_TRUNC);
+  if (n < 0) return -1;
+  arrival.ifindex = 0;
+  arrival.destination = 0;
+  for (cmsghdr* c = CMSG_FIRSTHDR(&m); c != nullptr; c = CMSG_NXTHDR(&m, c)) {
+    if (c->cmsg_level != IPPROTO_IP || c->cmsg_type != IP_PKTINFO) continue;
+    in_pktinfo info{};
+    std::memcpy(&info, CMSG_DATA(c), sizeof info);
+    arrival.ifindex = static_cast<unsigned>(info.ipi_ifindex);
+    arrival.destination = ntohl(info.ipi_addr.s_addr);
+  }
+  return n;
+}
+
+std::vector<InterfaceAddress> interface_addresses() {
+  std::vector<InterfaceAddress> out;
+  ifaddrs* list = nullptr;
+  if (::getifaddrs(&list) != 0) return out;
+  for (const ifaddrs* i = list; i != nullptr; i = i->ifa_next) {
+    if (i->ifa_addr == nullptr || i->ifa_addr->sa_family != AF_INET) continue;
+    InterfaceAddress a;
+    a.ifindex = ::if_nametoindex(i->ifa_name);
+    a.address = ntohl(reinterpret_cast<const sockaddr_in*>(i->ifa_addr)->sin_addr.s_addr);
+    if ((i->ifa_flags & IFF_BROADCAST) != 0 && i->ifa_broadaddr != nullptr) {
+      a.broadcast = ntohl(reinterpret_cast<const sockaddr_in*>(i->ifa_broadaddr)->sin_addr.s_addr);
+    }
+    out.push_back(a);
+  }
+  ::freeifaddrs(list);
+  return out;
 }
 
 int open_timer() {

@@ -7,12 +7,36 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
+
+#include "fieldbus/enip/broadcast.hpp"
 
 namespace stepmod::enip {
 
 // A socket of `type` (SOCK_STREAM: listening; SOCK_DGRAM) bound to `address`:`port`. Throws
 // ipc::IpcError naming the address and why.
 int open_bound_socket(int type, const std::string& address, std::uint16_t port);
+
+// A UDP socket on 0.0.0.0:`port` for the broadcasts a socket bound to one address does not
+// receive (SO_REUSEADDR: it shares the port with the adapters of a rack and the unicast socket;
+// IP_PKTINFO). -1 when it cannot be bound, with `why` set: the adapter then runs without it.
+int open_broadcast_socket(std::uint16_t port, std::string& why) noexcept;
+// Asks IP_PKTINFO of a UDP socket: receive_datagram() then tells each datagram's interface and
+// destination address.
+void want_packet_info(int fd) noexcept;
+
+// Where a datagram came from and how it arrived (ifindex and destination 0 without IP_PKTINFO).
+struct Arrival {
+  sockaddr_in from{};
+  unsigned ifindex = 0;
+  std::uint32_t destination = 0;  // host byte order
+};
+// One datagram waiting on `fd` into `buf`: its whole size (larger than `buf` when it did not
+// fit), or -1 when none waits.
+long receive_datagram(int fd, std::span<std::uint8_t> buf, Arrival& arrival) noexcept;
+
+// The machine's IPv4 addresses now (getifaddrs); empty when it cannot tell.
+std::vector<InterfaceAddress> interface_addresses();
 
 // A CLOCK_MONOTONIC timerfd, non-blocking. Throws ipc::IpcError.
 int open_timer();

@@ -12,6 +12,9 @@
 //                                               Get_Attribute_Single of the Identity object
 //   node partner.js list-identity TARGET LOCAL udp|tcp   ListIdentity, parsed by
 //                                               st-ethernet-ip's Browser
+//   node partner.js browse LOCAL                 st-ethernet-ip's Browser as it finds devices:
+//                                               ListIdentity broadcast to 255.255.255.255 from
+//                                               LOCAL every 500 ms; each device found, a line
 "use strict";
 const net = require("net");
 const readline = require("readline");
@@ -116,11 +119,18 @@ function listIdentity(target, local, how) {
   }
 }
 
+function browse(local) {
+  const { Browser } = require("st-ethernet-ip");
+  const b = new Browser(0, local, true, 500);
+  b.on("New Device", (d) => say({ device: d }));
+}
+
 process.on("unhandledRejection", fail);
 const [mode, a1, a2, a3] = process.argv.slice(2);
 if (mode === "scanner") scanner(JSON.parse(a1));
 else if (mode === "open-once") openOnce(JSON.parse(a1));
 else if (mode === "identity") identity(a1);
 else if (mode === "list-identity") listIdentity(a1, a2, a3);
+else if (mode === "browse") browse(a1);
 else fail(new Error("unknown mode " + mode));
 setTimeout(() => fail(new Error("partner.js: no result in 60 s")), 60000).unref();
