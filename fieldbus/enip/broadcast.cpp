@@ -53,6 +53,10 @@ std::optional<Nanos> list_identity_max_delay(std::span<const std::uint8_t> datag
 bool DelayedReplies::add(Nanos due, const sockaddr_in& to,
                          std::span<const std::uint8_t> reply) noexcept {
   if (reply.size() > kMaxReply) return false;
+  const auto same_sender = [&to](const Pending& p) {
+    return p.used && p.to.sin_addr.s_addr == to.sin_addr.s_addr && p.to.sin_port == to.sin_port;
+  };
+  if (std::any_of(slots_.begin(), slots_.end(), same_sender)) return false;
   for (Pending& p : slots_) {
     if (p.used) continue;
     p.used = true;

@@ -54,14 +54,16 @@ class BroadcastScope {
 // 16 bits are the maximum in ms: 0 means 2000, less than 500 means 500.
 std::optional<Nanos> list_identity_max_delay(std::span<const std::uint8_t> datagram) noexcept;
 
-// Replies waiting for their time. At most kSlots wait: a broadcast that finds them all taken is
-// not answered, so a flood of requests neither grows the queue nor the replies.
+// Replies waiting for their time. At most kSlots wait, one per sender (address and port): a
+// broadcast that finds them all taken, or its sender's answer still waiting, is not answered, so
+// a flood of requests neither grows the queue nor the replies, and one sender holds one slot.
 class DelayedReplies {
  public:
   static constexpr std::size_t kSlots = 8;
   static constexpr std::size_t kMaxReply = 256;
 
-  // False when every slot is taken or the reply is larger than kMaxReply.
+  // False when every slot is taken, `to` has an answer waiting already, or the reply is larger
+  // than kMaxReply.
   bool add(Nanos due, const sockaddr_in& to, std::span<const std::uint8_t> reply) noexcept;
   // The earliest due time, INT64_MAX when none waits.
   Nanos next_due() const noexcept;

@@ -103,6 +103,7 @@ TEST(EnipBroadcast, DelayedRepliesGoEachAtItsTimeAndAFullQueueTakesNoMore) {
     EXPECT_TRUE(q.add(static_cast<Nanos>(100 - i), to(static_cast<std::uint16_t>(i)), reply));
   }
   EXPECT_FALSE(q.add(1, to(99), reply)) << "every slot waits: the broadcast is not answered";
+  EXPECT_FALSE(q.add(1, to(3), reply)) << "its sender's answer waits already";
   EXPECT_EQ(q.next_due(), static_cast<Nanos>(100 - DelayedReplies::kSlots + 1));
   std::vector<std::uint16_t> sent;
   const auto send = [&](const sockaddr_in& a, std::span<const std::uint8_t> bytes) {
@@ -115,9 +116,10 @@ TEST(EnipBroadcast, DelayedRepliesGoEachAtItsTimeAndAFullQueueTakesNoMore) {
   EXPECT_EQ(sent.size(), 5u) << "each is sent once";
   EXPECT_EQ(q.next_due(), 98);
   EXPECT_TRUE(q.add(50, to(42), reply)) << "a sent reply's slot is free again";
+  EXPECT_TRUE(q.add(50, to(3), reply)) << "and its sender may ask again";
   EXPECT_FALSE(q.add(50, to(43), std::vector<std::uint8_t>(DelayedReplies::kMaxReply + 1)));
   q.send_due(1000, send);
-  EXPECT_EQ(sent.size(), 9u);
+  EXPECT_EQ(sent.size(), 10u);
   EXPECT_EQ(q.next_due(), std::numeric_limits<Nanos>::max());
 }
 
