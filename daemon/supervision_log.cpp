@@ -39,7 +39,7 @@ void log_supervision(const ipc::PlcSupervisor& sup, Nanos now) {
   if (on & STEPMOD_HEALTH_SEQ_BYPASS) {
     spdlog::warn(
         "output words changed while the output sequence did not: a writer bypasses the seqlock "
-        "(INTERFACE 3.1); the module may act on torn words (an old MSW with a new LSW)");
+        "(docs/interface.md 3.1); the module may act on torn words (an old MSW with a new LSW)");
   }
   if (off & STEPMOD_HEALTH_SEQ_BYPASS) {
     spdlog::info("no seqlock bypass for {} ms ({} bypassing change(s) seen in all)",

@@ -1,7 +1,7 @@
 #pragma once
-// The commissioning lease's one limit (INTERFACE 3.5, docs/commissioning.md), shared by the tools'
-// side (ipc/lease.hpp), the daemon's (ipc/lease_watch.hpp) and the PLC supervisor, so that the
-// three cannot disagree on it.
+// The commissioning lease's one limit (docs/interface.md 3.5, docs/commissioning.md), shared by the
+// tools' side (ipc/lease.hpp), the daemon's (ipc/lease_watch.hpp) and the PLC supervisor, so that
+// the three cannot disagree on it.
 #include "core/clock.hpp"
 
 namespace stepmod::ipc {

@@ -14,8 +14,8 @@ PlcSupervisor::PlcSupervisor(Nanos heartbeat_timeout) noexcept
     : heartbeat_timeout_(heartbeat_timeout > 0 ? heartbeat_timeout : 0),
       odd_timeout_(heartbeat_timeout > 0 ? heartbeat_timeout : kOddTimeoutWithoutHeartbeat) {}
 
-// Heartbeat (INTERFACE 3.2): stale while unchanged for the timeout, or at once while a fieldbus
-// PLC is out of Run.
+// Heartbeat (docs/interface.md 3.2): stale while unchanged for the timeout, or at once while a
+// fieldbus PLC is out of Run.
 std::uint32_t PlcSupervisor::heartbeat_flags(const Sample& s) noexcept {
   std::uint32_t flags = 0;
   const bool lease = lease_stands(s);

@@ -49,8 +49,8 @@ class PlcSupervisor {
     bool snapshot_ok = false;        // a consistent snapshot was taken ...
     std::uint32_t snapshot_seq = 0;  // ... under this (even) sequence value
     ImageWords words{};              // ... of these words
-    // The expiry of a commissioning lease held at this scan (INTERFACE 3.5; 0 = none), as the
-    // daemon's lease watch found it valid: while it stands, the tool is the deadman and the
+    // The expiry of a commissioning lease held at this scan (docs/interface.md 3.5; 0 = none), as
+    // the daemon's lease watch found it valid: while it stands, the tool is the deadman and the
     // heartbeat counts as fresh. Only an expiry within [now, now + kLeaseMaxAheadNs] stands, so
     // no lease word (garbage, a far-off or passed expiry) holds off the heartbeat timeout for
     // longer than the 500 ms a live holder's lease lasts without renewal.

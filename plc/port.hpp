@@ -1,8 +1,8 @@
 #pragma once
 // What a PLC program needs of the module's I/O image, whoever carries it: the shared memory of a
 // running stepmodd (plc/shm_port.hpp) or the virtual-time test machine
-// (tests/support/virtual_port.hpp). The dialects (module_types/m3601/plc_3601.hpp, ...) sequence their commands
-// through this interface only, so stepmodctl and the tests run the same PLC code.
+// (tests/support/virtual_port.hpp). The dialects (module_types/m3601/plc_3601.hpp, ...) sequence
+// their commands through this interface only, so stepmodctl and the tests run the same PLC code.
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -13,7 +13,7 @@
 
 namespace stepmod::plc {
 
-// The last error reason of one axis/channel (INTERFACE 3.4, docs/error-reasons.md).
+// The last error reason of one axis/channel (docs/interface.md 3.4, docs/error-reasons.md).
 struct ReasonView {
   std::uint32_t seq = 0;   // +1 per recorded reason
   std::uint32_t code = 0;  // item code: module * 10000 + list * 100 + number

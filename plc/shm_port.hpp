@@ -1,6 +1,6 @@
 #pragma once
 // The PLC port over a running module's shared-memory image (ipc::Client), for every tool that
-// writes the module's words. While it waits it is the PLC's heartbeat (INTERFACE 3.2), as
+// writes the module's words. While it waits it is the PLC's heartbeat (docs/interface.md 3.2), as
 // stepmodctl and the daemon tests drive the module as a PLC; a holder of the commissioning lease
 // (ipc/lease.hpp: stepmodctl --wait, stepmod-web) is no PLC and uses it without the heartbeat:
 // a heartbeat bumped while a lease is held reads as two writers to the daemon (health bit 7).
@@ -27,7 +27,7 @@ class ShmPort final : public Port {
   }
   bool read_inputs(ImageWords& in) const override;
   std::optional<ReasonView> reason(unsigned unit) const override;
-  // Off while the caller holds the commissioning lease (INTERFACE 3.5).
+  // Off while the caller holds the commissioning lease (docs/interface.md 3.5).
   void set_heartbeat(bool on) noexcept { heartbeat_on_ = on; }
   bool wait_scans(unsigned n) override;
   void pass(std::chrono::nanoseconds d) override;

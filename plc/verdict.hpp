@@ -1,7 +1,7 @@
 #pragma once
 // Whether THIS command was refused (issue 20): the error bits after a command may be stale,
-// left by an earlier one. With the image's error reasons (INTERFACE 3.4) a command is refused
-// when a new reason of one of the lists it checks was recorded while it ran; a bit that was
+// left by an earlier one. With the image's error reasons (docs/interface.md 3.4) a command is
+// refused when a new reason of one of the lists it checks was recorded while it ran; a bit that was
 // already set only gets a note. Without reasons (the virtual test machine) the bits decide.
 #include <string>
 #include <vector>

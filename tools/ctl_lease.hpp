@@ -1,5 +1,5 @@
 #pragma once
-// stepmodctl and the commissioning lease (INTERFACE 3.5, docs/commissioning.md): the lease
+// stepmodctl and the commissioning lease (docs/interface.md 3.5, docs/commissioning.md): the lease
 // excludes. A command finds it held by another running process: refused (exit 1, the holder's pid,
 // nothing written), unless the operator takes it over with --steal (logged by stepmodctl and by
 // the daemon). A dead holder's lease is waited out (the daemon frees it within 500 ms). An

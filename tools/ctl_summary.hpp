@@ -1,6 +1,6 @@
 #pragma once
 // One axis/channel of any module in a few words (stepmodctl status --brief / --json, wait-idle
-// and --wait): its state, position, error bits and the module's reason (INTERFACE 3.4).
+// and --wait): its state, position, error bits and the module's reason (docs/interface.md 3.4).
 #include <array>
 #include <cstddef>
 #include <cstdint>

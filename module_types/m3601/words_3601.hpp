@@ -1,9 +1,9 @@
 #pragma once
-// 3601 backplane words and bits, named as in the 3601 manual (shared/spec/manuals/001_...;
-// 3601 manual). The only place these positions are written down: each word's
-// bits are a constexpr table (bit, name), the constants below are looked up in the tables by
-// name, and stepmodctl shows the same names; the decimal split at the end. Includes nothing but
-// the ground layer: the emulator (module/), the PLC side (plc/) and stepmodctl include it.
+// 3601 backplane words and bits, named as in the 3601 manual (chapters 3, 5 and 6). The only place
+// these positions are written down: each word's bits are a constexpr table (bit, name), the
+// constants below are looked up in the tables by name, and stepmodctl shows the same names; the
+// decimal split at the end. Includes nothing but the ground layer: the emulator (module/), the PLC
+// side (plc/) and stepmodctl include it.
 #include <array>
 #include <cstdint>
 

@@ -1,4 +1,5 @@
-// The manual's interpolated-move geometry (3602 manual Ch.3; digest 7.14, A35, A36, A38).
+// The manual's interpolated-move geometry (3602 manual Ch.3 "Interpolated Move Profiles", Ch.9
+// Tables 9.23-9.26; A35, A36, A38).
 #include "module_types/m3602/circle_methods.hpp"
 
 #include <algorithm>
@@ -39,7 +40,7 @@ Point relative(bool absolute, std::int32_t x, std::int32_t y, std::int64_t sx,
 }
 
 // The sweep from S to E around C in the given sense: CCW (theta_E - theta_S) mod 2 pi, CW
-// (theta_S - theta_E) mod 2 pi (digest 7.14); 0 (E = S) is a full circle.
+// (theta_S - theta_E) mod 2 pi (3602 manual Ch.3); 0 (E = S) is a full circle.
 double sweep(long double cx, long double cy, const Point& e, bool ccw, bool full_if_zero) noexcept {
   const long double ts = std::atan2(-cy, -cx);
   const long double te =
@@ -74,7 +75,7 @@ void arc(PathGeometry& g, long double cx, long double cy, const Point& e, bool c
 // Centre-point method: C given (integer), the sense from the command; E = S is a full circle.
 void centre_method(const InterpolatedCommand& c, const Point& e, const Point& centre,
                    PathGeometry& g) {
-  // The manual's example (digest 7.14 "Rounding"): the rounded integer distances must be equal.
+  // The manual's example (3602 manual Ch.3, rounding): the rounded integer distances must be equal.
   const std::int64_t rs = rounded_length(-centre.x, -centre.y);
   const std::int64_t re = rounded_length(e.x - centre.x, e.y - centre.y);
   g.radius = std::hypot(static_cast<double>(centre.x), static_cast<double>(centre.y));
@@ -94,8 +95,8 @@ void centre_method(const InterpolatedCommand& c, const Point& e, const Point& ce
 }
 
 // Radius method: the two circles of radius |R| through S and E; R > 0 the shorter arc, R < 0 the
-// longer one, in the commanded sense (digest 7.14: CW short or CCW long -> C = M - h n, CW long
-// or CCW short -> C = M + h n, n the left normal of S -> E).
+// longer one, in the commanded sense (3602 manual Ch.3: CW short or CCW long -> C = M - h n, CW
+// long or CCW short -> C = M + h n, n the left normal of S -> E).
 void radius_method(const InterpolatedCommand& c, const Point& e, PathGeometry& g) {
   if (e.x == 0 && e.y == 0) {
     g.fault = GeometryFault::kStartIsEnd;

@@ -1,7 +1,7 @@
 #pragma once
 // The geometry of the 3602's interpolated moves, as the manual defines it (3602 manual Ch.3
-// "Interpolated Move Profiles"; digest 7.14): the end point, and for circular moves the centre
-// by the centre-point, radius or via-point method, the sense and the swept angle, with the
+// "Interpolated Move Profiles", Ch.9 Tables 9.23-9.26): the end point, and for circular moves the
+// centre by the centre-point, radius or via-point method, the sense and the swept angle, with the
 // manual's "integer world" check. The result is the planner's PathSpec (planner/path_spec.hpp)
 // relative to the start point S, or the reason the move is refused.
 //

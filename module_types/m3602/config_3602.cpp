@@ -54,7 +54,8 @@ std::string_view describe(ConfigFault f) noexcept {
 ConfigFault check_config(const ImageWords& out, Config3602& decoded) noexcept {
   const auto msw = static_cast<std::uint16_t>(out.w[out_word::kMsw]);
   const auto lsw = static_cast<std::uint16_t>(out.w[out_word::kLsw]);
-  // Binary split (digest 2.2): a set MSW sign bit makes the value negative, hence below 1.
+  // Binary split (3602 manual Ch.8 "Starting Speed"): a set MSW sign bit makes the value negative,
+  // hence below 1.
   const std::int32_t vs =
       words::decode_3602(out.w[out_word::kStartingSpeedMsw], out.w[out_word::kStartingSpeedLsw]);
   const auto timeout = static_cast<std::int16_t>(out.w[out_word::kHomingTimeout]);

@@ -1,9 +1,10 @@
 #pragma once
 // 3602 configuration words of one axis (configuration mode, the axis' eight output words b+0 ..
 // b+7 moved to 0..7): validation against the manual's invalid configurations (3602 manual Ch.8
-// Tables 8.6/8.7, "Starting Speed", "Homing Timeout", "Reserved Words"; digest 6.2
+// Tables 8.6/8.7, "Starting Speed", "Homing Timeout", "Reserved Words"; checklist 3602-CFG-01..08
 // 3602-CFG-02..08) and the translation of a valid one into the shared axis' AxisConfig. The
-// configuration bits are the digest's reconstruction (MODULES.md 4.2), named in words_3602.hpp.
+// configuration bits are reconstructed from Table 8.2 (its bit columns are garbled in the manual),
+// named in words_3602.hpp.
 #include <cstdint>
 #include <string_view>
 

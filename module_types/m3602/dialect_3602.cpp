@@ -1,5 +1,5 @@
 // The 3602's command and status words of one axis <-> the shared axis' decoded command and status
-// (3602 manual Ch.9 "Command Mode Data Format", Tables 9.2-9.22, 9.27; digest 4.5-4.11).
+// (3602 manual Ch.9 "Command Mode Data Format", Tables 9.2-9.22, 9.27).
 #include "module_types/m3602/dialect_3602.hpp"
 #include "module_types/m3602/rules_3602.hpp"
 
@@ -17,7 +17,7 @@ namespace {
 
 using axis::CommandKind;
 
-// Accel/decel words are steps/ms/s; the shared code works in steps/s^2 (digest 7.1).
+// Accel/decel words are steps/ms/s; the shared code works in steps/s^2 (x 1000; 3602 manual Ch.9).
 constexpr std::int64_t kAccelUnit = kRules3602.accel_word_unit;
 // Command LSW bits 0/1 (3602 manual ch. 9 table 9.4): the acceleration shape.
 constexpr auto kShapeBits = shared::shape_bits_of<std::uint16_t>(kCommandLswBits);
@@ -35,7 +35,7 @@ bool words_zero(const ImageWords& out, unsigned first, unsigned last) noexcept {
   return true;
 }
 
-// First ("initial") blend block (digest 4.5, Table 9.21): word 2 the segment count, words 4 / 3
+// First ("initial") blend block (3602 manual Table 9.21): word 2 the segment count, words 4 / 3
 // the type pairs of segments 1..8 / 9..16, word 5 the final deceleration (type in bits 15-14,
 // bits 13-11 zero, value in bits 10-0), words 6 and 7 zero.
 constexpr unsigned kSegmentCountWord = 2;
@@ -66,13 +66,13 @@ bool has_invalid_pair(const ImageWords& out) noexcept {
 }
 
 // The LSW of Reset Errors, Run Blend and the minimum-registration store: nothing but the GPO bit
-// besides the command's own (digest 4.5 "16#0000 or 16#0080 only").
+// besides the command's own (3602 manual Tables 9.5-9.20: "16#0000 or 16#0080 only").
 bool lsw_only(std::uint16_t lsw, std::uint16_t allowed) noexcept {
   return (lsw & ~(allowed | cmd_lsw::kGpo)) == 0;
 }
 
-// The word rules of the command table (digest 4.5) for the one command set, or for the
-// minimum-registration store when none is (true = broken: 3602-CE-10 / CE-03).
+// The word rules of the command tables (3602 manual Tables 9.5-9.20) for the one command set, or
+// for the minimum-registration store when none is (true = broken: 3602-CE-10 / CE-03).
 bool word_rules_broken(const ImageWords& out, const axis::AxisCommand& c,
                        std::uint16_t lsw) noexcept {
   // 3602-CE-03: a single-axis command together with interpolation bits.
@@ -96,8 +96,8 @@ bool word_rules_broken(const ImageWords& out, const axis::AxisCommand& c,
   }
 }
 
-// Interpolated block (digest 4.7 table, 4.8): the method from LSW bits 14..10; any pattern the
-// table does not list is a Command Error (A34).
+// Interpolated block (3602 manual Tables 9.4, 9.23-9.26): the method from LSW bits 14..10; any
+// pattern the table does not list is a Command Error (A34).
 struct MethodPattern {
   std::uint16_t bits;
   InterpolationMethod method;
@@ -112,7 +112,8 @@ constexpr MethodPattern kMethodPatterns[] = {
     {cmd_lsw::kRadiusMethod | cmd_lsw::kCcwCircular, InterpolationMethod::kRadius, true},
 };
 
-// Every coordinate of the block: +-1,073,741,823 (digest 4.8, the 3602's target range).
+// Every coordinate of the block: +-1,073,741,823 (3602 manual Tables 9.23-9.26, the 3602's target
+// range).
 bool coordinate_in_range(std::int32_t v) noexcept {
   return v >= kRules3602.target_min && v <= kRules3602.target_max;
 }
@@ -215,9 +216,9 @@ void status_to_words(const axis::AxisStatus& s, const StatusExtras& x, ImageWord
   std::uint16_t msw = shared::flags_to_word(kMswFlags, s);
   if (x.axis_enabled) msw |= status_msw::kAxisEnabled;
 
-  // Status LSW bits 0..4: capture, external, home, CW input, CCW input (digest 4.11). The axis
-  // reports them in InputLine order, where the CW / CCW inputs are the limit lines 4 / 5 and
-  // line 3 (a separate E-stop terminal) does not exist on the 3602.
+  // Status LSW bits 0..4: capture, external, home, CW input, CCW input (3602 manual Ch.9 "Status
+  // Bits LSW"). The axis reports them in InputLine order, where the CW / CCW inputs are the limit
+  // lines 4 / 5 and line 3 (a separate E-stop terminal) does not exist on the 3602.
   const auto active = [&s](InputLine l) {
     return (s.inputs_active >> static_cast<unsigned>(l)) & 1u;
   };

@@ -1,8 +1,9 @@
 #pragma once
 // The 3602's interpolated move command as the dialect decodes it from all sixteen output words
-// (digest 4.7, 4.8; 7.14): which method, coordinates, the vector profile and the points, in the
-// shared code's units (steps, steps/s, steps/s^2). No word or bit knowledge: dialect_3602 builds
-// it, circle_methods turns its geometry into a planner::PathSpec, interpolated_move runs it.
+// (3602 manual Tables 9.4, 9.23-9.26; Ch.3 "Interpolated Move Profiles"): which method,
+// coordinates, the vector profile and the points, in the shared code's units (steps, steps/s,
+// steps/s^2). No word or bit knowledge: dialect_3602 builds it, circle_methods turns its geometry
+// into a planner::PathSpec, interpolated_move runs it.
 #include <cstdint>
 
 #include "planner/ramp.hpp"

@@ -1,5 +1,5 @@
 // The 3602's interpolated move: acceptance, start, the two axes kept together, the end (3602
-// manual Ch.3 "Interpolated Move Profiles", Ch.9 Tables 9.9, 9.23-9.26; digest 7.14, 6.2).
+// manual Ch.3 "Interpolated Move Profiles", Ch.9 Tables 9.9, 9.23-9.26).
 #include "module_types/m3602/interpolated_move.hpp"
 #include "module_types/m3602/rules_3602.hpp"
 
@@ -84,8 +84,8 @@ void InterpolatedMove::scan(const std::optional<InterpolatedCommand>& words) {
   if (state_ == State::kHeld && !x_.status().hold) state_ = State::kIdle;
   if (const auto p = x_.take_coordinated_resume()) resume(*p);
 
-  // The command fires on the 0->1 edge of axis 1's interpolation bits (digest 7.16). In
-  // configuration mode axis 1's words are configuration words, not a command.
+  // The command fires on the 0->1 edge of axis 1's interpolation bits (3602 manual Table 9.4 note).
+  // In configuration mode axis 1's words are configuration words, not a command.
   const bool requested = words.has_value() && !x_.in_configuration_mode();
   const bool rising = requested && !requested_;
   requested_ = requested;

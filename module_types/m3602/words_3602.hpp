@@ -1,10 +1,9 @@
 #pragma once
-// 3602 backplane words and bits, named as in the 3602 manual (shared/spec/manuals/002_...;
-// 3602 manual). The only place these positions are written down: stepmodctl
-// decodes a 3602's image by these names; the 3602 dialect (module and PLC side) takes its
-// constants from them (below). Each axis has 8 words at b = 8 * axis; indices below are relative
-// to b. 32-bit values are binary splits (3602 manual ch. 9; the encoding at the end). Includes
-// nothing but the ground layer.
+// 3602 backplane words and bits, named as in the 3602 manual (chapters 8 and 9). The only place
+// these positions are written down: stepmodctl decodes a 3602's image by these names; the 3602
+// dialect (module and PLC side) takes its constants from them (below). Each axis has 8 words at b =
+// 8 * axis; indices below are relative to b. 32-bit values are binary splits (3602 manual ch. 9;
+// the encoding at the end). Includes nothing but the ground layer.
 #include <array>
 #include <cstdint>
 #include <string_view>

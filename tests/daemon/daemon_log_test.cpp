@@ -1,5 +1,5 @@
-// stepmodd's log under the journal (INTERFACE 1): JOURNAL_STREAM naming stderr's device and inode
-// turns on the sd-daemon priority prefixes.
+// stepmodd's log under the journal (docs/interface.md 1): JOURNAL_STREAM naming stderr's device and
+// inode turns on the sd-daemon priority prefixes.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>

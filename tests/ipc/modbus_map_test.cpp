@@ -122,8 +122,8 @@ TEST(ModbusMap, HeaderAndHealthRegistersFrom1000) {
             ModbusException::kIllegalDataAddress);
 }
 
-// INTERFACE 3.4 / 6: input registers 1016..1019 = the reason item codes of axis 1 and 2, high
-// half first (docs/error-reasons.md).
+// docs/interface.md 3.4 / 6: input registers 1016..1019 = the reason item codes of axis 1 and 2,
+// high half first (docs/error-reasons.md).
 TEST(ModbusMap, ReasonItemCodesIn1016To1019) {
   Image im(3602, 2, 16, 16);
   im.img->reasons[0].item = 20205u;  // 3602-CE-05

@@ -1,6 +1,6 @@
-// The image's error-reason blocks (INTERFACE 3.4, docs/error-reasons.md) and the commissioning
-// lease (3.5, docs/commissioning.md): the daemon's LeaseWatch, the tools' Lease (explicit renew)
-// and LeaseClient (renewed by its thread) over a real shared-memory image.
+// The image's error-reason blocks (docs/interface.md 3.4, docs/error-reasons.md) and the
+// commissioning lease (3.5, docs/commissioning.md): the daemon's LeaseWatch, the tools' Lease
+// (explicit renew) and LeaseClient (renewed by its thread) over a real shared-memory image.
 #include <gtest/gtest.h>
 #include <pthread.h>
 #include <sched.h>

@@ -77,7 +77,7 @@ TEST_F(Reasons3601, CE_L1_ReasonSurvivesResetErrorsAndIgnoredCommands) {
   EXPECT_EQ(reason(), r);
   command(m::cmd_msw::kResetErrors, {.target = 0, .speed = 0, .accel = 0, .decel = 0});
   EXPECT_FALSE(status(m::status_msw::kCommandError));
-  EXPECT_EQ(reason(), r);  // INTERFACE 3.4: kept until the next one
+  EXPECT_EQ(reason(), r);  // docs/interface.md 3.4: kept until the next one
 }
 
 TEST_F(Reasons3601, IP_04_BlendSegmentCountNamesTheCount) {
