@@ -1,7 +1,7 @@
 // The project's documentation stands alone: README, CHANGELOG, docs/, openplc/ and the man pages
 // never send the reader to files outside the repository (the specification documents the
 // project was built from are not shipped), and every relative link of the Markdown files leads to
-// a file that exists.
+// a file that exists. Nor do the sources' comments: they cite the manuals' items and our docs.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -47,6 +47,35 @@ TEST(DocsSelfContained, NoReferenceToTheSpecificationOutsideTheRepository) {
         ADD_FAILURE() << fs::relative(f, kRoot).string() << ":" << n << " names " << name
                       << " (not in the repository; point at docs/interface.md instead): " << line;
       }
+    }
+  }
+}
+
+// Every file of the product's folders and the scripts, text only.
+std::vector<fs::path> source_files() {
+  std::vector<fs::path> files = {kRoot / "CMakeLists.txt"};
+  for (const char* dir : {"bench",     "cmake",    "config", "core",     "daemon", "doctor",
+                          "examples",  "fieldbus", "gpio",   "ipc",      "module", "module_types",
+                          "packaging", "planner",  "plc",    "registry", "rt",     "scripts",
+                          "systemd",   "tools",    "web",    "words"}) {
+    for (const auto& e : fs::recursive_directory_iterator(kRoot / dir)) {
+      if (e.is_regular_file() && e.path().extension() != ".png") files.push_back(e.path());
+    }
+  }
+  return files;
+}
+
+TEST(DocsSelfContained, SourcesCiteTheManualsAndOurDocsOnly) {
+  // The digest's section numbers and the contract's are not the reader's to look up: a comment
+  // names the manual's chapter, table or checklist item, or docs/interface.md's section.
+  const std::regex outside(R"(shared/spec|INTERFACE\.md|MODULES\.md|INTERFACE [0-9]|digest [0-9])");
+  for (const fs::path& f : source_files()) {
+    std::istringstream lines(read(f));
+    std::string line;
+    for (int n = 1; std::getline(lines, line); ++n) {
+      EXPECT_FALSE(std::regex_search(line, outside))
+          << fs::relative(f, kRoot).string() << ":" << n
+          << " cites a document outside the repository: " << line;
     }
   }
 }
