@@ -19,27 +19,28 @@ namespace stepmod::module::shared {
 
 namespace names {
 using enum axis::CommandKind;
-struct Command {
+// A command bit's name in the manuals and the command it is.
+struct CommandName {
   std::string_view name;
   axis::CommandKind kind;
 };
 // The command bits (3601/3202 manual ch. 5, 3602 manual ch. 9 table 9.3).
-inline constexpr Command kCommands[] = {{"Absolute Move", kAbsoluteMove},
-                                        {"Relative Move", kRelativeMove},
-                                        {"Hold Move", kHold},
-                                        {"Resume Move", kResume},
-                                        {"Immediate Stop", kImmediateStop},
-                                        {"Find Home CW", kFindHomeCw},
-                                        {"Find Home CCW", kFindHomeCcw},
-                                        {"Manual Move CW", kManualCw},
-                                        {"Manual Move CCW", kManualCcw},
-                                        {"Jog CW (Registration CW)", kManualCw},
-                                        {"Jog CCW (Registration CCW)", kManualCcw},
-                                        {"Preset Position", kPresetPosition},
-                                        {"Preset Encoder", kPresetEncoder},
-                                        {"Reset Errors", kResetErrors},
-                                        {"Run Blend Move CW", kRunBlendCw},
-                                        {"Run Blend Move CCW", kRunBlendCcw}};
+inline constexpr CommandName kCommands[] = {{"Absolute Move", kAbsoluteMove},
+                                            {"Relative Move", kRelativeMove},
+                                            {"Hold Move", kHold},
+                                            {"Resume Move", kResume},
+                                            {"Immediate Stop", kImmediateStop},
+                                            {"Find Home CW", kFindHomeCw},
+                                            {"Find Home CCW", kFindHomeCcw},
+                                            {"Manual Move CW", kManualCw},
+                                            {"Manual Move CCW", kManualCcw},
+                                            {"Jog CW (Registration CW)", kManualCw},
+                                            {"Jog CCW (Registration CCW)", kManualCcw},
+                                            {"Preset Position", kPresetPosition},
+                                            {"Preset Encoder", kPresetEncoder},
+                                            {"Reset Errors", kResetErrors},
+                                            {"Run Blend Move CW", kRunBlendCw},
+                                            {"Run Blend Move CCW", kRunBlendCcw}};
 
 // A flag and the name its bit has in the manuals (and the 3602's name where it differs).
 template <typename Struct>
@@ -97,7 +98,7 @@ consteval std::array<CommandBit<Word>, N + 1> command_bits_of(const std::array<N
                                                               Word reserved) {
   std::array<CommandBit<Word>, N + 1> out{};
   for (std::size_t i = 0; i < N; ++i) {
-    for (const names::Command& c : names::kCommands) {
+    for (const names::CommandName& c : names::kCommands) {
       if (c.name == t[i].name) out[i] = {mask_of<Word>(t, c.name), c.kind};
     }
   }
