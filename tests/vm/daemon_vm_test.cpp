@@ -49,13 +49,13 @@
 #include <vector>
 
 #include "ipc/client.hpp"
-#include "plc/bit_names.hpp"
 #include "module_types/m3601/plc_3601.hpp"
+#include "module_types/m3601/words_3601.hpp"
+#include "plc/bit_names.hpp"
 #include "plc/shm_port.hpp"
 #include "tests/support/vcd_reader.hpp"
 #include "tests/vm/gpio_uapi.hpp"
 #include "tests/vm/vm_harness.hpp"
-#include "module_types/m3601/words_3601.hpp"
 
 namespace {
 
@@ -111,9 +111,9 @@ class Daemon3601 : public Daemon {
 
 // ---- the PLC side -----------------------------------------------------------------------------
 
-// The PLC-side library (module_types/m3601/plc_3601.hpp) over the shared-memory port, at the scan counts these
-// cases were written for (a command's words held 3 scans, 2 after the release; 3 + 3 for a
-// configuration); a module that stops scanning fails the case.
+// The PLC-side library (module_types/m3601/plc_3601.hpp) over the shared-memory port, at the scan
+// counts these cases were written for (a command's words held 3 scans, 2 after the release; 3 + 3
+// for a configuration); a module that stops scanning fails the case.
 class Plc {
  public:
   explicit Plc(const std::string& name)
@@ -437,8 +437,13 @@ std::string case_capture() {
   std::vector<std::int64_t> captured;
   for (int i = 0; i < kCaptures; ++i) {
     sleep_ms(300 + 37 * i);  // not a multiple of the step period
+    const std::int64_t before = plc.capture();
     marks.push_back(pull_marked(cap, true));
-    plc.scans(3);
+    // The edge reaches the module as a line event, whenever the guest gets to it (under TCG it
+    // stalls for tens of ms): wait for the register to take it — each capture lies 150+ steps
+    // after the one before — rather than for a number of scans. Unchanged after 2 s: the check
+    // below fails on it.
+    plc.wait([&] { return plc.capture() != before; }, 2'000);
     captured.push_back(plc.capture());
     cap.pull(false);
     plc.scans(2);
