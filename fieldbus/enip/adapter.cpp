@@ -53,6 +53,7 @@ Adapter::Impl::Impl(const Setup& s)
       image(static_cast<stepmod_image_t*>(map.data())),
       assemblies(*image),
       connections(random_seed()),
+      answer_spread(random_seed()),
       identity(identity_for(image->module_type, s.serial)),
       router{identity,
              assemblies.layout(),
@@ -69,7 +70,6 @@ Adapter::Impl::Impl(const Setup& s)
   udp_fd = open_bound_socket(SOCK_DGRAM, o.address, o.port);
   want_packet_info(udp_fd);  // listening on 0.0.0.0, broadcasts arrive here too
   io_fd = open_bound_socket(SOCK_DGRAM, o.address, kIoPort);
-  random_state = random_seed() | 1u;
   open_broadcast(o);
 }
 
@@ -249,17 +249,10 @@ void Adapter::Impl::answer_broadcast(std::span<const std::uint8_t> request, cons
   delayed.add(now + random_below(*max_delay + 1), to, std::span(tx.data(), size));
 }
 
-// xorshift32, seeded from getrandom(): spreads answers, guards nothing. Two draws make the
-// 64 bits a delay of up to 65.5 s in ns needs.
+// Two draws make the 64 bits a delay of up to 65.5 s in ns needs.
 Nanos Adapter::Impl::random_below(Nanos limit) noexcept {
-  const auto draw = [this]() -> std::uint64_t {
-    random_state ^= random_state << 13;
-    random_state ^= random_state >> 17;
-    random_state ^= random_state << 5;
-    return random_state;
-  };
-  const std::uint64_t high = draw();
-  const std::uint64_t r = (high << 32) | draw();
+  const std::uint64_t high = answer_spread.next();
+  const std::uint64_t r = (high << 32) | answer_spread.next();
   return static_cast<Nanos>(r % static_cast<std::uint64_t>(limit));
 }
 

@@ -17,6 +17,7 @@
 #include "fieldbus/enip/encap_session.hpp"
 #include "fieldbus/enip/image_assemblies.hpp"
 #include "fieldbus/enip/t_to_o_producer.hpp"
+#include "fieldbus/enip/xorshift32.hpp"
 #include "ipc/log_throttle.hpp"
 #include "ipc/shm_object.hpp"
 
@@ -55,6 +56,7 @@ struct Adapter::Impl {
   stepmod_image_t* image = nullptr;
   ImageAssemblies assemblies;
   IoConnections connections;
+  Xorshift32 answer_spread;  // the broadcast answers' random delays
   TtoProducer producer;
   SessionTable sessions;
   IdentityValues identity;
@@ -70,7 +72,6 @@ struct Adapter::Impl {
   int io_fd = -1;
   BroadcastScope broadcasts;  // which broadcast ListIdentity requests are answered
   DelayedReplies delayed;     // their answers, each at its random time
-  std::uint32_t random_state = 1;
   std::int64_t armed_at = 0;
   std::uint32_t next_client_id = 1;
   std::array<TcpClient, kMaxTcpClients> clients{};

@@ -45,13 +45,12 @@ IoConnection* IoConnections::find_ot(std::uint32_t ot_id) noexcept {
   return nullptr;
 }
 
-// xorshift32: ids that a peer cannot guess from the last one; never 0, never one in use.
+// Ids that a peer cannot guess from the last one (fieldbus/enip/xorshift32.hpp); never 0, never
+// one in use.
 std::uint32_t IoConnections::new_id() noexcept {
   for (;;) {
-    id_state_ ^= id_state_ << 13;
-    id_state_ ^= id_state_ >> 17;
-    id_state_ ^= id_state_ << 5;
-    if (id_state_ != 0 && find_ot(id_state_) == nullptr) return id_state_;
+    const std::uint32_t id = ids_.next();
+    if (id != 0 && find_ot(id) == nullptr) return id;
   }
 }
 

@@ -11,6 +11,7 @@
 
 #include "fieldbus/enip/io_packet.hpp"
 #include "fieldbus/enip/message_router.hpp"
+#include "fieldbus/enip/xorshift32.hpp"
 
 namespace stepmod::enip {
 
@@ -54,7 +55,7 @@ struct OtResult {
 class IoConnections : public ConnectionTable {
  public:
   // `seed`: the start of the O→T ids (the adapter gives a random one, tests a fixed one).
-  explicit IoConnections(std::uint32_t seed) noexcept : id_state_(seed | 1u) {}
+  explicit IoConnections(std::uint32_t seed) noexcept : ids_(seed) {}
 
   bool owner_open() const noexcept override;
   CipStatus open(const ForwardOpen& fo, const AcceptedOpen& accepted, const RequestOrigin& origin,
@@ -90,7 +91,7 @@ class IoConnections : public ConnectionTable {
   void close_orphaned_listeners() noexcept;
 
   std::array<IoConnection, kMaxIoConnections> slots_{};
-  std::uint32_t id_state_;
+  Xorshift32 ids_;
   bool left_run_ = false;
 };
 
