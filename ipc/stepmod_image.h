@@ -86,13 +86,13 @@ enum stepmod_image_offset {
 
 /* Daemon health flags (offset 416, docs/interface.md 3.3): a bit each, set while the condition
  * lasts. */
-#define STEPMOD_HEALTH_LATE_EDGE (1u << 0)     /* a late-edge fault stopped an axis */
-#define STEPMOD_HEALTH_PLC_STALE (1u << 1)     /* PLC heartbeat stale: as in Program mode */
-#define STEPMOD_HEALTH_SEQ_STUCK (1u << 2)     /* output sequence left odd (PLC died mid-write) */
-#define STEPMOD_HEALTH_SEQ_BYPASS (1u << 3)    /* output words changed, sequence did not */
-#define STEPMOD_HEALTH_TRACE_LOST (1u << 4)    /* trace records lost (the VCD says so too) */
-#define STEPMOD_HEALTH_INPUT_LOST (1u << 5)    /* input events lost: the moving axes were stopped */
-#define STEPMOD_HEALTH_LEASE_EXPIRED (1u << 6) /* a commissioning lease expired: axes stopped */
+#define STEPMOD_HEALTH_LATE_EDGE (1u << 0)      /* a late-edge fault stopped an axis */
+#define STEPMOD_HEALTH_PLC_STALE (1u << 1)      /* PLC heartbeat stale: as in Program mode */
+#define STEPMOD_HEALTH_SEQ_STUCK (1u << 2)      /* output sequence left odd (PLC died mid-write) */
+#define STEPMOD_HEALTH_SEQ_BYPASS (1u << 3)     /* output words changed, sequence did not */
+#define STEPMOD_HEALTH_TRACE_LOST (1u << 4)     /* trace records lost (the VCD says so too) */
+#define STEPMOD_HEALTH_INPUT_LOST (1u << 5)     /* input events lost: the moving axes were stopped */
+#define STEPMOD_HEALTH_LEASE_EXPIRED (1u << 6)  /* a commissioning lease expired: axes stopped */
 #define STEPMOD_HEALTH_LEASE_CONFLICT (1u << 7) /* PLC heartbeat changed during a lease */
 
 /* Section 3.4: why an error bit was set (item code: docs/error-reasons.md). */
@@ -157,10 +157,10 @@ typedef struct stepmod_image {
   uint32_t late_faults;   /* section 3.3: late-edge faults since the daemon started */
   uint32_t worst_late_us; /* extension: largest late-edge fault lateness, us */
   uint8_t reserved428[STEPMOD_OFF_REASONS - 428];
-  stepmod_reason_t reasons[2];   /* section 3.4: axis/channel 1 and 2 */
-  uint32_t lease_holder;         /* section 3.5: pid of the tool holding the lease, 0 = free */
-  uint32_t lease_seq;            /* +1 by the tool at each take */
-  uint64_t lease_expiry_ns;      /* CLOCK_MONOTONIC; at most 500 ms ahead, renewed every 100 ms */
+  stepmod_reason_t reasons[2]; /* section 3.4: axis/channel 1 and 2 */
+  uint32_t lease_holder;       /* section 3.5: pid of the tool holding the lease, 0 = free */
+  uint32_t lease_seq;          /* +1 by the tool at each take */
+  uint64_t lease_expiry_ns;    /* CLOCK_MONOTONIC; at most 500 ms ahead, renewed every 100 ms */
   stepmod_unit_state_t units[2]; /* section 3.6: axis/channel 1 and 2 */
   uint8_t unused[STEPMOD_IMAGE_SIZE - STEPMOD_OFF_END_OF_FIELDS];
 } stepmod_image_t;
