@@ -46,6 +46,16 @@ int ws_data_cb(mg_connection*, int, char*, size_t, void*) {
 void ws_close_cb(const mg_connection* c, void*) {
   self(c)->on_ws_close(c);
 }
+// The handlers are set here, before civetweb starts the thread that accepts connections: set
+// after mg_start returned, a request that came in between met civetweb's own 404 (a login the
+// moment the port opened was refused so). civetweb hands the context out const; it is ours, and
+// no other thread uses it yet.
+void init_context_cb(const mg_context* ctx) {
+  auto* own = const_cast<mg_context*>(ctx);
+  void* server = mg_get_user_data(ctx);
+  mg_set_request_handler(own, "/", http_cb, server);
+  mg_set_websocket_handler(own, "/ws", ws_connect_cb, ws_ready_cb, ws_data_cb, ws_close_cb, server);
+}
 
 const char* mime_of(const std::string& path) {
   if (path.ends_with(".html")) return "text/html; charset=utf-8";
@@ -134,10 +144,9 @@ Server::Server(const ServerOptions& opt, Auth& auth, Commander& commander, const
   callbacks.init_connection = init_connection_cb;
   callbacks.connection_close = connection_close_cb;
   callbacks.http_error = http_error_cb;
+  callbacks.init_context = init_context_cb;
   ctx_ = mg_start(&callbacks, this, options);
   if (ctx_ == nullptr) throw std::runtime_error("cannot listen on " + ports);
-  mg_set_request_handler(ctx_, "/", http_cb, this);
-  mg_set_websocket_handler(ctx_, "/ws", ws_connect_cb, ws_ready_cb, ws_data_cb, ws_close_cb, this);
 }
 
 Server::~Server() {

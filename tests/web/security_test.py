@@ -27,6 +27,7 @@ import browser_test as bt  # noqa: E402  (Machine, Console, wait_for: the same a
 PORT = 18621        # the console under test
 LIMIT_PORT = 18622  # a second console of the same module, for the login rate limit
 EVIL_PORT = 18629   # another site's page, on the same host (so the same "site" for cookies)
+FIRST_START_PORT = 18660  # 18660-18669: consoles started and logged into at once
 MACHINE = None
 
 
@@ -326,6 +327,33 @@ class SocketClients(unittest.TestCase):
             log = f.read()
         self.assertIn("login from 127.0.0.1: wrong token (5 in a row)", log)
         self.assertRegex(log, r"login from 127.0.0.1 refused: 5 wrong tokens")
+
+    def test_8_a_login_the_moment_the_port_opens_is_answered(self):
+        # The login is sent the instant the port accepts, 10 starts in a row: the console's
+        # handlers are in place before its first connection is taken (once they were set just
+        # after the port opened, and a login in between met a 404). A race: a regression shows
+        # here on some runs, not on every one. Each start has a port of its own: civetweb takes
+        # up to 2 s to stop, and they stop together at the end.
+        webs = []
+        try:
+            for n in range(10):
+                port = FIRST_START_PORT + n
+                webs.append(subprocess.Popen(
+                    [bt.WEB, "--name", self.m.name, "--port", str(port), "--token-file",
+                     self.m.token_file, "--www", bt.WWW], stderr=subprocess.DEVNULL))
+                deadline = time.monotonic() + 10
+                while True:
+                    try:
+                        status = login(self.m.token, port)[0]
+                        break
+                    except ConnectionRefusedError:
+                        self.assertLess(time.monotonic(), deadline, "the console never listened")
+                self.assertEqual(status, 303, "start %d" % n)
+                webs[-1].terminate()
+        finally:
+            for web in webs:
+                web.terminate()
+                web.wait(10)
 
     @staticmethod
     def connects(port):
