@@ -17,6 +17,13 @@
 
 namespace stepmod::testing {
 
+// The connection timeout in RPIs the scanner's Forward_Open asks for: st-ethernet-ip's own (32:
+// 320 ms at RPI 10 ms), for the tests of the deadman; 128 (1.28 s) for the tests of everything
+// else, so that a pause of this shared machine does not stop their moves (the adapter rightly
+// stops the axes when the owner falls silent for its timeout).
+inline constexpr unsigned kLibraryMultiplier = 32;
+inline constexpr unsigned kPatientMultiplier = 128;
+
 class EnipDaemon : public ::testing::Test {
  protected:
   // `module`: the module tables and axes (sim_config.hpp); `extra`: more [ethernetip] keys, in
@@ -36,19 +43,23 @@ class EnipDaemon : public ::testing::Test {
     ASSERT_TRUE(daemon_->wait_ready()) << daemon_->log();
     image_ = std::make_unique<ipc::Client>(daemon_->name());
   }
-  // A partner.js scanner, exclusive owner at `rpi_ms`, connected (or a failed assertion).
-  std::unique_ptr<PartnerProcess> connect_scanner(unsigned rpi_ms = 10) {
+  // A partner.js scanner, exclusive owner at `rpi_ms`, connected (or a failed assertion); its
+  // connection times out after `multiplier` RPIs.
+  std::unique_ptr<PartnerProcess> connect_scanner(unsigned rpi_ms = 10,
+                                                  unsigned multiplier = kPatientMultiplier) {
     const unsigned bytes = image_->raw().word_bytes * image_->raw().output_words;
-    auto s = std::make_unique<PartnerProcess>(
-        std::vector<std::string>{"scanner", scanner_config(scanner_ip_, rpi_ms, bytes)});
+    auto s = std::make_unique<PartnerProcess>(std::vector<std::string>{
+        "scanner", scanner_config(scanner_ip_, rpi_ms, bytes, multiplier)});
     const auto connected = s->line_with("connected", std::chrono::seconds(10));
     EXPECT_TRUE(connected.has_value()) << s->transcript() << daemon_->log();
     return s;
   }
-  std::string scanner_config(const std::string& local, unsigned rpi_ms, unsigned bytes) const {
+  std::string scanner_config(const std::string& local, unsigned rpi_ms, unsigned bytes,
+                             unsigned multiplier = kLibraryMultiplier) const {
     return "{\"target\":\"" + target_ + "\",\"local\":\"" + local +
            "\",\"rpi\":" + std::to_string(rpi_ms) + ",\"in\":" + std::to_string(bytes) +
-           ",\"out\":" + std::to_string(bytes) + "}";
+           ",\"out\":" + std::to_string(bytes) + ",\"multiplier\":" + std::to_string(multiplier) +
+           "}";
   }
   void TearDown() override {
     image_.reset();

@@ -52,10 +52,11 @@ class EnipMove : public EnipDaemon {
     }
   }
   // A 3601 on the simulated machine (plc_timeout_ms 0: only the adapter's deadman can stop it)
-  // and its owner, st-ethernet-ip's scanner at RPI 10 ms; null when either did not start.
-  std::unique_ptr<PartnerProcess> start_3601_owned() {
+  // and its owner, st-ethernet-ip's scanner at RPI 10 ms, its connection's timeout `multiplier`
+  // RPIs; null when either did not start.
+  std::unique_ptr<PartnerProcess> start_3601_owned(unsigned multiplier = kPatientMultiplier) {
     start(sim_3601_config("plc_timeout_ms = 0\n", kSim));
-    return image_ ? connect_scanner(10) : nullptr;
+    return image_ ? connect_scanner(10, multiplier) : nullptr;
   }
   // Configured, and moving a long way (5,000,000 steps at 5,000 steps/s) through the I/O data.
   void start_long_move(plc::Plc3601& plc, const PartnerProcess& scanner) {
@@ -90,7 +91,7 @@ TEST_F(EnipMove, A3601ConfiguredAndMovedThroughTheIoDataAlone) {
   ImageWords to;
   ASSERT_TRUE(port.read_inputs(to));
   const plc::m3601::Status st = plc::m3601::decode_status(to);
-  EXPECT_EQ(st.position, 10'000);
+  EXPECT_EQ(st.position, 10'000) << scanner->transcript() << daemon_->log();
   EXPECT_TRUE(st.has(m1::status_msw::kMoveComplete));
   EXPECT_FALSE(st.has(m1::status_msw::kPositionInvalid));
   // ... and in the image: the same words.
@@ -153,7 +154,7 @@ TEST_F(EnipMove, BothChannelsOfA3202ThroughTheIoDataAlone) {
 
 // plc_timeout_ms = 0 (the sim config's default): only the adapter's deadman can stop the axis.
 TEST_F(EnipMove, TheScannerFallsSilentAndTheAxisStopsWithinTheTimeout) {
-  auto scanner = start_3601_owned();
+  auto scanner = start_3601_owned(kLibraryMultiplier);
   ASSERT_TRUE(scanner) << "no scanner";
   EnipPort port(*scanner, *image_);
   plc::Plc3601 plc(port, milliseconds(3000));
@@ -186,7 +187,7 @@ TEST_F(EnipMove, TheScannerFallsSilentAndTheAxisStopsWithinTheTimeout) {
 // next Run packet brings it back. st-ethernet-ip always sends Run, so the Idle and the Run after
 // it are sent from the scanner's address with its O→T connection id and newer sequences.
 TEST_F(EnipMove, AnIdlePacketStopsAtOnceAndTheNextRunPacketClearsIt) {
-  auto scanner = start_3601_owned();
+  auto scanner = start_3601_owned(kLibraryMultiplier);
   ASSERT_TRUE(scanner) << "no scanner";
   const std::string connected = scanner->transcript();
   const auto ot = static_cast<std::uint32_t>(std::stoul(json_field(connected, "ot")));

@@ -3,8 +3,9 @@
 // by `scripts/install-deps --enip-partners BUILD_DIR` (NODE_PATH points there). One JSON object
 // per line on stdout.
 //
-//   node partner.js scanner '{"target":..,"local":..,"rpi":10,"in":16,"out":16}'
-//       st-ethernet-ip's class 1 scanner, exclusive owner of assemblies 150/100/151; then on
+//   node partner.js scanner '{"target":..,"local":..,"rpi":10,"in":16,"out":16,"multiplier":32}'
+//       st-ethernet-ip's class 1 scanner, exclusive owner of assemblies 150/100/151, its
+//       connection timing out after `multiplier` RPIs (32 when absent); then on
 //       stdin: "set HEX" (the O→T words), "get" (the T→O words and sequence), "silent" (stop
 //       sending O→T), "quit"
 //   node partner.js open-once '{...same...}'   one Forward_Open; its status, then exit
@@ -33,12 +34,38 @@ function assemblies(c) {
   };
 }
 
+// The connection's timeout, c.multiplier RPIs (st-ethernet-ip asks for 32, and only 4, 8, ...
+// 512 are codes a Forward_Open can carry): its Forward_Open is built with that multiplier.
+function askForTimeout(multiplier) {
+  const manager = require("st-ethernet-ip/dist/enip/cip/connection-manager");
+  const build = manager.build_forwardOpen;
+  manager.build_forwardOpen = (rpi, params, timeoutMs, _multiplier, ...rest) =>
+    build(rpi, params, timeoutMs, multiplier, ...rest);
+}
+
+// st-ethernet-ip checks its T→O once a second and drops the connection when the last packet is
+// older than 4 RPIs (40 ms at RPI 10): it stops sending O→T, the adapter's timeout stops the
+// axes (the PLC left Run), and it connects again. A pause of this shared test machine was enough
+// (a CI run stopped a move at step 5,654 so). The check here allows what its Forward_Open asks
+// of the adapter, the connection's timeout: the tests are about the adapter's behaviour.
+function allowTheConnectionsTimeout(conn, multiplier) {
+  const check = conn._checkStatus;
+  conn._checkStatus = (that) => {
+    const age = Date.now() - that.lastDataTime;
+    if (that.connected && age <= that.tcpController.rpi * multiplier) return;
+    check.call(that, that);
+  };
+}
+
 function scanner(c) {
   const { IO } = require("st-ethernet-ip");
+  const multiplier = c.multiplier || 32;
+  askForTimeout(multiplier);
   const io = new IO.Scanner(2222, c.local);
   const conn = io.addConnection(assemblies(c), c.rpi, c.target);
+  allowTheConnectionsTimeout(conn, multiplier);
   conn.on("connected", () => say({ connected: true, ot: conn.OTid, to: conn.TOid }));
-  conn.on("disconnected", () => say({ disconnected: true }));
+  conn.on("disconnected", () => say({ disconnected: true, last_to_ms_ago: Date.now() - conn.lastDataTime }));
   const rl = readline.createInterface({ input: process.stdin });
   rl.on("line", (line) => {
     const [cmd, arg] = line.trim().split(/\s+/);
