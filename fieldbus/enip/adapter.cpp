@@ -60,6 +60,7 @@ Adapter::Impl::Impl(const Setup& s)
              AdapterLimits{s.options.rpi_min_us, s.options.rpi_max_us},
              assemblies,
              connections,
+             network,
              RequestOrigin{}},
       encap{sessions, identity, SocketAddress{host_ip(s.options.address), s.options.port}, router} {
   const AdapterOptions& o = s.options;
@@ -228,7 +229,7 @@ void Adapter::Impl::receive_udp(int fd, Nanos now) noexcept {
                   const bool broadcast = broadcasts.accepts(a.ifindex, a.destination);
                   if (broadcast) return answer_broadcast(d, a.from, now);
                   if (fd != udp_fd) return;
-                  router.origin = RequestOrigin{ip, now};
+                  router.origin = RequestOrigin{ip, now, 0};
                   const std::size_t size = handle_udp(d, encap, tx);
                   if (size > 0) {
                     ::sendto(udp_fd, tx.data(), size, MSG_DONTWAIT,

@@ -16,6 +16,7 @@
 #include "fieldbus/enip/encap.hpp"
 #include "fieldbus/enip/encap_session.hpp"
 #include "fieldbus/enip/image_assemblies.hpp"
+#include "fieldbus/enip/net_interface_linux.hpp"
 #include "fieldbus/enip/t_to_o_producer.hpp"
 #include "fieldbus/enip/xorshift32.hpp"
 #include "ipc/log_throttle.hpp"
@@ -37,8 +38,9 @@ inline constexpr int kDatagramsPerWake = 64;
 
 struct TcpClient {
   int fd = -1;
-  std::uint32_t id = 0;  // the session table's connection id, never 0
-  std::uint32_t ip = 0;  // host byte order
+  std::uint32_t id = 0;        // the session table's connection id, never 0
+  std::uint32_t ip = 0;        // host byte order
+  std::uint32_t local_ip = 0;  // the board's address it connected to
   Nanos last_heard = 0;
   std::size_t rx_size = 0;
   std::array<std::uint8_t, kTcpRxBytes> rx{};
@@ -60,6 +62,7 @@ struct Adapter::Impl {
   TtoProducer producer;
   SessionTable sessions;
   IdentityValues identity;
+  LinuxNetworkPort network;
   RouterContext router;
   EncapContext encap;
   AdapterCounters counters;

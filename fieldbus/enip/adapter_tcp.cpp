@@ -24,6 +24,17 @@ void Adapter::Impl::close_client(TcpClient& c) noexcept {
   c.rx_size = 0;
 }
 
+namespace {
+// The board's address a connection came in on (host byte order; 0 when not known): listening on
+// 0.0.0.0, it says which interface the TCP/IP Interface object describes.
+std::uint32_t local_address(int fd) noexcept {
+  sockaddr_in a{};
+  socklen_t len = sizeof a;
+  if (::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len) != 0) return 0;
+  return ntohl(a.sin_addr.s_addr);
+}
+}  // namespace
+
 void Adapter::Impl::accept_one(Nanos now) noexcept {
   sockaddr_in a{};
   socklen_t len = sizeof a;
@@ -47,6 +58,7 @@ void Adapter::Impl::accept_one(Nanos now) noexcept {
   slot->id = next_client_id++;
   if (next_client_id == 0) next_client_id = 1;  // 0 is "no connection" to the session table
   slot->ip = ip;
+  slot->local_ip = local_address(fd);
   slot->last_heard = now;
   slot->rx_size = 0;
 }
@@ -54,7 +66,7 @@ void Adapter::Impl::accept_one(Nanos now) noexcept {
 // Every whole frame at the front of the buffer, in order; false: close the connection.
 bool Adapter::Impl::answer_frames(TcpClient& c, Nanos now) noexcept {
   std::size_t used = 0;
-  router.origin = RequestOrigin{c.ip, now};
+  router.origin = RequestOrigin{c.ip, now, c.local_ip};
   for (;;) {
     const SessionStep s =
         handle_tcp(std::span(c.rx.data() + used, c.rx_size - used), c.id, encap, tx);

@@ -13,6 +13,7 @@
 #include "fieldbus/enip/epath.hpp"
 #include "fieldbus/enip/forward_open.hpp"
 #include "fieldbus/enip/identity.hpp"
+#include "fieldbus/enip/net_interface.hpp"
 #include "fieldbus/enip/wire.hpp"
 
 namespace stepmod::enip {
@@ -47,10 +48,12 @@ class AssemblyData {
 };
 
 // Who sent the request being routed, and when (CLOCK_MONOTONIC ns): a connection's T→O goes to
-// its originator, and its timeout counts from its opening.
+// its originator, and its timeout counts from its opening. `local_ip`: the board's address the
+// request came in on (its interface is the TCP/IP Interface object's); 0 when not known.
 struct RequestOrigin {
   std::uint32_t ip = 0;  // IPv4, host byte order
   std::int64_t now_ns = 0;
+  std::uint32_t local_ip = 0;
 };
 
 // The connection table, for the Connection Manager's services.
@@ -72,6 +75,7 @@ struct RouterContext {
   AdapterLimits limits;
   AssemblyData& assemblies;
   ConnectionTable& connections;
+  NetworkPort& network;
   RequestOrigin origin;
 };
 

@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "fieldbus/enip/tcpip_objects.hpp"
+
 namespace stepmod::enip {
 
 namespace {
@@ -129,7 +131,57 @@ CipStatus cm_forward_close(const MrRequest& req, RouterContext& ctx, Writer& dat
   return st;
 }
 
-constexpr std::array<ServiceRow, 7> kServiceTable{{
+// TCP/IP Interface and Ethernet Link: instance 1, the interface the request came in on.
+using PutAll = void (*)(Writer&, const NetInterface&);
+using PutOne = bool (*)(Writer&, const NetInterface&, std::uint32_t);
+
+// The interface the request came in on; false when none has its address any more (0x0C).
+bool describe_interface(RouterContext& ctx, NetInterface& n) noexcept {
+  return ctx.network.describe(ctx.origin.local_ip, n);
+}
+
+CipStatus interface_get_all(const MrRequest& req, RouterContext& ctx, Writer& data,
+                            PutAll put) noexcept {
+  if (req.path.instance != 1 || req.path.has_attribute) {
+    return status(cip_general::kPathDestinationUnknown);
+  }
+  if (!req.data.empty()) return status(cip_general::kTooMuchData);
+  NetInterface n;
+  if (!describe_interface(ctx, n)) return status(cip_general::kObjectStateConflict);
+  put(data, n);
+  return {};
+}
+
+CipStatus interface_get_single(const MrRequest& req, RouterContext& ctx, Writer& data,
+                               PutOne put) noexcept {
+  if (req.path.instance != 1) return status(cip_general::kPathDestinationUnknown);
+  if (!req.path.has_attribute) return status(cip_general::kAttributeNotSupported);
+  NetInterface n;
+  if (!describe_interface(ctx, n)) return status(cip_general::kObjectStateConflict);
+  if (!put(data, n, req.path.attribute)) return status(cip_general::kAttributeNotSupported);
+  return {};
+}
+
+// Nothing is settable: the board's OS configures its interface.
+CipStatus interface_set_single(const MrRequest& req, RouterContext&, Writer&) noexcept {
+  if (req.path.instance != 1) return status(cip_general::kPathDestinationUnknown);
+  return status(cip_general::kAttributeNotSettable);
+}
+
+CipStatus tcpip_get_all(const MrRequest& req, RouterContext& ctx, Writer& data) noexcept {
+  return interface_get_all(req, ctx, data, put_tcpip_all);
+}
+CipStatus tcpip_get_single(const MrRequest& req, RouterContext& ctx, Writer& data) noexcept {
+  return interface_get_single(req, ctx, data, put_tcpip_attribute);
+}
+CipStatus link_get_all(const MrRequest& req, RouterContext& ctx, Writer& data) noexcept {
+  return interface_get_all(req, ctx, data, put_ethernet_link_all);
+}
+CipStatus link_get_single(const MrRequest& req, RouterContext& ctx, Writer& data) noexcept {
+  return interface_get_single(req, ctx, data, put_ethernet_link_attribute);
+}
+
+constexpr std::array<ServiceRow, 13> kServiceTable{{
     {kIdentityClass, cip_service::kGetAttributesAll, identity_get_all},
     {kIdentityClass, cip_service::kGetAttributeSingle, identity_get_single},
     {kAssemblyClass, cip_service::kGetAttributeSingle, assembly_get_single},
@@ -137,6 +189,12 @@ constexpr std::array<ServiceRow, 7> kServiceTable{{
     {kConnectionManagerClass, cm_service::kForwardOpen, cm_forward_open},
     {kConnectionManagerClass, cm_service::kLargeForwardOpen, cm_large_forward_open},
     {kConnectionManagerClass, cm_service::kForwardClose, cm_forward_close},
+    {kTcpIpInterfaceClass, cip_service::kGetAttributesAll, tcpip_get_all},
+    {kTcpIpInterfaceClass, cip_service::kGetAttributeSingle, tcpip_get_single},
+    {kTcpIpInterfaceClass, cip_service::kSetAttributeSingle, interface_set_single},
+    {kEthernetLinkClass, cip_service::kGetAttributesAll, link_get_all},
+    {kEthernetLinkClass, cip_service::kGetAttributeSingle, link_get_single},
+    {kEthernetLinkClass, cip_service::kSetAttributeSingle, interface_set_single},
 }};
 }  // namespace
 

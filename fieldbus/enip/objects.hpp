@@ -1,6 +1,7 @@
 #pragma once
 // The object table behind the message router: which (class, service) pairs are served and by
-// which handler (Identity 0x01, Assembly 0x04, Connection Manager 0x06). A handler writes its
+// which handler (Identity 0x01, Assembly 0x04, Connection Manager 0x06, TCP/IP Interface 0xF5,
+// Ethernet Link 0xF6). A handler writes its
 // reply data to `data` and returns the status; the router writes the status, then the data.
 #include <cstdint>
 #include <span>

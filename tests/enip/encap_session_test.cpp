@@ -45,8 +45,10 @@ class EnipSession : public ::testing::Test {
   IdentityValues identity_ = identity_for(3601, 0x01020304u);
   test::FakeAssemblies assemblies_;
   test::FakeConnections connections_;
-  RouterContext router_{identity_,    assembly_layout(2, 8, 8), AdapterLimits{}, assemblies_,
-                        connections_, RequestOrigin{}};
+  test::FakeNetwork network_;
+  RouterContext router_{
+      identity_, assembly_layout(2, 8, 8), AdapterLimits{}, assemblies_, connections_,
+      network_,  RequestOrigin{}};
   EncapContext ctx_{sessions_, identity_, SocketAddress{0x7F000001u, 44818}, router_};
   std::array<std::uint8_t, kEncapMaxFrame> out_{};
   Bytes last_;

@@ -17,14 +17,20 @@ using test::hex;
 using Bytes = std::vector<std::uint8_t>;
 using test::FakeAssemblies;
 using test::FakeConnections;
+using test::FakeNetwork;
 
 class EnipRouter : public ::testing::Test {
  protected:
   Bytes ask(const Bytes& message) {
     std::array<std::uint8_t, 600> out{};
     Writer w(out);
-    RouterContext ctx{identity,    assembly_layout(2, 8, 8), AdapterLimits{}, assemblies,
-                      connections, RequestOrigin{}};
+    RouterContext ctx{identity,
+                      assembly_layout(2, 8, 8),
+                      AdapterLimits{},
+                      assemblies,
+                      connections,
+                      network,
+                      RequestOrigin{0x0A000002u, 0, test::FakeNetwork::kBoardIp}};
     route_message(message, ctx, w);
     EXPECT_TRUE(w.ok());
     return {w.written().begin(), w.written().end()};
@@ -44,6 +50,7 @@ class EnipRouter : public ::testing::Test {
   IdentityValues identity = identity_for(3601, 0x01020304u);
   FakeAssemblies assemblies;
   FakeConnections connections;
+  FakeNetwork network;
 };
 
 const Bytes kGetAll = hex("01 02 20 01 24 01");

@@ -87,8 +87,9 @@ void route_with_owner(std::span<const std::uint8_t> b) {
   test::FakeConnections connections;
   connections.owner = true;
   const IdentityValues id = identity_for(3601, 1);
-  RouterContext ctx{id,          assembly_layout(2, 8, 8), AdapterLimits{}, assemblies,
-                    connections, RequestOrigin{}};
+  test::FakeNetwork network;
+  RouterContext ctx{id,      assembly_layout(2, 8, 8), AdapterLimits{}, assemblies, connections,
+                    network, RequestOrigin{}};
   std::array<std::uint8_t, kEncapMaxFrame> out{};
   Writer w(out);
   route_message(b, ctx, w);
@@ -105,8 +106,14 @@ void session_with_owner(std::span<const std::uint8_t> b) {
   connections.owner = true;
   SessionTable sessions;
   const IdentityValues id = identity_for(3202, 1);
-  RouterContext router{
-      id, assembly_layout(4, 16, 16), AdapterLimits{}, assemblies, connections, RequestOrigin{}};
+  test::FakeNetwork network;
+  RouterContext router{id,
+                       assembly_layout(4, 16, 16),
+                       AdapterLimits{},
+                       assemblies,
+                       connections,
+                       network,
+                       RequestOrigin{}};
   EncapContext ctx{sessions, id, SocketAddress{}, router};
   std::array<std::uint8_t, kEncapMaxFrame> out{};
   std::span<const std::uint8_t> stream = b;

@@ -48,4 +48,35 @@ class FakeConnections : public ConnectionTable {
   ConnectionTriad triad;
 };
 
+// The board's interface as the objects' tests know it: 10.0.0.5/24 on eth0, one gateway and
+// name server, 100 Mbit/s full duplex auto-negotiated; only for the board's own address.
+class FakeNetwork : public NetworkPort {
+ public:
+  static constexpr std::uint32_t kBoardIp = 0x0A000005u;
+  bool describe(std::uint32_t local_ip, NetInterface& out) noexcept override {
+    ++asked;
+    if (local_ip != kBoardIp) return false;
+    out = NetInterface{};
+    out.ip = kBoardIp;
+    out.mask = 0xFFFFFF00u;
+    out.gateway = 0x0A000001u;
+    out.name_server = 0x0A000001u;
+    out.domain.assign("plant.local");
+    out.host_name.assign("stepmod-pi");
+    out.label.assign("eth0");
+    out.mac = {0xD8, 0x3A, 0xDD, 0x01, 0x02, 0x03};
+    out.speed_mbps = 100;
+    out.link_up = true;
+    out.admin_up = true;
+    out.duplex = Duplex::kFull;
+    out.negotiation = Negotiation::kAuto;
+    out.can_negotiate = true;
+    out.medium = Medium::kTwistedPair;
+    out.counters.interface[0] = 0x11223344u;
+    out.counters.media[1] = 7;
+    return true;
+  }
+  int asked = 0;
+};
+
 }  // namespace stepmod::enip::test

@@ -1,0 +1,243 @@
+#include "fieldbus/enip/net_interface_linux.hpp"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <ifaddrs.h>
+#include <linux/ethtool.h>
+#include <linux/if_packet.h>
+#include <linux/sockios.h>
+#include <net/if.h>
+#include <sys/ioctl.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <array>
+#include <charconv>
+#include <cstring>
+
+namespace stepmod::enip {
+
+namespace {
+
+// Up to the buffer's size of the file at `path` (a /proc, /sys or /etc file); "" when absent.
+template <std::size_t N>
+std::string_view read_small_file(const char* path, std::array<char, N>& buf) noexcept {
+  const int fd = ::open(path, O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return {};
+  std::size_t size = 0;
+  for (;;) {
+    const ssize_t n = ::read(fd, buf.data() + size, buf.size() - size);
+    if (n <= 0) break;
+    size += static_cast<std::size_t>(n);
+    if (size == buf.size()) break;
+  }
+  ::close(fd);
+  return {buf.data(), size};
+}
+
+// The next line of `text` from `pos` (without its newline); advances `pos`.
+std::string_view next_line(std::string_view text, std::size_t& pos) noexcept {
+  const std::size_t end = text.find('\n', pos);
+  const std::size_t stop = end == std::string_view::npos ? text.size() : end;
+  const std::string_view line = text.substr(pos, stop - pos);
+  pos = stop == text.size() ? stop : stop + 1;
+  return line;
+}
+
+// The `index`th whitespace-separated field of `line`; "" past the last.
+std::string_view field(std::string_view line, int index) noexcept {
+  std::size_t pos = 0;
+  for (int i = 0;; ++i) {
+    pos = line.find_first_not_of(" \t", pos);
+    if (pos == std::string_view::npos) return {};
+    const std::size_t end = std::min(line.find_first_of(" \t", pos), line.size());
+    if (i == index) return line.substr(pos, end - pos);
+    pos = end;
+  }
+}
+
+bool parse_hex(std::string_view s, std::uint32_t& out) noexcept {
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), out, 16);
+  return r.ec == std::errc() && r.ptr == s.data() + s.size();
+}
+
+std::uint32_t parse_ipv4(std::string_view s) noexcept {
+  std::array<char, INET_ADDRSTRLEN> z{};
+  if (s.size() >= z.size()) return 0;
+  std::memcpy(z.data(), s.data(), s.size());
+  in_addr a{};
+  return ::inet_pton(AF_INET, z.data(), &a) == 1 ? ntohl(a.s_addr) : 0;
+}
+
+std::uint32_t host_order(const sockaddr* sa) noexcept {
+  if (sa == nullptr || sa->sa_family != AF_INET) return 0;
+  return ntohl(reinterpret_cast<const sockaddr_in*>(sa)->sin_addr.s_addr);
+}
+
+// The IPv4 entry of the interface that has `local_ip`; else the one whose network holds it (the
+// loopback answers for all of 127.0.0.0/8 with only 127.0.0.1 configured).
+const ifaddrs* entry_of(const ifaddrs* all, std::uint32_t local_ip) noexcept {
+  const ifaddrs* in_network = nullptr;
+  for (const ifaddrs* a = all; a != nullptr; a = a->ifa_next) {
+    const std::uint32_t ip = host_order(a->ifa_addr);
+    if (ip == 0) continue;
+    if (ip == local_ip) return a;
+    const std::uint32_t mask = host_order(a->ifa_netmask);
+    if (in_network == nullptr && mask != 0 && (ip & mask) == (local_ip & mask)) in_network = a;
+  }
+  return in_network;
+}
+
+// The address, mask, flags and name of the interface with `local_ip`, then its MAC.
+bool from_ifaddrs(std::uint32_t local_ip, NetInterface& out) noexcept {
+  ifaddrs* all = nullptr;
+  if (local_ip == 0 || ::getifaddrs(&all) != 0) return false;
+  const ifaddrs* e = entry_of(all, local_ip);
+  if (e != nullptr) {
+    out.ip = local_ip;
+    out.mask = host_order(e->ifa_netmask);
+    out.label.assign(e->ifa_name);
+    out.admin_up = (e->ifa_flags & IFF_UP) != 0;
+    out.link_up = (e->ifa_flags & IFF_RUNNING) != 0;
+    if ((e->ifa_flags & IFF_LOOPBACK) != 0) out.medium = Medium::kInternal;
+  }
+  for (const ifaddrs* a = all; a != nullptr && e != nullptr; a = a->ifa_next) {
+    if (a->ifa_addr == nullptr || a->ifa_addr->sa_family != AF_PACKET) continue;
+    if (out.label.view() != a->ifa_name) continue;
+    const auto* ll = reinterpret_cast<const sockaddr_ll*>(a->ifa_addr);
+    if (ll->sll_halen == out.mac.size()) std::memcpy(out.mac.data(), ll->sll_addr, out.mac.size());
+  }
+  ::freeifaddrs(all);
+  return e != nullptr;
+}
+
+// Speed, duplex, auto-negotiation and port from the ethtool ioctl; a link without them (the
+// loopback) keeps "unknown".
+void from_ethtool(NetInterface& out) noexcept {
+  const int s = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  if (s < 0) return;
+  ethtool_cmd cmd{};
+  cmd.cmd = ETHTOOL_GSET;
+  ifreq ifr{};
+  std::memcpy(ifr.ifr_name, out.label.chars.data(), out.label.length);
+  ifr.ifr_data = reinterpret_cast<char*>(&cmd);
+  const bool ok = ::ioctl(s, SIOCETHTOOL, &ifr) == 0;
+  ::close(s);
+  if (!ok) return;
+  const std::uint32_t speed = ethtool_cmd_speed(&cmd);
+  out.speed_mbps = speed == static_cast<std::uint32_t>(SPEED_UNKNOWN) ? 0 : speed;
+  if (cmd.duplex == DUPLEX_FULL) out.duplex = Duplex::kFull;
+  if (cmd.duplex == DUPLEX_HALF) out.duplex = Duplex::kHalf;
+  out.negotiation = cmd.autoneg == AUTONEG_ENABLE ? Negotiation::kAuto : Negotiation::kForced;
+  out.can_negotiate = (cmd.supported & SUPPORTED_Autoneg) != 0;
+  if (cmd.port == PORT_TP) out.medium = Medium::kTwistedPair;
+  if (cmd.port == PORT_FIBRE) out.medium = Medium::kOptical;
+}
+
+// /sys/class/net/IF/statistics/NAME as a CIP UDINT (wrapping); 0 when absent.
+std::uint32_t statistic(std::string_view ifname, const char* name) noexcept {
+  std::array<char, 128> path{};
+  const std::string_view dir = "/sys/class/net/";
+  const std::string_view sub = "/statistics/";
+  const std::size_t name_len = std::strlen(name);
+  if (dir.size() + ifname.size() + sub.size() + name_len >= path.size()) return 0;
+  char* p = path.data();
+  for (const std::string_view part : {dir, ifname, sub, std::string_view(name, name_len)}) {
+    std::memcpy(p, part.data(), part.size());
+    p += part.size();
+  }
+  std::array<char, 32> buf{};
+  const std::string_view text = read_small_file(path.data(), buf);
+  std::uint64_t v = 0;
+  std::from_chars(text.data(), text.data() + text.size(), v);
+  return static_cast<std::uint32_t>(v);
+}
+
+// Linux's counters in the Ethernet Link object's order; what Linux does not count separately is
+// 0 (docs/ethernetip-design.md, "TCP/IP Interface and Ethernet Link").
+void from_statistics(NetInterface& out) noexcept {
+  const std::string_view i = out.label.view();
+  const std::uint32_t rx_multicast = statistic(i, "multicast");
+  out.counters.interface = {statistic(i, "rx_bytes"),
+                            statistic(i, "rx_packets") - rx_multicast,
+                            rx_multicast,
+                            statistic(i, "rx_dropped"),
+                            statistic(i, "rx_errors"),
+                            statistic(i, "rx_nohandler"),
+                            statistic(i, "tx_bytes"),
+                            statistic(i, "tx_packets"),
+                            0,
+                            statistic(i, "tx_dropped"),
+                            statistic(i, "tx_errors")};
+  out.counters.media = {statistic(i, "rx_frame_errors"),
+                        statistic(i, "rx_crc_errors"),
+                        0,
+                        0,
+                        0,
+                        0,
+                        statistic(i, "tx_window_errors"),
+                        statistic(i, "tx_aborted_errors"),
+                        statistic(i, "tx_fifo_errors"),
+                        statistic(i, "tx_carrier_errors"),
+                        statistic(i, "rx_length_errors"),
+                        statistic(i, "rx_fifo_errors")};
+}
+
+}  // namespace
+
+std::uint32_t default_gateway(std::string_view proc_net_route, std::string_view ifname) noexcept {
+  constexpr std::uint32_t kRtfGateway = 0x2;
+  std::size_t pos = 0;
+  next_line(proc_net_route, pos);  // the header
+  while (pos < proc_net_route.size()) {
+    const std::string_view line = next_line(proc_net_route, pos);
+    std::uint32_t destination = 1;
+    std::uint32_t gateway = 0;
+    std::uint32_t flags = 0;
+    if (field(line, 0) != ifname || !parse_hex(field(line, 1), destination) ||
+        !parse_hex(field(line, 2), gateway) || !parse_hex(field(line, 3), flags)) {
+      continue;
+    }
+    // The kernel prints the network-order words as host integers.
+    if (destination == 0 && (flags & kRtfGateway) != 0) return ntohl(gateway);
+  }
+  return 0;
+}
+
+void read_resolv_conf(std::string_view text, NetInterface& out) noexcept {
+  std::size_t pos = 0;
+  bool domain_given = false;
+  while (pos < text.size()) {
+    const std::string_view line = next_line(text, pos);
+    const std::string_view key = field(line, 0);
+    if (key == "nameserver") {
+      const std::uint32_t ip = parse_ipv4(field(line, 1));
+      if (ip == 0) continue;  // an IPv6 server: the attribute holds IPv4 only
+      if (out.name_server == 0) {
+        out.name_server = ip;
+      } else if (out.name_server_2 == 0) {
+        out.name_server_2 = ip;
+      }
+    } else if (key == "domain") {
+      out.domain.assign(field(line, 1));
+      domain_given = true;
+    } else if (key == "search" && !domain_given && out.domain.length == 0) {
+      out.domain.assign(field(line, 1));
+    }
+  }
+}
+
+bool LinuxNetworkPort::describe(std::uint32_t local_ip, NetInterface& out) noexcept {
+  out = NetInterface{};
+  if (!from_ifaddrs(local_ip, out)) return false;
+  std::array<char, 8192> buf{};
+  out.gateway = default_gateway(read_small_file("/proc/net/route", buf), out.label.view());
+  read_resolv_conf(read_small_file(resolv_conf_, buf), out);
+  std::array<char, 65> host{};
+  if (::gethostname(host.data(), host.size() - 1) == 0) out.host_name.assign(host.data());
+  from_ethtool(out);
+  from_statistics(out);
+  return true;
+}
+
+}  // namespace stepmod::enip
