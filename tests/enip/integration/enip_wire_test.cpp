@@ -5,9 +5,11 @@
 // the running daemon: no crash, ListIdentity still answered, nothing written to the image.
 #include <gtest/gtest.h>
 
+#include <arpa/inet.h>
 #include <signal.h>
 #include <sys/wait.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -66,6 +68,28 @@ TEST_F(EnipDaemonWire, TheIdentityObjectReadByEthernetIp) {
            {"1", "ffff"}, {"2", "2b00"}, {"3", "110e"}, {"4", "0101"}, {"6", serial}}) {
     EXPECT_EQ(json_field(*r, attr), want) << "attribute " << attr << ": " << *r;
   }
+}
+
+// The TCP/IP Interface and Ethernet Link objects describe the interface the request came in on:
+// here the loopback with the daemon's 127.0.x.1.
+TEST_F(EnipDaemonWire, TheInterfaceObjectsReadByEthernetIp) {
+  REQUIRE_ENIP_PARTNERS();
+  start_3601();
+  PartnerProcess p({"interface", target_});
+  const auto r = p.line_with("tcpip", std::chrono::seconds(20));
+  ASSERT_TRUE(r.has_value()) << p.transcript() << daemon_->log();
+  in_addr a{};
+  ASSERT_EQ(::inet_pton(AF_INET, target_.c_str(), &a), 1);
+  char ip_le[9];  // the address as the UDINT's little-endian bytes
+  std::snprintf(ip_le, sizeof ip_le, "%08x", __builtin_bswap32(ntohl(a.s_addr)));
+  // Attribute 5: the daemon's address, mask 255.0.0.0; the loopback has no gateway.
+  EXPECT_NE(r->find(std::string("\"5\":\"") + ip_le + "000000ff00000000"), std::string::npos) << *r;
+  EXPECT_NE(r->find("\"1\":\"01000000\""), std::string::npos) << *r;      // configured
+  EXPECT_NE(r->find("\"4\":\"020020f62401\""), std::string::npos) << *r;  // → 0xF6 instance 1
+  EXPECT_NE(r->find("\"7\":\"status 20\""), std::string::npos) << *r;     // GAA only (0x14)
+  EXPECT_NE(r->find("\"10\":\"026c6f\""), std::string::npos) << *r;       // label "lo"
+  EXPECT_NE(r->find("\"3\":\"000000000000\""), std::string::npos) << *r;  // its MAC
+  EXPECT_NE(r->find("\"12\":\"status 20\""), std::string::npos) << *r;
 }
 
 TEST_F(EnipDaemonWire, ListIdentityIsAnsweredOnUdpAndTcp) {
@@ -170,6 +194,8 @@ TEST_F(EnipDaemonWire, ACapturedSessionDecodesWithoutMalformedPacketsOrExpertErr
     ASSERT_TRUE(list.line_with("device", std::chrono::seconds(10)));
     PartnerProcess id({"identity", target_});
     ASSERT_TRUE(id.line_with("all", std::chrono::seconds(20))) << id.transcript();
+    PartnerProcess objects({"interface", target_});
+    ASSERT_TRUE(objects.line_with("tcpip", std::chrono::seconds(20))) << objects.transcript();
     auto owner = connect_scanner(10);
     ASSERT_TRUE(owner);
     owner->ask("set 0000000000000000000000000000ffff");
@@ -183,6 +209,10 @@ TEST_F(EnipDaemonWire, ACapturedSessionDecodesWithoutMalformedPacketsOrExpertErr
   EXPECT_GT(tshark_count(cap, "enip"), 100);
   EXPECT_GE(tshark_count(cap, "cip.cm.fwo.consize"), 1);
   EXPECT_GT(tshark_count(cap, "cipio"), 10);
+  // The TCP/IP Interface and Ethernet Link objects' replies, each attribute decoded.
+  EXPECT_GE(tshark_count(cap, "cip.tcpip.encap_inactivity"), 2);
+  EXPECT_GE(tshark_count(cap, "cip.tcpip.ip_addr"), 2);
+  EXPECT_GE(tshark_count(cap, "cip.elink.interface_speed"), 2);
   // Nothing malformed, no expert error (tshark's own exit status checked: a filter it refused
   // would print nothing too).
   ASSERT_EQ(run_shell("sh -c \"tshark -r " + cap +

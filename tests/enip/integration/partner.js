@@ -11,6 +11,9 @@
 //   node partner.js open-once '{...same...}'   one Forward_Open; its status, then exit
 //   node partner.js identity TARGET             ethernet-ip: Get_Attributes_All and
 //                                               Get_Attribute_Single of the Identity object
+//   node partner.js interface TARGET              ethernet-ip: Get_Attributes_All and
+//                                               Get_Attribute_Single of the TCP/IP Interface
+//                                               and Ethernet Link objects
 //   node partner.js list-identity TARGET LOCAL udp|tcp   ListIdentity, parsed by
 //                                               st-ethernet-ip's Browser
 //   node partner.js browse LOCAL                 st-ethernet-ip's Browser as it finds devices:
@@ -126,6 +129,42 @@ async function identity(target) {
   process.exit(0);
 }
 
+// The TCP/IP Interface (0xF5) and Ethernet Link (0xF6) objects as ethernet-ip's ENIP client
+// reads them: Get_Attributes_All and Get_Attribute_Single of each attribute, as hex (or the
+// general status of a refusal).
+async function interfaceObjects(target) {
+  const { Controller, EthernetIP } = require("ethernet-ip");
+  const { CIP } = EthernetIP;
+  const { LOGICAL } = CIP.EPATH.segments;
+  const { GET_ATTRIBUTE_ALL, GET_ATTRIBUTE_SINGLE } = CIP.MessageRouter.services;
+  const plc = new Controller();
+  await plc.connect(target, 0);
+  const ask = (service, event, classId, attribute) => {
+    const segments = [
+      LOGICAL.build(LOGICAL.types.ClassID, classId),
+      LOGICAL.build(LOGICAL.types.InstanceID, 0x01),
+    ];
+    if (attribute) segments.push(LOGICAL.build(LOGICAL.types.AttributeID, attribute));
+    const got = new Promise((resolve) => {
+      plc.once(event, (err, data) =>
+        resolve(err ? "status " + err.generalStatusCode : data.toString("hex")));
+    });
+    plc.write_cip(CIP.MessageRouter.build(service, Buffer.concat(segments), []));
+    return got;
+  };
+  const out = {};
+  for (const [name, classId, last] of [["tcpip", 0xf5, 14], ["link", 0xf6, 12]]) {
+    const singles = {};
+    for (let a = 1; a <= last; ++a) {
+      singles[a] = await ask(GET_ATTRIBUTE_SINGLE, "Get Attribute Single", classId, a);
+    }
+    out[name] = { all: await ask(GET_ATTRIBUTE_ALL, "Get Attribute All", classId), singles };
+  }
+  say(out);
+  plc.destroy();
+  process.exit(0);
+}
+
 function listIdentity(target, local, how) {
   const { Browser, EthernetIP } = require("st-ethernet-ip");
   const { encapsulation } = EthernetIP;
@@ -157,6 +196,7 @@ const [mode, a1, a2, a3] = process.argv.slice(2);
 if (mode === "scanner") scanner(JSON.parse(a1));
 else if (mode === "open-once") openOnce(JSON.parse(a1));
 else if (mode === "identity") identity(a1);
+else if (mode === "interface") interfaceObjects(a1);
 else if (mode === "list-identity") listIdentity(a1, a2, a3);
 else if (mode === "browse") browse(a1);
 else fail(new Error("unknown mode " + mode));
