@@ -15,26 +15,9 @@ namespace {
 using test::cat;
 using test::hex;
 using Bytes = std::vector<std::uint8_t>;
-using test::FakeAssemblies;
-using test::FakeConnections;
-using test::FakeNetwork;
 
-class EnipRouter : public ::testing::Test {
+class EnipRouter : public test::RouterFixture {
  protected:
-  Bytes ask(const Bytes& message) {
-    std::array<std::uint8_t, 600> out{};
-    Writer w(out);
-    RouterContext ctx{identity,
-                      assembly_layout(2, 8, 8),
-                      AdapterLimits{},
-                      assemblies,
-                      connections,
-                      network,
-                      RequestOrigin{0x0A000002u, 0, test::FakeNetwork::kBoardIp}};
-    route_message(message, ctx, w);
-    EXPECT_TRUE(w.ok());
-    return {w.written().begin(), w.written().end()};
-  }
   // The request wrapped as st-ethernet-ip and ethernet-ip send it: Unconnected_Send to the
   // Connection Manager, route port 1 / link 0.
   static Bytes ucmm(const Bytes& message, const Bytes& route = hex("01 00")) {
@@ -47,10 +30,6 @@ class EnipRouter : public ::testing::Test {
     b.push_back(0);
     return cat(b, route);
   }
-  IdentityValues identity = identity_for(3601, 0x01020304u);
-  FakeAssemblies assemblies;
-  FakeConnections connections;
-  FakeNetwork network;
 };
 
 const Bytes kGetAll = hex("01 02 20 01 24 01");

@@ -1,9 +1,13 @@
 #pragma once
-// The image and the connection table as the message router sees them, for its tests: the
-// assemblies count writes, the connections keep one owner.
+// The image, the connection table and the board's interface as the message router sees them, for
+// its tests: the assemblies count writes, the connections keep one owner; and the router with
+// them.
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "fieldbus/enip/message_router.hpp"
 
@@ -77,6 +81,31 @@ class FakeNetwork : public NetworkPort {
     return true;
   }
   int asked = 0;
+};
+
+// The message router with the fakes above: a request in, its whole reply out, as it came in on
+// the fake board's address (or `local_ip`).
+class RouterFixture : public ::testing::Test {
+ protected:
+  std::vector<std::uint8_t> ask(const std::vector<std::uint8_t>& message,
+                                std::uint32_t local_ip = FakeNetwork::kBoardIp) {
+    std::array<std::uint8_t, 600> out{};
+    Writer w(out);
+    RouterContext ctx{identity,
+                      assembly_layout(2, 8, 8),
+                      AdapterLimits{},
+                      assemblies,
+                      connections,
+                      network,
+                      RequestOrigin{0x0A000002u, 0, local_ip}};
+    route_message(message, ctx, w);
+    EXPECT_TRUE(w.ok());
+    return {w.written().begin(), w.written().end()};
+  }
+  IdentityValues identity = identity_for(3601, 0x01020304u);
+  FakeAssemblies assemblies;
+  FakeConnections connections;
+  FakeNetwork network;
 };
 
 }  // namespace stepmod::enip::test

@@ -18,27 +18,8 @@ using test::cat;
 using test::hex;
 using Bytes = std::vector<std::uint8_t>;
 
-class EnipInterfaceObjects : public ::testing::Test {
- protected:
-  Bytes ask(const Bytes& message, std::uint32_t local_ip = test::FakeNetwork::kBoardIp) {
-    std::array<std::uint8_t, 600> out{};
-    Writer w(out);
-    RouterContext ctx{identity,
-                      assembly_layout(2, 8, 8),
-                      AdapterLimits{},
-                      assemblies,
-                      connections,
-                      network,
-                      RequestOrigin{0x0A000002u, 0, local_ip}};
-    route_message(message, ctx, w);
-    EXPECT_TRUE(w.ok());
-    return {w.written().begin(), w.written().end()};
-  }
-  IdentityValues identity = identity_for(3601, 1);
-  test::FakeAssemblies assemblies;
-  test::FakeConnections connections;
-  test::FakeNetwork network;
-};
+// The router as the router's tests ask it, on the fake board interface.
+class EnipInterfaceObjects : public test::RouterFixture {};
 
 // Attribute 5: 10.0.0.5, 255.255.255.0, gateway and name server 10.0.0.1, no second one, domain
 // "plant.local" (11 characters and a pad byte).
