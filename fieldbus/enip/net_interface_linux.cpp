@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <ifaddrs.h>
 #include <linux/ethtool.h>
+#include <linux/if_link.h>
 #include <linux/if_packet.h>
 #include <linux/sockios.h>
 #include <net/if.h>
@@ -48,9 +49,9 @@ std::string_view next_line(std::string_view text, std::size_t& pos) noexcept {
 std::string_view field(std::string_view line, int index) noexcept {
   std::size_t pos = 0;
   for (int i = 0;; ++i) {
-    pos = line.find_first_not_of(" \t", pos);
+    pos = line.find_first_not_of(" \t\r", pos);
     if (pos == std::string_view::npos) return {};
-    const std::size_t end = std::min(line.find_first_of(" \t", pos), line.size());
+    const std::size_t end = std::min(line.find_first_of(" \t\r", pos), line.size());
     if (i == index) return line.substr(pos, end - pos);
     pos = end;
   }
@@ -72,6 +73,35 @@ std::uint32_t parse_ipv4(std::string_view s) noexcept {
 std::uint32_t host_order(const sockaddr* sa) noexcept {
   if (sa == nullptr || sa->sa_family != AF_INET) return 0;
   return ntohl(reinterpret_cast<const sockaddr_in*>(sa)->sin_addr.s_addr);
+}
+
+// Linux's counters of the link (getifaddrs' one snapshot of them) in the Ethernet Link object's
+// order; what Linux does not count apart is 0 (docs/ethernetip-design.md, "TCP/IP Interface
+// (0xF5) and Ethernet Link").
+void from_link_stats(const rtnl_link_stats& st, LinkCounters& out) noexcept {
+  out.interface = {st.rx_bytes,
+                   st.rx_packets - st.multicast,
+                   st.multicast,
+                   st.rx_dropped,
+                   st.rx_errors,
+                   st.rx_nohandler,
+                   st.tx_bytes,
+                   st.tx_packets,
+                   0,
+                   st.tx_dropped,
+                   st.tx_errors};
+  out.media = {st.rx_frame_errors,
+               st.rx_crc_errors,
+               0,
+               0,
+               st.tx_heartbeat_errors,
+               0,
+               st.tx_window_errors,
+               st.tx_aborted_errors,
+               st.tx_fifo_errors,
+               st.tx_carrier_errors,
+               st.rx_length_errors,
+               st.rx_fifo_errors};
 }
 
 // The IPv4 entry of the interface that has `local_ip`; else the one whose network holds it (the
@@ -96,7 +126,9 @@ bool from_ifaddrs(std::uint32_t local_ip, NetInterface& out) noexcept {
   if (e != nullptr) {
     out.ip = local_ip;
     out.mask = host_order(e->ifa_netmask);
-    out.label.assign(e->ifa_name);
+    // An address with a label ("eth0:1") is named by it: the link is the name before ':'.
+    const std::string_view name = e->ifa_name;
+    out.label.assign(name.substr(0, name.find(':')));
     out.admin_up = (e->ifa_flags & IFF_UP) != 0;
     out.link_up = (e->ifa_flags & IFF_RUNNING) != 0;
     if ((e->ifa_flags & IFF_LOOPBACK) != 0) out.medium = Medium::kInternal;
@@ -106,6 +138,9 @@ bool from_ifaddrs(std::uint32_t local_ip, NetInterface& out) noexcept {
     if (out.label.view() != a->ifa_name) continue;
     const auto* ll = reinterpret_cast<const sockaddr_ll*>(a->ifa_addr);
     if (ll->sll_halen == out.mac.size()) std::memcpy(out.mac.data(), ll->sll_addr, out.mac.size());
+    if (a->ifa_data != nullptr) {
+      from_link_stats(*static_cast<const rtnl_link_stats*>(a->ifa_data), out.counters);
+    }
   }
   ::freeifaddrs(all);
   return e != nullptr;
@@ -133,56 +168,6 @@ void from_ethtool(NetInterface& out) noexcept {
   if (cmd.port == PORT_TP) out.medium = Medium::kTwistedPair;
   if (cmd.port == PORT_FIBRE) out.medium = Medium::kOptical;
 }
-
-// /sys/class/net/IF/statistics/NAME as a CIP UDINT (wrapping); 0 when absent.
-std::uint32_t statistic(std::string_view ifname, const char* name) noexcept {
-  std::array<char, 128> path{};
-  const std::string_view dir = "/sys/class/net/";
-  const std::string_view sub = "/statistics/";
-  const std::size_t name_len = std::strlen(name);
-  if (dir.size() + ifname.size() + sub.size() + name_len >= path.size()) return 0;
-  char* p = path.data();
-  for (const std::string_view part : {dir, ifname, sub, std::string_view(name, name_len)}) {
-    std::memcpy(p, part.data(), part.size());
-    p += part.size();
-  }
-  std::array<char, 32> buf{};
-  const std::string_view text = read_small_file(path.data(), buf);
-  std::uint64_t v = 0;
-  std::from_chars(text.data(), text.data() + text.size(), v);
-  return static_cast<std::uint32_t>(v);
-}
-
-// Linux's counters in the Ethernet Link object's order; what Linux does not count separately is
-// 0 (docs/ethernetip-design.md, "TCP/IP Interface and Ethernet Link").
-void from_statistics(NetInterface& out) noexcept {
-  const std::string_view i = out.label.view();
-  const std::uint32_t rx_multicast = statistic(i, "multicast");
-  out.counters.interface = {statistic(i, "rx_bytes"),
-                            statistic(i, "rx_packets") - rx_multicast,
-                            rx_multicast,
-                            statistic(i, "rx_dropped"),
-                            statistic(i, "rx_errors"),
-                            statistic(i, "rx_nohandler"),
-                            statistic(i, "tx_bytes"),
-                            statistic(i, "tx_packets"),
-                            0,
-                            statistic(i, "tx_dropped"),
-                            statistic(i, "tx_errors")};
-  out.counters.media = {statistic(i, "rx_frame_errors"),
-                        statistic(i, "rx_crc_errors"),
-                        0,
-                        0,
-                        0,
-                        0,
-                        statistic(i, "tx_window_errors"),
-                        statistic(i, "tx_aborted_errors"),
-                        statistic(i, "tx_fifo_errors"),
-                        statistic(i, "tx_carrier_errors"),
-                        statistic(i, "rx_length_errors"),
-                        statistic(i, "rx_fifo_errors")};
-}
-
 }  // namespace
 
 std::uint32_t default_gateway(std::string_view proc_net_route, std::string_view ifname) noexcept {
@@ -206,7 +191,6 @@ std::uint32_t default_gateway(std::string_view proc_net_route, std::string_view 
 
 void read_resolv_conf(std::string_view text, NetInterface& out) noexcept {
   std::size_t pos = 0;
-  bool domain_given = false;
   while (pos < text.size()) {
     const std::string_view line = next_line(text, pos);
     const std::string_view key = field(line, 0);
@@ -218,26 +202,37 @@ void read_resolv_conf(std::string_view text, NetInterface& out) noexcept {
       } else if (out.name_server_2 == 0) {
         out.name_server_2 = ip;
       }
-    } else if (key == "domain") {
-      out.domain.assign(field(line, 1));
-      domain_given = true;
-    } else if (key == "search" && !domain_given && out.domain.length == 0) {
-      out.domain.assign(field(line, 1));
+    } else if (key == "domain" || key == "search") {
+      out.domain.assign(field(line, 1));  // the last of them wins, as in the resolver
     }
   }
 }
 
-bool LinuxNetworkPort::describe(std::uint32_t local_ip, NetInterface& out) noexcept {
+bool LinuxNetworkPort::read(std::uint32_t local_ip, NetInterface& out) const noexcept {
   out = NetInterface{};
   if (!from_ifaddrs(local_ip, out)) return false;
   std::array<char, 8192> buf{};
   out.gateway = default_gateway(read_small_file("/proc/net/route", buf), out.label.view());
   read_resolv_conf(read_small_file(resolv_conf_, buf), out);
   std::array<char, 65> host{};
-  if (::gethostname(host.data(), host.size() - 1) == 0) out.host_name.assign(host.data());
+  if (::gethostname(host.data(), host.size()) == 0) {  // 64 characters and the NUL
+    host.back() = '\0';
+    out.host_name.assign(host.data());
+  }
   from_ethtool(out);
-  from_statistics(out);
   return true;
+}
+
+bool LinuxNetworkPort::describe(std::uint32_t local_ip, NetInterface& out) noexcept {
+  const Nanos now = monotonic_now();
+  if (!has_snapshot_ || local_ip != snapshot_ip_ || now - snapshot_at_ >= kSnapshotLife) {
+    snapshot_ok_ = read(local_ip, snapshot_);
+    snapshot_ip_ = local_ip;
+    snapshot_at_ = now;
+    has_snapshot_ = true;
+  }
+  out = snapshot_;
+  return snapshot_ok_;
 }
 
 }  // namespace stepmod::enip

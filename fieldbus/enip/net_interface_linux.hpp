@@ -2,12 +2,15 @@
 // The board's network interface as Linux has it, for the TCP/IP Interface and Ethernet Link
 // objects: the address, mask and flags (getifaddrs), the MAC (its AF_PACKET entry), the default
 // gateway (/proc/net/route), the name servers and domain (/etc/resolv.conf), the host name,
-// speed, duplex and auto-negotiation (the ethtool ioctl), the counters
-// (/sys/class/net/IF/statistics). Read on each request (an explicit message, never the I/O
-// path): a DHCP renewal or a cable pulled shows at once.
+// speed, duplex and auto-negotiation (the ethtool ioctl), the counters (getifaddrs' snapshot of
+// the link's statistics). Read by the adapter's thread, which also serves the I/O: getifaddrs and
+// the ioctl take the kernel's network lock, so a snapshot serves the requests of one second (a
+// tool polling the counters costs one read a second) and a DHCP renewal or a pulled cable shows
+// within a second.
 #include <cstdint>
 #include <string_view>
 
+#include "core/clock.hpp"
 #include "fieldbus/enip/net_interface.hpp"
 
 namespace stepmod::enip {
@@ -27,7 +30,16 @@ class LinuxNetworkPort : public NetworkPort {
   bool describe(std::uint32_t local_ip, NetInterface& out) noexcept override;
 
  private:
+  static constexpr Nanos kSnapshotLife = kNsPerSec;
+
+  bool read(std::uint32_t local_ip, NetInterface& out) const noexcept;
+
   const char* resolv_conf_;
+  NetInterface snapshot_;
+  std::uint32_t snapshot_ip_ = 0;
+  Nanos snapshot_at_ = 0;
+  bool snapshot_ok_ = false;
+  bool has_snapshot_ = false;
 };
 
 }  // namespace stepmod::enip

@@ -163,8 +163,11 @@ CipStatus interface_get_single(const MrRequest& req, RouterContext& ctx, Writer&
 }
 
 // Nothing is settable: the board's OS configures its interface.
-CipStatus interface_set_single(const MrRequest& req, RouterContext&, Writer&) noexcept {
+CipStatus interface_set_single(const MrRequest& req, std::uint32_t last_attribute) noexcept {
   if (req.path.instance != 1) return status(cip_general::kPathDestinationUnknown);
+  if (!req.path.has_attribute || req.path.attribute == 0 || req.path.attribute > last_attribute) {
+    return status(cip_general::kAttributeNotSupported);
+  }
   return status(cip_general::kAttributeNotSettable);
 }
 
@@ -174,11 +177,17 @@ CipStatus tcpip_get_all(const MrRequest& req, RouterContext& ctx, Writer& data) 
 CipStatus tcpip_get_single(const MrRequest& req, RouterContext& ctx, Writer& data) noexcept {
   return interface_get_single(req, ctx, data, put_tcpip_attribute);
 }
+CipStatus tcpip_set_single(const MrRequest& req, RouterContext&, Writer&) noexcept {
+  return interface_set_single(req, kTcpIpLastAttribute);
+}
 CipStatus link_get_all(const MrRequest& req, RouterContext& ctx, Writer& data) noexcept {
   return interface_get_all(req, ctx, data, put_ethernet_link_all);
 }
 CipStatus link_get_single(const MrRequest& req, RouterContext& ctx, Writer& data) noexcept {
   return interface_get_single(req, ctx, data, put_ethernet_link_attribute);
+}
+CipStatus link_set_single(const MrRequest& req, RouterContext&, Writer&) noexcept {
+  return interface_set_single(req, kEthernetLinkLastAttribute);
 }
 
 constexpr std::array<ServiceRow, 13> kServiceTable{{
@@ -191,10 +200,10 @@ constexpr std::array<ServiceRow, 13> kServiceTable{{
     {kConnectionManagerClass, cm_service::kForwardClose, cm_forward_close},
     {kTcpIpInterfaceClass, cip_service::kGetAttributesAll, tcpip_get_all},
     {kTcpIpInterfaceClass, cip_service::kGetAttributeSingle, tcpip_get_single},
-    {kTcpIpInterfaceClass, cip_service::kSetAttributeSingle, interface_set_single},
+    {kTcpIpInterfaceClass, cip_service::kSetAttributeSingle, tcpip_set_single},
     {kEthernetLinkClass, cip_service::kGetAttributesAll, link_get_all},
     {kEthernetLinkClass, cip_service::kGetAttributeSingle, link_get_single},
-    {kEthernetLinkClass, cip_service::kSetAttributeSingle, interface_set_single},
+    {kEthernetLinkClass, cip_service::kSetAttributeSingle, link_set_single},
 }};
 }  // namespace
 

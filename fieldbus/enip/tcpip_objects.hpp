@@ -13,6 +13,9 @@ namespace stepmod::enip {
 
 inline constexpr std::uint32_t kTcpIpInterfaceClass = 0xF5;
 inline constexpr std::uint32_t kEthernetLinkClass = 0xF6;
+// Their instance attributes are 1 to these.
+inline constexpr std::uint32_t kTcpIpLastAttribute = 13;
+inline constexpr std::uint32_t kEthernetLinkLastAttribute = 11;
 
 // Interface Flags (0xF6 attribute 2): bit 0 link active, bit 1 full duplex, bits 2-4 the
 // negotiation status.

@@ -53,7 +53,11 @@ TEST(EnipNetInterface, NameServersAndDomainFromResolvConf) {
   EXPECT_EQ(n.domain.view(), "lan");
   NetInterface d;
   read_resolv_conf("search lan\ndomain plant.example\n", d);
-  EXPECT_EQ(d.domain.view(), "plant.example");  // "domain" wins over "search"
+  EXPECT_EQ(d.domain.view(), "plant.example");  // the last of "domain" and "search" wins
+  NetInterface s;
+  read_resolv_conf("domain plant.example\r\nsearch corp lan\r\nnameserver 10.0.0.9\r\n", s);
+  EXPECT_EQ(s.domain.view(), "corp");
+  EXPECT_EQ(s.name_server, 0x0A000009u) << "a CRLF line";
   NetInterface long_name;
   read_resolv_conf("domain " + std::string(60, 'x') + "\n", long_name);
   EXPECT_EQ(long_name.domain.length, 48u);  // CIP's limit

@@ -83,7 +83,9 @@ TEST_F(EnipInterfaceObjects, RefusalsAndNothingSettable) {
   EXPECT_EQ(ask(hex("01 02 20 f5 24 01 00")), hex("81 00 15 00"));     // data after the path
   EXPECT_EQ(ask(hex("10 03 20 f5 24 01 30 06 0000")), hex("90 00 0e 00"));
   EXPECT_EQ(ask(hex("10 03 20 f6 24 01 30 06 0100 0000")), hex("90 00 0e 00"));
-  EXPECT_EQ(ask(hex("4b 02 20 f5 24 01")), hex("cb 00 08 00"));  // no such service
+  EXPECT_EQ(ask(hex("10 03 20 f5 24 01 30 0e 00")), hex("90 00 14 00"));  // no attribute 14
+  EXPECT_EQ(ask(hex("10 03 20 f6 24 01 30 0c 00")), hex("90 00 14 00"));  // nor 12
+  EXPECT_EQ(ask(hex("4b 02 20 f5 24 01")), hex("cb 00 08 00"));           // no such service
   // A request that came in on an address no interface has (it went away): refused, not guessed.
   EXPECT_EQ(ask(hex("01 02 20 f5 24 01"), 0x0A000009u), hex("81 00 0c 00"));
 }

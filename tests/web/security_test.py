@@ -348,6 +348,7 @@ class SocketClients(unittest.TestCase):
                         break
                     except ConnectionRefusedError:
                         self.assertLess(time.monotonic(), deadline, "the console never listened")
+                        time.sleep(0.001)
                 self.assertEqual(status, 303, "start %d" % n)
                 webs[-1].terminate()
         finally:
