@@ -190,6 +190,53 @@ CipStatus link_set_single(const MrRequest& req, RouterContext&, Writer&) noexcep
   return interface_set_single(req, kEthernetLinkLastAttribute);
 }
 
+// The class attributes (instance 0) of the objects that describe the board, as CIP tools read
+// them before the instance's: revision, the highest instance, the number of instances, the
+// highest class attribute and the highest instance attribute. A row per class.
+struct ClassRow {
+  std::uint32_t class_id;
+  std::uint16_t revision;
+  std::uint16_t last_instance_attribute;
+};
+
+constexpr std::array<ClassRow, 3> kClassTable{{
+    {kIdentityClass, 1, 8},
+    {kTcpIpInterfaceClass, 4, kTcpIpLastAttribute},
+    {kEthernetLinkClass, 4, kEthernetLinkLastAttribute},
+}};
+
+constexpr std::uint16_t kLastClassAttribute = 7;
+
+const ClassRow* class_row(std::uint32_t class_id) noexcept {
+  for (const ClassRow& row : kClassTable) {
+    if (row.class_id == class_id) return &row;
+  }
+  return nullptr;
+}
+
+// Get_Attribute_Single of a class attribute: 1, 2, 3, 6 and 7 (4 and 5, the optional attribute
+// and service lists, are not kept: 0x14).
+CipStatus class_get_single(const MrRequest& req, const ClassRow& row, Writer& data) noexcept {
+  if (!req.path.has_attribute) return status(cip_general::kAttributeNotSupported);
+  switch (req.path.attribute) {
+    case 1:
+      data.u16(row.revision);
+      return {};
+    case 2:  // the highest instance
+    case 3:  // how many
+      data.u16(1);
+      return {};
+    case 6:
+      data.u16(kLastClassAttribute);
+      return {};
+    case 7:
+      data.u16(row.last_instance_attribute);
+      return {};
+    default:
+      return status(cip_general::kAttributeNotSupported);
+  }
+}
+
 constexpr std::array<ServiceRow, 13> kServiceTable{{
     {kIdentityClass, cip_service::kGetAttributesAll, identity_get_all},
     {kIdentityClass, cip_service::kGetAttributeSingle, identity_get_single},
@@ -212,6 +259,11 @@ std::span<const ServiceRow> service_table() noexcept {
 }
 
 CipStatus dispatch(const MrRequest& req, RouterContext& ctx, Writer& data) noexcept {
+  const bool class_instance = req.path.has_instance && req.path.instance == 0;
+  if (class_instance && req.service == cip_service::kGetAttributeSingle) {
+    if (const ClassRow* row = class_row(req.path.class_id))
+      return class_get_single(req, *row, data);
+  }
   bool class_known = false;
   for (const ServiceRow& row : kServiceTable) {
     if (row.class_id != req.path.class_id) continue;

@@ -90,6 +90,23 @@ TEST_F(EnipInterfaceObjects, RefusalsAndNothingSettable) {
   EXPECT_EQ(ask(hex("01 02 20 f5 24 01"), 0x0A000009u), hex("81 00 0c 00"));
 }
 
+// Instance 0: revision, highest instance, instances, highest class and instance attribute.
+TEST_F(EnipInterfaceObjects, ClassAttributes) {
+  EXPECT_EQ(ask(hex("0e 03 20 f5 24 00 30 01")), hex("8e 00 00 00 0400"));  // revision 4
+  EXPECT_EQ(ask(hex("0e 03 20 f5 24 00 30 02")), hex("8e 00 00 00 0100"));
+  EXPECT_EQ(ask(hex("0e 03 20 f5 24 00 30 03")), hex("8e 00 00 00 0100"));
+  EXPECT_EQ(ask(hex("0e 03 20 f5 24 00 30 06")), hex("8e 00 00 00 0700"));
+  EXPECT_EQ(ask(hex("0e 03 20 f5 24 00 30 07")), hex("8e 00 00 00 0d00"));  // 13
+  EXPECT_EQ(ask(hex("0e 03 20 f6 24 00 30 01")), hex("8e 00 00 00 0400"));
+  EXPECT_EQ(ask(hex("0e 03 20 f6 24 00 30 07")), hex("8e 00 00 00 0b00"));  // 11
+  EXPECT_EQ(ask(hex("0e 03 20 01 24 00 30 01")), hex("8e 00 00 00 0100"));  // Identity: 1
+  EXPECT_EQ(ask(hex("0e 03 20 01 24 00 30 07")), hex("8e 00 00 00 0800"));
+  EXPECT_EQ(ask(hex("0e 03 20 f5 24 00 30 04")), hex("8e 00 14 00"));       // no optional list
+  EXPECT_EQ(ask(hex("0e 02 20 f5 24 00")), hex("8e 00 14 00"));             // no attribute
+  EXPECT_EQ(ask(hex("0e 03 20 04 24 00 30 01")), hex("8e 00 05 00"));       // not the Assembly's
+  EXPECT_EQ(ask(hex("10 03 20 f5 24 00 30 01 0500")), hex("90 00 05 00"));  // not settable
+}
+
 TEST(EnipLinkFlags, LinkDuplexAndNegotiation) {
   NetInterface n;
   EXPECT_EQ(interface_flags(n), link_flags::kNegotiationNotAttempted);  // the loopback

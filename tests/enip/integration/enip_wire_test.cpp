@@ -90,6 +90,7 @@ TEST_F(EnipDaemonWire, TheInterfaceObjectsReadByEthernetIp) {
   EXPECT_NE(r->find("\"10\":\"026c6f\""), std::string::npos) << *r;       // label "lo"
   EXPECT_NE(r->find("\"3\":\"000000000000\""), std::string::npos) << *r;  // its MAC
   EXPECT_NE(r->find("\"12\":\"status 20\""), std::string::npos) << *r;
+  EXPECT_NE(r->find("\"revision\":\"0400\"}"), std::string::npos) << *r;  // class attribute 1
 }
 
 TEST_F(EnipDaemonWire, ListIdentityIsAnsweredOnUdpAndTcp) {

@@ -13,7 +13,8 @@
 //                                               Get_Attribute_Single of the Identity object
 //   node partner.js interface TARGET              ethernet-ip: Get_Attributes_All and
 //                                               Get_Attribute_Single of the TCP/IP Interface
-//                                               and Ethernet Link objects
+//                                               and Ethernet Link objects, and each class's
+//                                               revision
 //   node partner.js list-identity TARGET LOCAL udp|tcp   ListIdentity, parsed by
 //                                               st-ethernet-ip's Browser
 //   node partner.js browse LOCAL                 st-ethernet-ip's Browser as it finds devices:
@@ -139,10 +140,11 @@ async function interfaceObjects(target) {
   const { GET_ATTRIBUTE_ALL, GET_ATTRIBUTE_SINGLE } = CIP.MessageRouter.services;
   const plc = new Controller();
   await plc.connect(target, 0);
-  const ask = (service, event, classId, attribute) => {
+  const ask = (service, event, classId, attribute, instance = 1) => {
     const segments = [
       LOGICAL.build(LOGICAL.types.ClassID, classId),
-      LOGICAL.build(LOGICAL.types.InstanceID, 0x01),
+      // ethernet-ip builds no segment for 0 (the class itself): 8-bit instance segment by hand
+      instance === 0 ? Buffer.from([0x24, 0x00]) : LOGICAL.build(LOGICAL.types.InstanceID, instance),
     ];
     if (attribute) segments.push(LOGICAL.build(LOGICAL.types.AttributeID, attribute));
     const got = new Promise((resolve) => {
@@ -158,7 +160,8 @@ async function interfaceObjects(target) {
     for (let a = 1; a <= last; ++a) {
       singles[a] = await ask(GET_ATTRIBUTE_SINGLE, "Get Attribute Single", classId, a);
     }
-    out[name] = { all: await ask(GET_ATTRIBUTE_ALL, "Get Attribute All", classId), singles };
+    const revision = await ask(GET_ATTRIBUTE_SINGLE, "Get Attribute Single", classId, 1, 0);
+    out[name] = { all: await ask(GET_ATTRIBUTE_ALL, "Get Attribute All", classId), singles, revision };
   }
   say(out);
   plc.destroy();
