@@ -5,10 +5,6 @@
 namespace stepmod::enip {
 
 namespace {
-void put_name(Writer& w, const IdentityValues& id) noexcept {
-  w.u8(id.name_length);
-  for (std::size_t i = 0; i < id.name_length; ++i) w.u8(static_cast<std::uint8_t>(id.name[i]));
-}
 void put_revision(Writer& w, const IdentityValues& id) noexcept {
   w.u8(id.major);
   w.u8(id.minor);
@@ -52,7 +48,7 @@ void put_identity_all(Writer& w, const IdentityValues& id) noexcept {
   put_revision(w, id);
   w.u16(id.status);
   w.u32(id.serial);
-  put_name(w, id);
+  w.short_string(id.product_name());
 }
 
 bool put_identity_attribute(Writer& w, const IdentityValues& id, std::uint8_t attribute) noexcept {
@@ -76,7 +72,7 @@ bool put_identity_attribute(Writer& w, const IdentityValues& id, std::uint8_t at
       w.u32(id.serial);
       return true;
     case 7:
-      put_name(w, id);
+      w.short_string(id.product_name());
       return true;
     case 8:
       w.u8(id.state);

@@ -25,12 +25,6 @@ void put_string(Writer& w, std::string_view s) noexcept {
   if (s.size() % 2 != 0) w.u8(0);
 }
 
-// CIP SHORT_STRING: USINT length, the characters.
-void put_short_string(Writer& w, std::string_view s) noexcept {
-  w.u8(static_cast<std::uint8_t>(s.size()));
-  w.bytes(std::span(reinterpret_cast<const std::uint8_t*>(s.data()), s.size()));
-}
-
 void put_each(Writer& w, std::span<const std::uint32_t> values) noexcept {
   for (const std::uint32_t v : values) w.u32(v);
 }
@@ -134,7 +128,7 @@ void link_enabled(Writer& w, const NetInterface& n) noexcept {
   w.u8(n.admin_up ? 1 : 2);
 }
 void link_label(Writer& w, const NetInterface& n) noexcept {
-  put_short_string(w, n.label.view());
+  w.short_string(n.label.view());
 }
 // Interface Capability: bit 1 auto-negotiation; no speed/duplex list (nothing settable).
 void link_capability(Writer& w, const NetInterface& n) noexcept {

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string_view>
 
 namespace stepmod::enip {
 
@@ -97,6 +98,15 @@ class Writer : public WireCursor {
   void bytes(std::span<const std::uint8_t> b) noexcept {
     if (!has(b.size())) return;
     for (const std::uint8_t v : b) out_[pos_++] = v;
+  }
+  // CIP SHORT_STRING: USINT length, the characters (at most 255, as its length says).
+  void short_string(std::string_view s) noexcept {
+    if (s.size() > 0xFF || !has(1 + s.size())) {
+      ok_ = false;
+      return;
+    }
+    u8(static_cast<std::uint8_t>(s.size()));
+    for (const char c : s) put(static_cast<std::uint8_t>(c));
   }
   void zeros(std::size_t n) noexcept {
     if (!has(n)) return;

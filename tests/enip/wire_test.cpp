@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <string>
+#include <vector>
 
 #include "tests/enip/enip_bytes.hpp"
 
@@ -71,6 +73,25 @@ TEST(EnipWire, PatchOutsideWhatWasWrittenFails) {
   w.u16(1);
   w.patch_u16(1, 5);
   EXPECT_FALSE(w.ok());
+}
+
+// CIP SHORT_STRING (the Identity's product name, the Ethernet Link's label): written whole or
+// not at all; longer than its one length byte can say, not at all.
+TEST(EnipWire, AShortStringIsItsLengthThenItsCharacters) {
+  std::array<std::uint8_t, 8> buf{};
+  Writer w(buf);
+  w.short_string("eth0");
+  EXPECT_TRUE(w.ok());
+  EXPECT_EQ(std::vector<std::uint8_t>(w.written().begin(), w.written().end()),
+            test::hex("04 65746830"));
+  w.short_string("four");  // 5 bytes, 3 left
+  EXPECT_FALSE(w.ok());
+  EXPECT_EQ(w.size(), 5u);
+  std::array<std::uint8_t, 300> big{};
+  Writer too_long(big);
+  too_long.short_string(std::string(256, 'x'));
+  EXPECT_FALSE(too_long.ok());
+  EXPECT_EQ(too_long.size(), 0u);
 }
 
 }  // namespace
