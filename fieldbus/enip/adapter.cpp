@@ -40,11 +40,6 @@ std::uint32_t random_seed() noexcept {
   }
   return seed;
 }
-
-std::uint32_t host_ip(const std::string& address) noexcept {
-  in_addr a{};
-  return ::inet_pton(AF_INET, address.c_str(), &a) == 1 ? ntohl(a.s_addr) : 0;
-}
 }  // namespace
 
 Adapter::Impl::Impl(const Setup& s)
@@ -62,7 +57,8 @@ Adapter::Impl::Impl(const Setup& s)
              connections,
              network,
              RequestOrigin{}},
-      encap{sessions, identity, SocketAddress{host_ip(s.options.address), s.options.port}, router} {
+      encap{sessions, identity, SocketAddress{parse_ipv4(s.options.address), s.options.port},
+            router} {
   const AdapterOptions& o = s.options;
   wake_fd = ::eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
   if (wake_fd < 0) throw ipc::IpcError("ethernetip: eventfd: " + std::string(std::strerror(errno)));
@@ -79,7 +75,7 @@ Adapter::Impl::Impl(const Setup& s)
 // a second one on 0.0.0.0 does; when it cannot be bound (another program holds the port without
 // SO_REUSEADDR) the adapter runs without it and says so.
 void Adapter::Impl::open_broadcast(const AdapterOptions& o) {
-  broadcasts = BroadcastScope::for_listen(host_ip(o.address), interface_addresses());
+  broadcasts = BroadcastScope::for_listen(parse_ipv4(o.address), interface_addresses());
   if (!broadcasts.needs_own_socket()) return;
   std::string why;
   broadcast_fd = open_broadcast_socket(o.port, why);

@@ -7,6 +7,7 @@
 #include <sys/timerfd.h>
 #include <unistd.h>
 
+#include <array>
 #include <cerrno>
 #include <cstring>
 #include <limits>
@@ -92,10 +93,8 @@ std::vector<InterfaceAddress> interface_addresses() {
     if (i->ifa_addr == nullptr || i->ifa_addr->sa_family != AF_INET) continue;
     InterfaceAddress a;
     a.ifindex = ::if_nametoindex(i->ifa_name);
-    a.address = ntohl(reinterpret_cast<const sockaddr_in*>(i->ifa_addr)->sin_addr.s_addr);
-    if ((i->ifa_flags & IFF_BROADCAST) != 0 && i->ifa_broadaddr != nullptr) {
-      a.broadcast = ntohl(reinterpret_cast<const sockaddr_in*>(i->ifa_broadaddr)->sin_addr.s_addr);
-    }
+    a.address = ipv4_of(i->ifa_addr);
+    if ((i->ifa_flags & IFF_BROADCAST) != 0) a.broadcast = ipv4_of(i->ifa_broadaddr);
     out.push_back(a);
   }
   ::freeifaddrs(list);
@@ -125,6 +124,19 @@ sockaddr_in ipv4_address(std::uint32_t ip_host_order, std::uint16_t port) noexce
   a.sin_port = htons(port);
   a.sin_addr.s_addr = htonl(ip_host_order);
   return a;
+}
+
+std::uint32_t parse_ipv4(std::string_view text) noexcept {
+  std::array<char, INET_ADDRSTRLEN> z{};  // inet_pton wants it NUL-terminated
+  if (text.size() >= z.size()) return 0;
+  std::memcpy(z.data(), text.data(), text.size());
+  in_addr a{};
+  return ::inet_pton(AF_INET, z.data(), &a) == 1 ? ntohl(a.s_addr) : 0;
+}
+
+std::uint32_t ipv4_of(const sockaddr* sa) noexcept {
+  if (sa == nullptr || sa->sa_family != AF_INET) return 0;
+  return ntohl(reinterpret_cast<const sockaddr_in*>(sa)->sin_addr.s_addr);
 }
 
 bool send_whole(int fd, std::span<const std::uint8_t> bytes) noexcept {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "fieldbus/enip/broadcast.hpp"
@@ -45,6 +46,10 @@ int open_timer();
 void arm_timer(int timer, std::int64_t at_ns) noexcept;
 
 sockaddr_in ipv4_address(std::uint32_t ip_host_order, std::uint16_t port) noexcept;
+// An IPv4 address's text ("192.168.1.10") in host byte order; 0 when it is not one.
+std::uint32_t parse_ipv4(std::string_view text) noexcept;
+// The IPv4 address of `sa` in host byte order; 0 when there is none or it is not IPv4.
+std::uint32_t ipv4_of(const sockaddr* sa) noexcept;
 
 // Sends all of `bytes` on a non-blocking stream socket; false when it could not (the peer does
 // not read, or is gone): the caller closes it rather than wait.

@@ -16,6 +16,8 @@
 #include <charconv>
 #include <cstring>
 
+#include "fieldbus/enip/adapter_sockets.hpp"
+
 namespace stepmod::enip {
 
 namespace {
@@ -62,19 +64,6 @@ bool parse_hex(std::string_view s, std::uint32_t& out) noexcept {
   return r.ec == std::errc() && r.ptr == s.data() + s.size();
 }
 
-std::uint32_t parse_ipv4(std::string_view s) noexcept {
-  std::array<char, INET_ADDRSTRLEN> z{};
-  if (s.size() >= z.size()) return 0;
-  std::memcpy(z.data(), s.data(), s.size());
-  in_addr a{};
-  return ::inet_pton(AF_INET, z.data(), &a) == 1 ? ntohl(a.s_addr) : 0;
-}
-
-std::uint32_t host_order(const sockaddr* sa) noexcept {
-  if (sa == nullptr || sa->sa_family != AF_INET) return 0;
-  return ntohl(reinterpret_cast<const sockaddr_in*>(sa)->sin_addr.s_addr);
-}
-
 // Linux's counters of the link (getifaddrs' one snapshot of them) in the Ethernet Link object's
 // order; what Linux does not count apart is 0 (docs/ethernetip-design.md, "TCP/IP Interface
 // (0xF5) and Ethernet Link").
@@ -109,10 +98,10 @@ void from_link_stats(const rtnl_link_stats& st, LinkCounters& out) noexcept {
 const ifaddrs* entry_of(const ifaddrs* all, std::uint32_t local_ip) noexcept {
   const ifaddrs* in_network = nullptr;
   for (const ifaddrs* a = all; a != nullptr; a = a->ifa_next) {
-    const std::uint32_t ip = host_order(a->ifa_addr);
+    const std::uint32_t ip = ipv4_of(a->ifa_addr);
     if (ip == 0) continue;
     if (ip == local_ip) return a;
-    const std::uint32_t mask = host_order(a->ifa_netmask);
+    const std::uint32_t mask = ipv4_of(a->ifa_netmask);
     if (in_network == nullptr && mask != 0 && (ip & mask) == (local_ip & mask)) in_network = a;
   }
   return in_network;
@@ -125,7 +114,7 @@ bool from_ifaddrs(std::uint32_t local_ip, NetInterface& out) noexcept {
   const ifaddrs* e = entry_of(all, local_ip);
   if (e != nullptr) {
     out.ip = local_ip;
-    out.mask = host_order(e->ifa_netmask);
+    out.mask = ipv4_of(e->ifa_netmask);
     // An address with a label ("eth0:1") is named by it: the link is the name before ':'.
     const std::string_view name = e->ifa_name;
     out.label.assign(name.substr(0, name.find(':')));
@@ -168,6 +157,7 @@ void from_ethtool(NetInterface& out) noexcept {
   if (cmd.port == PORT_TP) out.medium = Medium::kTwistedPair;
   if (cmd.port == PORT_FIBRE) out.medium = Medium::kOptical;
 }
+
 }  // namespace
 
 std::uint32_t default_gateway(std::string_view proc_net_route, std::string_view ifname) noexcept {
@@ -225,11 +215,10 @@ bool LinuxNetworkPort::read(std::uint32_t local_ip, NetInterface& out) const noe
 
 bool LinuxNetworkPort::describe(std::uint32_t local_ip, NetInterface& out) noexcept {
   const Nanos now = monotonic_now();
-  if (!has_snapshot_ || local_ip != snapshot_ip_ || now - snapshot_at_ >= kSnapshotLife) {
+  if (local_ip != snapshot_ip_ || now - snapshot_at_ >= kSnapshotLife) {
     snapshot_ok_ = read(local_ip, snapshot_);
     snapshot_ip_ = local_ip;
     snapshot_at_ = now;
-    has_snapshot_ = true;
   }
   out = snapshot_;
   return snapshot_ok_;

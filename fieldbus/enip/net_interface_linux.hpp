@@ -37,9 +37,8 @@ class LinuxNetworkPort : public NetworkPort {
   const char* resolv_conf_;
   NetInterface snapshot_;
   std::uint32_t snapshot_ip_ = 0;
-  Nanos snapshot_at_ = 0;
+  Nanos snapshot_at_ = -kSnapshotLife;  // none yet: stale at any CLOCK_MONOTONIC time
   bool snapshot_ok_ = false;
-  bool has_snapshot_ = false;
 };
 
 }  // namespace stepmod::enip

@@ -11,6 +11,8 @@
 #include <array>
 #include <string>
 
+#include "fieldbus/enip/adapter_sockets.hpp"
+
 namespace stepmod::enip {
 namespace {
 
@@ -30,6 +32,20 @@ void send_one_datagram_on_the_loopback() {
   const char byte = 0;
   ::sendto(s, &byte, 1, 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
   ::close(s);
+}
+
+TEST(EnipNetInterface, Ipv4TextAndSocketAddresses) {
+  EXPECT_EQ(parse_ipv4("192.168.1.10"), 0xC0A8010Au);
+  EXPECT_EQ(parse_ipv4("192.168.1.10 trailing"), 0u);  // not only an address
+  EXPECT_EQ(parse_ipv4("2001:db8::1"), 0u);
+  EXPECT_EQ(parse_ipv4(""), 0u);
+  EXPECT_EQ(parse_ipv4(std::string(40, '1')), 0u);  // longer than any address: not read
+  const sockaddr_in a = ipv4_address(0x0A000005u, 44818);
+  EXPECT_EQ(ipv4_of(reinterpret_cast<const sockaddr*>(&a)), 0x0A000005u);
+  sockaddr_in6 six{};
+  six.sin6_family = AF_INET6;
+  EXPECT_EQ(ipv4_of(reinterpret_cast<const sockaddr*>(&six)), 0u);
+  EXPECT_EQ(ipv4_of(nullptr), 0u);
 }
 
 TEST(EnipNetInterface, TheDefaultGatewayOfTheInterface) {
